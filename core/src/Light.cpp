@@ -1,0 +1,142 @@
+#include "facet/Light.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/trigonometric.hpp>
+
+#include "Overloaded.h"
+#include "Validate.h"
+
+namespace facet {
+namespace {
+
+double quadraticFactor(const QuadraticAttenuation& q, double distance) {
+  // A zero coefficient contributes exactly 0, even at infinite distance (avoids 0·inf = NaN).
+  const double linearTerm = q.linear == 0.0 ? 0.0 : q.linear * distance;
+  const double quadraticTerm = q.quadratic == 0.0 ? 0.0 : q.quadratic * distance * distance;
+  const double denominator = q.constant + linearTerm + quadraticTerm;
+  if (std::isnan(denominator)) return 0.0;
+  return 1.0 / std::max(denominator, 1.0 / kMaxAttenuation);
+}
+
+double falloffDistanceFactor(const FalloffDistanceAttenuation& f, double distance) {
+  if (distance <= f.distance) return 1.0;
+  const double factor = f.distance / distance;
+  return factor > 0.0 ? factor : 0.0;  // negative or NaN F (invalid input) gives 0
+}
+
+// cos of an angle in degrees, exact at the angles where a cone's edge case is decided.
+double cosDegrees(double degrees) {
+  if (degrees == 90.0) return 0.0;
+  if (degrees == 180.0) return -1.0;
+  return std::cos(glm::radians(degrees));
+}
+
+double linearConeFactor(const LinearSpotCone& cone, double cosAngle) {
+  const double angle = glm::degrees(std::acos(cosAngle));
+  if (angle <= cone.fullIntensityAngleDegrees) return 1.0;
+  const double zeroAngle = cone.fullIntensityAngleDegrees + cone.falloffAngleDegrees;
+  if (!(cone.falloffAngleDegrees > 0.0) || angle >= zeroAngle) return 0.0;
+  return (zeroAngle - angle) / cone.falloffAngleDegrees;
+}
+
+double exponentConeFactor(const ExponentSpotCone& cone, double cosAngle) {
+  // VTK's shaders treat a cone angle above 90 degrees as "not a spotlight".
+  if (cone.coneAngleDegrees > 90.0) return 1.0;
+  if (cosAngle < cosDegrees(cone.coneAngleDegrees)) return 0.0;
+  const double factor = std::pow(std::max(cosAngle, 0.0), cone.exponent);
+  return factor > 0.0 ? std::min(factor, 1.0) : 0.0;
+}
+
+void validateAttenuation(const Attenuation& attenuation, const std::string& name) {
+  std::visit(detail::Overloaded{
+                 [](const NoAttenuation&) {},
+                 [&](const QuadraticAttenuation& q) {
+                   detail::requireNonNegative(q.constant, name + ".constant");
+                   detail::requireNonNegative(q.linear, name + ".linear");
+                   detail::requireNonNegative(q.quadratic, name + ".quadratic");
+                 },
+                 [&](const FalloffDistanceAttenuation& f) {
+                   detail::requireNonNegative(f.distance, name + ".distance");
+                 },
+             },
+             attenuation);
+}
+
+void validateCone(const SpotCone& cone, const std::string& name) {
+  std::visit(detail::Overloaded{
+                 [&](const LinearSpotCone& c) {
+                   detail::requireInRange(c.fullIntensityAngleDegrees, 0.0, 180.0,
+                                          name + ".fullIntensityAngleDegrees");
+                   detail::requireNonNegative(c.falloffAngleDegrees,
+                                              name + ".falloffAngleDegrees");
+                 },
+                 [&](const ExponentSpotCone& c) {
+                   detail::requireInRange(c.coneAngleDegrees, 0.0, 180.0,
+                                          name + ".coneAngleDegrees");
+                   detail::requireNonNegative(c.exponent, name + ".exponent");
+                 },
+             },
+             cone);
+}
+
+void validateLight(const Light& light, const std::string& name) {
+  std::visit(detail::Overloaded{
+                 [&](const DirectionalLight& l) {
+                   detail::requireNonZeroDirection(l.direction, name + ".direction");
+                   detail::requireColor(l.color, name + ".color");
+                   detail::requireFinite(l.intensity, name + ".intensity");
+                 },
+                 [&](const PointLight& l) {
+                   detail::requireFinite(l.position, name + ".position");
+                   detail::requireColor(l.color, name + ".color");
+                   detail::requireFinite(l.intensity, name + ".intensity");
+                   validateAttenuation(l.attenuation, name + ".attenuation");
+                 },
+                 [&](const SpotLight& l) {
+                   detail::requireFinite(l.position, name + ".position");
+                   detail::requireNonZeroDirection(l.direction, name + ".direction");
+                   detail::requireColor(l.color, name + ".color");
+                   detail::requireFinite(l.intensity, name + ".intensity");
+                   validateAttenuation(l.attenuation, name + ".attenuation");
+                   validateCone(l.cone, name + ".cone");
+                 },
+             },
+             light);
+}
+
+}  // namespace
+
+double attenuationFactor(const Attenuation& attenuation, double distance) {
+  if (!(distance >= 0.0)) return 0.0;
+  return std::visit(
+      detail::Overloaded{
+          [](const NoAttenuation&) { return 1.0; },
+          [&](const QuadraticAttenuation& q) { return quadraticFactor(q, distance); },
+          [&](const FalloffDistanceAttenuation& f) { return falloffDistanceFactor(f, distance); },
+      },
+      attenuation);
+}
+
+double spotFactor(const SpotCone& cone, double cosAngleFromAxis) {
+  if (std::isnan(cosAngleFromAxis)) return 0.0;
+  const double cosAngle = std::clamp(cosAngleFromAxis, -1.0, 1.0);
+  return std::visit(
+      detail::Overloaded{
+          [&](const LinearSpotCone& c) { return linearConeFactor(c, cosAngle); },
+          [&](const ExponentSpotCone& c) { return exponentConeFactor(c, cosAngle); },
+      },
+      cone);
+}
+
+void validate(const LightSet& lightSet) {
+  detail::requireColor(lightSet.ambient.color, "LightSet.ambient.color");
+  detail::requireFinite(lightSet.ambient.intensity, "LightSet.ambient.intensity");
+  for (std::size_t i = 0; i < lightSet.lights.size(); ++i) {
+    validateLight(lightSet.lights[i], "LightSet.lights[" + std::to_string(i) + "]");
+  }
+}
+
+}  // namespace facet

@@ -1,0 +1,90 @@
+// Newell normals: all vertices count, degenerate polygons report "no normal".
+
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "facet/PolygonNormal.h"
+
+namespace facet {
+namespace {
+
+void expectVectorNear(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+TEST(NewellNormal, CounterClockwiseTriangleFacesPlusZ) {
+  const std::vector<glm::dvec3> triangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const auto n = newellNormal(triangle);
+  ASSERT_TRUE(n.has_value());
+  expectVectorNear(*n, {0, 0, 1}, 1e-15);
+}
+
+TEST(NewellNormal, FirstThreeVerticesCollinear) {
+  // A cross product of the first three vertices would be zero here.
+  const std::vector<glm::dvec3> polygon = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 0, 1}, {0, 0, 1}};
+  const auto n = newellNormal(polygon);
+  ASSERT_TRUE(n.has_value());
+  expectVectorNear(*n, {0, -1, 0}, 1e-15);
+}
+
+TEST(NewellNormal, ConcavePolygon) {
+  const std::vector<glm::dvec3> arrow = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {2, 1, 0}, {0, 4, 0}};
+  const auto n = newellNormal(arrow);
+  ASSERT_TRUE(n.has_value());
+  expectVectorNear(*n, {0, 0, 1}, 1e-15);
+}
+
+TEST(NewellNormal, SlightlyNonPlanarQuadGetsTheAverageNormal) {
+  const std::vector<glm::dvec3> quad = {{0, 0, 0}, {1, 0, 0.01}, {1, 1, 0}, {0, 1, 0.01}};
+  const auto n = newellNormal(quad);
+  ASSERT_TRUE(n.has_value());
+  expectVectorNear(*n, {0, 0, 1}, 1e-3);
+}
+
+TEST(NewellNormal, ZeroAreaReportsNoNormal) {
+  EXPECT_FALSE(newellNormal(std::vector<glm::dvec3>{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}));
+  EXPECT_FALSE(newellNormal(std::vector<glm::dvec3>{{5, 5, 5}, {5, 5, 5}, {5, 5, 5}}));
+  EXPECT_FALSE(newellNormal(std::vector<glm::dvec3>{{0, 0, 0}, {1, 0, 0}}));
+  // Goes out and comes back along the same line: zero vector area.
+  EXPECT_FALSE(newellNormal(std::vector<glm::dvec3>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1, 0, 0}}));
+}
+
+TEST(NewellNormal, NonFiniteReportsNoNormal) {
+  const double nan = std::nan("");
+  EXPECT_FALSE(newellNormal(std::vector<glm::dvec3>{{0, 0, 0}, {1, 0, 0}, {0, nan, 0}}));
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(newellNormal(std::vector<glm::dvec3>{{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}}));
+  // Huge but finite is fine: the computation is scale-free.
+  const auto huge = newellNormal(std::vector<glm::dvec3>{{0, 0, 0}, {1e300, 0, 0}, {0, 1e300, 0}});
+  ASSERT_TRUE(huge.has_value());
+  expectVectorNear(*huge, {0, 0, 1}, 1e-15);
+}
+
+TEST(NewellNormal, FarFromTheOriginLikeAtTheOrigin) {
+  const glm::dvec3 far(1e9, -3e9, 7e8);
+  // Unit-sized: at 1e9 a double resolves 1.2e-7, so the normal can agree to about 1e-6.
+  const std::vector<glm::dvec3> local = {{0, 0, 0}, {1, 0, 0}, {1, 2, 1}};
+  std::vector<glm::dvec3> shifted;
+  for (const auto& v : local) shifted.push_back(v + far);
+  const auto a = newellNormal(local);
+  const auto b = newellNormal(shifted);
+  ASSERT_TRUE(a && b);
+  expectVectorNear(*b, *a, 1e-6);
+}
+
+TEST(NewellNormal, TinyAndHugeScalesAgree) {
+  for (double scale : {1e-300, 1e-150, 1e-6, 1.0, 1e6, 1e150, 1e300}) {
+    const std::vector<glm::dvec3> triangle = {
+        {0, 0, 0}, {scale, 0, 0}, {0, 0, -scale}};  // faces +Y
+    const auto n = newellNormal(triangle);
+    ASSERT_TRUE(n.has_value()) << "scale " << scale;
+    expectVectorNear(*n, {0, 1, 0}, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace facet
