@@ -50,58 +50,61 @@ double exponentConeFactor(const ExponentSpotCone& cone, double cosAngle) {
   return factor > 0.0 ? std::min(factor, 1.0) : 0.0;
 }
 
-void validateAttenuation(const Attenuation& attenuation, const std::string& name) {
+template <class Name>
+void validateAttenuation(const Attenuation& attenuation, const Name& name) {
   std::visit(detail::Overloaded{
                  [](const NoAttenuation&) {},
                  [&](const QuadraticAttenuation& q) {
-                   detail::requireNonNegative(q.constant, name + ".constant");
-                   detail::requireNonNegative(q.linear, name + ".linear");
-                   detail::requireNonNegative(q.quadratic, name + ".quadratic");
+                   detail::requireNonNegative(q.constant, [&] { return name() + ".constant"; });
+                   detail::requireNonNegative(q.linear, [&] { return name() + ".linear"; });
+                   detail::requireNonNegative(q.quadratic, [&] { return name() + ".quadratic"; });
                  },
                  [&](const FalloffDistanceAttenuation& f) {
-                   detail::requireNonNegative(f.distance, name + ".distance");
+                   detail::requireNonNegative(f.distance, [&] { return name() + ".distance"; });
                  },
              },
              attenuation);
 }
 
-void validateCone(const SpotCone& cone, const std::string& name) {
+template <class Name>
+void validateCone(const SpotCone& cone, const Name& name) {
   std::visit(detail::Overloaded{
                  [&](const LinearSpotCone& c) {
                    detail::requireInRange(c.fullIntensityAngleDegrees, 0.0, 180.0,
-                                          name + ".fullIntensityAngleDegrees");
+                                          [&] { return name() + ".fullIntensityAngleDegrees"; });
                    detail::requireNonNegative(c.falloffAngleDegrees,
-                                              name + ".falloffAngleDegrees");
+                                              [&] { return name() + ".falloffAngleDegrees"; });
                  },
                  [&](const ExponentSpotCone& c) {
                    detail::requireInRange(c.coneAngleDegrees, 0.0, 180.0,
-                                          name + ".coneAngleDegrees");
-                   detail::requireNonNegative(c.exponent, name + ".exponent");
+                                          [&] { return name() + ".coneAngleDegrees"; });
+                   detail::requireNonNegative(c.exponent, [&] { return name() + ".exponent"; });
                  },
              },
              cone);
 }
 
-void validateLight(const Light& light, const std::string& name) {
+template <class Name>
+void validateLight(const Light& light, const Name& name) {
   std::visit(detail::Overloaded{
                  [&](const DirectionalLight& l) {
-                   detail::requireNonZeroDirection(l.direction, name + ".direction");
-                   detail::requireColor(l.color, name + ".color");
-                   detail::requireFinite(l.intensity, name + ".intensity");
+                   detail::requireNonZeroDirection(l.direction, [&] { return name() + ".direction"; });
+                   detail::requireColor(l.color, [&] { return name() + ".color"; });
+                   detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
                  },
                  [&](const PointLight& l) {
-                   detail::requireFinite(l.position, name + ".position");
-                   detail::requireColor(l.color, name + ".color");
-                   detail::requireFinite(l.intensity, name + ".intensity");
-                   validateAttenuation(l.attenuation, name + ".attenuation");
+                   detail::requireFinite(l.position, [&] { return name() + ".position"; });
+                   detail::requireColor(l.color, [&] { return name() + ".color"; });
+                   detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
+                   validateAttenuation(l.attenuation, [&] { return name() + ".attenuation"; });
                  },
                  [&](const SpotLight& l) {
-                   detail::requireFinite(l.position, name + ".position");
-                   detail::requireNonZeroDirection(l.direction, name + ".direction");
-                   detail::requireColor(l.color, name + ".color");
-                   detail::requireFinite(l.intensity, name + ".intensity");
-                   validateAttenuation(l.attenuation, name + ".attenuation");
-                   validateCone(l.cone, name + ".cone");
+                   detail::requireFinite(l.position, [&] { return name() + ".position"; });
+                   detail::requireNonZeroDirection(l.direction, [&] { return name() + ".direction"; });
+                   detail::requireColor(l.color, [&] { return name() + ".color"; });
+                   detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
+                   validateAttenuation(l.attenuation, [&] { return name() + ".attenuation"; });
+                   validateCone(l.cone, [&] { return name() + ".cone"; });
                  },
              },
              light);
@@ -135,7 +138,8 @@ void validate(const LightSet& lightSet) {
   detail::requireColor(lightSet.ambient.color, "LightSet.ambient.color");
   detail::requireFinite(lightSet.ambient.intensity, "LightSet.ambient.intensity");
   for (std::size_t i = 0; i < lightSet.lights.size(); ++i) {
-    validateLight(lightSet.lights[i], "LightSet.lights[" + std::to_string(i) + "]");
+    validateLight(lightSet.lights[i],
+                  [i] { return "LightSet.lights[" + std::to_string(i) + "]"; });
   }
 }
 

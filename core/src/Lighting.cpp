@@ -41,30 +41,39 @@ double specularFactor(const Material& material, const glm::dvec3& normal,
 
 }  // namespace
 
-Shader::Shader(const LightSet& lightSet) {
+Shader::PreparedLight Shader::prepare(const Light& light) {
+  using Kind = PreparedLight::Kind;
+  return std::visit(
+      detail::Overloaded{
+          [](const DirectionalLight& l) {
+            return PreparedLight{Kind::Directional, glm::dvec3{0.0},
+                                 -detail::normalizeRobust(l.direction)->unit,
+                                 radianceOf(l.color, l.intensity), NoAttenuation{}, {}};
+          },
+          [](const PointLight& l) {
+            return PreparedLight{Kind::Point, l.position, glm::dvec3{0.0},
+                                 radianceOf(l.color, l.intensity), l.attenuation, {}};
+          },
+          [](const SpotLight& l) {
+            return PreparedLight{Kind::Spot, l.position,
+                                 detail::normalizeRobust(l.direction)->unit,
+                                 radianceOf(l.color, l.intensity), l.attenuation, l.cone};
+          },
+      },
+      light);
+}
+
+void Shader::reset(const LightSet& lightSet) {
+  lights_.clear();
+  ambient_ = glm::dvec3(0.0);
+  hasPositionalLights_ = false;
   validate(lightSet);
   ambient_ = radianceOf(lightSet.ambient.color, lightSet.ambient.intensity);
-  lights_.reserve(lightSet.lights.size());
   for (const Light& light : lightSet.lights) {
-    lights_.push_back(std::visit(
-        detail::Overloaded{
-            [](const DirectionalLight& l) {
-              return PreparedLight{PreparedLight::Kind::Directional, glm::dvec3{0.0},
-                                   -detail::normalizeRobust(l.direction)->unit,
-                                   radianceOf(l.color, l.intensity), NoAttenuation{}, {}};
-            },
-            [](const PointLight& l) {
-              return PreparedLight{PreparedLight::Kind::Point, l.position, glm::dvec3{0.0},
-                                   radianceOf(l.color, l.intensity), l.attenuation, {}};
-            },
-            [](const SpotLight& l) {
-              return PreparedLight{PreparedLight::Kind::Spot, l.position,
-                                   detail::normalizeRobust(l.direction)->unit,
-                                   radianceOf(l.color, l.intensity), l.attenuation, l.cone};
-            },
-        },
-        light));
-    hasPositionalLights_ |= lights_.back().kind != PreparedLight::Kind::Directional;
+    const PreparedLight prepared = prepare(light);
+    if (prepared.radiance == glm::dvec3(0.0)) continue;  // dark lights cost nothing
+    lights_.push_back(prepared);
+    hasPositionalLights_ |= prepared.kind != PreparedLight::Kind::Directional;
   }
 }
 

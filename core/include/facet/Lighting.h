@@ -69,7 +69,13 @@ struct SurfaceSample {
 class Shader {
  public:
   /// Validates the lights (throws facet::Error naming the first bad value) and prepares them.
-  explicit Shader(const LightSet& lightSet);
+  explicit Shader(const LightSet& lightSet) { reset(lightSet); }
+  /// No light at all, not even ambient.
+  Shader() = default;
+
+  /// Prepares another light set, reusing this shader's memory. On error (facet::Error) the
+  /// shader is left without lights.
+  void reset(const LightSet& lightSet);
 
   /// The color of one surface point under these lights, by the formula above. Finite, in
   /// [0, 1].
@@ -78,7 +84,8 @@ class Shader {
   /// True when some light's contribution depends on the point's position (point or spot
   /// lights); with only directional lights, equal normals give equal colors.
   bool hasPositionalLights() const { return hasPositionalLights_; }
-  /// Number of direct (non-ambient) lights.
+  /// Number of direct (non-ambient) lights that can shed light; lights of zero intensity
+  /// or black color are left out when the shader is prepared.
   std::size_t lightCount() const { return lights_.size(); }
 
  private:
@@ -95,6 +102,7 @@ class Shader {
     glm::dvec3 toLight;
     glm::dvec3 radiance;  // Eᵢ
   };
+  static PreparedLight prepare(const Light& light);
   LightAtPoint arriving(const PreparedLight& light, const SurfaceSample& sample) const;
 
   std::vector<PreparedLight> lights_;

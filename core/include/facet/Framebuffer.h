@@ -1,0 +1,60 @@
+#pragma once
+
+/// @file Framebuffer.h
+/// The renderer's output: color, depth and the id of the polygon behind every pixel.
+/// Layout: row-major, row 0 at the bottom (Conventions.h, "Window"); pixel (x, y) is at
+/// index y·width + x in every plane.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "facet/Color.h"
+
+namespace facet {
+
+class Framebuffer {
+ public:
+  /// Polygon id of a pixel no polygon covers.
+  static constexpr std::int32_t kBackgroundId = -1;
+
+  Framebuffer() = default;
+  /// Allocates width × height pixels. Throws facet::Error for a side ≤ 0 or above
+  /// kMaxImageSide, or when the memory cannot be allocated (the message says how much).
+  Framebuffer(int width, int height);
+
+  /// Changes the size; keeps the allocation when the pixel count does not grow.
+  void resize(int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::size_t pixelCount() const { return static_cast<std::size_t>(width_) * height_; }
+  /// Bytes held by the three planes.
+  std::size_t byteSize() const;
+
+  /// RGBA8 colors.
+  std::span<Rgba8> color() { return {color_.data(), pixelCount()}; }
+  std::span<const Rgba8> color() const { return {color_.data(), pixelCount()}; }
+  /// Window depth in [0, 1], 1 = background (Conventions.h, "Depth").
+  std::span<float> depth() { return {depth_.data(), pixelCount()}; }
+  std::span<const float> depth() const { return {depth_.data(), pixelCount()}; }
+  /// Index of the polygon that produced the pixel (in scene order: the polygons of mesh 0,
+  /// then mesh 1, ...), or kBackgroundId.
+  std::span<std::int32_t> polygonId() { return {polygonId_.data(), pixelCount()}; }
+  std::span<const std::int32_t> polygonId() const { return {polygonId_.data(), pixelCount()}; }
+
+  std::size_t indexOf(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  Rgba8 colorAt(int x, int y) const { return color_[indexOf(x, y)]; }
+  float depthAt(int x, int y) const { return depth_[indexOf(x, y)]; }
+  std::int32_t polygonIdAt(int x, int y) const { return polygonId_[indexOf(x, y)]; }
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Rgba8> color_;
+  std::vector<float> depth_;
+  std::vector<std::int32_t> polygonId_;
+};
+
+}  // namespace facet

@@ -1,0 +1,109 @@
+#pragma once
+
+/// @file Mesh.h
+/// Polygon meshes as the renderer reads them: non-owning views over arrays laid out the way
+/// VTK stores them (xyz-interleaved float or double points; a cell array's offsets and
+/// connectivity in 32- or 64-bit integers), so an adapter can hand its arrays over without
+/// copying. `Mesh` is a small owning mesh for callers that build geometry themselves.
+
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "facet/Color.h"
+
+namespace facet {
+
+/// Points: `count` xyz triples, interleaved, in float or double.
+struct PointArray {
+  enum class Type { Float32, Float64 };
+  const void* data = nullptr;
+  Type type = Type::Float64;
+  std::size_t count = 0;
+
+  static PointArray of(std::span<const glm::dvec3> points) {
+    return {points.data(), Type::Float64, points.size()};
+  }
+  static PointArray of(std::span<const glm::vec3> points) {
+    return {points.data(), Type::Float32, points.size()};
+  }
+  /// From a flat xyz array (length a multiple of 3), as vtkPoints stores it.
+  static PointArray ofXyz(std::span<const float> xyz) {
+    return {xyz.data(), Type::Float32, xyz.size() / 3};
+  }
+  static PointArray ofXyz(std::span<const double> xyz) {
+    return {xyz.data(), Type::Float64, xyz.size() / 3};
+  }
+};
+
+/// Polygons as vtkCellArray stores them: polygon i uses
+/// connectivity[offsets[i] .. offsets[i+1]), so `offsets` has `count + 1` entries starting
+/// at 0. Any vertex count ≥ 3; convex or concave; possibly slightly non-planar.
+struct PolygonArray {
+  enum class Type { Int32, Int64 };
+  const void* offsets = nullptr;
+  const void* connectivity = nullptr;
+  Type type = Type::Int64;
+  std::size_t count = 0;             ///< number of polygons
+  std::size_t connectivitySize = 0;  ///< number of entries in `connectivity`
+
+  static PolygonArray of(std::span<const std::int64_t> offsets,
+                         std::span<const std::int64_t> connectivity) {
+    return {offsets.data(), connectivity.data(), Type::Int64,
+            offsets.empty() ? 0 : offsets.size() - 1, connectivity.size()};
+  }
+  static PolygonArray of(std::span<const std::int32_t> offsets,
+                         std::span<const std::int32_t> connectivity) {
+    return {offsets.data(), connectivity.data(), Type::Int32,
+            offsets.empty() ? 0 : offsets.size() - 1, connectivity.size()};
+  }
+};
+
+/// A mesh to render: points, polygons, and optionally one color per polygon (which replaces
+/// the material color; alpha is ignored for now, everything renders opaque).
+struct MeshView {
+  PointArray points;
+  PolygonArray polygons;
+  std::span<const Rgba8> polygonColors;  ///< empty, or one per polygon
+};
+
+/// An owning mesh with 64-bit indices, for building geometry by hand (examples, tests).
+struct Mesh {
+  std::vector<glm::dvec3> points;
+  std::vector<std::int64_t> offsets{0};
+  std::vector<std::int64_t> connectivity;
+  std::vector<Rgba8> polygonColors;  ///< empty, or one per polygon
+
+  /// Appends a point and returns its index.
+  std::int64_t addPoint(const glm::dvec3& p) {
+    points.push_back(p);
+    return static_cast<std::int64_t>(points.size()) - 1;
+  }
+  /// Appends a polygon from point indices.
+  void addPolygon(std::initializer_list<std::int64_t> pointIds) {
+    connectivity.insert(connectivity.end(), pointIds);
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+  }
+  void addPolygon(std::span<const std::int64_t> pointIds) {
+    connectivity.insert(connectivity.end(), pointIds.begin(), pointIds.end());
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+  }
+  std::size_t polygonCount() const { return offsets.size() - 1; }
+
+  MeshView view() const {
+    return {PointArray::of(points), PolygonArray::of(offsets, connectivity), polygonColors};
+  }
+};
+
+/// Checks the structure of a mesh view and throws facet::Error naming the first problem:
+/// null arrays with a non-zero count, offsets not starting at 0, decreasing or running past
+/// the connectivity, a point id outside [0, points.count), or a color count that does not
+/// match the polygon count. Reads every offset and id once. Non-finite point coordinates are
+/// not an error: the polygons that use them are skipped and counted when rendering.
+void validate(const MeshView& mesh);
+
+}  // namespace facet

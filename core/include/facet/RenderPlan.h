@@ -1,0 +1,65 @@
+#pragma once
+
+/// @file RenderPlan.h
+/// The work a render will do, decided once from the scene before any polygon is touched
+/// ("leave out what the scene does not need"), and what the render then counted.
+
+#include <cstddef>
+#include <string>
+
+#include "facet/Scene.h"
+
+namespace facet {
+
+/// Which code paths a render takes. Every flag that is false is work skipped.
+struct RenderPlan {
+  Visibility visibility = Visibility::ZBuffer;
+  bool depthTest = true;    ///< z-buffer mode
+  bool sortByDepth = false;  ///< painter mode: sort polygons by centroid depth
+  /// Some light other than the ambient one reaches the scene. Without one, a polygon's color
+  /// does not depend on its orientation: no normal is computed, and a mesh without
+  /// per-polygon colors is shaded once for all its polygons.
+  bool directLighting = false;
+  bool positionalLights = false;  ///< point or spot lights: per-polygon distance and angle
+  bool specular = false;          ///< some material has Ks > 0 under a direct light
+  bool twoSidedLighting = true;   ///< back faces are lit with the normal flipped
+  /// The direction to the viewer is needed (specular or two-sided lighting).
+  bool viewerDirection = false;
+  /// Polygon centers are needed (positional lights, or a perspective viewer direction).
+  bool polygonCenters = false;
+  bool backfaceCulling = false;  ///< some material culls back faces
+  bool parallelProjection = false;
+  int threads = 1;
+  int tileSize = 0;  ///< square tiles of this many pixels, each painted by one thread
+  int tilesX = 0, tilesY = 0;
+  int width = 0, height = 0;
+  std::size_t meshes = 0;
+  std::size_t points = 0;
+  std::size_t polygons = 0;
+
+  /// A few lines saying what will be done and what is left out.
+  std::string describe() const;
+};
+
+/// What one render did and what it cost. Times are wall-clock seconds.
+struct RenderStats {
+  RenderPlan plan;
+  double validateSeconds = 0.0;   ///< mesh structure checks
+  double transformSeconds = 0.0;  ///< points to window coordinates (and painter's sort)
+  double setupSeconds = 0.0;      ///< clip, cull, triangulate, light, bin
+  double rasterSeconds = 0.0;     ///< clear and paint the tiles
+  double totalSeconds = 0.0;
+
+  std::size_t polygonsDrawn = 0;       ///< lit and sent to the tiles
+  std::size_t polygonsCulled = 0;      ///< every triangle back-facing, with culling on
+  std::size_t polygonsOutside = 0;     ///< outside the view, or covering no pixel center
+  std::size_t polygonsDegenerate = 0;  ///< fewer than 3 points, or zero area
+  std::size_t polygonsNonFinite = 0;   ///< using a point with a NaN or infinite coordinate
+  std::size_t trianglesBinned = 0;     ///< triangles handed to the tiles
+  std::size_t trianglesClipped = 0;    ///< triangles that went through the clipper
+  std::size_t fragmentsWritten = 0;    ///< pixel writes, counting overdraw
+  std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end
+  bool aborted = false;                ///< the progress callback asked to stop
+};
+
+}  // namespace facet

@@ -1,0 +1,81 @@
+#pragma once
+
+/// @file Renderer.h
+/// The rasterizer: a Scene and a Camera in, a Framebuffer out.
+///
+/// Pipeline (Sixth 3D's phases, made robust; see ../shared/DESIGN.md):
+///  1. transform every point in double precision relative to the eye, to clip space and, if
+///     inside the guard band and the near/far range, to 8-bit sub-pixel window coordinates;
+///  2. per polygon: triangulate (fan if convex, ear clipping if concave), clip what crosses
+///     the near/far planes or the guard band in homogeneous space, cull back faces, drop
+///     zero-area triangles by their exact integer area, light the polygon once (flat) and
+///     bin its triangles into screen tiles;
+///  3. per tile, one thread each: clear, then paint the tile's triangles in polygon order with
+///     integer edge functions, a top-left fill rule and pixel centers at +0.5.
+/// The result is bit-identical for every thread count, and re-rendering the same scene at
+/// the same size allocates nothing.
+
+#include <functional>
+#include <memory>
+
+#include "facet/Camera.h"
+#include "facet/Color.h"
+#include "facet/Framebuffer.h"
+#include "facet/RenderPlan.h"
+#include "facet/Scene.h"
+
+namespace facet {
+
+class Renderer {
+ public:
+  /// Called on the thread that called render(), with the fraction done in [0, 1]. Return
+  /// false to stop: render() then returns soon with RenderStats::aborted set and a
+  /// partially painted (but valid) framebuffer.
+  using ProgressCallback = std::function<bool(double fraction)>;
+
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Threads that render; 0 means one per hardware thread. (default: 0)
+  void setThreadCount(int threads);
+  int threadCount() const;
+
+  /// (default: Visibility::ZBuffer)
+  void setVisibility(Visibility visibility) { visibility_ = visibility; }
+  Visibility visibility() const { return visibility_; }
+
+  /// Light back faces with their normal turned toward the viewer, as vtkRenderer does; off:
+  /// lit as their winding says (so usually dark). (default: on)
+  void setTwoSidedLighting(bool enabled) { twoSidedLighting_ = enabled; }
+  bool twoSidedLighting() const { return twoSidedLighting_; }
+
+  /// Color and alpha of pixels no polygon covers. (default: black, alpha 1)
+  void setBackground(const Color& color, float alpha = 1.0f) {
+    background_ = color;
+    backgroundAlpha_ = alpha;
+  }
+
+  void setProgressCallback(ProgressCallback callback) { progress_ = std::move(callback); }
+
+  /// The plan a render of this scene through this camera into a width × height image
+  /// would follow. Throws facet::Error for invalid lights, materials, camera or size.
+  RenderPlan plan(const Scene& scene, const Camera& camera, int width, int height) const;
+
+  /// Renders the scene into the framebuffer (its size is the image size). Throws
+  /// facet::Error, naming the offending value, for an invalid mesh structure, camera,
+  /// light or material, before anything is painted.
+  RenderStats render(const Scene& scene, const Camera& camera, Framebuffer& framebuffer);
+
+ private:
+  struct Workspace;
+  std::unique_ptr<Workspace> workspace_;
+  Visibility visibility_ = Visibility::ZBuffer;
+  bool twoSidedLighting_ = true;
+  Color background_{0.0f};
+  float backgroundAlpha_ = 1.0f;
+  ProgressCallback progress_;
+};
+
+}  // namespace facet

@@ -1,0 +1,109 @@
+#include "facet/Mesh.h"
+
+#include <string>
+
+#include "MeshAccess.h"
+#include "Validate.h"
+#include "facet/Error.h"
+
+namespace facet {
+namespace detail {
+namespace {
+
+std::string meshName(std::size_t meshIndex) {
+  return meshIndex == SIZE_MAX ? "MeshView" : "Scene.meshes[" + std::to_string(meshIndex) + "]";
+}
+
+template <class Index>
+std::optional<MeshProblem> findProblem(const Index* offsets, const Index* connectivity,
+                                       std::size_t connectivitySize, std::size_t pointCount,
+                                       std::size_t begin, std::size_t end) {
+  using Kind = MeshProblem::Kind;
+  for (std::size_t p = begin; p < end; ++p) {
+    const std::int64_t first = offsets[p];
+    const std::int64_t last = offsets[p + 1];
+    if (last < first) return MeshProblem{Kind::DecreasingOffset, p, p + 1, last};
+    if (static_cast<std::uint64_t>(last) > connectivitySize) {
+      return MeshProblem{Kind::OffsetPastConnectivity, p, p + 1, last};
+    }
+    for (std::int64_t k = first; k < last; ++k) {
+      const std::int64_t id = connectivity[k];
+      if (id < 0 || static_cast<std::uint64_t>(id) >= pointCount) {
+        return MeshProblem{Kind::PointIdOutOfRange, p, static_cast<std::size_t>(k), id};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+void validateMeshHeader(const MeshView& mesh, std::size_t meshIndex) {
+  const auto name = [&](const char* field) { return meshName(meshIndex) + field; };
+  if (mesh.points.count > 0 && mesh.points.data == nullptr) {
+    fail(name(".points.data"), "is null but points.count is " + std::to_string(mesh.points.count));
+  }
+  if (mesh.polygons.count == 0) return;
+  if (mesh.polygons.offsets == nullptr) {
+    fail(name(".polygons.offsets"),
+         "is null but polygons.count is " + std::to_string(mesh.polygons.count));
+  }
+  if (mesh.polygons.connectivitySize > 0 && mesh.polygons.connectivity == nullptr) {
+    fail(name(".polygons.connectivity"), "is null but connectivitySize is " +
+                                             std::to_string(mesh.polygons.connectivitySize));
+  }
+  const std::int64_t firstOffset =
+      mesh.polygons.type == PolygonArray::Type::Int32
+          ? static_cast<const std::int32_t*>(mesh.polygons.offsets)[0]
+          : static_cast<const std::int64_t*>(mesh.polygons.offsets)[0];
+  if (firstOffset != 0) {
+    fail(name(".polygons.offsets[0]"), "is " + std::to_string(firstOffset) + ", must be 0");
+  }
+  if (!mesh.polygonColors.empty() && mesh.polygonColors.size() != mesh.polygons.count) {
+    fail(name(".polygonColors"), "has " + std::to_string(mesh.polygonColors.size()) +
+                                     " entries for " + std::to_string(mesh.polygons.count) +
+                                     " polygons");
+  }
+}
+
+std::optional<MeshProblem> findMeshProblem(const MeshView& mesh, std::size_t begin,
+                                           std::size_t end) {
+  const PolygonArray& p = mesh.polygons;
+  if (p.type == PolygonArray::Type::Int32) {
+    return findProblem(static_cast<const std::int32_t*>(p.offsets),
+                       static_cast<const std::int32_t*>(p.connectivity), p.connectivitySize,
+                       mesh.points.count, begin, end);
+  }
+  return findProblem(static_cast<const std::int64_t*>(p.offsets),
+                     static_cast<const std::int64_t*>(p.connectivity), p.connectivitySize,
+                     mesh.points.count, begin, end);
+}
+
+void throwMeshProblem(const MeshProblem& problem, std::size_t meshIndex) {
+  const std::string name = meshName(meshIndex);
+  const std::string value = std::to_string(problem.value);
+  const std::string polygon = " (polygon " + std::to_string(problem.polygon) + ")";
+  switch (problem.kind) {
+    case MeshProblem::Kind::DecreasingOffset:
+      fail(name + ".polygons.offsets[" + std::to_string(problem.position) + "]",
+           "is " + value + ", less than the offset before it" + polygon);
+    case MeshProblem::Kind::OffsetPastConnectivity:
+      fail(name + ".polygons.offsets[" + std::to_string(problem.position) + "]",
+           "is " + value + ", past the end of the connectivity" + polygon);
+    case MeshProblem::Kind::PointIdOutOfRange:
+      fail(name + ".polygons.connectivity[" + std::to_string(problem.position) + "]",
+           "is " + value + ", outside [0, points.count)" + polygon);
+  }
+  throw Error(name + ": invalid mesh");
+}
+
+}  // namespace detail
+
+void validate(const MeshView& mesh) {
+  detail::validateMeshHeader(mesh, SIZE_MAX);
+  if (const auto problem = detail::findMeshProblem(mesh, 0, mesh.polygons.count)) {
+    detail::throwMeshProblem(*problem, SIZE_MAX);
+  }
+}
+
+}  // namespace facet

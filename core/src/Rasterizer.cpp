@@ -1,0 +1,107 @@
+#include "Rasterizer.h"
+
+#include <algorithm>
+
+#include "Assert.h"
+#include "facet/Conventions.h"
+
+namespace facet::detail {
+namespace {
+
+constexpr std::int64_t kHalfPixel = kSubpixelScale / 2;
+
+// floor(value / 256) and ceil(value / 256) for any sign (C++20 >> is arithmetic).
+std::int64_t floorToPixel(std::int64_t value) { return value >> kSubpixelBits; }
+std::int64_t ceilToPixel(std::int64_t value) { return -((-value) >> kSubpixelBits); }
+
+// One edge's function, stepped exactly in integers.
+struct Edge {
+  std::int64_t stepX;  // change per pixel to the right
+  std::int64_t stepY;  // change per pixel up
+  std::int64_t value;  // biased value at the first sample
+
+  Edge(const WindowVertex& p, const WindowVertex& q, std::int64_t sampleX, std::int64_t sampleY) {
+    const std::int64_t dx = q.x - p.x;
+    const std::int64_t dy = q.y - p.y;
+    stepX = -dy * kSubpixelScale;
+    stepY = dx * kSubpixelScale;
+    const bool topLeft = dy < 0 || (dy == 0 && dx < 0);
+    // Samples exactly on a non-top-left edge are outside: bias them to −1.
+    value = dx * (sampleY - p.y) - dy * (sampleX - p.x) - (topLeft ? 0 : 1);
+  }
+};
+
+}  // namespace
+
+PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
+                                 const WindowVertex& c, const PixelBounds& clip) {
+  const std::int64_t minX = std::min({a.x, b.x, c.x}), maxX = std::max({a.x, b.x, c.x});
+  const std::int64_t minY = std::min({a.y, b.y, c.y}), maxY = std::max({a.y, b.y, c.y});
+  // Smallest px with px·256 + 128 ≥ minX, largest with px·256 + 128 ≤ maxX.
+  return {static_cast<int>(std::max<std::int64_t>(ceilToPixel(minX - kHalfPixel), clip.x0)),
+          static_cast<int>(std::max<std::int64_t>(ceilToPixel(minY - kHalfPixel), clip.y0)),
+          static_cast<int>(std::min<std::int64_t>(floorToPixel(maxX - kHalfPixel), clip.x1)),
+          static_cast<int>(std::min<std::int64_t>(floorToPixel(maxY - kHalfPixel), clip.y1))};
+}
+
+template <DepthMode kMode>
+std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                            Rgba8 color, std::int32_t polygonId, const PixelBounds& tile,
+                            const Planes& planes) {
+  const std::int64_t area = doubleSignedArea(a, b, c);
+  FACET_ASSERT(area > 0);
+  const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
+  if (box.empty()) return 0;
+
+  const std::int64_t sampleX = std::int64_t{box.x0} * kSubpixelScale + kHalfPixel;
+  const std::int64_t sampleY = std::int64_t{box.y0} * kSubpixelScale + kHalfPixel;
+  Edge e0(b, c, sampleX, sampleY);  // opposite a
+  Edge e1(c, a, sampleX, sampleY);  // opposite b
+  Edge e2(a, b, sampleX, sampleY);  // opposite c
+
+  // Depth is affine in window x, y: z = a.z + dzdx·(X − a.x) + dzdy·(Y − a.y) (fixed units).
+  const double inverseArea = 1.0 / static_cast<double>(area);
+  const double dz1 = static_cast<double>(b.z) - a.z, dz2 = static_cast<double>(c.z) - a.z;
+  const double dzdx = (dz1 * (c.y - a.y) - dz2 * (b.y - a.y)) * inverseArea;
+  const double dzdy = (dz2 * (b.x - a.x) - dz1 * (c.x - a.x)) * inverseArea;
+  const float dzPerPixel = static_cast<float>(dzdx * kSubpixelScale);
+
+  std::uint32_t written = 0;
+  for (int y = box.y0; y <= box.y1; ++y) {
+    std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
+    const double rowY = static_cast<double>(y - box.y0) * kSubpixelScale + (sampleY - a.y);
+    float z = static_cast<float>(a.z + dzdx * static_cast<double>(sampleX - a.x) + dzdy * rowY);
+    const std::size_t row = static_cast<std::size_t>(y) * planes.width;
+    for (int x = box.x0; x <= box.x1; ++x) {
+      if ((w0 | w1 | w2) >= 0) {
+        const std::size_t i = row + x;
+        const float depth = std::clamp(z, 0.0f, 1.0f);
+        if (kMode == DepthMode::Overwrite || depth < planes.depth[i]) {
+          planes.depth[i] = depth;
+          planes.color[i] = color;
+          planes.polygonId[i] = polygonId;
+          ++written;
+        }
+      }
+      w0 += e0.stepX;
+      w1 += e1.stepX;
+      w2 += e2.stepX;
+      z += dzPerPixel;
+    }
+    e0.value += e0.stepY;
+    e1.value += e1.stepY;
+    e2.value += e2.stepY;
+  }
+  return written;
+}
+
+template std::uint32_t paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
+                                                      const WindowVertex&, Rgba8, std::int32_t,
+                                                      const PixelBounds&, const Planes&);
+template std::uint32_t paintTriangle<DepthMode::Overwrite>(const WindowVertex&,
+                                                           const WindowVertex&,
+                                                           const WindowVertex&, Rgba8,
+                                                           std::int32_t, const PixelBounds&,
+                                                           const Planes&);
+
+}  // namespace facet::detail

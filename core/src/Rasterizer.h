@@ -1,0 +1,57 @@
+#pragma once
+
+// Painting one triangle into one tile with integer edge functions.
+//
+// Window vertices are on a fixed-point grid (kSubpixelBits = 8), so every coverage decision
+// below is exact integer arithmetic:
+// - pixel (px, py) is sampled at its center, (px·256 + 128, py·256 + 128);
+// - edge function of the directed edge p→q: E(X, Y) = (q.x − p.x)(Y − p.y) − (q.y − p.y)(X − p.x),
+//   positive on the left, i.e. inside a counter-clockwise triangle (y up);
+// - top-left fill rule: a sample exactly on an edge belongs to the triangle only if the edge
+//   is a left edge (dy < 0 for counter-clockwise, y up) or a top edge (dy = 0, dx < 0). The
+//   two triangles sharing an edge traverse it in opposite directions, so exactly one of
+//   them owns the samples on it (D3D10 / OpenGL rasterization rules, llvmpipe's approach).
+
+#include <cstdint>
+
+#include "FrameTransform.h"
+#include "facet/Color.h"
+
+namespace facet::detail {
+
+// Inclusive pixel bounds.
+struct PixelBounds {
+  int x0, y0, x1, y1;
+  bool empty() const { return x0 > x1 || y0 > y1; }
+};
+
+// Twice the signed area in fixed-point units²: > 0 counter-clockwise (front-facing).
+inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& b,
+                                     const WindowVertex& c) {
+  return static_cast<std::int64_t>(b.x - a.x) * (c.y - a.y) -
+         static_cast<std::int64_t>(c.x - a.x) * (b.y - a.y);
+}
+
+// The pixels whose centers lie in the triangle's bounding box, clipped to `clip`.
+PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
+                                 const WindowVertex& c, const PixelBounds& clip);
+
+// Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom).
+struct Planes {
+  Rgba8* color;
+  float* depth;
+  std::int32_t* polygonId;
+  int width;
+};
+
+enum class DepthMode { Test, Overwrite };
+
+// Paints a counter-clockwise triangle (doubleSignedArea > 0) into the pixels of `tile`.
+// DepthMode::Test keeps the nearest fragment (strictly less: the earlier polygon wins a
+// tie); DepthMode::Overwrite is painter's order. Returns the number of pixels written.
+template <DepthMode kMode>
+std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                            Rgba8 color, std::int32_t polygonId, const PixelBounds& tile,
+                            const Planes& planes);
+
+}  // namespace facet::detail

@@ -1,0 +1,385 @@
+#include "facet/Renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+
+#include "Frame.h"
+#include "ThreadPool.h"
+#include "Validate.h"
+#include "facet/Conventions.h"
+#include "facet/Error.h"
+
+namespace facet {
+namespace {
+
+using detail::Chunk;
+using detail::FrameMesh;
+using detail::FrameState;
+using detail::kTileSize;
+using detail::PixelBounds;
+using Clock = std::chrono::steady_clock;
+
+// Points per transform task and the bounds of polygons per setup chunk. Chunks aim at four
+// per thread for load balance, and stay under 2^20 polygons.
+constexpr std::size_t kPointsPerTask = 1 << 14;
+constexpr std::size_t kMinPolygonsPerChunk = 1 << 10;
+constexpr std::size_t kMaxPolygonsPerChunk = 1 << 20;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+int hardwareThreads() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : static_cast<int>(n);
+}
+
+// A range of one mesh's points or polygons: the unit of the validation, transform and sort
+// tasks, which never straddle meshes.
+struct MeshRange {
+  std::size_t mesh, begin, end;
+};
+
+// Reports one phase's task count into the overall fraction the user's callback sees.
+class PhaseProgress {
+ public:
+  PhaseProgress(const Renderer::ProgressCallback& callback, double start, double weight,
+                std::size_t tasks)
+      : callback_(callback), start_(start), weight_(weight), tasks_(tasks) {}
+  bool operator()(std::size_t done) const {
+    return !callback_ || callback_(start_ + weight_ * static_cast<double>(done) / tasks_);
+  }
+
+ private:
+  const Renderer::ProgressCallback& callback_;
+  double start_, weight_;
+  std::size_t tasks_;
+};
+
+void validateMaterials(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    try {
+      validate(scene.meshes[i].material);
+    } catch (const Error& e) {
+      throw Error("Scene.meshes[" + std::to_string(i) + "]." + e.what());
+    }
+  }
+}
+
+void validateImageSize(int width, int height) {
+  detail::requireInRange(width, 1, kMaxImageSide, "image width");
+  detail::requireInRange(height, 1, kMaxImageSide, "image height");
+}
+
+RenderPlan makePlan(const Scene& scene, const Camera& camera, int width, int height,
+                    const Shader& shader, int threads, Visibility visibility, bool twoSided) {
+  RenderPlan plan;
+  plan.visibility = visibility;
+  plan.depthTest = visibility == Visibility::ZBuffer;
+  plan.sortByDepth = visibility == Visibility::PainterSort;
+  plan.directLighting = shader.lightCount() > 0;
+  plan.positionalLights = shader.hasPositionalLights();
+  plan.twoSidedLighting = twoSided;
+  plan.parallelProjection = camera.parallelProjection;
+  for (const SceneMesh& mesh : scene.meshes) {
+    plan.specular |= plan.directLighting && mesh.material.specular > 0.0;
+    plan.backfaceCulling |= mesh.material.backfaceCulling;
+    plan.points += mesh.mesh.points.count;
+    plan.polygons += mesh.mesh.polygons.count;
+  }
+  plan.viewerDirection = plan.directLighting && (plan.specular || twoSided);
+  plan.polygonCenters =
+      plan.positionalLights || (plan.viewerDirection && !camera.parallelProjection);
+  plan.threads = threads;
+  plan.tileSize = kTileSize;
+  plan.tilesX = (width + kTileSize - 1) / kTileSize;
+  plan.tilesY = (height + kTileSize - 1) / kTileSize;
+  plan.width = width;
+  plan.height = height;
+  plan.meshes = scene.meshes.size();
+  return plan;
+}
+
+// Splits every mesh's [0, count(mesh)) into ranges of at most `perRange`.
+template <class Count>
+void splitPerMesh(const Scene& scene, std::size_t perRange, const Count& count,
+                  std::vector<MeshRange>& ranges) {
+  ranges.clear();
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const std::size_t n = count(scene.meshes[m].mesh);
+    for (std::size_t begin = 0; begin < n; begin += perRange) {
+      ranges.push_back({m, begin, std::min(n, begin + perRange)});
+    }
+  }
+}
+
+}  // namespace
+
+struct Renderer::Workspace {
+  std::unique_ptr<detail::ThreadPool> pool;
+  FrameState frame;
+  std::vector<MeshRange> pointRanges;
+  std::vector<MeshRange> polygonRanges;
+  std::vector<std::optional<detail::MeshProblem>> problems;
+  struct TileCounts {
+    std::size_t written = 0, covered = 0;
+  };
+  std::vector<TileCounts> tiles;
+
+  // Runs a phase on the pool; false when the progress callback stopped it. The phase's
+  // start is always reported: workers may take every task, leaving the caller none to
+  // report after.
+  template <class Task>
+  bool runPhase(std::size_t tasks, Task&& task, const PhaseProgress& progress) {
+    if (!progress(0)) return false;
+    detail::FunctionRef<void(std::size_t)> taskRef(task);
+    auto report = [&](std::size_t done) { return progress(done); };
+    return pool->run(tasks, taskRef, detail::FunctionRef<bool(std::size_t)>(report));
+  }
+};
+
+Renderer::Renderer() : workspace_(std::make_unique<Workspace>()) { setThreadCount(0); }
+Renderer::~Renderer() = default;
+
+void Renderer::setThreadCount(int threads) {
+  if (threads < 0) throw Error("Renderer thread count is " + std::to_string(threads) + ", must be >= 0");
+  const int count = threads == 0 ? hardwareThreads() : threads;
+  if (!workspace_->pool || workspace_->pool->threadCount() != count) {
+    workspace_->pool = std::make_unique<detail::ThreadPool>(count);
+  }
+}
+
+int Renderer::threadCount() const { return workspace_->pool->threadCount(); }
+
+RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, int height) const {
+  validate(camera);
+  validateImageSize(width, height);
+  validateMaterials(scene);
+  const Shader shader(scene.lights);
+  return makePlan(scene, camera, width, height, shader, threadCount(), visibility_,
+                  twoSidedLighting_);
+}
+
+RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuffer& framebuffer) {
+  const Clock::time_point start = Clock::now();
+  Workspace& ws = *workspace_;
+  FrameState& frame = ws.frame;
+  const int width = framebuffer.width(), height = framebuffer.height();
+
+  // --- Checks: everything that can throw does so before a pixel changes. -----------------
+  validate(camera);
+  validateImageSize(width, height);
+  validateMaterials(scene);
+  frame.shader.reset(scene.lights);
+  frame.plan = makePlan(scene, camera, width, height, frame.shader, threadCount(), visibility_,
+                        twoSidedLighting_);
+  const RenderPlan& plan = frame.plan;
+  constexpr std::size_t kMaxIds = std::numeric_limits<std::int32_t>::max();
+  if (plan.polygons > kMaxIds || plan.points > detail::kClippedVertexBit) {
+    throw Error("Scene has " + std::to_string(plan.polygons) + " polygons and " +
+                std::to_string(plan.points) + " points; at most 2^31 - 1 of each render at once");
+  }
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    detail::validateMeshHeader(scene.meshes[m].mesh, m);
+  }
+
+  RenderStats stats;
+  stats.plan = plan;
+  const auto progressOf = [&](double begin, double weight, std::size_t tasks) {
+    return PhaseProgress(progress_, begin, weight, std::max<std::size_t>(tasks, 1));
+  };
+
+  // Structure of every mesh: offsets and point ids, in parallel; the first problem in id
+  // order is reported, whatever the thread count.
+  Clock::time_point phase = Clock::now();
+  splitPerMesh(scene, kMaxPolygonsPerChunk / 4, [](const MeshView& m) { return m.polygons.count; },
+               ws.polygonRanges);
+  ws.problems.assign(ws.polygonRanges.size(), std::nullopt);
+  bool completed = ws.runPhase(
+      ws.polygonRanges.size(),
+      [&](std::size_t i) {
+        const MeshRange& r = ws.polygonRanges[i];
+        ws.problems[i] = detail::findMeshProblem(scene.meshes[r.mesh].mesh, r.begin, r.end);
+      },
+      progressOf(0.0, 0.05, ws.polygonRanges.size()));
+  for (std::size_t i = 0; i < ws.problems.size(); ++i) {
+    if (ws.problems[i]) detail::throwMeshProblem(*ws.problems[i], ws.polygonRanges[i].mesh);
+  }
+  stats.validateSeconds = secondsSince(phase);
+
+  // --- Frame set-up. ---------------------------------------------------------------------
+  frame.transform.emplace(camera, width, height);
+  frame.twoSidedLighting = twoSidedLighting_;
+  frame.viewport = {0, 0, width - 1, height - 1};
+  frame.polygonCount = plan.polygons;
+  frame.meshes.clear();
+  std::size_t firstVertex = 0, firstPolygon = 0;
+  for (const SceneMesh& mesh : scene.meshes) {
+    FrameMesh frameMesh{&mesh, firstVertex, firstPolygon, std::nullopt};
+    if (!plan.directLighting && mesh.mesh.polygonColors.empty()) {
+      frameMesh.uniformColor = toRgba8(frame.shader.shade(SurfaceSample{}, mesh.material));
+    }
+    frame.meshes.push_back(frameMesh);
+    firstVertex += mesh.mesh.points.count;
+    firstPolygon += mesh.mesh.polygons.count;
+  }
+
+  // --- Phase 1: transform every point. ---------------------------------------------------
+  phase = Clock::now();
+  frame.vertices.resize(plan.points);
+  splitPerMesh(scene, kPointsPerTask, [](const MeshView& m) { return m.points.count; },
+               ws.pointRanges);
+  completed = completed &&
+              ws.runPhase(
+                  ws.pointRanges.size(),
+                  [&](std::size_t i) {
+                    const MeshRange& r = ws.pointRanges[i];
+                    const FrameMesh& mesh = frame.meshes[r.mesh];
+                    detail::withTypedMesh(mesh.source->mesh, [&](auto points, auto) {
+                      for (std::size_t p = r.begin; p < r.end; ++p) {
+                        frame.vertices[mesh.firstVertex + p] = frame.transform->project(points[p]);
+                      }
+                    });
+                  },
+                  progressOf(0.05, 0.15, ws.pointRanges.size()));
+
+  // Painter's order: far to near by centroid view depth, ties by polygon id.
+  frame.drawOrder.clear();
+  if (completed && plan.sortByDepth) {
+    frame.sortKeys.resize(plan.polygons);
+    completed = ws.runPhase(
+        ws.polygonRanges.size(),
+        [&](std::size_t i) {
+          const MeshRange& r = ws.polygonRanges[i];
+          const FrameMesh& mesh = frame.meshes[r.mesh];
+          detail::withTypedMesh(mesh.source->mesh, [&](auto points, auto polygons) {
+            for (std::size_t p = r.begin; p < r.end; ++p) {
+              glm::dvec3 sum(0.0);
+              const std::size_t n = polygons.size(p);
+              for (std::size_t k = 0; k < n; ++k) sum += points[polygons.pointId(p, k)];
+              double distance = frame.transform->viewDistance(sum / static_cast<double>(n));
+              if (!std::isfinite(distance)) distance = std::numeric_limits<double>::infinity();
+              const std::size_t id = mesh.firstPolygon + p;
+              frame.sortKeys[id] = {distance, static_cast<std::uint32_t>(id)};
+            }
+          });
+        },
+        progressOf(0.2, 0.05, ws.polygonRanges.size()));
+    std::sort(frame.sortKeys.begin(), frame.sortKeys.end(), [](const auto& a, const auto& b) {
+      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    });
+    frame.drawOrder.resize(plan.polygons);
+    for (std::size_t i = 0; i < plan.polygons; ++i) frame.drawOrder[i] = frame.sortKeys[i].second;
+  }
+  stats.transformSeconds = secondsSince(phase);
+
+  // --- Phase 2: per polygon set-up, in chunks of draw positions. -------------------------
+  phase = Clock::now();
+  const std::size_t tileCount = static_cast<std::size_t>(plan.tilesX) * plan.tilesY;
+  const std::size_t perChunk = std::clamp<std::size_t>(
+      plan.polygons / (4 * static_cast<std::size_t>(plan.threads)) + 1, kMinPolygonsPerChunk,
+      kMaxPolygonsPerChunk);
+  if (plan.sortByDepth) {
+    ws.polygonRanges.clear();
+    for (std::size_t begin = 0; begin < plan.polygons; begin += perChunk) {
+      ws.polygonRanges.push_back({0, begin, std::min(plan.polygons, begin + perChunk)});
+    }
+  } else {
+    splitPerMesh(scene, perChunk, [](const MeshView& m) { return m.polygons.count; },
+                 ws.polygonRanges);
+    for (MeshRange& r : ws.polygonRanges) {  // to draw positions (= global polygon ids)
+      r.begin += frame.meshes[r.mesh].firstPolygon;
+      r.end += frame.meshes[r.mesh].firstPolygon;
+    }
+  }
+  frame.chunks.resize(ws.polygonRanges.size());
+  for (std::size_t i = 0; i < frame.chunks.size(); ++i) {
+    frame.chunks[i].counts = {};  // an aborted render leaves chunks unvisited
+    frame.chunks[i].begin = ws.polygonRanges[i].begin;
+    frame.chunks[i].end = ws.polygonRanges[i].end;
+    frame.chunks[i].bins.resize(tileCount);
+  }
+  completed = completed && ws.runPhase(
+                               frame.chunks.size(),
+                               [&](std::size_t i) { detail::setUpChunk(frame, frame.chunks[i]); },
+                               progressOf(0.25, 0.4, frame.chunks.size()));
+  stats.setupSeconds = secondsSince(phase);
+
+  // --- Phase 3: clear and paint every tile. ----------------------------------------------
+  phase = Clock::now();
+  const Rgba8 background = toRgba8(background_, backgroundAlpha_);
+  const detail::Planes planes{framebuffer.color().data(), framebuffer.depth().data(),
+                              framebuffer.polygonId().data(), width};
+  ws.tiles.assign(tileCount, {});
+  const bool painted =
+      completed &&
+      ws.runPhase(
+          tileCount,
+          [&](std::size_t t) {
+            const int tx = static_cast<int>(t % plan.tilesX), ty = static_cast<int>(t / plan.tilesX);
+            const PixelBounds tile{tx * kTileSize, ty * kTileSize,
+                                   std::min(width, (tx + 1) * kTileSize) - 1,
+                                   std::min(height, (ty + 1) * kTileSize) - 1};
+            for (int y = tile.y0; y <= tile.y1; ++y) {
+              const std::size_t row = static_cast<std::size_t>(y) * width;
+              std::fill(planes.color + row + tile.x0, planes.color + row + tile.x1 + 1, background);
+              std::fill(planes.depth + row + tile.x0, planes.depth + row + tile.x1 + 1, 1.0f);
+              std::fill(planes.polygonId + row + tile.x0, planes.polygonId + row + tile.x1 + 1,
+                        Framebuffer::kBackgroundId);
+            }
+            std::size_t written = 0;
+            for (const Chunk& chunk : frame.chunks) {
+              for (const std::uint32_t index : chunk.bins[t]) {
+                const detail::BinnedTriangle& tri = chunk.triangles[index];
+                const auto& a = frame.vertex(chunk, tri.vertex[0]);
+                const auto& b = frame.vertex(chunk, tri.vertex[1]);
+                const auto& c = frame.vertex(chunk, tri.vertex[2]);
+                written += plan.depthTest
+                               ? detail::paintTriangle<detail::DepthMode::Test>(
+                                     a, b, c, tri.color, tri.polygon, tile, planes)
+                               : detail::paintTriangle<detail::DepthMode::Overwrite>(
+                                     a, b, c, tri.color, tri.polygon, tile, planes);
+              }
+            }
+            std::size_t covered = 0;
+            for (int y = tile.y0; y <= tile.y1; ++y) {
+              const std::int32_t* ids = planes.polygonId + static_cast<std::size_t>(y) * width;
+              for (int x = tile.x0; x <= tile.x1; ++x) covered += ids[x] != Framebuffer::kBackgroundId;
+            }
+            ws.tiles[t] = {written, covered};
+          },
+          progressOf(0.65, 0.35, tileCount));
+  if (!painted) {
+    // Stopped early: leave a valid image (background) rather than a half-cleared one.
+    std::fill(framebuffer.color().begin(), framebuffer.color().end(), background);
+    std::fill(framebuffer.depth().begin(), framebuffer.depth().end(), 1.0f);
+    std::fill(framebuffer.polygonId().begin(), framebuffer.polygonId().end(),
+              Framebuffer::kBackgroundId);
+  }
+  stats.rasterSeconds = secondsSince(phase);
+
+  // --- Statistics. -----------------------------------------------------------------------
+  stats.aborted = !painted;
+  for (const Chunk& chunk : frame.chunks) {
+    stats.polygonsDrawn += chunk.counts.drawn;
+    stats.polygonsCulled += chunk.counts.culled;
+    stats.polygonsOutside += chunk.counts.outside;
+    stats.polygonsDegenerate += chunk.counts.degenerate;
+    stats.polygonsNonFinite += chunk.counts.nonFinite;
+    stats.trianglesBinned += chunk.counts.trianglesBinned;
+    stats.trianglesClipped += chunk.counts.trianglesClipped;
+  }
+  for (const auto& tile : ws.tiles) {
+    stats.fragmentsWritten += tile.written;
+    stats.pixelsCovered += tile.covered;
+  }
+  stats.totalSeconds = secondsSince(start);
+  if (painted && progress_) progress_(1.0);
+  return stats;
+}
+
+}  // namespace facet

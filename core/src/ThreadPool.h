@@ -1,0 +1,55 @@
+#pragma once
+
+// Persistent worker threads for the render phases. Work is a count of independent tasks;
+// which thread runs which task does not matter for the result (every task writes its own
+// outputs), so any thread count gives the same bytes.
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "FunctionRef.h"
+
+namespace facet::detail {
+
+class ThreadPool {
+ public:
+  /// `threads` counts the calling thread too: ThreadPool(1) starts no worker.
+  explicit ThreadPool(int threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  int threadCount() const { return static_cast<int>(workers_.size()) + 1; }
+
+  /// Runs task(i) for every i in [0, count) on all threads, the caller included, and
+  /// returns when all have finished. After each task the *caller* runs, it calls
+  /// afterCallerTask(tasksFinishedSoFar); when that returns false no further task starts and
+  /// run() returns false once the running ones finish. Allocates nothing.
+  bool run(std::size_t count, FunctionRef<void(std::size_t)> task,
+           FunctionRef<bool(std::size_t)> afterCallerTask = {});
+
+ private:
+  void workerLoop();
+  void runTasks();
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable finished_;
+  std::size_t generation_ = 0;  // guarded by mutex_
+  int busyWorkers_ = 0;         // guarded by mutex_
+  bool stopping_ = false;       // guarded by mutex_
+
+  // The current job; written by run() before the generation is published under mutex_.
+  std::size_t count_ = 0;
+  FunctionRef<void(std::size_t)> task_;
+  std::atomic<std::size_t> next_{0};
+  std::atomic<std::size_t> done_{0};
+  std::atomic<bool> cancelled_{false};
+};
+
+}  // namespace facet::detail

@@ -1,0 +1,60 @@
+// Re-rendering the same scene at the same size allocates nothing: every global operator new
+// is counted, and the second render must not call it.
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+
+namespace {
+std::atomic<std::size_t> allocations{0};
+}
+
+void* operator new(std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace facet::testing {
+namespace {
+
+TEST(Allocation, SecondRenderOfTheSameSceneAllocatesNothing) {
+  const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
+  const Mesh beast = readObj(sharedMeshPath("beast.obj"));  // quads and n-gons, too
+  LightSet lights;
+  lights.lights.push_back(PointLight{{0.3, 0.4, 0.5}, Color(1.0f), 1.0, QuadraticAttenuation{}});
+  lights.lights.push_back(SpotLight{});
+  Material material;
+  material.specular = 0.3;
+  Scene scene = oneMeshScene(bunny.view(), material, lights);
+  for (Visibility visibility : {Visibility::ZBuffer, Visibility::PainterSort}) {
+    Renderer renderer;
+    renderer.setThreadCount(2);
+    renderer.setVisibility(visibility);
+    Framebuffer fb(320, 240);
+    Camera camera = fitCamera(bunny);
+    camera.nearClip *= 1.2;  // clip too
+    renderer.render(scene, camera, fb);
+    const std::size_t before = allocations.load();
+    const RenderStats stats = renderer.render(scene, camera, fb);
+    EXPECT_EQ(allocations.load() - before, 0u);
+    EXPECT_GT(stats.trianglesClipped, 0u);
+
+    Scene ngons = oneMeshScene(beast.view(), material, lights);
+    const Camera beastCamera = fitCamera(beast);
+    renderer.render(ngons, beastCamera, fb);
+    const std::size_t beforeNgons = allocations.load();
+    renderer.render(ngons, beastCamera, fb);
+    EXPECT_EQ(allocations.load() - beforeNgons, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace facet::testing

@@ -1,0 +1,53 @@
+// The same bytes for any thread count, on a real mesh.
+
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+
+namespace facet::testing {
+namespace {
+
+bool sameBytes(const Framebuffer& a, const Framebuffer& b) {
+  return a.pixelCount() == b.pixelCount() &&
+         std::memcmp(a.color().data(), b.color().data(), a.color().size_bytes()) == 0 &&
+         std::memcmp(a.depth().data(), b.depth().data(), a.depth().size_bytes()) == 0 &&
+         std::memcmp(a.polygonId().data(), b.polygonId().data(), a.polygonId().size_bytes()) == 0;
+}
+
+class Determinism : public ::testing::TestWithParam<Visibility> {};
+
+TEST_P(Determinism, BunnyRendersTheSameBytesOnOneTwoAndEightThreads) {
+  const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
+  ASSERT_EQ(bunny.polygonCount(), 69451u);
+  LightSet lights;
+  lights.lights.push_back(PointLight{{0.3, 0.4, 0.5}, Color(1.0f, 0.6f, 0.3f), 1.5, QuadraticAttenuation{1, 0, 1}});
+  lights.lights.push_back(DirectionalLight{{-1, -1, -1}, Color(0.3f, 0.4f, 1.0f), 0.8});
+  Material material;
+  material.specular = 0.4;
+  material.specularPower = 20.0;
+  const Scene scene = oneMeshScene(bunny.view(), material, lights);
+  Camera camera = fitCamera(bunny, {0.2, -0.3, -1.0});
+  camera.nearClip *= 1.3;  // cut into the mesh so the clipper runs too
+
+  RenderOptions options;
+  options.visibility = GetParam();
+  options.threads = 1;
+  const Rendered one = renderScene(scene, camera, 640, 480, options);
+  EXPECT_GT(one.stats.pixelsCovered, 20000u);
+  for (int threads : {2, 8}) {
+    options.threads = threads;
+    const Rendered many = renderScene(scene, camera, 640, 480, options);
+    EXPECT_TRUE(sameBytes(one.framebuffer, many.framebuffer)) << threads << " threads";
+    EXPECT_EQ(one.stats.trianglesBinned, many.stats.trianglesBinned);
+    EXPECT_EQ(one.stats.fragmentsWritten, many.stats.fragmentsWritten);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothVisibilityModes, Determinism,
+                         ::testing::Values(Visibility::ZBuffer, Visibility::PainterSort));
+
+}  // namespace
+}  // namespace facet::testing

@@ -1,0 +1,115 @@
+// Depth buffer vs painter's order, and back-face culling.
+
+#include <gtest/gtest.h>
+
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+
+namespace facet::testing {
+namespace {
+
+// Quad A lies in z = 0; quad B in the plane z = x, so they intersect along x = 0. Seen from
+// above, B is nearer where x > 0 and A where x < 0.
+Mesh intersectingQuads() {
+  Mesh mesh;
+  for (glm::dvec3 p : {glm::dvec3{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0},
+                       {-1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, -1}}) {
+    mesh.addPoint(p);
+  }
+  mesh.addPolygon({0, 1, 2, 3});  // A: polygon 0
+  mesh.addPolygon({4, 5, 6, 7});  // B: polygon 1
+  return mesh;
+}
+
+Camera topDown() {
+  Camera camera;
+  camera.parallelProjection = true;
+  camera.parallelScale = 1.2;
+  camera.position = {0, 0, 5};
+  camera.focalPoint = {0, 0, 0};
+  camera.nearClip = 1.0;
+  camera.farClip = 10.0;
+  return camera;
+}
+
+TEST(Visibility, ZBufferResolvesIntersectingPolygons) {
+  const Mesh quads = intersectingQuads();
+  const Rendered r = renderScene(oneMeshScene(quads.view()), topDown(), 120, 120);
+  int checked = 0;
+  for (int y = 15; y < 105; ++y) {
+    for (int x = 12; x < 108; ++x) {
+      if (x >= 57 && x <= 62) continue;  // the intersection line
+      const int expected = x < 60 ? 0 : 1;
+      ASSERT_EQ(r.framebuffer.polygonIdAt(x, y), expected) << "pixel (" << x << ", " << y << ")";
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 8000);
+}
+
+TEST(Visibility, PainterOrderCannotResolveIntersectingPolygons) {
+  // Both centroids are at the same depth: the tie goes to polygon order, so B (drawn last)
+  // covers A everywhere, including where A is nearer. This is the documented limitation.
+  const Mesh quads = intersectingQuads();
+  RenderOptions painter;
+  painter.visibility = Visibility::PainterSort;
+  const Rendered r = renderScene(oneMeshScene(quads.view()), topDown(), 120, 120, painter);
+  EXPECT_EQ(r.framebuffer.polygonIdAt(30, 60), 1) << "A is nearer here, yet B was painted over it";
+  EXPECT_EQ(r.framebuffer.polygonIdAt(90, 60), 1);
+}
+
+TEST(Visibility, PainterOrderDrawsFarToNear) {
+  Mesh stack;  // two parallel squares, the far one listed last
+  for (double z : {0.5, -0.5}) {
+    const std::int64_t base = static_cast<std::int64_t>(stack.points.size());
+    for (glm::dvec3 p : {glm::dvec3{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}}) stack.addPoint(p);
+    stack.addPolygon({base, base + 1, base + 2, base + 3});
+  }
+  RenderOptions painter;
+  painter.visibility = Visibility::PainterSort;
+  const Rendered r = renderScene(oneMeshScene(stack.view()), topDown(), 64, 64, painter);
+  EXPECT_EQ(r.framebuffer.polygonIdAt(32, 32), 0) << "the near square must end on top";
+  const Rendered z = renderScene(oneMeshScene(stack.view()), topDown(), 64, 64);
+  EXPECT_EQ(z.framebuffer.polygonIdAt(32, 32), 0);
+  EXPECT_NEAR(z.framebuffer.depthAt(32, 32), r.framebuffer.depthAt(32, 32), 1e-7);
+}
+
+void expectSameImage(const Framebuffer& a, const Framebuffer& b) {
+  ASSERT_EQ(a.pixelCount(), b.pixelCount());
+  std::size_t differences = 0;
+  for (std::size_t i = 0; i < a.pixelCount(); ++i) {
+    differences += a.color()[i] != b.color()[i] || a.depth()[i] != b.depth()[i] ||
+                   a.polygonId()[i] != b.polygonId()[i];
+  }
+  EXPECT_EQ(differences, 0u);
+}
+
+TEST(Culling, ClosedMeshLooksTheSameWithAndWithoutCulling) {
+  const Mesh spot = readObj(sharedMeshPath("spot.obj"));
+  LightSet lights;
+  lights.lights.push_back(PointLight{{3.0, 2.0, 4.0}, Color(1.0f, 0.9f, 0.8f), 1.0, NoAttenuation{}});
+  for (const glm::dvec3 direction : {glm::dvec3(0, 0, -1), glm::dvec3(1, -0.5, 0.3)}) {
+    Material culled;
+    culled.backfaceCulling = true;
+    const Camera camera = fitCamera(spot, direction);
+    const Rendered with = renderScene(oneMeshScene(spot.view(), culled, lights), camera, 400, 300);
+    const Rendered without = renderScene(oneMeshScene(spot.view(), Material{}, lights), camera, 400, 300);
+    EXPECT_GT(with.stats.polygonsCulled, spot.polygonCount() / 3);
+    EXPECT_EQ(without.stats.polygonsCulled, 0u);
+    EXPECT_GT(with.stats.pixelsCovered, 10000u);
+    expectSameImage(with.framebuffer, without.framebuffer);
+  }
+}
+
+TEST(Culling, BackFacesOfAnOpenSurfaceDisappear) {
+  Mesh square;
+  for (glm::dvec3 p : {glm::dvec3{-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}}) square.addPoint(p);
+  square.addPolygon({0, 1, 2, 3});  // clockwise seen from +z: a back face
+  Material culled;
+  culled.backfaceCulling = true;
+  EXPECT_EQ(renderScene(oneMeshScene(square.view(), culled), topDown(), 32, 32).stats.pixelsCovered, 0u);
+  EXPECT_GT(renderScene(oneMeshScene(square.view()), topDown(), 32, 32).stats.pixelsCovered, 500u);
+}
+
+}  // namespace
+}  // namespace facet::testing

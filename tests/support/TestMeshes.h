@@ -1,0 +1,40 @@
+#pragma once
+
+// Meshes for the core tests and benchmarks (test-only: the core itself reads no files).
+
+#include <filesystem>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "facet/Camera.h"
+#include "facet/Mesh.h"
+
+namespace facet::testing {
+
+// The shared data folder (FACET_SHARED_DATA_DIR, set by CMake).
+std::filesystem::path sharedMeshPath(const std::string& fileName);
+
+// A tiny Wavefront OBJ reader: `v x y z` and `f a b c ...` lines (a, b, c may be `i`,
+// `i/t`, `i//n` or `i/t/n`, 1-based or negative). Throws std::runtime_error on a missing
+// file or a malformed line.
+Mesh readObj(const std::filesystem::path& path);
+
+// A UV sphere with vtkSphereSource's topology: two poles, phiResolution − 2 rings of
+// thetaResolution points, 2·theta·(phi − 2) counter-clockwise (outward) triangles.
+Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius = 1.0,
+                  const glm::dvec3& center = glm::dvec3(0.0));
+
+// An axis-aligned box as 6 outward quads.
+Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high);
+
+// A perspective camera looking at the mesh's bounding box from `direction` (toward the
+// box), fitting the bounding sphere in the view like vtkRenderer::ResetCamera.
+Camera fitCamera(const Mesh& mesh, const glm::dvec3& direction = {0.0, 0.0, -1.0},
+                 double viewAngleDegrees = 30.0);
+
+// A parallel camera looking down −Z for which world x, y equal window x, y in pixels
+// (window = width × height), with the z = 0 plane between near and far.
+Camera pixelCamera(int width, int height);
+
+}  // namespace facet::testing

@@ -1,0 +1,52 @@
+#include "TestRender.h"
+
+#include <cmath>
+
+namespace facet::testing {
+
+Rendered renderScene(const Scene& scene, const Camera& camera, int width, int height,
+                     const RenderOptions& options) {
+  Renderer renderer;
+  renderer.setThreadCount(options.threads);
+  renderer.setVisibility(options.visibility);
+  renderer.setTwoSidedLighting(options.twoSidedLighting);
+  Rendered result{Framebuffer(width, height), {}};
+  result.stats = renderer.render(scene, camera, result.framebuffer);
+  return result;
+}
+
+Scene oneMeshScene(const MeshView& mesh, const Material& material, const LightSet& lights) {
+  Scene scene;
+  scene.meshes.push_back({mesh, material});
+  scene.lights = lights;
+  return scene;
+}
+
+double snapToSubpixel(double pixels) { return std::nearbyint(pixels * 256.0) / 256.0; }
+
+FixedPoint toFixed(double x, double y) {
+  return {static_cast<std::int64_t>(std::nearbyint(x * 256.0)),
+          static_cast<std::int64_t>(std::nearbyint(y * 256.0))};
+}
+
+int windingNumber(const std::vector<FixedPoint>& polygon, int px, int py, bool& onBoundary) {
+  const std::int64_t sx = std::int64_t{px} * 256 + 128, sy = std::int64_t{py} * 256 + 128;
+  int winding = 0;
+  onBoundary = false;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const FixedPoint a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+    const std::int64_t side = (b.x - a.x) * (sy - a.y) - (b.y - a.y) * (sx - a.x);
+    if (side == 0 && sx >= std::min(a.x, b.x) && sx <= std::max(a.x, b.x) &&
+        sy >= std::min(a.y, b.y) && sy <= std::max(a.y, b.y)) {
+      onBoundary = true;
+    }
+    if (a.y <= sy) {
+      if (b.y > sy && side > 0) ++winding;
+    } else if (b.y <= sy && side < 0) {
+      --winding;
+    }
+  }
+  return winding;
+}
+
+}  // namespace facet::testing
