@@ -14,6 +14,7 @@
 #include "MeshAccess.h"
 #include "Rasterizer.h"
 #include "Triangulate.h"
+#include "facet/HugePageAllocator.h"
 #include "facet/Lighting.h"
 #include "facet/RenderPlan.h"
 #include "facet/Scene.h"
@@ -28,12 +29,17 @@ inline constexpr int kTileSize = 64;
 // into the chunk's own clippedVertices.
 inline constexpr std::uint32_t kClippedVertexBit = 0x80000000u;
 
-// A triangle ready to paint: counter-clockwise, lit, covering at least one sample's box.
+// A triangle ready to paint: counter-clockwise, covering at least one sample's box.
 struct BinnedTriangle {
   std::uint32_t vertex[3];
   std::int32_t polygon;
-  Rgba8 color;
 };
+
+// Flat shading is deferred to the polygons that end up visible (Resolve.cpp): after set-up,
+// a drawn polygon's slot in FrameState::polygonColors says which side the viewer sees;
+// after shading, it holds the polygon's RGBA8 color.
+inline constexpr std::uint32_t kUnshadedFront = 0;
+inline constexpr std::uint32_t kUnshadedBack = 1;
 
 struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
@@ -45,7 +51,7 @@ struct PolygonCounts {
 // order whatever the chunking (which depends on the thread count) was.
 struct Chunk {
   std::size_t begin = 0, end = 0;
-  std::vector<BinnedTriangle> triangles;
+  HugePageVector<BinnedTriangle> triangles;
   std::vector<WindowVertex> clippedVertices;
   std::vector<std::vector<std::uint32_t>> bins;
   PolygonCounts counts;
@@ -60,10 +66,14 @@ struct Chunk {
 // Per-frame facts about one scene mesh.
 struct FrameMesh {
   const SceneMesh* source = nullptr;
+  PreparedMaterial material;
   std::size_t firstVertex = 0;   // into FrameState::vertices
   std::size_t firstPolygon = 0;  // global polygon id of its polygon 0
   // Without direct light and per-polygon colors, every polygon of the mesh has one color.
   std::optional<Rgba8> uniformColor;
+  // Back faces cannot be seen this frame: a closed surface wholly in front of the near
+  // plane (see MeshView::closedSurface), or culled by the material.
+  bool skipBackFaces = false;
 };
 
 struct FrameState {
@@ -77,10 +87,12 @@ struct FrameState {
 
   // Buffers reused from render to render.
   std::vector<FrameMesh> meshes;
-  std::vector<WindowVertex> vertices;    // every mesh's points, projected
+  HugePageVector<WindowVertex> vertices;  // every mesh's points, projected
   std::vector<std::uint32_t> drawOrder;  // painter's order; empty means polygon id order
   std::vector<std::pair<double, std::uint32_t>> sortKeys;
   std::vector<Chunk> chunks;
+  HugePageVector<std::uint32_t> polygonColors;  // per polygon id; see kUnshadedFront
+  HugePageVector<std::uint8_t> visible;         // per polygon id: shown by some pixel
 
   std::size_t meshOfPolygon(std::size_t polygonId) const;
   std::size_t polygonAt(std::size_t drawPosition) const {
@@ -92,7 +104,16 @@ struct FrameState {
   }
 };
 
-// Phase 2 for one chunk: clip, cull, triangulate, light and bin its polygons.
+// Phase 2 for one chunk: clip, cull, triangulate and bin its polygons.
 void setUpChunk(FrameState& frame, Chunk& chunk);
+
+// Phase 3, colors (Resolve.cpp). After a tile's triangles are painted (depth and polygon
+// id), mark the polygons it shows; then shade the marked polygons of one mesh's id range
+// [begin, end), returning how many; then write a tile's colors from its ids.
+void markVisiblePolygons(FrameState& frame, const PixelBounds& tile, const Planes& planes);
+std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::size_t begin,
+                                 std::size_t end);
+void resolveTileColors(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
+                       Rgba8 background);
 
 }  // namespace facet::detail

@@ -23,10 +23,10 @@ glm::dvec3 radianceOf(const Color& color, double intensity) {
   return {capped(color.r * i), capped(color.g * i), capped(color.b * i)};
 }
 
-double specularFactor(const Material& material, const glm::dvec3& normal,
+double specularFactor(const PreparedMaterial& m, const glm::dvec3& normal,
                       const glm::dvec3& toLight, const glm::dvec3& toViewer, double cosine) {
   double alignment = 0.0;
-  if (material.specularModel == SpecularModel::Phong) {
+  if (m.material.specularModel == SpecularModel::Phong) {
     const glm::dvec3 reflected = 2.0 * cosine * normal - toLight;
     alignment = glm::dot(reflected, toViewer);
   } else {
@@ -36,7 +36,13 @@ double specularFactor(const Material& material, const glm::dvec3& normal,
   }
   // Clamp to [0, 1] first: a dot of unit vectors may round past 1, and x^1e6 would notice.
   alignment = std::clamp(alignment, 0.0, 1.0);
-  return std::pow(alignment, capped(material.specularPower));
+  return std::pow(alignment, m.specularPower);
+}
+
+double preparedDiffuseFactor(const PreparedMaterial& m, double cosine) {
+  const double lit = cosine > 0.0 ? std::min(cosine, 1.0) : 0.0;  // NaN → 0
+  if (m.material.diffuseModel == DiffuseModel::Lambert) return lit;
+  return m.lerpAmbient + (m.lerpFull - m.lerpAmbient) * lit;
 }
 
 }  // namespace
@@ -77,54 +83,74 @@ void Shader::reset(const LightSet& lightSet) {
   }
 }
 
-Shader::LightAtPoint Shader::arriving(const PreparedLight& light,
-                                      const SurfaceSample& sample) const {
-  if (light.kind == PreparedLight::Kind::Directional) return {light.direction, light.radiance};
+PreparedMaterial::PreparedMaterial(const Material& m)
+    : material(m),
+      specularColor(capped(m.specularColor)),
+      ambient(capped(m.ambient)),
+      diffuse(capped(m.diffuse)),
+      specular(capped(m.specular)),
+      specularPower(capped(m.specularPower)),
+      lerpAmbient(capped(m.lerpAmbient)),
+      lerpFull(capped(m.lerpFull)) {
+  if (m.ambientColor) ambientColor = capped(*m.ambientColor);
+}
+
+inline glm::dvec3 Shader::arriving(const PreparedLight& light, const SurfaceSample& sample,
+                                   glm::dvec3& toLight) const {
+  if (light.kind == PreparedLight::Kind::Directional) {
+    toLight = light.direction;
+    return light.radiance;
+  }
   // A light exactly at the point lights it head-on (see "Edge cases" in Lighting.h).
-  glm::dvec3 toLight = sample.normal;
+  toLight = sample.normal;
   double distance = 0.0;
   const glm::dvec3 offset = light.position - sample.position;
-  if (offset != glm::dvec3(0.0)) {
+  const double distanceSquared = glm::dot(offset, offset);
+  if (distanceSquared > 1e-290 && distanceSquared < 1e290) {  // the common case, exactly
+    distance = std::sqrt(distanceSquared);
+    toLight = offset / distance;
+  } else if (offset != glm::dvec3(0.0)) {
     const auto unit = detail::normalizeRobust(offset);
-    if (!unit) return {sample.normal, glm::dvec3{0.0}};  // beyond double range: unreachable
+    if (!unit) return glm::dvec3(0.0);  // beyond double range: unreachable
     toLight = unit->unit;
     distance = unit->length;
   }
-  double factor = attenuationFactor(light.attenuation, distance);
+  double factor = std::holds_alternative<NoAttenuation>(light.attenuation)
+                      ? 1.0
+                      : attenuationFactor(light.attenuation, distance);
   if (light.kind == PreparedLight::Kind::Spot) {
     factor *= spotFactor(light.cone, glm::dot(-toLight, light.direction));
   }
-  return {toLight, light.radiance * factor};
+  return light.radiance * factor;
 }
 
 Color Shader::shade(const SurfaceSample& sample, const Material& material) const {
-  const glm::dvec3 surface = capped(sample.color);
-  const glm::dvec3 ambientColor = material.ambientColor ? capped(*material.ambientColor) : surface;
-  const double ka = capped(material.ambient);
-  const double kd = capped(material.diffuse);
-  const double ks = capped(material.specular);
+  return shade(sample, PreparedMaterial(material));
+}
 
+Color Shader::shade(const SurfaceSample& sample, const PreparedMaterial& m) const {
+  const glm::dvec3 surface = capped(sample.color);
   glm::dvec3 diffuseSum{0.0}, specularSum{0.0};
   for (const PreparedLight& light : lights_) {
-    const LightAtPoint arrived = arriving(light, sample);
-    if (arrived.radiance == glm::dvec3(0.0)) continue;
-    const double cosine = glm::dot(sample.normal, arrived.toLight);
-    diffuseSum += arrived.radiance * diffuseFactor(material, cosine);
-    if (ks > 0.0 && cosine > 0.0) {
-      specularSum += arrived.radiance *
-                     specularFactor(material, sample.normal, arrived.toLight, sample.toViewer,
-                                    std::min(cosine, 1.0));
+    glm::dvec3 toLight;
+    const glm::dvec3 radiance = arriving(light, sample, toLight);
+    if (radiance == glm::dvec3(0.0)) continue;
+    const double cosine = glm::dot(sample.normal, toLight);
+    diffuseSum += radiance * preparedDiffuseFactor(m, cosine);
+    if (m.specular > 0.0 && cosine > 0.0) {
+      specularSum += radiance * specularFactor(m, sample.normal, toLight, sample.toViewer,
+                                               std::min(cosine, 1.0));
     }
   }
 
-  const glm::dvec3 base = ka * ambientColor + surface * ambient_ + kd * surface * diffuseSum;
-  const glm::dvec3 specularColor = capped(material.specularColor);
-  if (material.specularMix == SpecularMix::Add) {
-    return saturate(Color(base + ks * specularColor * specularSum));
+  const glm::dvec3 ambientTerm = m.ambient * (m.ambientColor ? *m.ambientColor : surface);
+  const glm::dvec3 base = ambientTerm + surface * ambient_ + m.diffuse * surface * diffuseSum;
+  if (m.material.specularMix == SpecularMix::Add) {
+    return saturate(Color(base + m.specular * m.specularColor * specularSum));
   }
   const glm::dvec3 unblended(saturate(Color(base)));
-  const glm::dvec3 blend = glm::min(ks * specularSum, glm::dvec3(1.0));
-  return saturate(Color((1.0 - blend) * unblended + blend * specularColor));
+  const glm::dvec3 blend = glm::min(m.specular * specularSum, glm::dvec3(1.0));
+  return saturate(Color((1.0 - blend) * unblended + blend * m.specularColor));
 }
 
 Color shade(const SurfaceSample& sample, const Material& material, const LightSet& lightSet) {
@@ -132,10 +158,7 @@ Color shade(const SurfaceSample& sample, const Material& material, const LightSe
 }
 
 double diffuseFactor(const Material& material, double cosine) {
-  const double lit = cosine > 0.0 ? std::min(cosine, 1.0) : 0.0;  // NaN → 0
-  if (material.diffuseModel == DiffuseModel::Lambert) return lit;
-  const double unlitLevel = capped(material.lerpAmbient);
-  return unlitLevel + (capped(material.lerpFull) - unlitLevel) * lit;
+  return preparedDiffuseFactor(PreparedMaterial(material), cosine);
 }
 
 double angleBetweenDegrees(const glm::dvec3& a, const glm::dvec3& b) {

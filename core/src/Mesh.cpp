@@ -1,6 +1,10 @@
 #include "facet/Mesh.h"
 
+#include <algorithm>
 #include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "MeshAccess.h"
 #include "Validate.h"
@@ -104,6 +108,42 @@ void validate(const MeshView& mesh) {
   if (const auto problem = detail::findMeshProblem(mesh, 0, mesh.polygons.count)) {
     detail::throwMeshProblem(*problem, SIZE_MAX);
   }
+}
+
+
+bool isClosedSurface(const MeshView& mesh) {
+  validate(mesh);
+  if (mesh.polygons.count == 0) return false;
+  return detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
+    // Directed edges as (from << 32 | to); every one must be unique and meet its reverse.
+    std::vector<std::uint64_t> edges;
+    edges.reserve(mesh.polygons.connectivitySize);
+    glm::dvec3 center(0.0);
+    for (std::size_t i = 0; i < mesh.points.count; ++i) center += points[i];
+    center /= static_cast<double>(std::max<std::size_t>(mesh.points.count, 1));
+    double volume = 0.0;  // six times the signed volume, by the divergence theorem
+    for (std::size_t p = 0; p < mesh.polygons.count; ++p) {
+      const std::size_t n = polygons.size(p);
+      if (n < 3) return false;
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::uint64_t from = polygons.pointId(p, k), to = polygons.pointId(p, (k + 1) % n);
+        if (from >> 32 || to >> 32) return false;
+        edges.push_back(from << 32 | to);
+      }
+      const glm::dvec3 a = points[polygons.pointId(p, 0)] - center;
+      for (std::size_t k = 1; k + 1 < n; ++k) {
+        volume += glm::dot(a, glm::cross(points[polygons.pointId(p, k)] - center,
+                                         points[polygons.pointId(p, k + 1)] - center));
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+    for (const std::uint64_t edge : edges) {
+      const std::uint64_t reverse = (edge << 32) | (edge >> 32);
+      if (!std::binary_search(edges.begin(), edges.end(), reverse)) return false;
+    }
+    return volume > 0.0;
+  });
 }
 
 }  // namespace facet

@@ -4,11 +4,13 @@
 
 #include "Assert.h"
 #include "facet/Conventions.h"
+#include "facet/Framebuffer.h"
 
 namespace facet::detail {
 namespace {
 
 constexpr std::int64_t kHalfPixel = kSubpixelScale / 2;
+constexpr std::int32_t kBackgroundPolygon = Framebuffer::kBackgroundId;
 
 // floor(value / 256) and ceil(value / 256) for any sign (C++20 >> is arithmetic).
 std::int64_t floorToPixel(std::int64_t value) { return value >> kSubpixelBits; }
@@ -44,14 +46,32 @@ PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
           static_cast<int>(std::min<std::int64_t>(floorToPixel(maxY - kHalfPixel), clip.y1))};
 }
 
+bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                     const PixelBounds& bounds) {
+  const int width = bounds.x1 - bounds.x0 + 1, height = bounds.y1 - bounds.y0 + 1;
+  if (width * height > 4) return true;
+  const std::int64_t sampleX = std::int64_t{bounds.x0} * kSubpixelScale + kHalfPixel;
+  const std::int64_t sampleY = std::int64_t{bounds.y0} * kSubpixelScale + kHalfPixel;
+  const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::int64_t w0 = e0.value + x * e0.stepX + y * e0.stepY;
+      const std::int64_t w1 = e1.value + x * e1.stepX + y * e1.stepY;
+      const std::int64_t w2 = e2.value + x * e2.stepX + y * e2.stepY;
+      if ((w0 | w1 | w2) >= 0) return true;
+    }
+  }
+  return false;
+}
+
 template <DepthMode kMode>
-std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                            Rgba8 color, std::int32_t polygonId, const PixelBounds& tile,
-                            const Planes& planes) {
+void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                   std::int32_t polygonId, const PixelBounds& tile, const Planes& planes,
+                   PaintCounts& counts) {
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
   const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
-  if (box.empty()) return 0;
+  if (box.empty()) return;
 
   const std::int64_t sampleX = std::int64_t{box.x0} * kSubpixelScale + kHalfPixel;
   const std::int64_t sampleY = std::int64_t{box.y0} * kSubpixelScale + kHalfPixel;
@@ -66,7 +86,7 @@ std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const 
   const double dzdy = (dz2 * (b.x - a.x) - dz1 * (c.x - a.x)) * inverseArea;
   const float dzPerPixel = static_cast<float>(dzdx * kSubpixelScale);
 
-  std::uint32_t written = 0;
+  std::size_t written = 0, covered = 0;
   for (int y = box.y0; y <= box.y1; ++y) {
     std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
     const double rowY = static_cast<double>(y - box.y0) * kSubpixelScale + (sampleY - a.y);
@@ -77,8 +97,11 @@ std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const 
         const std::size_t i = row + x;
         const float depth = std::clamp(z, 0.0f, 1.0f);
         if (kMode == DepthMode::Overwrite || depth < planes.depth[i]) {
+          // A written pixel's depth is < 1 under the depth test, so depth 1 means background;
+          // painter's order may write depth 1 (the far plane), so it asks the id.
+          covered += kMode == DepthMode::Test ? planes.depth[i] == 1.0f
+                                              : planes.polygonId[i] == kBackgroundPolygon;
           planes.depth[i] = depth;
-          planes.color[i] = color;
           planes.polygonId[i] = polygonId;
           ++written;
         }
@@ -92,16 +115,16 @@ std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const 
     e1.value += e1.stepY;
     e2.value += e2.stepY;
   }
-  return written;
+  counts.written += written;
+  counts.covered += covered;
 }
 
-template std::uint32_t paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
-                                                      const WindowVertex&, Rgba8, std::int32_t,
-                                                      const PixelBounds&, const Planes&);
-template std::uint32_t paintTriangle<DepthMode::Overwrite>(const WindowVertex&,
-                                                           const WindowVertex&,
-                                                           const WindowVertex&, Rgba8,
-                                                           std::int32_t, const PixelBounds&,
-                                                           const Planes&);
+template void paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
+                                             const WindowVertex&, std::int32_t,
+                                             const PixelBounds&, const Planes&, PaintCounts&);
+template void paintTriangle<DepthMode::Overwrite>(const WindowVertex&, const WindowVertex&,
+                                                  const WindowVertex&, std::int32_t,
+                                                  const PixelBounds&, const Planes&,
+                                                  PaintCounts&);
 
 }  // namespace facet::detail

@@ -36,6 +36,12 @@ inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& 
 PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
                                  const WindowVertex& c, const PixelBounds& clip);
 
+// False only when the triangle (counter-clockwise) certainly covers no sample in `bounds`:
+// decided exactly for bounds of at most 4 samples (most triangles of a dense mesh), assumed
+// true for larger ones. Lets set-up drop sub-pixel triangles before lighting and binning.
+bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                     const PixelBounds& bounds);
+
 // Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom).
 struct Planes {
   Rgba8* color;
@@ -46,12 +52,18 @@ struct Planes {
 
 enum class DepthMode { Test, Overwrite };
 
-// Paints a counter-clockwise triangle (doubleSignedArea > 0) into the pixels of `tile`.
-// DepthMode::Test keeps the nearest fragment (strictly less: the earlier polygon wins a
-// tie); DepthMode::Overwrite is painter's order. Returns the number of pixels written.
+struct PaintCounts {
+  std::size_t written = 0;  // pixel writes, counting overdraw
+  std::size_t covered = 0;  // background pixels that received their first polygon
+};
+
+// Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
+// planes of `tile` (colors come later, from the ids). DepthMode::Test keeps the nearest
+// fragment (strictly less: the earlier polygon wins a tie); DepthMode::Overwrite is
+// painter's order.
 template <DepthMode kMode>
-std::uint32_t paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                            Rgba8 color, std::int32_t polygonId, const PixelBounds& tile,
-                            const Planes& planes);
+void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                   std::int32_t polygonId, const PixelBounds& tile, const Planes& planes,
+                   PaintCounts& counts);
 
 }  // namespace facet::detail

@@ -31,7 +31,9 @@ std::string RenderPlan::describe() const {
       << doneOrSkipped(polygonCenters) << ", viewer direction "
       << doneOrSkipped(viewerDirection) << "\n";
   out << "  two-sided lighting " << onOff(twoSidedLighting) << ", back-face culling "
-      << onOff(backfaceCulling) << "\n";
+      << onOff(backfaceCulling) << ", back faces of closed surfaces "
+      << (closedSurfaces ? "skipped unless the near plane cuts them" : "drawn (none marked closed)")
+      << "\n";
   return out.str();
 }
 

@@ -44,19 +44,23 @@ struct MeshRange {
   std::size_t mesh, begin, end;
 };
 
-// Reports one phase's task count into the overall fraction the user's callback sees.
+// Reports one phase's finished tasks as the overall fraction the user's callback sees,
+// between the phase's start and end (exactly the end when all are done, so fractions never
+// step back at the next phase's start).
 class PhaseProgress {
  public:
-  PhaseProgress(const Renderer::ProgressCallback& callback, double start, double weight,
+  PhaseProgress(const Renderer::ProgressCallback& callback, double start, double end,
                 std::size_t tasks)
-      : callback_(callback), start_(start), weight_(weight), tasks_(tasks) {}
+      : callback_(callback), start_(start), end_(end), tasks_(tasks) {}
   bool operator()(std::size_t done) const {
-    return !callback_ || callback_(start_ + weight_ * static_cast<double>(done) / tasks_);
+    if (!callback_) return true;
+    return callback_(done >= tasks_ ? end_
+                                    : start_ + (end_ - start_) * static_cast<double>(done) / tasks_);
   }
 
  private:
   const Renderer::ProgressCallback& callback_;
-  double start_, weight_;
+  double start_, end_;
   std::size_t tasks_;
 };
 
@@ -88,10 +92,11 @@ RenderPlan makePlan(const Scene& scene, const Camera& camera, int width, int hei
   for (const SceneMesh& mesh : scene.meshes) {
     plan.specular |= plan.directLighting && mesh.material.specular > 0.0;
     plan.backfaceCulling |= mesh.material.backfaceCulling;
+    plan.closedSurfaces |= mesh.mesh.closedSurface;
     plan.points += mesh.mesh.points.count;
     plan.polygons += mesh.mesh.polygons.count;
   }
-  plan.viewerDirection = plan.directLighting && (plan.specular || twoSided);
+  plan.viewerDirection = plan.specular;
   plan.polygonCenters =
       plan.positionalLights || (plan.viewerDirection && !camera.parallelProjection);
   plan.threads = threads;
@@ -123,12 +128,11 @@ struct Renderer::Workspace {
   std::unique_ptr<detail::ThreadPool> pool;
   FrameState frame;
   std::vector<MeshRange> pointRanges;
+  std::vector<std::uint32_t> rangeOutcodes;  // OR of the outcodes of each point range
   std::vector<MeshRange> polygonRanges;
   std::vector<std::optional<detail::MeshProblem>> problems;
-  struct TileCounts {
-    std::size_t written = 0, covered = 0;
-  };
-  std::vector<TileCounts> tiles;
+  std::vector<detail::PaintCounts> tiles;
+  std::vector<std::size_t> shadedCounts;
 
   // Runs a phase on the pool; false when the progress callback stopped it. The phase's
   // start is always reported: workers may take every task, leaving the caller none to
@@ -189,8 +193,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
 
   RenderStats stats;
   stats.plan = plan;
-  const auto progressOf = [&](double begin, double weight, std::size_t tasks) {
-    return PhaseProgress(progress_, begin, weight, std::max<std::size_t>(tasks, 1));
+  const auto progressOf = [&](double begin, double end, std::size_t tasks) {
+    return PhaseProgress(progress_, begin, end, std::max<std::size_t>(tasks, 1));
   };
 
   // Structure of every mesh: offsets and point ids, in parallel; the first problem in id
@@ -219,9 +223,10 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
   frame.meshes.clear();
   std::size_t firstVertex = 0, firstPolygon = 0;
   for (const SceneMesh& mesh : scene.meshes) {
-    FrameMesh frameMesh{&mesh, firstVertex, firstPolygon, std::nullopt};
+    FrameMesh frameMesh{&mesh, PreparedMaterial(mesh.material), firstVertex, firstPolygon,
+                        std::nullopt};
     if (!plan.directLighting && mesh.mesh.polygonColors.empty()) {
-      frameMesh.uniformColor = toRgba8(frame.shader.shade(SurfaceSample{}, mesh.material));
+      frameMesh.uniformColor = toRgba8(frame.shader.shade(SurfaceSample{}, frameMesh.material));
     }
     frame.meshes.push_back(frameMesh);
     firstVertex += mesh.mesh.points.count;
@@ -233,6 +238,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
   frame.vertices.resize(plan.points);
   splitPerMesh(scene, kPointsPerTask, [](const MeshView& m) { return m.points.count; },
                ws.pointRanges);
+  ws.rangeOutcodes.assign(ws.pointRanges.size(), 0);
   completed = completed &&
               ws.runPhase(
                   ws.pointRanges.size(),
@@ -240,12 +246,31 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
                     const MeshRange& r = ws.pointRanges[i];
                     const FrameMesh& mesh = frame.meshes[r.mesh];
                     detail::withTypedMesh(mesh.source->mesh, [&](auto points, auto) {
+                      std::uint32_t any = 0;
                       for (std::size_t p = r.begin; p < r.end; ++p) {
-                        frame.vertices[mesh.firstVertex + p] = frame.transform->project(points[p]);
+                        const detail::WindowVertex v = frame.transform->project(points[p]);
+                        frame.vertices[mesh.firstVertex + p] = v;
+                        any |= v.outcode;
                       }
+                      ws.rangeOutcodes[i] = any;
                     });
                   },
-                  progressOf(0.05, 0.15, ws.pointRanges.size()));
+                  progressOf(0.05, 0.2, ws.pointRanges.size()));
+
+  // Back faces of a closed surface are hidden while no point of it is beyond the near plane
+  // (none behind the eye: the eye is outside) and none is non-finite (no polygon dropped).
+  for (std::size_t m = 0; m < frame.meshes.size(); ++m) {
+    std::uint32_t any = 0;
+    for (std::size_t i = 0; i < ws.pointRanges.size(); ++i) {
+      if (ws.pointRanges[i].mesh == m) any |= ws.rangeOutcodes[i];
+    }
+    FrameMesh& mesh = frame.meshes[m];
+    mesh.skipBackFaces = mesh.source->material.backfaceCulling ||
+                         (mesh.source->mesh.closedSurface &&
+                          (any & (detail::kBeyondNear | detail::kNonFinite)) == 0);
+    stats.closedMeshesSkippingBackFaces +=
+        mesh.skipBackFaces && !mesh.source->material.backfaceCulling;
+  }
 
   // Painter's order: far to near by centroid view depth, ties by polygon id.
   frame.drawOrder.clear();
@@ -268,7 +293,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
             }
           });
         },
-        progressOf(0.2, 0.05, ws.polygonRanges.size()));
+        progressOf(0.2, 0.25, ws.polygonRanges.size()));
     std::sort(frame.sortKeys.begin(), frame.sortKeys.end(), [](const auto& a, const auto& b) {
       return a.first > b.first || (a.first == b.first && a.second < b.second);
     });
@@ -277,7 +302,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
   }
   stats.transformSeconds = secondsSince(phase);
 
-  // --- Phase 2: per polygon set-up, in chunks of draw positions. -------------------------
+  // --- Phase 2: per polygon geometry, in chunks of draw positions. -----------------------
   phase = Clock::now();
   const std::size_t tileCount = static_cast<std::size_t>(plan.tilesX) * plan.tilesY;
   const std::size_t perChunk = std::clamp<std::size_t>(
@@ -296,6 +321,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
       r.end += frame.meshes[r.mesh].firstPolygon;
     }
   }
+  frame.polygonColors.resize(plan.polygons);
+  frame.visible.resize(plan.polygons);
   frame.chunks.resize(ws.polygonRanges.size());
   for (std::size_t i = 0; i < frame.chunks.size(); ++i) {
     frame.chunks[i].counts = {};  // an aborted render leaves chunks unvisited
@@ -306,64 +333,83 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
   completed = completed && ws.runPhase(
                                frame.chunks.size(),
                                [&](std::size_t i) { detail::setUpChunk(frame, frame.chunks[i]); },
-                               progressOf(0.25, 0.4, frame.chunks.size()));
+                               progressOf(0.25, 0.65, frame.chunks.size()));
   stats.setupSeconds = secondsSince(phase);
 
-  // --- Phase 3: clear and paint every tile. ----------------------------------------------
+  // --- Phase 3: per tile, clear, paint depth and ids, mark the polygons shown. -----------
   phase = Clock::now();
   const Rgba8 background = toRgba8(background_, backgroundAlpha_);
   const detail::Planes planes{framebuffer.color().data(), framebuffer.depth().data(),
                               framebuffer.polygonId().data(), width};
   ws.tiles.assign(tileCount, {});
+  const auto tileBounds = [&](std::size_t t) {
+    const int tx = static_cast<int>(t % plan.tilesX), ty = static_cast<int>(t / plan.tilesX);
+    return PixelBounds{tx * kTileSize, ty * kTileSize, std::min(width, (tx + 1) * kTileSize) - 1,
+                       std::min(height, (ty + 1) * kTileSize) - 1};
+  };
   const bool painted =
       completed &&
       ws.runPhase(
           tileCount,
           [&](std::size_t t) {
-            const int tx = static_cast<int>(t % plan.tilesX), ty = static_cast<int>(t / plan.tilesX);
-            const PixelBounds tile{tx * kTileSize, ty * kTileSize,
-                                   std::min(width, (tx + 1) * kTileSize) - 1,
-                                   std::min(height, (ty + 1) * kTileSize) - 1};
+            const PixelBounds tile = tileBounds(t);
             for (int y = tile.y0; y <= tile.y1; ++y) {
               const std::size_t row = static_cast<std::size_t>(y) * width;
-              std::fill(planes.color + row + tile.x0, planes.color + row + tile.x1 + 1, background);
               std::fill(planes.depth + row + tile.x0, planes.depth + row + tile.x1 + 1, 1.0f);
               std::fill(planes.polygonId + row + tile.x0, planes.polygonId + row + tile.x1 + 1,
                         Framebuffer::kBackgroundId);
             }
-            std::size_t written = 0;
+            detail::PaintCounts counts;
             for (const Chunk& chunk : frame.chunks) {
               for (const std::uint32_t index : chunk.bins[t]) {
                 const detail::BinnedTriangle& tri = chunk.triangles[index];
                 const auto& a = frame.vertex(chunk, tri.vertex[0]);
                 const auto& b = frame.vertex(chunk, tri.vertex[1]);
                 const auto& c = frame.vertex(chunk, tri.vertex[2]);
-                written += plan.depthTest
-                               ? detail::paintTriangle<detail::DepthMode::Test>(
-                                     a, b, c, tri.color, tri.polygon, tile, planes)
-                               : detail::paintTriangle<detail::DepthMode::Overwrite>(
-                                     a, b, c, tri.color, tri.polygon, tile, planes);
+                if (plan.depthTest) {
+                  detail::paintTriangle<detail::DepthMode::Test>(a, b, c, tri.polygon, tile,
+                                                                 planes, counts);
+                } else {
+                  detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, tri.polygon,
+                                                                      tile, planes, counts);
+                }
               }
             }
-            std::size_t covered = 0;
-            for (int y = tile.y0; y <= tile.y1; ++y) {
-              const std::int32_t* ids = planes.polygonId + static_cast<std::size_t>(y) * width;
-              for (int x = tile.x0; x <= tile.x1; ++x) covered += ids[x] != Framebuffer::kBackgroundId;
-            }
-            ws.tiles[t] = {written, covered};
+            detail::markVisiblePolygons(frame, tile, planes);
+            ws.tiles[t] = counts;
           },
-          progressOf(0.65, 0.35, tileCount));
-  if (!painted) {
+          progressOf(0.65, 0.85, tileCount));
+  stats.rasterSeconds = secondsSince(phase);
+
+  // --- Phase 4: light the visible polygons (in id order), then color every tile. ---------
+  phase = Clock::now();
+  splitPerMesh(scene, kMaxPolygonsPerChunk / 16, [](const MeshView& m) { return m.polygons.count; },
+               ws.polygonRanges);
+  ws.shadedCounts.assign(ws.polygonRanges.size(), 0);
+  const bool shaded =
+      painted && ws.runPhase(
+                     ws.polygonRanges.size(),
+                     [&](std::size_t i) {
+                       const MeshRange& r = ws.polygonRanges[i];
+                       ws.shadedCounts[i] = detail::shadeVisiblePolygons(frame, r.mesh, r.begin, r.end);
+                     },
+                     progressOf(0.85, 0.95, ws.polygonRanges.size()));
+  const bool colored =
+      shaded && ws.runPhase(
+                    tileCount,
+                    [&](std::size_t t) { detail::resolveTileColors(frame, tileBounds(t), planes, background); },
+                    progressOf(0.95, 1.0, tileCount));
+  if (!colored) {
     // Stopped early: leave a valid image (background) rather than a half-cleared one.
     std::fill(framebuffer.color().begin(), framebuffer.color().end(), background);
     std::fill(framebuffer.depth().begin(), framebuffer.depth().end(), 1.0f);
     std::fill(framebuffer.polygonId().begin(), framebuffer.polygonId().end(),
               Framebuffer::kBackgroundId);
   }
-  stats.rasterSeconds = secondsSince(phase);
+  stats.shadeSeconds = secondsSince(phase);
 
   // --- Statistics. -----------------------------------------------------------------------
-  stats.aborted = !painted;
+  stats.aborted = !colored;
   for (const Chunk& chunk : frame.chunks) {
     stats.polygonsDrawn += chunk.counts.drawn;
     stats.polygonsCulled += chunk.counts.culled;
@@ -373,12 +419,13 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
     stats.trianglesBinned += chunk.counts.trianglesBinned;
     stats.trianglesClipped += chunk.counts.trianglesClipped;
   }
-  for (const auto& tile : ws.tiles) {
+  for (const detail::PaintCounts& tile : ws.tiles) {
     stats.fragmentsWritten += tile.written;
     stats.pixelsCovered += tile.covered;
   }
+  for (std::size_t count : ws.shadedCounts) stats.polygonsShaded += count;
   stats.totalSeconds = secondsSince(start);
-  if (painted && progress_) progress_(1.0);
+  if (colored && progress_) progress_(1.0);
   return stats;
 }
 

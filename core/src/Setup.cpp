@@ -1,10 +1,9 @@
-// Phase 2 of a render: everything that happens once per polygon.
+// Phase 2 of a render: the geometry of every polygon — clip, cull, triangulate and bin.
+// Lighting waits for the resolve (Resolve.cpp), which shades only the visible polygons.
 
 #include <algorithm>
 #include <span>
 #include <utility>
-
-#include <glm/geometric.hpp>
 
 #include "Clipper.h"
 #include "Frame.h"
@@ -16,6 +15,7 @@ namespace {
 // Why a polygon's triangles were dropped, to count the polygon once under one reason.
 struct Tally {
   int zeroArea = 0, culled = 0, outside = 0;
+  int backFacing = 0;  // kept triangles that were clockwise on screen
 };
 
 template <class PointsT, class PolygonsT>
@@ -26,7 +26,6 @@ class PolygonSetup {
       : frame_(frame),
         chunk_(chunk),
         mesh_(mesh),
-        material_(mesh.source->material),
         points_(points),
         polygons_(polygons),
         meshVertices_(frame.vertices.data() + mesh.firstVertex) {}
@@ -34,7 +33,12 @@ class PolygonSetup {
   void run(std::size_t polygon) {
     polygon_ = polygon;
     polygonId_ = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
+    frame_.visible[static_cast<std::size_t>(polygonId_)] = 0;
     const std::size_t n = polygons_.size(polygon);
+    if (n == 3) {
+      runTriangle();
+      return;
+    }
     if (n < 3) {
       ++chunk_.counts.degenerate;
       return;
@@ -54,48 +58,68 @@ class PolygonSetup {
       return;
     }
 
-    std::optional<glm::dvec3> normal;
-    if (n > 3 || frame_.plan.directLighting) {
-      gatherCorners(n);
-      normal = newellNormal(std::span<const glm::dvec3>(chunk_.corners));
-      if (!normal) {
-        ++chunk_.counts.degenerate;
-        return;
-      }
-    }
-
     const std::size_t first = chunk_.triangles.size();
     Tally tally;
-    if (n == 3) {
-      addTriangle(0, 1, 2, tally);
-    } else {
-      triangulate(*normal, tally);
-    }
-    if (chunk_.triangles.size() == first) {
-      countDropped(tally);
-      return;
-    }
-    finishPolygon(first, shade(normal));
+    if (!triangulate(n, tally)) return;
+    finish(first, tally);
   }
 
  private:
-  std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
-
-  void gatherCorners(std::size_t n) {
-    chunk_.corners.clear();
-    for (std::size_t k = 0; k < n; ++k) chunk_.corners.push_back(points_[pointId(k)]);
+  // The common case, kept short: a triangle, with the vertex records loaded once.
+  void runTriangle() {
+    const std::size_t ids[3] = {pointId(0), pointId(1), pointId(2)};
+    const WindowVertex& a = meshVertices_[ids[0]];
+    const WindowVertex& b = meshVertices_[ids[1]];
+    const WindowVertex& c = meshVertices_[ids[2]];
+    const std::uint32_t any = a.outcode | b.outcode | c.outcode;
+    if (any & kNonFinite) {
+      ++chunk_.counts.nonFinite;
+      return;
+    }
+    if ((a.outcode & b.outcode & c.outcode) != kInside) {
+      ++chunk_.counts.outside;
+      return;
+    }
+    const std::size_t first = chunk_.triangles.size();
+    Tally tally;
+    if (any == kInside) {
+      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, tally);
+    } else {
+      clip(ids, any, tally);
+    }
+    finish(first, tally);
   }
 
-  void triangulate(const glm::dvec3& normal, Tally& tally) {
+  void finish(std::size_t first, const Tally& tally) {
+    if (chunk_.triangles.size() == first) {
+      countDropped(tally);
+    } else {
+      finishPolygon(first, tally.backFacing > 0);
+    }
+  }
+
+  std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
+
+  // Fan for convex polygons, ear clipping for concave ones, in the polygon's plane. False
+  // (counted degenerate) when the polygon has no normal.
+  bool triangulate(std::size_t n, Tally& tally) {
+    chunk_.corners.resize(n);
+    for (std::size_t k = 0; k < n; ++k) chunk_.corners[k] = points_[pointId(k)];
+    const std::optional<glm::dvec3> normal = newellNormal(std::span<const glm::dvec3>(chunk_.corners));
+    if (!normal) {
+      ++chunk_.counts.degenerate;
+      return false;
+    }
     std::vector<glm::dvec2>& projected = chunk_.triangulation.projected;
-    projectToPolygonPlane(chunk_.corners, normal, projected);
+    projectToPolygonPlane(chunk_.corners, *normal, projected);
     if (isConvex(projected)) {
       for (std::uint32_t k = 1; k + 1 < projected.size(); ++k) addTriangle(0, k, k + 1, tally);
-      return;
+      return true;
     }
     chunk_.localTriangles.clear();
     earClip(projected, chunk_.triangulation, chunk_.localTriangles);
     for (const LocalTriangle& t : chunk_.localTriangles) addTriangle(t[0], t[1], t[2], tally);
+    return true;
   }
 
   // One triangle of the polygon, by corner index: kept whole, clipped, or dropped.
@@ -143,31 +167,37 @@ class PolygonSetup {
     for (int i = 1; i + 1 < count; ++i) keep(references[0], references[i], references[i + 1], tally);
   }
 
-  // Keeps a triangle whose corners all have window coordinates, unless it has zero area,
-  // is a culled back face, or covers no pixel center's bounding box.
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, Tally& tally) {
-    const WindowVertex& a = frame_.vertex(chunk_, r0);
-    const WindowVertex* b = &frame_.vertex(chunk_, r1);
-    const WindowVertex* c = &frame_.vertex(chunk_, r2);
+    keep(r0, r1, r2, frame_.vertex(chunk_, r0), frame_.vertex(chunk_, r1),
+         frame_.vertex(chunk_, r2), tally);
+  }
+
+  // Keeps a triangle whose corners all have window coordinates, unless it has zero area,
+  // is a culled back face, or covers no pixel center.
+  void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
+            const WindowVertex& vertex1, const WindowVertex& vertex2, Tally& tally) {
+    const WindowVertex* b = &vertex1;
+    const WindowVertex* c = &vertex2;
     const std::int64_t area = doubleSignedArea(a, *b, *c);
     if (area == 0) {
       ++tally.zeroArea;
       return;
     }
     if (area < 0) {
-      if (material_.backfaceCulling) {
+      if (mesh_.skipBackFaces) {
         ++tally.culled;
         return;
       }
       std::swap(r1, r2);
       std::swap(b, c);
+      ++tally.backFacing;
     }
     const PixelBounds bounds = samplesInBoundingBox(a, *b, *c, frame_.viewport);
-    if (bounds.empty()) {
+    if (bounds.empty() || !coversAnySample(a, *b, *c, bounds)) {
       ++tally.outside;
       return;
     }
-    chunk_.triangles.push_back({{r0, r1, r2}, polygonId_, Rgba8{}});
+    chunk_.triangles.push_back({{r0, r1, r2}, polygonId_});
     chunk_.pendingBounds.push_back(bounds);
   }
 
@@ -181,37 +211,13 @@ class PolygonSetup {
     }
   }
 
-  Color surfaceColor() const {
-    const auto& colors = mesh_.source->mesh.polygonColors;
-    if (colors.empty()) return material_.color;
-    const Rgba8 c = colors[polygon_];
-    return Color(c.r, c.g, c.b) / 255.0f;
-  }
-
-  // Flat shading: once per polygon, at its center (Sixth 3D's shadedColor).
-  Rgba8 shade(const std::optional<glm::dvec3>& normal) const {
-    if (mesh_.uniformColor) return *mesh_.uniformColor;
-    SurfaceSample sample;
-    sample.color = surfaceColor();
-    if (frame_.plan.directLighting) {
-      if (frame_.plan.polygonCenters) {
-        glm::dvec3 sum(0.0);
-        for (const glm::dvec3& corner : chunk_.corners) sum += corner;
-        sample.position = sum / static_cast<double>(chunk_.corners.size());
-      }
-      sample.normal = *normal;
-      if (frame_.plan.viewerDirection) sample.toViewer = frame_.transform->toViewer(sample.position);
-      if (frame_.twoSidedLighting && glm::dot(sample.normal, sample.toViewer) < 0.0) {
-        sample.normal = -sample.normal;
-      }
-    }
-    return toRgba8(frame_.shader.shade(sample, material_));
-  }
-
-  void finishPolygon(std::size_t first, Rgba8 color) {
+  // Bins the polygon's new triangles and notes, for the resolve, which side of it the
+  // viewer sees: clockwise on screen by the exact integer area, as OpenGL's gl_FrontFacing.
+  void finishPolygon(std::size_t first, bool seenFromBack) {
+    frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
+        seenFromBack ? kUnshadedBack : kUnshadedFront;
     const int tilesX = frame_.plan.tilesX;
     for (std::size_t i = first; i < chunk_.triangles.size(); ++i) {
-      chunk_.triangles[i].color = color;
       const PixelBounds& b = chunk_.pendingBounds[i - first];
       for (int ty = b.y0 / kTileSize; ty <= b.y1 / kTileSize; ++ty) {
         for (int tx = b.x0 / kTileSize; tx <= b.x1 / kTileSize; ++tx) {
@@ -228,7 +234,6 @@ class PolygonSetup {
   FrameState& frame_;
   Chunk& chunk_;
   const FrameMesh& mesh_;
-  const Material& material_;
   PointsT points_;
   PolygonsT polygons_;
   const WindowVertex* meshVertices_;
@@ -239,7 +244,8 @@ class PolygonSetup {
 }  // namespace
 
 std::size_t FrameState::meshOfPolygon(std::size_t polygonId) const {
-  // upper_bound over firstPolygon: the last mesh starting at or before the id.
+  if (meshes.size() == 1) return 0;
+  // The last mesh starting at or before the id.
   const auto after = std::upper_bound(
       meshes.begin(), meshes.end(), polygonId,
       [](std::size_t id, const FrameMesh& mesh) { return id < mesh.firstPolygon; });

@@ -1,5 +1,8 @@
 // Depth buffer vs painter's order, and back-face culling.
 
+#include <algorithm>
+
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "../support/TestMeshes.h"
@@ -109,6 +112,66 @@ TEST(Culling, BackFacesOfAnOpenSurfaceDisappear) {
   culled.backfaceCulling = true;
   EXPECT_EQ(renderScene(oneMeshScene(square.view(), culled), topDown(), 32, 32).stats.pixelsCovered, 0u);
   EXPECT_GT(renderScene(oneMeshScene(square.view()), topDown(), 32, 32).stats.pixelsCovered, 500u);
+}
+
+}  // namespace
+}  // namespace facet::testing
+
+namespace facet::testing {
+namespace {
+
+TEST(ClosedSurface, DetectsClosedOutwardMeshes) {
+  EXPECT_TRUE(isClosedSurface(makeUvSphere(16, 12).view()));
+  EXPECT_TRUE(isClosedSurface(makeBox({0, 0, 0}, {1, 2, 3}).view()));
+  EXPECT_TRUE(isClosedSurface(readObj(sharedMeshPath("spot.obj")).view()));
+  EXPECT_FALSE(isClosedSurface(readObj(sharedMeshPath("stanford-bunny.obj")).view()))
+      << "the bunny has holes at its base";
+
+  Mesh inverted = makeUvSphere(16, 12);  // closed but wound inward: negative volume
+  for (std::size_t p = 0; p < inverted.polygonCount(); ++p) {
+    std::reverse(inverted.connectivity.begin() + inverted.offsets[p],
+                 inverted.connectivity.begin() + inverted.offsets[p + 1]);
+  }
+  EXPECT_FALSE(isClosedSurface(inverted.view()));
+
+  Mesh open = makeBox({0, 0, 0}, {1, 1, 1});
+  open.offsets.pop_back();
+  open.connectivity.resize(open.offsets.back());
+  EXPECT_FALSE(isClosedSurface(open.view())) << "a box without its last face";
+
+  Mesh flipped = makeBox({0, 0, 0}, {1, 1, 1});
+  std::reverse(flipped.connectivity.begin(), flipped.connectivity.begin() + 4);
+  EXPECT_FALSE(isClosedSurface(flipped.view())) << "one face wound the other way";
+}
+
+TEST(ClosedSurface, SkippingHiddenBackFacesChangesNoPixel) {
+  const Mesh spot = readObj(sharedMeshPath("spot.obj"));
+  LightSet lights;
+  lights.lights.push_back(PointLight{{3.0, 2.0, 4.0}, Color(1.0f), 1.0, NoAttenuation{}});
+  MeshView closed = spot.view();
+  closed.closedSurface = true;
+  for (const glm::dvec3 direction : {glm::dvec3(0, 0, -1), glm::dvec3(-1, 0.4, 0.2)}) {
+    const Camera camera = fitCamera(spot, direction);
+    const Rendered hinted = renderScene(oneMeshScene(closed, {}, lights), camera, 400, 300);
+    const Rendered plain = renderScene(oneMeshScene(spot.view(), {}, lights), camera, 400, 300);
+    EXPECT_EQ(hinted.stats.closedMeshesSkippingBackFaces, 1u);
+    EXPECT_GT(hinted.stats.polygonsCulled, spot.polygonCount() / 3);
+    EXPECT_LT(hinted.stats.trianglesBinned, plain.stats.trianglesBinned);
+    expectSameImage(hinted.framebuffer, plain.framebuffer);
+  }
+}
+
+TEST(ClosedSurface, BackFacesReturnWhenTheNearPlaneCutsTheMesh) {
+  const Mesh sphere = makeUvSphere(40, 30);
+  MeshView closed = sphere.view();
+  closed.closedSurface = true;
+  Camera camera = fitCamera(sphere);
+  camera.nearClip = glm::length(camera.position - camera.focalPoint);  // through the center
+  const Rendered hinted = renderScene(oneMeshScene(closed), camera, 200, 200);
+  const Rendered plain = renderScene(oneMeshScene(sphere.view()), camera, 200, 200);
+  EXPECT_EQ(hinted.stats.closedMeshesSkippingBackFaces, 0u);
+  expectSameImage(hinted.framebuffer, plain.framebuffer);
+  EXPECT_GT(hinted.stats.pixelsCovered, 5000u) << "the inside of the far half shows";
 }
 
 }  // namespace

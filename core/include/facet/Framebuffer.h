@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "facet/Color.h"
+#include "facet/HugePageAllocator.h"
 
 namespace facet {
 
@@ -52,9 +53,9 @@ class Framebuffer {
  private:
   int width_ = 0;
   int height_ = 0;
-  std::vector<Rgba8> color_;
-  std::vector<float> depth_;
-  std::vector<std::int32_t> polygonId_;
+  HugePageVector<Rgba8> color_;
+  HugePageVector<float> depth_;
+  HugePageVector<std::int32_t> polygonId_;
 };
 
 }  // namespace facet

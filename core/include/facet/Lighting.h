@@ -42,6 +42,7 @@
 ///   colors are capped at kMaxRadiance before they multiply, far above anything that does
 ///   not saturate to white anyway.
 
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -64,6 +65,18 @@ struct SurfaceSample {
   Color color{1.0f};  ///< Cd, the surface color
 };
 
+/// A Material with its coefficients and colors capped at kMaxRadiance once, for shading
+/// many points with it.
+struct PreparedMaterial {
+  PreparedMaterial() : PreparedMaterial(Material{}) {}
+  explicit PreparedMaterial(const Material& material);
+  Material material;  ///< the models and flags, as given
+  std::optional<glm::dvec3> ambientColor;
+  glm::dvec3 specularColor{1.0};
+  double ambient = 0.0, diffuse = 1.0, specular = 0.0, specularPower = 1.0;
+  double lerpAmbient = 0.0, lerpFull = 1.0;
+};
+
 /// A LightSet validated and prepared once, so shading a polygon does no setup work.
 /// Cheap to copy; holds no references to the LightSet it came from.
 class Shader {
@@ -80,6 +93,8 @@ class Shader {
   /// The color of one surface point under these lights, by the formula above. Finite, in
   /// [0, 1].
   Color shade(const SurfaceSample& sample, const Material& material) const;
+  /// The same, with the material prepared once for many points.
+  Color shade(const SurfaceSample& sample, const PreparedMaterial& material) const;
 
   /// True when some light's contribution depends on the point's position (point or spot
   /// lights); with only directional lights, equal normals give equal colors.
@@ -98,12 +113,10 @@ class Shader {
     Attenuation attenuation;
     SpotCone cone;
   };
-  struct LightAtPoint {
-    glm::dvec3 toLight;
-    glm::dvec3 radiance;  // Eᵢ
-  };
   static PreparedLight prepare(const Light& light);
-  LightAtPoint arriving(const PreparedLight& light, const SurfaceSample& sample) const;
+  // Eᵢ of one light at the sample; sets toLight. Zero when no light arrives.
+  glm::dvec3 arriving(const PreparedLight& light, const SurfaceSample& sample,
+                      glm::dvec3& toLight) const;
 
   std::vector<PreparedLight> lights_;
   glm::dvec3 ambient_{0.0};

@@ -30,9 +30,14 @@ template <class VertexAt>
 glm::dvec3 newellAreaVector(std::size_t count, const VertexAt& vertexAt, double unit = 1.0) {
   glm::dvec3 sum{0.0};
   const glm::dvec3 origin = vertexAt(0);
-  glm::dvec3 previous = (vertexAt(count - 1) - origin) / unit;
+  // Multiplying by the inverse is exact enough and much cheaper, unless it overflows.
+  const double inverse = 1.0 / unit;
+  const auto scaled = [&](const glm::dvec3& v) {
+    return std::isfinite(inverse) ? (v - origin) * inverse : (v - origin) / unit;
+  };
+  glm::dvec3 previous = scaled(vertexAt(count - 1));
   for (std::size_t i = 0; i < count; ++i) {
-    const glm::dvec3 current = (vertexAt(i) - origin) / unit;
+    const glm::dvec3 current = scaled(vertexAt(i));
     sum.x += (previous.y - current.y) * (previous.z + current.z);
     sum.y += (previous.z - current.z) * (previous.x + current.x);
     sum.z += (previous.x - current.x) * (previous.y + current.y);
@@ -66,6 +71,29 @@ std::optional<glm::dvec3> newellNormal(std::size_t count, const VertexAt& vertex
     return std::nullopt;
   }
   return area / length;
+}
+
+/// The unit normal of triangle abc (counter-clockwise faces it), or nothing when it is
+/// degenerate (relative area below about kDegenerateAreaRatio, as for newellNormal). A plain cross product when the numbers
+/// are well inside double's range (the common case); newellNormal otherwise.
+inline std::optional<glm::dvec3> triangleNormal(const glm::dvec3& a, const glm::dvec3& b,
+                                                const glm::dvec3& c) {
+  const glm::dvec3 ab = b - a, ac = c - a;
+  const glm::dvec3 cross = glm::cross(ab, ac);
+  const double lengthSquared = glm::dot(cross, cross);
+  const double extentSquared = std::max(glm::dot(ab, ab), glm::dot(ac, ac));
+  // Squares of squares: safe only for moderate magnitudes.
+  if (lengthSquared > 1e-200 && lengthSquared < 1e200 && extentSquared > 1e-100 &&
+      extentSquared < 1e100) {
+    // |ab × ac| vs the bounding-box diagonal² (within a factor 3 of max(|ab|², |ac|²)).
+    if (!(lengthSquared > kDegenerateAreaRatio * kDegenerateAreaRatio * 9.0 * extentSquared *
+                              extentSquared)) {
+      return std::nullopt;
+    }
+    return cross * (1.0 / std::sqrt(lengthSquared));
+  }
+  const glm::dvec3 corners[3] = {a, b, c};
+  return newellNormal(3, [&](std::size_t i) { return corners[i]; });
 }
 
 /// newellNormal for a polygon given as a span of vertices.

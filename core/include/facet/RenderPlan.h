@@ -22,12 +22,16 @@ struct RenderPlan {
   bool directLighting = false;
   bool positionalLights = false;  ///< point or spot lights: per-polygon distance and angle
   bool specular = false;          ///< some material has Ks > 0 under a direct light
-  bool twoSidedLighting = true;   ///< back faces are lit with the normal flipped
-  /// The direction to the viewer is needed (specular or two-sided lighting).
+  /// Polygons seen from their back (clockwise on screen) are lit with the normal flipped.
+  bool twoSidedLighting = true;
+  /// The direction to the viewer is needed (specular).
   bool viewerDirection = false;
   /// Polygon centers are needed (positional lights, or a perspective viewer direction).
   bool polygonCenters = false;
   bool backfaceCulling = false;  ///< some material culls back faces
+  /// Some mesh is marked MeshView::closedSurface: its back faces are skipped in frames where
+  /// the near plane does not cut it (RenderStats::closedMeshesSkippingBackFaces).
+  bool closedSurfaces = false;
   bool parallelProjection = false;
   int threads = 1;
   int tileSize = 0;  ///< square tiles of this many pixels, each painted by one thread
@@ -46,12 +50,14 @@ struct RenderStats {
   RenderPlan plan;
   double validateSeconds = 0.0;   ///< mesh structure checks
   double transformSeconds = 0.0;  ///< points to window coordinates (and painter's sort)
-  double setupSeconds = 0.0;      ///< clip, cull, triangulate, light, bin
-  double rasterSeconds = 0.0;     ///< clear and paint the tiles
+  double setupSeconds = 0.0;      ///< clip, cull, triangulate, bin
+  double rasterSeconds = 0.0;     ///< clear and paint the tiles (depth and polygon ids)
+  double shadeSeconds = 0.0;      ///< light the visible polygons, color the pixels
   double totalSeconds = 0.0;
 
-  std::size_t polygonsDrawn = 0;       ///< lit and sent to the tiles
-  std::size_t polygonsCulled = 0;      ///< every triangle back-facing, with culling on
+  std::size_t polygonsDrawn = 0;       ///< sent to the tiles
+  std::size_t polygonsShaded = 0;      ///< lit: the polygons visible in the image
+  std::size_t polygonsCulled = 0;      ///< back-facing, culled or hidden (closed surface)
   std::size_t polygonsOutside = 0;     ///< outside the view, or covering no pixel center
   std::size_t polygonsDegenerate = 0;  ///< fewer than 3 points, or zero area
   std::size_t polygonsNonFinite = 0;   ///< using a point with a NaN or infinite coordinate
@@ -59,6 +65,7 @@ struct RenderStats {
   std::size_t trianglesClipped = 0;    ///< triangles that went through the clipper
   std::size_t fragmentsWritten = 0;    ///< pixel writes, counting overdraw
   std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end
+  std::size_t closedMeshesSkippingBackFaces = 0;  ///< closed meshes wholly in front of near
   bool aborted = false;                ///< the progress callback asked to stop
 };
 
