@@ -50,6 +50,11 @@ test-core-sanitized: deps
 test: test-main test-core-sanitized
 	@echo "All test suites passed."
 
+demo: build
+	mkdir -p out
+	$(BUILD_DIR)/examples/facet-core-demo out/facet-demo.png
+	@echo "Demo image: $(CURDIR)/out/facet-demo.png"
+
 bench: build
 	$(BUILD_DIR)/bench/facet_bench
 
