@@ -13,7 +13,11 @@ CORE_BUILD_DIR ?= build-core-sanitize
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev
+# Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the
+# tests that compare with VTK's own OpenGL renderer.
+PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
+            libvtk9-dev python3-vtk9 python3-dev xvfb xauth
+DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
 .PHONY: all deps build test test-main test-core-sanitized demo bench clean
@@ -52,7 +56,10 @@ test: test-main test-core-sanitized
 
 demo: build
 	mkdir -p out
-	$(BUILD_DIR)/examples/facet-core-demo out/facet-demo.png
+	$(BUILD_DIR)/bin/facet-render $(DEMO_MESH) -o out/facet-demo.png --size 1280x960 \
+	  --azimuth 20 --elevation 10 --color 0.95,0.9,0.85 --ambient 0.12,0.12,0.15 \
+	  --light point:-0.3,0.4,0.4@0.9,0.68,0.45 --light directional:1,-0.4,-0.6@0.35,0.5,0.9 \
+	  --light headlight@0.25,0.25,0.25
 	@echo "Demo image: $(CURDIR)/out/facet-demo.png"
 
 bench: build

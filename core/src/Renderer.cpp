@@ -424,6 +424,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
     stats.pixelsCovered += tile.covered;
   }
   for (std::size_t count : ws.shadedCounts) stats.polygonsShaded += count;
+  if (stats.aborted) stats.pixelsCovered = 0;  // the image left is the background
   stats.totalSeconds = secondsSince(start);
   if (colored && progress_) progress_(1.0);
   return stats;

@@ -1,0 +1,183 @@
+#include "vtkFacetPolyDataConverter.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include "facet/Error.h"
+
+#include <limits>
+
+namespace
+{
+constexpr vtkIdType MaxFacetIds = std::numeric_limits<std::int32_t>::max();
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetPolyDataConverter::Reset()
+{
+  *this = vtkFacetPolyDataConverter();
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetPolyDataConverter::Update(
+  vtkPolyData* input, bool detectClosedSurfaces, std::string& error)
+{
+  this->Converted = false;
+  if (input == this->Input && input->GetMTime() == this->InputTime &&
+    detectClosedSurfaces == this->DetectedClosedSurfaces)
+  {
+    return true;
+  }
+  this->Reset();
+  this->NumberOfVerts = input->GetNumberOfVerts();
+  this->NumberOfLines = input->GetNumberOfLines();
+  this->NumberOfPolys = input->GetNumberOfPolys();
+  this->NumberOfStrips = input->GetNumberOfStrips();
+  if (input->GetNumberOfPoints() > MaxFacetIds)
+  {
+    error = "the input has " + std::to_string(input->GetNumberOfPoints()) +
+      " points; Facet renders at most 2^31 - 1";
+    return false;
+  }
+  this->ConvertPoints(input);
+  this->ConvertPolys(input);
+  this->ConvertStrips(input);
+  if (this->NumberOfPolys + static_cast<vtkIdType>(this->StripOf.size()) > MaxFacetIds)
+  {
+    error = "the input has " + std::to_string(this->NumberOfPolys) + " polygons and " +
+      std::to_string(this->StripOf.size()) + " strip triangles; Facet renders at most 2^31 - 1";
+    this->Reset();
+    return false;
+  }
+  if (detectClosedSurfaces)
+  {
+    // Bad ids make isClosedSurface throw; the renderer reports them properly later.
+    try
+    {
+      this->PolygonView.closedSurface =
+        this->NumberOfStrips == 0 && facet::isClosedSurface(this->PolygonView);
+      this->StripView.closedSurface =
+        this->NumberOfPolys == 0 && facet::isClosedSurface(this->StripView);
+    }
+    catch (const facet::Error&)
+    {
+      this->PolygonView.closedSurface = this->StripView.closedSurface = false;
+    }
+  }
+  this->Input = input;
+  this->InputTime = input->GetMTime();
+  this->DetectedClosedSurfaces = detectClosedSurfaces;
+  this->Converted = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetPolyDataConverter::ConvertPoints(vtkPolyData* input)
+{
+  vtkPoints* points = input->GetPoints();
+  if (!points || points->GetNumberOfPoints() == 0)
+  {
+    this->Points = facet::PointArray{};
+    return;
+  }
+  const auto count = static_cast<std::size_t>(points->GetNumberOfPoints());
+  vtkDataArray* data = points->GetData();
+  if (auto* floats = vtkFloatArray::FastDownCast(data))
+  {
+    this->Points = { floats->GetPointer(0), facet::PointArray::Type::Float32, count };
+  }
+  else if (auto* doubles = vtkDoubleArray::FastDownCast(data))
+  {
+    this->Points = { doubles->GetPointer(0), facet::PointArray::Type::Float64, count };
+  }
+  else
+  {
+    this->PointCopy.resize(3 * count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      points->GetPoint(static_cast<vtkIdType>(i), &this->PointCopy[3 * i]);
+    }
+    this->Points = facet::PointArray::ofXyz(std::span<const double>(this->PointCopy));
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetPolyDataConverter::ConvertPolys(vtkPolyData* input)
+{
+  this->PolygonView = {};
+  this->PolygonView.points = this->Points;
+  vtkCellArray* polys = input->GetPolys();
+  if (!polys || polys->GetNumberOfCells() == 0)
+  {
+    return;
+  }
+  facet::PolygonArray& view = this->PolygonView.polygons;
+  view.count = static_cast<std::size_t>(polys->GetNumberOfCells());
+  view.connectivitySize = static_cast<std::size_t>(polys->GetNumberOfConnectivityIds());
+  if (polys->IsStorage64Bit())
+  {
+    view.type = facet::PolygonArray::Type::Int64;
+    view.offsets = polys->GetOffsetsArray64()->GetPointer(0);
+    view.connectivity = polys->GetConnectivityArray64()->GetPointer(0);
+  }
+  else
+  {
+    view.type = facet::PolygonArray::Type::Int32;
+    view.offsets = polys->GetOffsetsArray32()->GetPointer(0);
+    view.connectivity = polys->GetConnectivityArray32()->GetPointer(0);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetPolyDataConverter::ConvertStrips(vtkPolyData* input)
+{
+  this->StripView = {};
+  this->StripView.points = this->Points;
+  vtkCellArray* strips = input->GetStrips();
+  if (!strips || strips->GetNumberOfCells() == 0)
+  {
+    return;
+  }
+  this->StripOffsets.assign(1, 0);
+  auto iterator = vtk::TakeSmartPointer(strips->NewIterator());
+  vtkIdType strip = 0;
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal();
+       iterator->GoToNextCell(), ++strip)
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    iterator->GetCurrentCell(size, ids);
+    // vtkTriangleStrip::DecomposeStrip: odd triangles swap their first two points, so every
+    // triangle keeps the strip's orientation.
+    for (vtkIdType k = 0; k + 2 < size; ++k)
+    {
+      const bool odd = (k % 2) == 1;
+      this->StripConnectivity.push_back(odd ? ids[k + 1] : ids[k]);
+      this->StripConnectivity.push_back(odd ? ids[k] : ids[k + 1]);
+      this->StripConnectivity.push_back(ids[k + 2]);
+      this->StripOffsets.push_back(static_cast<std::int64_t>(this->StripConnectivity.size()));
+      this->StripOf.push_back(strip);
+    }
+  }
+  this->StripView.polygons = facet::PolygonArray::of(this->StripOffsets, this->StripConnectivity);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkFacetPolyDataConverter::CellIdOf(std::int32_t polygonId) const
+{
+  if (polygonId < 0)
+  {
+    return -1;
+  }
+  const vtkIdType first = this->NumberOfVerts + this->NumberOfLines;
+  if (polygonId < this->NumberOfPolys)
+  {
+    return first + polygonId;
+  }
+  return first + this->NumberOfPolys + this->StripOf[polygonId - this->NumberOfPolys];
+}

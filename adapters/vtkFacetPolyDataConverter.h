@@ -1,0 +1,85 @@
+/**
+ * @class   vtkFacetPolyDataConverter
+ * @brief   Private: the polygons and triangle strips of a vtkPolyData as Facet meshes.
+ *
+ * Polygons are read in place: the cell array's offsets and connectivity (32- or 64-bit) and
+ * float or double points are handed to the core without a copy; other point types are
+ * copied to double. Triangle strips are decoded into triangles with the alternating winding
+ * VTK uses (vtkTriangleStrip::DecomposeStrip). The result is kept while the input's MTime
+ * is unchanged, so a new camera or new lights re-render without converting again.
+ *
+ * Polygon ids in the Facet scene: the polygons of mesh 0 (the input's polys), then the
+ * triangles of mesh 1 (its strips). CellIdOf maps them back to vtkPolyData cell ids
+ * (verts, lines, polys, strips, as vtkPolyData::GetCell numbers them).
+ */
+
+#ifndef vtkFacetPolyDataConverter_h
+#define vtkFacetPolyDataConverter_h
+
+#include "vtkType.h"
+
+#include "facet/Mesh.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+class vtkFacetPolyDataConverter
+{
+public:
+  /**
+   * Converts the input unless it is the one converted last and unchanged since. Returns
+   * false and sets `error` for input the renderer cannot take (more than 2^31 - 1 polygons
+   * or points); point ids are checked by the renderer.
+   */
+  bool Update(vtkPolyData* input, bool detectClosedSurfaces, std::string& error);
+
+  /// Whether the last Update converted (false: the cached conversion was reused).
+  bool ConvertedLastUpdate() const { return this->Converted; }
+
+  /// The meshes to render: polys first, strip triangles second; either may be empty.
+  const facet::MeshView& Polygons() const { return this->PolygonView; }
+  const facet::MeshView& StripTriangles() const { return this->StripView; }
+
+  /// The vtkPolyData cell id of a Facet polygon id; -1 for the background id (-1).
+  vtkIdType CellIdOf(std::int32_t polygonId) const;
+
+  /// The strip (0-based, among the strips) that produced strip triangle `triangle`.
+  vtkIdType StripOfTriangle(std::size_t triangle) const { return this->StripOf[triangle]; }
+
+  vtkIdType GetNumberOfVerts() const { return this->NumberOfVerts; }
+  vtkIdType GetNumberOfLines() const { return this->NumberOfLines; }
+  vtkIdType GetNumberOfPolys() const { return this->NumberOfPolys; }
+  vtkIdType GetNumberOfStrips() const { return this->NumberOfStrips; }
+
+  /// Forgets the cached conversion (and every pointer into the last input).
+  void Reset();
+
+private:
+  void ConvertPoints(vtkPolyData* input);
+  void ConvertPolys(vtkPolyData* input);
+  void ConvertStrips(vtkPolyData* input);
+
+  const vtkPolyData* Input = nullptr; // identity only, never dereferenced
+  vtkMTimeType InputTime = 0;
+  bool DetectedClosedSurfaces = false;
+  bool Converted = false;
+
+  vtkIdType NumberOfVerts = 0;
+  vtkIdType NumberOfLines = 0;
+  vtkIdType NumberOfPolys = 0;
+  vtkIdType NumberOfStrips = 0;
+
+  facet::PointArray Points;
+  std::vector<double> PointCopy; // only for point types other than float and double
+  facet::MeshView PolygonView;
+  facet::MeshView StripView;
+  std::vector<std::int64_t> StripOffsets;
+  std::vector<std::int64_t> StripConnectivity;
+  std::vector<vtkIdType> StripOf;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkFacetPolyDataConverter.h

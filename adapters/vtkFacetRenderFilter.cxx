@@ -1,0 +1,529 @@
+#include "vtkFacetRenderFilter.h"
+
+#include "vtkAbstractMapper.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkFacetPolyDataConverter.h"
+#include "vtkFacetScalarColors.h"
+#include "vtkFacetSceneConverter.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "facet/Conventions.h"
+#include "facet/Error.h"
+#include "facet/Renderer.h"
+
+#include <chrono>
+#include <cstring>
+#include <string>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The output's array of that name when only the output holds it and it has the right
+// shape (re-rendering then allocates nothing), else a new one. As vtkImageData reuses its
+// scalars, never an array somebody else may still be reading.
+template <class ArrayType>
+ArrayType* OutputArray(vtkPointData* pointData, const char* name, int components, vtkIdType tuples)
+{
+  auto* existing = ArrayType::SafeDownCast(pointData->GetAbstractArray(name));
+  if (existing && existing->GetReferenceCount() == 1 &&
+    existing->GetNumberOfComponents() == components && existing->GetNumberOfTuples() == tuples)
+  {
+    existing->Modified();
+    return existing;
+  }
+  vtkNew<ArrayType> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  if (!array->Allocate(tuples * components)) // false when memory runs out
+  {
+    return nullptr;
+  }
+  array->SetNumberOfTuples(tuples);
+  pointData->AddArray(array);
+  return array;
+}
+
+template <class ArrayType>
+void AddNamedComponents(vtkFieldData* fieldData, const char* name,
+  std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
+{
+  vtkNew<ArrayType> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(static_cast<int>(values.size()));
+  array->SetNumberOfTuples(1);
+  int component = 0;
+  for (const auto& [componentName, value] : values)
+  {
+    array->SetComponentName(component, componentName);
+    array->SetTypedComponent(0, component++, value);
+  }
+  fieldData->AddArray(array);
+}
+}
+
+//------------------------------------------------------------------------------
+class vtkFacetRenderFilter::vtkInternals
+{
+public:
+  facet::Renderer Renderer;
+  facet::Framebuffer Framebuffer;
+  vtkFacetPolyDataConverter Mesh;
+  vtkFacetScalarColors Colors;
+  vtkNew<vtkRenderer> CameraReset; // no window: only for vtkRenderer::ResetCamera
+  std::string Plan;
+  bool WarnedAboutProperty = false;
+};
+
+vtkStandardNewMacro(vtkFacetRenderFilter);
+vtkCxxSetObjectMacro(vtkFacetRenderFilter, Camera, vtkCamera);
+
+//------------------------------------------------------------------------------
+vtkFacetRenderFilter::vtkFacetRenderFilter()
+  : Internals(new vtkInternals)
+{
+  this->Lights = vtkLightCollection::New();
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+  // The reset camera gets a 24-bit depth buffer's near-plane tolerance.
+  this->Internals->CameraReset->SetNearClippingPlaneTolerance(0.001);
+}
+
+//------------------------------------------------------------------------------
+vtkFacetRenderFilter::~vtkFacetRenderFilter()
+{
+  this->SetCamera(nullptr);
+  this->SetLookupTable(nullptr);
+  if (this->Property)
+  {
+    this->Property->UnRegister(this);
+  }
+  this->Lights->Delete();
+  this->SetArrayName(nullptr);
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::AddLight(vtkLight* light)
+{
+  this->Lights->AddItem(light);
+  this->Modified();
+}
+
+void vtkFacetRenderFilter::RemoveLight(vtkLight* light)
+{
+  this->Lights->RemoveItem(light);
+  this->Modified();
+}
+
+void vtkFacetRenderFilter::RemoveAllLights()
+{
+  this->Lights->RemoveAllItems();
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::SetProperty(vtkProperty* property)
+{
+  if (property == this->Property)
+  {
+    return;
+  }
+  if (this->Property)
+  {
+    this->Property->UnRegister(this);
+  }
+  this->Property = property;
+  if (this->Property)
+  {
+    this->Property->Register(this);
+  }
+  this->Modified();
+}
+
+vtkProperty* vtkFacetRenderFilter::GetProperty()
+{
+  if (!this->Property)
+  {
+    this->Property = vtkProperty::New();
+    this->Property->SetInterpolationToFlat(); // what Facet renders
+  }
+  return this->Property;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::SetLookupTable(vtkScalarsToColors* table)
+{
+  if (table == this->LookupTable)
+  {
+    return;
+  }
+  if (this->LookupTable)
+  {
+    this->LookupTable->UnRegister(this);
+  }
+  this->LookupTable = table;
+  if (this->LookupTable)
+  {
+    this->LookupTable->Register(this);
+  }
+  this->Modified();
+}
+
+vtkScalarsToColors* vtkFacetRenderFilter::GetLookupTable()
+{
+  return this->LookupTable ? this->LookupTable : this->Internals->Colors.GetDefaultLookupTable();
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::SetScalarModeToDefault()
+{
+  this->SetScalarMode(VTK_SCALAR_MODE_DEFAULT);
+}
+void vtkFacetRenderFilter::SetScalarModeToUsePointData()
+{
+  this->SetScalarMode(VTK_SCALAR_MODE_USE_POINT_DATA);
+}
+void vtkFacetRenderFilter::SetScalarModeToUseCellData()
+{
+  this->SetScalarMode(VTK_SCALAR_MODE_USE_CELL_DATA);
+}
+void vtkFacetRenderFilter::SetScalarModeToUsePointFieldData()
+{
+  this->SetScalarMode(VTK_SCALAR_MODE_USE_POINT_FIELD_DATA);
+}
+void vtkFacetRenderFilter::SetScalarModeToUseCellFieldData()
+{
+  this->SetScalarMode(VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
+}
+void vtkFacetRenderFilter::SetColorModeToDefault()
+{
+  this->SetColorMode(VTK_COLOR_MODE_DEFAULT);
+}
+void vtkFacetRenderFilter::SetColorModeToMapScalars()
+{
+  this->SetColorMode(VTK_COLOR_MODE_MAP_SCALARS);
+}
+void vtkFacetRenderFilter::SetColorModeToDirectScalars()
+{
+  this->SetColorMode(VTK_COLOR_MODE_DIRECT_SCALARS);
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::SelectColorArray(int arrayId)
+{
+  this->ArrayId = arrayId;
+  this->ArrayAccessMode = VTK_GET_ARRAY_BY_ID;
+  this->Modified();
+}
+
+void vtkFacetRenderFilter::SelectColorArray(const char* arrayName)
+{
+  this->SetArrayName(arrayName);
+  this->ArrayAccessMode = VTK_GET_ARRAY_BY_NAME;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkFacetRenderFilter::GetRenderPlan()
+{
+  return this->Internals->Plan.c_str();
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkFacetRenderFilter::GetMTime()
+{
+  vtkMTimeType time = std::max(this->Superclass::GetMTime(), this->Lights->GetMTime());
+  for (vtkObject* object : { static_cast<vtkObject*>(this->Camera),
+         static_cast<vtkObject*>(this->Property), static_cast<vtkObject*>(this->LookupTable) })
+  {
+    if (object)
+    {
+      time = std::max(time, object->GetMTime());
+    }
+  }
+  vtkCollectionSimpleIterator iterator;
+  this->Lights->InitTraversal(iterator);
+  while (vtkLight* light = this->Lights->GetNextLight(iterator))
+  {
+    time = std::max(time, light->GetMTime());
+  }
+  return time;
+}
+
+//------------------------------------------------------------------------------
+int vtkFacetRenderFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFacetRenderFilter::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int width = this->Size[0], height = this->Size[1];
+  if (width < 1 || height < 1 || width > facet::kMaxImageSide || height > facet::kMaxImageSide)
+  {
+    vtkErrorMacro("Size is " << width << " x " << height << "; each side must be in [1, "
+                             << facet::kMaxImageSide << "] pixels");
+    vtkDataObject::GetData(outInfo)->Initialize();
+    return 0;
+  }
+  int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFacetRenderFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const Clock::time_point start = Clock::now();
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkInternals& internals = *this->Internals;
+  const int width = this->Size[0], height = this->Size[1];
+  const auto fail = [&](const std::string& message) {
+    vtkErrorMacro(<< message);
+    output->Initialize();
+    return 0;
+  };
+  this->UpdateProgress(0.0);
+
+  // Conversion: kept from the last execution while the input is unchanged.
+  std::string problem;
+  if (!internals.Mesh.Update(input, this->DetectClosedSurfaces != 0, problem))
+  {
+    return fail("cannot render: " + problem);
+  }
+  const vtkFacetPolyDataConverter& mesh = internals.Mesh;
+  if (mesh.GetNumberOfVerts() + mesh.GetNumberOfLines() > 0)
+  {
+    vtkWarningMacro("skipped " << mesh.GetNumberOfVerts() << " vertex and "
+                               << mesh.GetNumberOfLines()
+                               << " line cells: Facet renders polygons and triangle strips");
+  }
+  vtkFacetScalarColors::Settings coloring;
+  coloring.ScalarVisibility = this->ScalarVisibility != 0;
+  coloring.ScalarMode = this->ScalarMode;
+  coloring.ColorMode = this->ColorMode;
+  coloring.ArrayAccessMode = this->ArrayAccessMode;
+  coloring.ArrayId = this->ArrayId;
+  coloring.ArrayName = this->ArrayName ? this->ArrayName : "";
+  coloring.ArrayComponent = this->ArrayComponent;
+  coloring.LookupTable = this->LookupTable;
+  coloring.LookupTableTime = this->LookupTable ? this->LookupTable->GetMTime() : 0;
+  coloring.ScalarRange[0] = this->ScalarRange[0];
+  coloring.ScalarRange[1] = this->ScalarRange[1];
+  coloring.UseLookupTableScalarRange = this->UseLookupTableScalarRange != 0;
+  const std::string colorWarning =
+    internals.Colors.Update(input, mesh, mesh.ConvertedLastUpdate(), coloring);
+  if (!colorWarning.empty())
+  {
+    vtkWarningMacro(<< colorWarning);
+  }
+  const double conversionSeconds = SecondsSince(start);
+  this->UpdateProgress(0.05);
+
+  // The scene: polys (mesh 0) then strip triangles (mesh 1), as CellIdOf numbers them.
+  vtkProperty* property = this->GetProperty();
+  if (!internals.WarnedAboutProperty &&
+    (property->GetInterpolation() != VTK_FLAT || property->GetOpacity() < 1.0 ||
+      property->GetRepresentation() != VTK_SURFACE))
+  {
+    internals.WarnedAboutProperty = true;
+    vtkWarningMacro("the property asks for Gouraud/Phong interpolation, translucency or a "
+                    "non-surface representation; Facet renders opaque flat-shaded surfaces "
+                    "(said once)");
+  }
+  const bool scalarColors = !internals.Colors.PolygonColors().empty() ||
+    !internals.Colors.StripColors().empty();
+  const facet::Material material = vtkFacetSceneConverter::ConvertProperty(property, scalarColors);
+  facet::Scene scene;
+  if (mesh.Polygons().polygons.count > 0)
+  {
+    facet::MeshView polygons = mesh.Polygons();
+    polygons.polygonColors = internals.Colors.PolygonColors();
+    scene.meshes.push_back({ polygons, material });
+  }
+  if (mesh.StripTriangles().polygons.count > 0)
+  {
+    facet::MeshView strips = mesh.StripTriangles();
+    strips.polygonColors = internals.Colors.StripColors();
+    scene.meshes.push_back({ strips, material });
+  }
+
+  vtkCamera* camera = this->Camera;
+  if (!camera)
+  {
+    vtkRenderer* reset = internals.CameraReset;
+    camera = reset->GetActiveCamera();
+    camera->SetPosition(0.0, 0.0, 1.0);
+    camera->SetFocalPoint(0.0, 0.0, 0.0);
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    reset->SetAspect(static_cast<double>(width) / height, 1.0);
+    double bounds[6];
+    input->GetBounds(bounds);
+    if (input->GetNumberOfPoints() > 0 && bounds[0] <= bounds[1])
+    {
+      reset->ResetCamera(bounds);
+    }
+  }
+  std::string warning;
+  const facet::Camera facetCamera =
+    vtkFacetSceneConverter::ConvertCamera(camera, width, height, warning);
+  scene.lights = vtkFacetSceneConverter::ConvertLights(
+    this->Lights, camera, this->AutomaticLightCreation != 0, this->AmbientLightColor, warning);
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
+
+  // Render.
+  facet::Renderer& renderer = internals.Renderer;
+  facet::RenderStats stats;
+  try
+  {
+    renderer.setThreadCount(this->NumberOfThreads);
+    renderer.setVisibility(this->VisibilityMode == PainterSort ? facet::Visibility::PainterSort
+                                                               : facet::Visibility::ZBuffer);
+    renderer.setTwoSidedLighting(this->TwoSidedLighting != 0);
+    renderer.setBackground(facet::Color(static_cast<float>(this->Background[0]),
+                             static_cast<float>(this->Background[1]),
+                             static_cast<float>(this->Background[2])),
+      static_cast<float>(this->BackgroundAlpha));
+    renderer.setProgressCallback([this](double fraction) {
+      this->UpdateProgress(0.05 + 0.9 * fraction);
+      return !this->GetAbortExecute();
+    });
+    internals.Framebuffer.resize(width, height);
+    stats = renderer.render(scene, facetCamera, internals.Framebuffer);
+  }
+  catch (const facet::Error& e)
+  {
+    return fail(std::string("cannot render: ") + e.what());
+  }
+  if (stats.polygonsNonFinite > 0)
+  {
+    vtkWarningMacro("skipped " << stats.polygonsNonFinite
+                               << " cells that use points with NaN or infinite coordinates");
+  }
+
+  // Output: the image, then what it cost.
+  const Clock::time_point outputStart = Clock::now();
+  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
+  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+  output->SetSpacing(1.0, 1.0, 1.0);
+  output->SetOrigin(0.0, 0.0, 0.0);
+  vtkPointData* pointData = output->GetPointData();
+  auto* rgba = OutputArray<vtkUnsignedCharArray>(pointData, "RGBA", 4, pixels);
+  auto* depth = OutputArray<vtkFloatArray>(pointData, "Depth", 1, pixels);
+  auto* cellIds = OutputArray<vtkIdTypeArray>(pointData, "CellId", 1, pixels);
+  if (!rgba || !depth || !cellIds)
+  {
+    return fail("cannot allocate the " + std::to_string(width) + " x " + std::to_string(height) +
+      " output image");
+  }
+  pointData->SetActiveScalars("RGBA");
+  const facet::Framebuffer& framebuffer = internals.Framebuffer;
+  std::memcpy(rgba->GetPointer(0), framebuffer.color().data(), framebuffer.color().size_bytes());
+  std::memcpy(depth->GetPointer(0), framebuffer.depth().data(), framebuffer.depth().size_bytes());
+  vtkIdType* ids = cellIds->GetPointer(0);
+  const std::int32_t* polygonIds = framebuffer.polygonId().data();
+  for (vtkIdType i = 0; i < pixels; ++i)
+  {
+    ids[i] = mesh.CellIdOf(polygonIds[i]);
+  }
+  const double outputSeconds = SecondsSince(outputStart);
+
+  vtkFieldData* fieldData = output->GetFieldData();
+  fieldData->Initialize();
+  AddNamedComponents<vtkDoubleArray>(fieldData, "FacetRenderSeconds", { { "Total",
+    SecondsSince(start) } });
+  AddNamedComponents<vtkDoubleArray>(fieldData, "FacetPhaseSeconds",
+    { { "Conversion", conversionSeconds }, { "Validate", stats.validateSeconds },
+      { "Transform", stats.transformSeconds }, { "Setup", stats.setupSeconds },
+      { "Raster", stats.rasterSeconds }, { "Shade", stats.shadeSeconds },
+      { "Output", outputSeconds } });
+  const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
+  AddNamedComponents<vtkIdTypeArray>(fieldData, "FacetCounts",
+    { { "Polygons", count(stats.plan.polygons) }, { "PolygonsDrawn", count(stats.polygonsDrawn) },
+      { "PolygonsShaded", count(stats.polygonsShaded) },
+      { "PolygonsCulled", count(stats.polygonsCulled) },
+      { "PolygonsOutside", count(stats.polygonsOutside) },
+      { "PolygonsDegenerate", count(stats.polygonsDegenerate) },
+      { "PolygonsNonFinite", count(stats.polygonsNonFinite) },
+      { "TrianglesBinned", count(stats.trianglesBinned) },
+      { "TrianglesClipped", count(stats.trianglesClipped) },
+      { "FragmentsWritten", count(stats.fragmentsWritten) },
+      { "PixelsCovered", count(stats.pixelsCovered) } });
+  AddNamedComponents<vtkIdTypeArray>(
+    fieldData, "FacetMeshConverted", { { "Converted", mesh.ConvertedLastUpdate() ? 1 : 0 } });
+  internals.Plan = stats.plan.describe();
+  vtkNew<vtkStringArray> plan;
+  plan->SetName("FacetRenderPlan");
+  plan->InsertNextValue(internals.Plan);
+  fieldData->AddArray(plan);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
+  os << indent << "Background: (" << this->Background[0] << ", " << this->Background[1] << ", "
+     << this->Background[2] << "), alpha " << this->BackgroundAlpha << "\n";
+  os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
+  os << indent << "AutomaticLightCreation: " << this->AutomaticLightCreation << "\n";
+  os << indent << "AmbientLightColor: (" << this->AmbientLightColor[0] << ", "
+     << this->AmbientLightColor[1] << ", " << this->AmbientLightColor[2] << ")\n";
+  os << indent << "TwoSidedLighting: " << this->TwoSidedLighting << "\n";
+  os << indent << "Property: " << this->Property << "\n";
+  os << indent << "ScalarVisibility: " << this->ScalarVisibility << "\n";
+  os << indent << "ScalarMode: " << this->ScalarMode << "\n";
+  os << indent << "ColorMode: " << this->ColorMode << "\n";
+  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
+  os << indent << "ArrayId: " << this->ArrayId << "\n";
+  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  os << indent << "LookupTable: " << this->LookupTable << "\n";
+  os << indent << "ScalarRange: (" << this->ScalarRange[0] << ", " << this->ScalarRange[1]
+     << ")\n";
+  os << indent << "UseLookupTableScalarRange: " << this->UseLookupTableScalarRange << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "VisibilityMode: "
+     << (this->VisibilityMode == PainterSort ? "PainterSort" : "ZBuffer") << "\n";
+  os << indent << "DetectClosedSurfaces: " << this->DetectClosedSurfaces << "\n";
+}

@@ -1,0 +1,312 @@
+/**
+ * @class   vtkFacetRenderFilter
+ * @brief   Renders vtkPolyData into vtkImageData on the CPU: Facet's flat-shading rasterizer
+ *          as a pipeline stage, with no OpenGL context, display or GPU.
+ *
+ * Input port 0 takes vtkPolyData: its polygons (convex, concave or slightly non-planar) and
+ * triangle strips render; verts and lines are skipped with one warning that counts them.
+ *
+ * The output is a vtkImageData of extent (0, W-1, 0, H-1, 0, 0), spacing 1, origin 0, row 0
+ * at the bottom (as vtkWindowToImageFilter), with three point-data arrays:
+ * - `RGBA`: unsigned char, 4 components, the active scalars;
+ * - `Depth`: float window depth in [0, 1], 1 = background (VTK's z-buffer convention);
+ * - `CellId`: vtkIdType, the input cell (vtkPolyData::GetCell numbering: verts, lines, polys,
+ *   strips) seen at the pixel, -1 for background.
+ * Its field data holds `FacetRenderSeconds` (total), `FacetPhaseSeconds` (named components
+ * per phase), `FacetCounts` (named components: polygons drawn, shaded, culled, pixels...),
+ * `FacetMeshConverted` (1 when this execution converted the input, 0 when it reused the
+ * conversion kept from the last one) and `FacetRenderPlan` (what the render did and left out).
+ *
+ * Scene settings mean what they mean on vtkRenderer, vtkActor and vtkMapper: a vtkCamera
+ * (none: one reset to the input's bounds by vtkRenderer::ResetCamera), vtkLights (none: a
+ * headlight, unless AutomaticLightCreation is off), a vtkProperty and vtkMapper's coloring by
+ * data. vtkFacetLight adds the light models vtkLight lacks. Shading is flat (per polygon);
+ * the property's Interpolation, Opacity and Representation are not used yet: everything
+ * renders as opaque, flat-shaded surfaces (a warning says so when they ask otherwise).
+ *
+ * Re-rendering is cheap: the converted mesh is kept while the input is unchanged (points
+ * and cells are read in place when their types allow), so a new camera or new lights only
+ * render. Long renders report progress and stop when AbortExecute is set.
+ *
+ * Example (Python):
+ * @code{.py}
+ * from vtkmodules.vtkIOGeometry import vtkOBJReader
+ * from facet import vtkFacetRenderFilter
+ * reader = vtkOBJReader()
+ * reader.SetFileName("bunny.obj")
+ * render = vtkFacetRenderFilter()
+ * render.SetInputConnection(reader.GetOutputPort())
+ * render.SetSize(800, 600)
+ * render.Update()
+ * image = render.GetOutput()   # RGBA, Depth, CellId
+ * @endcode
+ *
+ * @sa vtkFacetLight vtkWindowToImageFilter
+ */
+
+#ifndef vtkFacetRenderFilter_h
+#define vtkFacetRenderFilter_h
+
+#include "FacetRenderingModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+class vtkCamera;
+class vtkLight;
+class vtkLightCollection;
+class vtkProperty;
+class vtkScalarsToColors;
+
+class FACETRENDERING_EXPORT vtkFacetRenderFilter : public vtkImageAlgorithm
+{
+public:
+  static vtkFacetRenderFilter* New();
+  vtkTypeMacro(vtkFacetRenderFilter, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Image size in pixels, width × height (default: 640 × 480). At most 16384 per side.
+   */
+  vtkSetVector2Macro(Size, int);
+  vtkGetVector2Macro(Size, int);
+  ///@}
+
+  ///@{
+  /**
+   * Background color, RGB in [0, 1] (default: black) and its alpha (default: 1).
+   */
+  vtkSetVector3Macro(Background, double);
+  vtkGetVector3Macro(Background, double);
+  vtkSetClampMacro(BackgroundAlpha, double, 0.0, 1.0);
+  vtkGetMacro(BackgroundAlpha, double);
+  ///@}
+
+  ///@{
+  /**
+   * The camera, used exactly as VTK uses it: view angle or parallel scale, window center and
+   * clipping range as given (default: none, meaning a camera reset to the input's bounds as
+   * vtkRenderer::ResetCamera does, with a 0.001 near-plane tolerance as for a 24-bit depth
+   * buffer).
+   */
+  void SetCamera(vtkCamera* camera);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /**
+   * Scene lights: headlights, camera lights and scene lights as vtkLight defines them
+   * (positional, cone angle, exponent, attenuation values, intensity, diffuse color), and
+   * vtkFacetLight's models (default: none).
+   */
+  void AddLight(vtkLight* light);
+  void RemoveLight(vtkLight* light);
+  void RemoveAllLights();
+  vtkGetObjectMacro(Lights, vtkLightCollection);
+  ///@}
+
+  ///@{
+  /**
+   * With no light added, render with one headlight, as vtkRenderer does (default: on).
+   */
+  vtkSetMacro(AutomaticLightCreation, vtkTypeBool);
+  vtkGetMacro(AutomaticLightCreation, vtkTypeBool);
+  vtkBooleanMacro(AutomaticLightCreation, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Sixth 3D's scene ambient light, RGB, multiplied by the surface color (default:
+   * 50/255 gray). Set it to 0 to match VTK's OpenGL renderer, which has none.
+   */
+  vtkSetVector3Macro(AmbientLightColor, double);
+  vtkGetVector3Macro(AmbientLightColor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Light a polygon seen from its back with its normal turned toward the camera, as
+   * vtkRenderer does; off: lit as its winding says (default: on).
+   */
+  vtkSetMacro(TwoSidedLighting, vtkTypeBool);
+  vtkGetMacro(TwoSidedLighting, vtkTypeBool);
+  vtkBooleanMacro(TwoSidedLighting, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Surface material: color, ambient/diffuse/specular coefficients, specular color and
+   * power, backface culling (default: a vtkProperty with VTK's defaults but flat
+   * interpolation). Opacity, Gouraud/Phong interpolation and representations other than
+   * surface are not used yet (one warning says so).
+   */
+  void SetProperty(vtkProperty* property);
+  vtkProperty* GetProperty();
+  ///@}
+
+  ///@{
+  /**
+   * Color by data with the scalars, as vtkMapper does (default: on).
+   */
+  vtkSetMacro(ScalarVisibility, vtkTypeBool);
+  vtkGetMacro(ScalarVisibility, vtkTypeBool);
+  vtkBooleanMacro(ScalarVisibility, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Which scalars color the surface, with vtkMapper's meaning and constants (default:
+   * VTK_SCALAR_MODE_DEFAULT: point scalars, else cell scalars).
+   */
+  vtkSetMacro(ScalarMode, int);
+  vtkGetMacro(ScalarMode, int);
+  void SetScalarModeToDefault();
+  void SetScalarModeToUsePointData();
+  void SetScalarModeToUseCellData();
+  void SetScalarModeToUsePointFieldData();
+  void SetScalarModeToUseCellFieldData();
+  ///@}
+
+  ///@{
+  /**
+   * How scalars become colors, vtkMapper's meaning (default: VTK_COLOR_MODE_DEFAULT:
+   * unsigned char scalars are colors, others go through the lookup table).
+   */
+  vtkSetMacro(ColorMode, int);
+  vtkGetMacro(ColorMode, int);
+  void SetColorModeToDefault();
+  void SetColorModeToMapScalars();
+  void SetColorModeToDirectScalars();
+  ///@}
+
+  ///@{
+  /**
+   * The array to color by with the field-data scalar modes (or any mode, by name), as
+   * vtkMapper::SelectColorArray (default: none, the active scalars).
+   */
+  void SelectColorArray(int arrayId);
+  void SelectColorArray(const char* arrayName);
+  vtkGetStringMacro(ArrayName);
+  vtkGetMacro(ArrayId, int);
+  vtkGetMacro(ArrayAccessMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * The component of a multi-component array to map; -1 maps the magnitude (default: 0).
+   */
+  vtkSetMacro(ArrayComponent, int);
+  vtkGetMacro(ArrayComponent, int);
+  ///@}
+
+  ///@{
+  /**
+   * The lookup table mapping scalars to colors (default: none, meaning a vtkLookupTable
+   * created on first use, as vtkMapper does).
+   */
+  void SetLookupTable(vtkScalarsToColors* table);
+  vtkScalarsToColors* GetLookupTable();
+  ///@}
+
+  ///@{
+  /**
+   * The scalar range mapped onto the lookup table, unless UseLookupTableScalarRange
+   * (default: 0 to 1, off), as vtkMapper.
+   */
+  vtkSetVector2Macro(ScalarRange, double);
+  vtkGetVector2Macro(ScalarRange, double);
+  vtkSetMacro(UseLookupTableScalarRange, vtkTypeBool);
+  vtkGetMacro(UseLookupTableScalarRange, vtkTypeBool);
+  vtkBooleanMacro(UseLookupTableScalarRange, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Threads that render; 0 means one per hardware thread (default: 0). The image is the same
+   * bytes for every thread count.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  enum VisibilityModes
+  {
+    ZBuffer = 0,
+    PainterSort = 1
+  };
+
+  ///@{
+  /**
+   * How polygons hide each other (default: ZBuffer). PainterSort is Sixth 3D's painter's
+   * algorithm by centroid depth; it cannot be right for intersecting polygons.
+   */
+  vtkSetClampMacro(VisibilityMode, int, ZBuffer, PainterSort);
+  vtkGetMacro(VisibilityMode, int);
+  void SetVisibilityModeToZBuffer() { this->SetVisibilityMode(ZBuffer); }
+  void SetVisibilityModeToPainterSort() { this->SetVisibilityMode(PainterSort); }
+  ///@}
+
+  ///@{
+  /**
+   * Check, once per input, whether its polygons form closed outward surfaces; if so, back
+   * faces that cannot be seen are skipped (the image is the same). The check costs about as
+   * much as one render of the mesh (default: on).
+   */
+  vtkSetMacro(DetectClosedSurfaces, vtkTypeBool);
+  vtkGetMacro(DetectClosedSurfaces, vtkTypeBool);
+  vtkBooleanMacro(DetectClosedSurfaces, vtkTypeBool);
+  ///@}
+
+  /**
+   * What the last render did and left out, a few lines of text (empty before the first).
+   */
+  const char* GetRenderPlan();
+
+  /**
+   * Includes the camera, lights, property and lookup table.
+   */
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkFacetRenderFilter();
+  ~vtkFacetRenderFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int Size[2] = { 640, 480 };
+  double Background[3] = { 0.0, 0.0, 0.0 };
+  double BackgroundAlpha = 1.0;
+  vtkCamera* Camera = nullptr;
+  vtkLightCollection* Lights = nullptr;
+  vtkTypeBool AutomaticLightCreation = 1;
+  double AmbientLightColor[3] = { 50.0 / 255.0, 50.0 / 255.0, 50.0 / 255.0 };
+  vtkTypeBool TwoSidedLighting = 1;
+  vtkProperty* Property = nullptr;
+  vtkTypeBool ScalarVisibility = 1;
+  int ScalarMode = 0;
+  int ColorMode = 0;
+  int ArrayAccessMode = 0;
+  int ArrayId = -1;
+  char* ArrayName = nullptr;
+  int ArrayComponent = 0;
+  vtkScalarsToColors* LookupTable = nullptr;
+  double ScalarRange[2] = { 0.0, 1.0 };
+  vtkTypeBool UseLookupTableScalarRange = 0;
+  int NumberOfThreads = 0;
+  int VisibilityMode = ZBuffer;
+  vtkTypeBool DetectClosedSurfaces = 1;
+
+private:
+  vtkFacetRenderFilter(const vtkFacetRenderFilter&) = delete;
+  void operator=(const vtkFacetRenderFilter&) = delete;
+
+  vtkSetStringMacro(ArrayName);
+
+  class vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif

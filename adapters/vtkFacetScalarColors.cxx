@@ -1,0 +1,162 @@
+#include "vtkFacetScalarColors.h"
+
+#include "vtkAbstractMapper.h"
+#include "vtkDataArray.h"
+#include "vtkFacetPolyDataConverter.h"
+#include "vtkLookupTable.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cmath>
+
+namespace
+{
+facet::Rgba8 ColorAt(const unsigned char* rgba, vtkIdType tuple)
+{
+  const unsigned char* c = rgba + 4 * tuple;
+  return { c[0], c[1], c[2], c[3] };
+}
+
+// The mean of a polygon's point colors, rounded to nearest.
+template <class PointIdAt>
+facet::Rgba8 AverageColor(const unsigned char* rgba, std::size_t count, const PointIdAt& pointId)
+{
+  unsigned sum[4] = { 0, 0, 0, 0 };
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const unsigned char* c = rgba + 4 * pointId(k);
+    for (int i = 0; i < 4; ++i)
+    {
+      sum[i] += c[i];
+    }
+  }
+  const auto mean = [&](int i) {
+    return static_cast<std::uint8_t>(std::lround(static_cast<double>(sum[i]) / count));
+  };
+  return { mean(0), mean(1), mean(2), mean(3) };
+}
+
+template <class Index>
+void AveragePerPolygon(const facet::PolygonArray& polygons, const unsigned char* rgba,
+  std::vector<facet::Rgba8>& colors)
+{
+  const auto* offsets = static_cast<const Index*>(polygons.offsets);
+  const auto* connectivity = static_cast<const Index*>(polygons.connectivity);
+  colors.resize(polygons.count);
+  for (std::size_t p = 0; p < polygons.count; ++p)
+  {
+    const std::size_t first = static_cast<std::size_t>(offsets[p]);
+    const std::size_t count = static_cast<std::size_t>(offsets[p + 1]) - first;
+    colors[p] = count == 0
+      ? facet::Rgba8{}
+      : AverageColor(rgba, count, [&](std::size_t k) { return connectivity[first + k]; });
+  }
+}
+
+void AveragePerPolygon(const facet::PolygonArray& polygons, const unsigned char* rgba,
+  std::vector<facet::Rgba8>& colors)
+{
+  if (polygons.type == facet::PolygonArray::Type::Int32)
+  {
+    AveragePerPolygon<std::int32_t>(polygons, rgba, colors);
+  }
+  else
+  {
+    AveragePerPolygon<std::int64_t>(polygons, rgba, colors);
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetScalarColors::Settings::operator==(const Settings& o) const
+{
+  return ScalarVisibility == o.ScalarVisibility && ScalarMode == o.ScalarMode &&
+    ColorMode == o.ColorMode && ArrayAccessMode == o.ArrayAccessMode && ArrayId == o.ArrayId &&
+    ArrayName == o.ArrayName && ArrayComponent == o.ArrayComponent &&
+    LookupTable == o.LookupTable && LookupTableTime == o.LookupTableTime &&
+    ScalarRange[0] == o.ScalarRange[0] && ScalarRange[1] == o.ScalarRange[1] &&
+    UseLookupTableScalarRange == o.UseLookupTableScalarRange;
+}
+
+//------------------------------------------------------------------------------
+vtkScalarsToColors* vtkFacetScalarColors::GetDefaultLookupTable()
+{
+  if (!this->DefaultLookupTable)
+  {
+    this->DefaultLookupTable = vtkSmartPointer<vtkLookupTable>::New();
+  }
+  return this->DefaultLookupTable;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkFacetScalarColors::Update(vtkPolyData* input,
+  const vtkFacetPolyDataConverter& mesh, bool meshConverted, const Settings& settings)
+{
+  if (this->Valid && !meshConverted && settings == this->Last)
+  {
+    return {};
+  }
+  this->Polygon.clear();
+  this->Strip.clear();
+  this->Last = settings;
+  this->Valid = true;
+  return settings.ScalarVisibility ? this->Compute(input, mesh, settings) : std::string();
+}
+
+//------------------------------------------------------------------------------
+std::string vtkFacetScalarColors::Compute(
+  vtkPolyData* input, const vtkFacetPolyDataConverter& mesh, const Settings& settings)
+{
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, settings.ScalarMode,
+    settings.ArrayAccessMode, settings.ArrayId, settings.ArrayName.c_str(), cellFlag);
+  if (!scalars)
+  {
+    return settings.ArrayName.empty() && settings.ArrayId < 0
+      ? std::string()
+      : "no array '" + settings.ArrayName + "' to color by; using the property's color";
+  }
+  vtkScalarsToColors* table =
+    settings.LookupTable ? settings.LookupTable : this->GetDefaultLookupTable();
+  if (!settings.UseLookupTableScalarRange)
+  {
+    table->SetRange(settings.ScalarRange); // as vtkMapper::MapScalars does
+  }
+  vtkSmartPointer<vtkUnsignedCharArray> colors = vtk::TakeSmartPointer(
+    table->MapScalars(scalars, settings.ColorMode, settings.ArrayComponent, VTK_RGBA));
+  if (!colors || colors->GetNumberOfComponents() != 4)
+  {
+    return "the lookup table gave no RGBA colors; using the property's color";
+  }
+  const unsigned char* rgba = colors->GetPointer(0);
+  const vtkIdType tuples = colors->GetNumberOfTuples();
+
+  if (cellFlag == 0)
+  {
+    if (tuples < input->GetNumberOfPoints())
+    {
+      return "the point scalars have fewer tuples than points; using the property's color";
+    }
+    AveragePerPolygon(mesh.Polygons().polygons, rgba, this->Polygon);
+    AveragePerPolygon(mesh.StripTriangles().polygons, rgba, this->Strip);
+    return {};
+  }
+  // Cell (or field) data, indexed by vtkPolyData cell id.
+  const vtkIdType firstPoly = mesh.GetNumberOfVerts() + mesh.GetNumberOfLines();
+  const vtkIdType firstStrip = firstPoly + mesh.GetNumberOfPolys();
+  if (tuples < firstStrip + mesh.GetNumberOfStrips())
+  {
+    return "the cell scalars have fewer tuples than cells; using the property's color";
+  }
+  this->Polygon.resize(static_cast<std::size_t>(mesh.GetNumberOfPolys()));
+  for (vtkIdType p = 0; p < mesh.GetNumberOfPolys(); ++p)
+  {
+    this->Polygon[p] = ColorAt(rgba, firstPoly + p);
+  }
+  this->Strip.resize(mesh.StripTriangles().polygons.count);
+  for (std::size_t t = 0; t < this->Strip.size(); ++t)
+  {
+    this->Strip[t] = ColorAt(rgba, firstStrip + mesh.StripOfTriangle(t));
+  }
+  return {};
+}

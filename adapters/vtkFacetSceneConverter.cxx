@@ -1,0 +1,187 @@
+#include "vtkFacetSceneConverter.h"
+
+#include "vtkCamera.h"
+#include "vtkFacetLight.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkProperty.h"
+#include "vtkSmartPointer.h"
+
+#include <cmath>
+
+namespace
+{
+glm::dvec3 ToVec(const double v[3])
+{
+  return { v[0], v[1], v[2] };
+}
+
+facet::Color ToColor(const double c[3])
+{
+  return { static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]) };
+}
+
+glm::dvec3 Transform(vtkMatrix4x4* matrix, const double point[3])
+{
+  double in[4] = { point[0], point[1], point[2], 1.0 };
+  double out[4];
+  matrix->MultiplyPoint(in, out);
+  return glm::dvec3(out[0], out[1], out[2]) / out[3];
+}
+
+facet::Attenuation AttenuationOf(vtkLight* light)
+{
+  auto* facetLight = vtkFacetLight::SafeDownCast(light);
+  if (facetLight && facetLight->GetAttenuationModel() == vtkFacetLight::FalloffDistanceModel)
+  {
+    return facet::FalloffDistanceAttenuation{ facetLight->GetFalloffDistance() };
+  }
+  const double* a = light->GetAttenuationValues();
+  return facet::QuadraticAttenuation{ a[0], a[1], a[2] };
+}
+
+// The light as Facet sees it, given where it is and where it looks in world coordinates.
+facet::Light ConvertLight(vtkLight* light, const glm::dvec3& position, const glm::dvec3& focal)
+{
+  const facet::Color color = ToColor(light->GetDiffuseColor());
+  const double intensity = light->GetIntensity();
+  if (!light->GetPositional())
+  {
+    return facet::DirectionalLight{ focal - position, color, intensity };
+  }
+  auto* facetLight = vtkFacetLight::SafeDownCast(light);
+  if (facetLight && facetLight->GetSpotModel() == vtkFacetLight::LinearFalloff)
+  {
+    return facet::SpotLight{ position, focal - position, color, intensity, AttenuationOf(light),
+      facet::LinearSpotCone{ facetLight->GetFullIntensityAngle(), facetLight->GetFalloffAngle() } };
+  }
+  if (light->GetConeAngle() <= 90.0)
+  {
+    return facet::SpotLight{ position, focal - position, color, intensity, AttenuationOf(light),
+      facet::ExponentSpotCone{ std::max(light->GetConeAngle(), 0.0), light->GetExponent() } };
+  }
+  return facet::PointLight{ position, color, intensity, AttenuationOf(light) };
+}
+}
+
+//------------------------------------------------------------------------------
+facet::Camera vtkFacetSceneConverter::ConvertCamera(
+  vtkCamera* camera, int width, int height, std::string& warning)
+{
+  const double aspect = static_cast<double>(width) / height;
+  facet::Camera c;
+  c.position = ToVec(camera->GetPosition());
+  c.focalPoint = ToVec(camera->GetFocalPoint());
+  c.viewUp = ToVec(camera->GetViewUp());
+  c.parallelProjection = camera->GetParallelProjection() != 0;
+  c.parallelScale = camera->GetParallelScale();
+  c.viewAngleDegrees = camera->GetViewAngle();
+  if (camera->GetUseHorizontalViewAngle() && !c.parallelProjection)
+  {
+    // tan(vertical / 2) = tan(horizontal / 2) / aspect
+    c.viewAngleDegrees = vtkMath::DegreesFromRadians(
+      2.0 * std::atan(std::tan(vtkMath::RadiansFromDegrees(c.viewAngleDegrees) / 2.0) / aspect));
+  }
+  const double* range = camera->GetClippingRange();
+  c.nearClip = range[0];
+  c.farClip = range[1];
+  const double* center = camera->GetWindowCenter();
+  c.windowCenter = { center[0], center[1] };
+
+  // What this camera does that Facet's does not: compare the whole projection with VTK's.
+  const glm::dmat4 ours = facet::clipFromView(c, aspect) * facet::viewFromWorld(c);
+  vtkMatrix4x4* theirs = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  double difference = 0.0, scale = 0.0;
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      difference = std::max(difference, std::abs(ours[j][i] - theirs->GetElement(i, j)));
+      scale = std::max(scale, std::abs(theirs->GetElement(i, j)));
+    }
+  }
+  if (!(difference <= 1e-9 * scale))
+  {
+    warning = "the camera uses an off-axis projection, view shear or a model/user transform, "
+              "which Facet does not render; rendering its plain perspective/parallel view";
+  }
+  return c;
+}
+
+//------------------------------------------------------------------------------
+facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights,
+  vtkCamera* camera, bool automaticLightCreation, const double ambientColor[3],
+  std::string& warning)
+{
+  facet::LightSet set;
+  set.ambient.color = ToColor(ambientColor);
+  set.ambient.intensity = 1.0;
+
+  vtkSmartPointer<vtkLightCollection> effective = lights;
+  if (automaticLightCreation && lights->GetNumberOfItems() == 0)
+  {
+    effective = vtkSmartPointer<vtkLightCollection>::New();
+    vtkNew<vtkLight> headlight; // vtkRenderer::CreateLight's light
+    headlight->SetLightTypeToHeadlight();
+    effective->AddItem(headlight);
+  }
+
+  vtkCollectionSimpleIterator iterator;
+  effective->InitTraversal(iterator);
+  int index = 0;
+  while (vtkLight* light = effective->GetNextLight(iterator))
+  {
+    const int number = index++;
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    glm::dvec3 position, focal;
+    if (light->LightTypeIsHeadlight())
+    {
+      position = ToVec(camera->GetPosition());
+      focal = ToVec(camera->GetFocalPoint());
+    }
+    else if (light->LightTypeIsCameraLight())
+    {
+      vtkMatrix4x4* toWorld = camera->GetCameraLightTransformMatrix();
+      position = Transform(toWorld, light->GetPosition());
+      focal = Transform(toWorld, light->GetFocalPoint());
+    }
+    else
+    {
+      position = ToVec(light->GetTransformedPosition());
+      focal = ToVec(light->GetTransformedFocalPoint());
+    }
+    const facet::Light converted = ConvertLight(light, position, focal);
+    if (position == focal && !std::holds_alternative<facet::PointLight>(converted))
+    {
+      warning += "light " + std::to_string(number) +
+        " has its focal point at its position, so no direction; skipped. ";
+      continue;
+    }
+    set.lights.push_back(converted);
+  }
+  return set;
+}
+
+//------------------------------------------------------------------------------
+facet::Material vtkFacetSceneConverter::ConvertProperty(vtkProperty* property, bool scalarColoring)
+{
+  facet::Material m;
+  m.color = ToColor(property->GetDiffuseColor());
+  if (!scalarColoring)
+  {
+    m.ambientColor = ToColor(property->GetAmbientColor());
+  }
+  m.specularColor = ToColor(property->GetSpecularColor());
+  m.ambient = property->GetAmbient();
+  m.diffuse = property->GetDiffuse();
+  m.specular = property->GetSpecular();
+  m.specularPower = property->GetSpecularPower();
+  m.backfaceCulling = property->GetBackfaceCulling() != 0;
+  return m;
+}

@@ -1,0 +1,631 @@
+// facet-render: render a mesh file to a PNG with vtkFacetRenderFilter. Run with --help.
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFacetLight.h"
+#include "vtkFacetRenderFilter.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataReader.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSTLReader.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringOutputWindow.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* const Usage = R"(usage: facet-render MESH [options]
+
+Renders a mesh with Facet, a CPU flat-shading rasterizer (no GPU, no display), and writes
+a PNG. MESH is a .vtp, .vtk (polydata), .obj, .ply or .stl file.
+
+options:
+  -o, --output FILE       the PNG to write (default: MESH's name with .png, here)
+  -s, --size WxH          image size in pixels (default: 800x600)
+      --azimuth DEG       turn the camera around the mesh, about the view up (default: 0)
+      --elevation DEG     raise the camera over the mesh (default: 0)
+      --zoom FACTOR       magnify; 2 shows half as much (default: 1)
+      --parallel          parallel projection instead of perspective
+  -l, --light SPEC        add a light (repeat for more; default: one headlight):
+                            headlight[@R,G,B]
+                            directional:DX,DY,DZ[@R,G,B]  (the direction it shines)
+                            point:X,Y,Z[@R,G,B]           (world coordinates)
+      --ambient R,G,B     scene ambient light (default: 0.2,0.2,0.2)
+      --color R,G,B       surface color (default: 0.9,0.9,0.9)
+      --color-by ARRAY    color by a point or cell data array, through a lookup table
+      --range MIN,MAX     the values spanning the lookup table (default: the array's range)
+      --interpolation I   shading interpolation; only "flat" is supported yet
+      --background R,G,B  (default: 0.1,0.1,0.12)
+      --painter           painter's algorithm instead of the z-buffer
+  -t, --threads N         threads; 0 uses every core (default: 0)
+      --progress          always show the progress bar (default: on a terminal only)
+  -q, --quiet             no progress bar and no summary
+  -h, --help              this text
+
+Colors are in [0, 1]. Example:
+  facet-render bunny.obj -o bunny.png --size 1280x960 --azimuth 30 \
+      --light point:0.3,0.4,0.5@1,0.8,0.6 --light headlight@0.3,0.3,0.4
+)";
+
+// A one-line error for the user; `usage` errors exit with 2, others with 1.
+struct Failure : std::runtime_error
+{
+  Failure(const std::string& message, bool usage)
+    : std::runtime_error(message)
+    , Usage(usage)
+  {
+  }
+  bool Usage;
+};
+
+[[noreturn]] void BadOption(const std::string& message)
+{
+  throw Failure(message + " (see facet-render --help)", true);
+}
+
+std::vector<double> ParseNumbers(const std::string& text, char separator, std::size_t count,
+  const std::string& option, const std::string& form)
+{
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, separator))
+  {
+    std::size_t used = 0;
+    try
+    {
+      values.push_back(std::stod(item, &used));
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+    {
+      BadOption(option + " expects " + form + ", got '" + text + "'");
+    }
+  }
+  if (values.size() != count)
+  {
+    BadOption(option + " expects " + form + ", got '" + text + "'");
+  }
+  return values;
+}
+
+struct LightSpec
+{
+  std::string Kind; // headlight, directional, point
+  std::array<double, 3> Vector{ 0, 0, 0 };
+  std::array<double, 3> Color{ 1, 1, 1 };
+};
+
+LightSpec ParseLight(const std::string& text)
+{
+  LightSpec light;
+  std::string body = text;
+  if (const auto at = body.find('@'); at != std::string::npos)
+  {
+    const auto c = ParseNumbers(body.substr(at + 1), ',', 3, "--light color", "R,G,B");
+    light.Color = { c[0], c[1], c[2] };
+    body.resize(at);
+  }
+  const auto colon = body.find(':');
+  light.Kind = body.substr(0, colon);
+  if (light.Kind == "headlight" && colon == std::string::npos)
+  {
+    return light;
+  }
+  if ((light.Kind == "directional" || light.Kind == "point") && colon != std::string::npos)
+  {
+    const auto v = ParseNumbers(body.substr(colon + 1), ',', 3, "--light " + light.Kind, "X,Y,Z");
+    light.Vector = { v[0], v[1], v[2] };
+    return light;
+  }
+  BadOption("--light expects headlight, directional:DX,DY,DZ or point:X,Y,Z, got '" + text + "'");
+}
+
+struct Options
+{
+  std::string Input;
+  std::string Output;
+  int Width = 800, Height = 600;
+  double Azimuth = 0, Elevation = 0, Zoom = 1;
+  bool Parallel = false;
+  std::vector<LightSpec> Lights;
+  std::array<double, 3> Ambient{ 0.2, 0.2, 0.2 };
+  std::array<double, 3> Color{ 0.9, 0.9, 0.9 };
+  std::string ColorBy;
+  std::optional<std::array<double, 2>> Range;
+  std::array<double, 3> Background{ 0.1, 0.1, 0.12 };
+  bool Painter = false;
+  int Threads = 0;
+  bool Progress = false, Quiet = false, Help = false;
+};
+
+std::array<double, 3> ParseColor(const std::string& text, const std::string& option)
+{
+  const auto c = ParseNumbers(text, ',', 3, option, "R,G,B");
+  for (double channel : c)
+  {
+    if (channel < 0.0 || channel > 1.0)
+    {
+      BadOption(option + " channels must be in [0, 1], got '" + text + "'");
+    }
+  }
+  return { c[0], c[1], c[2] };
+}
+
+Options ParseOptions(int argc, char** argv)
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        BadOption(arg + " needs a value");
+      }
+      return argv[++i];
+    };
+    if (arg == "-h" || arg == "--help")
+    {
+      o.Help = true;
+    }
+    else if (arg == "-o" || arg == "--output")
+    {
+      o.Output = value();
+    }
+    else if (arg == "-s" || arg == "--size")
+    {
+      const std::string text = value();
+      const auto wh = ParseNumbers(text, 'x', 2, "--size", "WIDTHxHEIGHT, e.g. 800x600");
+      if (wh[0] != static_cast<int>(wh[0]) || wh[1] != static_cast<int>(wh[1]) || wh[0] < 1 ||
+        wh[1] < 1 || wh[0] > 16384 || wh[1] > 16384)
+      {
+        BadOption("--size expects whole numbers from 1 to 16384, got '" + text + "'");
+      }
+      o.Width = static_cast<int>(wh[0]);
+      o.Height = static_cast<int>(wh[1]);
+    }
+    else if (arg == "--azimuth")
+    {
+      o.Azimuth = ParseNumbers(value(), ',', 1, arg, "degrees")[0];
+    }
+    else if (arg == "--elevation")
+    {
+      o.Elevation = ParseNumbers(value(), ',', 1, arg, "degrees")[0];
+    }
+    else if (arg == "--zoom")
+    {
+      o.Zoom = ParseNumbers(value(), ',', 1, arg, "a factor > 0")[0];
+      if (!(o.Zoom > 0))
+      {
+        BadOption("--zoom expects a factor > 0");
+      }
+    }
+    else if (arg == "--parallel")
+    {
+      o.Parallel = true;
+    }
+    else if (arg == "-l" || arg == "--light")
+    {
+      o.Lights.push_back(ParseLight(value()));
+    }
+    else if (arg == "--ambient")
+    {
+      o.Ambient = ParseColor(value(), arg);
+    }
+    else if (arg == "--color")
+    {
+      o.Color = ParseColor(value(), arg);
+    }
+    else if (arg == "--color-by")
+    {
+      o.ColorBy = value();
+    }
+    else if (arg == "--range")
+    {
+      const auto r = ParseNumbers(value(), ',', 2, arg, "MIN,MAX");
+      o.Range = std::array<double, 2>{ r[0], r[1] };
+    }
+    else if (arg == "--interpolation")
+    {
+      const std::string mode = value();
+      if (mode != "flat")
+      {
+        BadOption("--interpolation '" + mode + "' is not supported yet; Facet shades flat");
+      }
+    }
+    else if (arg == "--background")
+    {
+      o.Background = ParseColor(value(), arg);
+    }
+    else if (arg == "--painter")
+    {
+      o.Painter = true;
+    }
+    else if (arg == "-t" || arg == "--threads")
+    {
+      const double n = ParseNumbers(value(), ',', 1, arg, "a count")[0];
+      if (n != static_cast<int>(n) || n < 0 || n > 1024)
+      {
+        BadOption("--threads expects a whole number from 0 to 1024");
+      }
+      o.Threads = static_cast<int>(n);
+    }
+    else if (arg == "--progress")
+    {
+      o.Progress = true;
+    }
+    else if (arg == "-q" || arg == "--quiet")
+    {
+      o.Quiet = true;
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      BadOption("unknown option '" + arg + "'");
+    }
+    else if (o.Input.empty())
+    {
+      o.Input = arg;
+    }
+    else
+    {
+      BadOption("one mesh at a time; got '" + o.Input + "' and '" + arg + "'");
+    }
+  }
+  if (!o.Help && o.Input.empty())
+  {
+    BadOption("no mesh file given");
+  }
+  if (o.Output.empty() && !o.Input.empty())
+  {
+    o.Output = std::filesystem::path(o.Input).stem().string() + ".png";
+  }
+  return o;
+}
+
+std::string FirstLine(std::string text);
+
+// Prints a VTK object's warnings as single lines instead of VTK's log records.
+class WarningPrinter
+{
+public:
+  explicit WarningPrinter(vtkObject* object)
+  {
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void*, void* data) {
+      if (data)
+      {
+        std::fprintf(
+          stderr, "facet-render: warning: %s\n", FirstLine(static_cast<const char*>(data)).c_str());
+      }
+    });
+    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
+  }
+
+private:
+  vtkNew<vtkCallbackCommand> Callback;
+};
+
+// Collects the first error a VTK object reports, so it can be told in one line.
+class ErrorCatcher
+{
+public:
+  explicit ErrorCatcher(vtkObject* object)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      auto* catcher = static_cast<ErrorCatcher*>(self);
+      if (catcher->Message.empty() && data)
+      {
+        catcher->Message = static_cast<const char*>(data);
+      }
+    });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
+  }
+  std::string Message;
+
+private:
+  vtkNew<vtkCallbackCommand> Callback;
+};
+
+// VTK's messages end with a "vtkClass (0x...): what happened" line; keep what happened.
+std::string FirstLine(std::string text)
+{
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+  {
+    text.pop_back();
+  }
+  const auto lastLine = text.find_last_of('\n');
+  std::string line = lastLine == std::string::npos ? text : text.substr(lastLine + 1);
+  if (const auto header = line.find("): "); line.rfind("vtk", 0) == 0 && header != std::string::npos)
+  {
+    line = line.substr(header + 3);
+  }
+  return line;
+}
+
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
+{
+  if (!std::filesystem::is_regular_file(path))
+  {
+    throw Failure("cannot read '" + path + "': no such file", false);
+  }
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (extension == ".vtp")
+  {
+    auto xml = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    xml->SetFileName(path.c_str());
+    reader = xml;
+  }
+  else if (extension == ".vtk")
+  {
+    auto legacy = vtkSmartPointer<vtkPolyDataReader>::New();
+    legacy->SetFileName(path.c_str());
+    reader = legacy;
+  }
+  else if (extension == ".obj")
+  {
+    auto obj = vtkSmartPointer<vtkOBJReader>::New();
+    obj->SetFileName(path.c_str());
+    reader = obj;
+  }
+  else if (extension == ".ply")
+  {
+    auto ply = vtkSmartPointer<vtkPLYReader>::New();
+    ply->SetFileName(path.c_str());
+    reader = ply;
+  }
+  else if (extension == ".stl")
+  {
+    auto stl = vtkSmartPointer<vtkSTLReader>::New();
+    stl->SetFileName(path.c_str());
+    reader = stl;
+  }
+  else
+  {
+    throw Failure(
+      "cannot read '" + path + "': unknown extension (use .vtp .vtk .obj .ply or .stl)", true);
+  }
+  ErrorCatcher errors(reader);
+  reader->Update();
+  vtkSmartPointer<vtkPolyData> mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!errors.Message.empty())
+  {
+    throw Failure("cannot read '" + path + "': " + FirstLine(errors.Message), false);
+  }
+  if (!mesh || mesh->GetNumberOfCells() == 0)
+  {
+    throw Failure("cannot read '" + path + "': no polygons in it", false);
+  }
+  return mesh;
+}
+
+// The camera vtkRenderer::ResetCamera fits to the mesh, then turned and zoomed.
+vtkSmartPointer<vtkCamera> FitCamera(vtkPolyData* mesh, const Options& o)
+{
+  vtkNew<vtkRenderer> renderer; // never rendered: only its camera reset
+  renderer->SetAspect(static_cast<double>(o.Width) / o.Height, 1.0);
+  renderer->SetNearClippingPlaneTolerance(0.001);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetParallelProjection(o.Parallel);
+  const double* bounds = mesh->GetBounds();
+  renderer->ResetCamera(bounds);
+  camera->Azimuth(o.Azimuth);
+  camera->Elevation(o.Elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Zoom(o.Zoom);
+  renderer->ResetCameraClippingRange(bounds);
+  return camera;
+}
+
+vtkSmartPointer<vtkLight> MakeLight(const LightSpec& spec)
+{
+  auto light = vtkSmartPointer<vtkFacetLight>::New();
+  light->SetColor(spec.Color.data());
+  if (spec.Kind == "headlight")
+  {
+    light->SetLightTypeToHeadlight();
+    return light;
+  }
+  light->SetLightTypeToSceneLight();
+  if (spec.Kind == "directional")
+  {
+    light->SetPosition(0, 0, 0);
+    light->SetFocalPoint(spec.Vector.data());
+  }
+  else
+  {
+    light->SetPositional(true);
+    light->SetConeAngle(180); // all around
+    light->SetPosition(spec.Vector.data());
+  }
+  return light;
+}
+
+void ColorBy(vtkFacetRenderFilter* render, vtkPolyData* mesh, const Options& o)
+{
+  vtkDataArray* array = mesh->GetPointData()->GetArray(o.ColorBy.c_str());
+  const bool onPoints = array != nullptr;
+  if (!array)
+  {
+    array = mesh->GetCellData()->GetArray(o.ColorBy.c_str());
+  }
+  if (!array)
+  {
+    throw Failure("--color-by: '" + o.Input + "' has no point or cell array '" + o.ColorBy + "'",
+      true);
+  }
+  render->SelectColorArray(o.ColorBy.c_str());
+  if (onPoints)
+  {
+    render->SetScalarModeToUsePointFieldData();
+  }
+  else
+  {
+    render->SetScalarModeToUseCellFieldData();
+  }
+  render->SetColorModeToMapScalars();
+  render->SetArrayComponent(array->GetNumberOfComponents() > 1 ? -1 : 0);
+  double range[2];
+  array->GetRange(range, array->GetNumberOfComponents() > 1 ? -1 : 0);
+  if (o.Range)
+  {
+    range[0] = (*o.Range)[0];
+    range[1] = (*o.Range)[1];
+  }
+  render->SetScalarRange(range);
+}
+
+// A progress bar on stderr, shown once a render has run for a quarter of a second.
+struct ProgressBar
+{
+  std::chrono::steady_clock::time_point Start = std::chrono::steady_clock::now();
+  bool Shown = false;
+
+  static void OnProgress(vtkObject*, unsigned long, void* self, void* data)
+  {
+    auto* bar = static_cast<ProgressBar*>(self);
+    const double fraction = *static_cast<double*>(data);
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - bar->Start).count();
+    if (!bar->Shown && seconds < 0.25)
+    {
+      return;
+    }
+    bar->Shown = true;
+    const int filled = static_cast<int>(fraction * 30.0);
+    std::fprintf(stderr, "\rrendering [%.*s%*s] %3d%%", filled,
+      "##############################", 30 - filled, "", static_cast<int>(fraction * 100.0));
+    std::fflush(stderr);
+  }
+
+  void Finish() const
+  {
+    if (this->Shown)
+    {
+      std::fprintf(stderr, "\n");
+    }
+  }
+};
+
+int Run(int argc, char** argv)
+{
+  const Options o = ParseOptions(argc, argv);
+  if (o.Help)
+  {
+    std::fputs(Usage, stdout);
+    return 0;
+  }
+  vtkSmartPointer<vtkPolyData> mesh = ReadMesh(o.Input);
+
+  vtkNew<vtkFacetRenderFilter> render;
+  ErrorCatcher renderErrors(render);
+  WarningPrinter renderWarnings(render);
+  render->SetInputData(mesh);
+  render->SetSize(o.Width, o.Height);
+  render->SetBackground(o.Background.data());
+  render->SetAmbientLightColor(o.Ambient.data());
+  render->SetNumberOfThreads(o.Threads);
+  render->SetCamera(FitCamera(mesh, o));
+  render->GetProperty()->SetColor(o.Color[0], o.Color[1], o.Color[2]);
+  if (o.Painter)
+  {
+    render->SetVisibilityModeToPainterSort();
+  }
+  for (const LightSpec& light : o.Lights)
+  {
+    render->AddLight(MakeLight(light));
+  }
+  if (o.ColorBy.empty())
+  {
+    render->ScalarVisibilityOff();
+  }
+  else
+  {
+    ColorBy(render, mesh, o);
+  }
+
+  ProgressBar bar;
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetClientData(&bar);
+  progress->SetCallback(ProgressBar::OnProgress);
+  if (!o.Quiet && (o.Progress || isatty(fileno(stderr))))
+  {
+    render->AddObserver(vtkCommand::ProgressEvent, progress);
+  }
+  render->Update();
+  bar.Finish();
+  if (!renderErrors.Message.empty())
+  {
+    throw Failure("cannot render '" + o.Input + "': " + FirstLine(renderErrors.Message), false);
+  }
+
+  vtkNew<vtkPNGWriter> writer;
+  ErrorCatcher writeErrors(writer);
+  writer->SetInputConnection(render->GetOutputPort());
+  writer->SetFileName(o.Output.c_str());
+  writer->Write();
+  if (!writeErrors.Message.empty() || !std::filesystem::is_regular_file(o.Output))
+  {
+    throw Failure("cannot write '" + o.Output + "'" +
+        (writeErrors.Message.empty() ? "" : ": " + FirstLine(writeErrors.Message)),
+      false);
+  }
+  if (!o.Quiet)
+  {
+    vtkFieldData* fieldData = render->GetOutput()->GetFieldData();
+    std::printf("facet-render: wrote %s (%dx%d, %lld polygons, %.1f ms)\n", o.Output.c_str(),
+      o.Width, o.Height, static_cast<long long>(mesh->GetNumberOfCells()),
+      fieldData->GetArray("FacetRenderSeconds")->GetComponent(0, 0) * 1e3);
+  }
+  return 0;
+}
+}
+
+int main(int argc, char** argv)
+{
+  // Errors and warnings are reported as single lines through observers; what VTK's
+  // internal objects print (parsers, executives) goes nowhere.
+  vtkNew<vtkStringOutputWindow> quiet;
+  vtkOutputWindow::SetInstance(quiet);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  try
+  {
+    return Run(argc, argv);
+  }
+  catch (const Failure& failure)
+  {
+    std::fprintf(stderr, "facet-render: %s\n", failure.what());
+    return failure.Usage ? 2 : 1;
+  }
+}

@@ -1,0 +1,65 @@
+#pragma once
+
+// Helpers shared by the adapter tests.
+
+#include "vtkCellArray.h"
+#include "vtkFacetRenderFilter.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <array>
+#include <string>
+
+namespace facet_test
+{
+
+inline vtkIdType PixelIndex(vtkImageData* image, int x, int y)
+{
+  return static_cast<vtkIdType>(y) * image->GetDimensions()[0] + x;
+}
+
+inline vtkIdType CellIdAt(vtkImageData* image, int x, int y)
+{
+  return vtkIdTypeArray::SafeDownCast(image->GetPointData()->GetArray("CellId"))
+    ->GetValue(PixelIndex(image, x, y));
+}
+
+inline std::array<int, 4> RgbaAt(vtkImageData* image, int x, int y)
+{
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetArray("RGBA"));
+  const unsigned char* p = rgba->GetPointer(4 * PixelIndex(image, x, y));
+  return { p[0], p[1], p[2], p[3] };
+}
+
+inline double FieldValue(vtkImageData* image, const char* array, const char* component)
+{
+  vtkDataArray* values = image->GetFieldData()->GetArray(array);
+  for (int c = 0; values && c < values->GetNumberOfComponents(); ++c)
+  {
+    if (std::string(values->GetComponentName(c)) == component)
+    {
+      return values->GetComponent(0, c);
+    }
+  }
+  return -1.0;
+}
+
+// A square in the z = 0 plane, [x0, x1] × [y0, y1], counter-clockwise seen from +z.
+inline vtkIdType AddSquare(vtkPoints* points, vtkCellArray* polys, double x0, double y0,
+  double x1, double y1, double z = 0.0)
+{
+  const vtkIdType first = points->InsertNextPoint(x0, y0, z);
+  points->InsertNextPoint(x1, y0, z);
+  points->InsertNextPoint(x1, y1, z);
+  points->InsertNextPoint(x0, y1, z);
+  const vtkIdType ids[4] = { first, first + 1, first + 2, first + 3 };
+  return polys->InsertNextCell(4, ids);
+}
+
+} // namespace facet_test

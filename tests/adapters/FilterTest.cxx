@@ -1,0 +1,599 @@
+// vtkFacetRenderFilter: conversion of vtkPolyData (strips, cell ids, colors), cameras as
+// vtkCamera defines them, lights, errors, caching and progress. No X server needed.
+
+#include "AdapterTestUtilities.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkFacetLight.h"
+#include "vtkFloatArray.h"
+#include "vtkLookupTable.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMinimalStandardRandomSequence.h"
+#include "vtkNew.h"
+#include "vtkProperty.h"
+#include "vtkSphereSource.h"
+#include "vtkStripper.h"
+#include "vtkTriangleFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+using namespace facet_test;
+
+namespace
+{
+constexpr int Width = 160, Height = 120;
+
+// A parallel camera for which world x, y are window pixels.
+vtkSmartPointer<vtkCamera> PixelCamera(int width = Width, int height = Height)
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(0.5 * height);
+  camera->SetFocalPoint(0.5 * width, 0.5 * height, 0.0);
+  camera->SetPosition(0.5 * width, 0.5 * height, 100.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetClippingRange(1.0, 300.0);
+  return camera;
+}
+
+// A filter showing exactly the surface colors: Ka = 1 with the ambient color being the
+// surface color, Kd = 0, no lights at all.
+vtkSmartPointer<vtkFacetRenderFilter> UnlitFilter(vtkPolyData* input)
+{
+  auto filter = vtkSmartPointer<vtkFacetRenderFilter>::New();
+  filter->SetInputData(input);
+  filter->SetSize(Width, Height);
+  filter->SetCamera(PixelCamera());
+  filter->AutomaticLightCreationOff();
+  filter->SetAmbientLightColor(0.0, 0.0, 0.0);
+  filter->GetProperty()->SetAmbient(1.0);
+  filter->GetProperty()->SetDiffuse(0.0);
+  return filter;
+}
+
+// Counts the messages of one kind (vtkCommand::ErrorEvent or WarningEvent) and keeps the
+// last, instead of letting VTK print them.
+struct MessageCounter
+{
+  explicit MessageCounter(vtkObject* object, unsigned long event)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      auto* counter = static_cast<MessageCounter*>(self);
+      ++counter->Count;
+      counter->Last = data ? static_cast<const char*>(data) : "";
+    });
+    object->AddObserver(event, this->Callback);
+  }
+  int Count = 0;
+  std::string Last;
+  vtkNew<vtkCallbackCommand> Callback;
+};
+
+vtkSmartPointer<vtkPolyData> StripSphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(18);
+  sphere->SetRadius(40.0);
+  sphere->SetCenter(80.0, 60.0, 0.0);
+  vtkNew<vtkStripper> stripper;
+  stripper->SetInputConnection(sphere->GetOutputPort());
+  stripper->Update();
+  return stripper->GetOutput();
+}
+}
+
+//------------------------------------------------------------------------------
+TEST(Conversion, StripsRenderWithTheWindingVtkGivesThem)
+{
+  vtkSmartPointer<vtkPolyData> strips = StripSphere();
+  ASSERT_GT(strips->GetNumberOfStrips(), 0);
+  ASSERT_EQ(strips->GetNumberOfPolys(), 0);
+  vtkNew<vtkTriangleFilter> triangles; // VTK's own strip decomposition
+  triangles->SetInputData(strips);
+  triangles->Update();
+
+  // One-sided lighting and back-face culling: a triangle wound the wrong way would vanish
+  // or darken, so equal images mean equal winding.
+  const auto render = [](vtkPolyData* input) {
+    auto filter = vtkSmartPointer<vtkFacetRenderFilter>::New();
+    filter->SetInputData(input);
+    filter->SetSize(Width, Height);
+    filter->SetCamera(PixelCamera());
+    filter->TwoSidedLightingOff();
+    filter->GetProperty()->BackfaceCullingOn();
+    filter->Update();
+    return vtkSmartPointer<vtkImageData>(filter->GetOutput());
+  };
+  vtkSmartPointer<vtkImageData> fromStrips = render(strips);
+  vtkSmartPointer<vtkImageData> fromTriangles = render(triangles->GetOutput());
+  int covered = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      ASSERT_EQ(RgbaAt(fromStrips, x, y), RgbaAt(fromTriangles, x, y)) << x << ", " << y;
+      covered += CellIdAt(fromStrips, x, y) >= 0;
+    }
+  }
+  EXPECT_GT(covered, 4000);
+}
+
+//------------------------------------------------------------------------------
+TEST(Conversion, CellIdsCountVertsLinesPolysStrips)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> verts, lines, polys, strips;
+  for (int i = 0; i < 2; ++i)
+  {
+    const vtkIdType v = points->InsertNextPoint(5.0 + i, 5.0, 0.0);
+    verts->InsertNextCell(1, &v);
+  }
+  const vtkIdType lineIds[2] = { 0, 1 };
+  lines->InsertNextCell(2, lineIds);
+  AddSquare(points, polys, 10.3, 10.3, 40.7, 40.7);                      // cell 3
+  const vtkIdType concave[6] = { points->InsertNextPoint(50.2, 10.2, 0), // cell 4: an L
+    points->InsertNextPoint(90.2, 10.2, 0), points->InsertNextPoint(90.2, 20.2, 0),
+    points->InsertNextPoint(60.2, 20.2, 0), points->InsertNextPoint(60.2, 50.2, 0),
+    points->InsertNextPoint(50.2, 50.2, 0) };
+  polys->InsertNextCell(6, concave);
+  const vtkIdType strip[4] = { points->InsertNextPoint(100.1, 60.1, 0), // cell 5
+    points->InsertNextPoint(150.1, 60.1, 0), points->InsertNextPoint(100.1, 110.1, 0),
+    points->InsertNextPoint(150.1, 110.1, 0) };
+  strips->InsertNextCell(4, strip);
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetVerts(verts);
+  input->SetLines(lines);
+  input->SetPolys(polys);
+  input->SetStrips(strips);
+
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  MessageCounter warnings(filter, vtkCommand::WarningEvent);
+  filter->Update();
+  vtkImageData* image = filter->GetOutput();
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_NE(warnings.Last.find("skipped 2 vertex and 1 line cells"), std::string::npos)
+    << warnings.Last;
+  EXPECT_EQ(CellIdAt(image, 20, 20), 3);
+  EXPECT_EQ(CellIdAt(image, 55, 40), 4) << "the L's upright";
+  EXPECT_EQ(CellIdAt(image, 80, 15), 4) << "the L's foot";
+  EXPECT_EQ(CellIdAt(image, 80, 40), -1) << "inside the L's bounding box, outside the L";
+  EXPECT_EQ(CellIdAt(image, 110, 70), 5) << "first strip triangle";
+  EXPECT_EQ(CellIdAt(image, 140, 100), 5) << "second strip triangle";
+  EXPECT_EQ(CellIdAt(image, 5, 100), -1);
+}
+
+//------------------------------------------------------------------------------
+TEST(Conversion, CellIdsSurviveNearPlaneClipping)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, -50.0, -50.0, 50.0, 50.0); // a floor the near plane cuts
+  AddSquare(points, polys, -5.0, 60.0, 5.0, 70.0);    // something beyond it
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0.0, -40.0, 5.0);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetViewUp(0.0, 0.0, 1.0);
+  camera->SetClippingRange(20.0, 200.0);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->SetCamera(camera);
+  filter->Update();
+  vtkImageData* image = filter->GetOutput();
+  EXPECT_GT(FieldValue(image, "FacetCounts", "TrianglesClipped"), 0.0);
+  // Up the middle column: clipped away (background) at the bottom, then the floor.
+  int clipRow = 0;
+  while (clipRow < Height && CellIdAt(image, Width / 2, clipRow) == -1)
+  {
+    ++clipRow;
+  }
+  EXPECT_GT(clipRow, 5) << "the near plane removes the closest part of the floor";
+  EXPECT_LT(clipRow, Height / 2);
+  for (int y = clipRow; y < clipRow + 10; ++y)
+  {
+    EXPECT_EQ(CellIdAt(image, Width / 2, y), 0) << "row " << y;
+  }
+  int floor = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      const vtkIdType id = CellIdAt(image, x, y);
+      ASSERT_TRUE(id == -1 || id == 0 || id == 1) << id;
+      floor += id == 0;
+    }
+  }
+  EXPECT_GT(floor, Width * Height / 4);
+}
+
+//------------------------------------------------------------------------------
+TEST(Coloring, CellScalarsThroughALookupTableGiveItsExactBytes)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("temperature");
+  for (int i = 0; i < 5; ++i)
+  {
+    AddSquare(points, polys, 5.0 + 30.0 * i, 20.0, 30.0 + 30.0 * i, 100.0);
+    values->InsertNextValue(-3.0 + 2.7 * i);
+  }
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  input->GetCellData()->SetScalars(values);
+  vtkNew<vtkLookupTable> table;
+  table->SetHueRange(0.667, 0.0);
+  table->SetNumberOfTableValues(17);
+  table->Build();
+
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->SetLookupTable(table);
+  filter->SetScalarRange(-4.0, 9.0);
+  filter->Update();
+  for (int i = 0; i < 5; ++i)
+  {
+    const unsigned char* expected = table->MapValue(values->GetValue(i));
+    const std::array<int, 4> pixel = RgbaAt(filter->GetOutput(), 17 + 30 * i, 60);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_EQ(pixel[c], expected[c]) << "square " << i << " channel " << c;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+TEST(Coloring, UnsignedCharColorsAreUsedDirectly)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
+  AddSquare(points, polys, 90.0, 10.0, 150.0, 70.0);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetNumberOfComponents(3);
+  colors->InsertNextTuple3(200, 17, 99);
+  colors->InsertNextTuple3(3, 250, 128);
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  input->GetCellData()->SetScalars(colors);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 200, 17, 99, 255 }));
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 120, 40), (std::array<int, 4>{ 3, 250, 128, 255 }));
+  filter->ScalarVisibilityOff();
+  filter->GetProperty()->SetColor(0.0, 0.5, 1.0);
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 0, 128, 255, 255 }));
+}
+
+//------------------------------------------------------------------------------
+TEST(Coloring, PointScalarsAreAveragedPerPolygon)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetNumberOfComponents(4);
+  colors->InsertNextTuple4(255, 0, 0, 255);
+  colors->InsertNextTuple4(0, 255, 0, 255);
+  colors->InsertNextTuple4(0, 0, 255, 255);
+  colors->InsertNextTuple4(255, 255, 255, 255);
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  input->GetPointData()->SetScalars(colors);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 128, 128, 128, 255 }));
+  filter->SetScalarModeToUseCellData(); // no cell scalars: the property's color
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 255, 255, 255, 255 }));
+}
+
+//------------------------------------------------------------------------------
+// Tiny triangles centered on points that VTK's composite projection matrix puts on pixel
+// centers must cover exactly those pixels, for random perspective and parallel cameras with
+// off-center window centers.
+TEST(Camera, PointsLandWhereVtkCameraProjectsThem)
+{
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(42);
+  const auto uniform = [&](double low, double high) {
+    random->Next();
+    return random->GetRangeValue(low, high);
+  };
+  const double aspect = static_cast<double>(Width) / Height;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    vtkNew<vtkCamera> camera;
+    camera->SetPosition(uniform(-20, 20), uniform(-20, 20), uniform(10, 30));
+    camera->SetFocalPoint(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2));
+    camera->SetViewUp(uniform(-0.3, 0.3), 1.0, uniform(-0.3, 0.3));
+    camera->OrthogonalizeViewUp();
+    camera->SetViewAngle(uniform(15, 60));
+    camera->SetParallelProjection(trial % 2);
+    camera->SetParallelScale(uniform(3, 12));
+    camera->SetWindowCenter(uniform(-0.4, 0.4), uniform(-0.4, 0.4));
+    camera->SetClippingRange(1.0, 100.0);
+
+    // The world point on the focal plane that VTK maps to the center of pixel (px, py).
+    const int px = static_cast<int>(uniform(0, Width - 1)), py = static_cast<int>(uniform(0, Height - 1));
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1), inverse);
+    const auto unproject = [&](double wx, double wy, double ndcZ) {
+      double ndc[4] = { 2.0 * wx / Width - 1.0, 2.0 * wy / Height - 1.0, ndcZ, 1.0 }, world[4];
+      inverse->MultiplyPoint(ndc, world);
+      return std::array<double, 3>{ world[0] / world[3], world[1] / world[3], world[2] / world[3] };
+    };
+    vtkNew<vtkPoints> points;
+    for (double angle : { 0.0, 2.1, 4.2 })
+    {
+      const auto p = unproject(px + 0.5 + 0.3 * std::cos(angle), py + 0.5 + 0.3 * std::sin(angle), 0.2);
+      points->InsertNextPoint(p.data());
+    }
+    vtkNew<vtkCellArray> polys;
+    const vtkIdType ids[3] = { 0, 1, 2 };
+    polys->InsertNextCell(3, ids);
+    vtkNew<vtkPolyData> triangle;
+    triangle->SetPoints(points);
+    triangle->SetPolys(polys);
+
+    vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(triangle);
+    filter->SetCamera(camera);
+    filter->Update();
+    vtkImageData* image = filter->GetOutput();
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    EXPECT_EQ(FieldValue(image, "FacetCounts", "PixelsCovered"), 1.0);
+    EXPECT_EQ(CellIdAt(image, px, py), 0) << "pixel " << px << ", " << py;
+  }
+}
+
+//------------------------------------------------------------------------------
+TEST(Camera, WithoutACameraTheViewIsResetToTheBounds)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(1000.0, -50.0, 3.0);
+  sphere->SetRadius(0.01);
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputConnection(sphere->GetOutputPort());
+  filter->SetSize(Width, Height);
+  filter->Update();
+  vtkImageData* image = filter->GetOutput();
+  EXPECT_NE(CellIdAt(image, Width / 2, Height / 2), -1) << "the sphere is in the middle";
+  EXPECT_EQ(CellIdAt(image, 2, 2), -1);
+  const double covered = FieldValue(image, "FacetCounts", "PixelsCovered");
+  EXPECT_GT(covered, 0.1 * Width * Height) << "and fills a good part of the view";
+}
+
+//------------------------------------------------------------------------------
+TEST(Lights, HeadlightByDefaultAndNoneWhenTurnedOff)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 10.0, 10.0, 150.0, 110.0);
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputData(input);
+  filter->SetSize(Width, Height);
+  filter->SetCamera(PixelCamera());
+  filter->SetAmbientLightColor(0.0, 0.0, 0.0);
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 80, 60)[0], 255) << "facing the headlight: full";
+  filter->AutomaticLightCreationOff();
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 80, 60)[0], 0) << "no light, no ambient: black";
+}
+
+//------------------------------------------------------------------------------
+TEST(Lights, FacetLightLinearSpotFalloff)
+{
+  // A big square facing +z lit by a spot 100 above its center pointing down; no attenuation.
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  for (int i = 0; i < 80; ++i) // strips of 1 unit, so each shades at its own distance
+  {
+    AddSquare(points, polys, i, 0.0, i + 1.0, Height);
+  }
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  vtkNew<vtkFacetLight> spot;
+  spot->SetLightTypeToSceneLight();
+  spot->PositionalOn();
+  spot->SetPosition(0.0, 60.0, 100.0);
+  spot->SetFocalPoint(0.0, 60.0, 0.0);
+  spot->SetSpotModelToLinearFalloff();
+  spot->SetFullIntensityAngle(20.0);
+  spot->SetFalloffAngle(15.0);
+  spot->SetAttenuationValues(1.0, 0.0, 0.0);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->GetProperty()->SetAmbient(0.0);
+  filter->GetProperty()->SetDiffuse(1.0);
+  filter->AddLight(spot);
+  filter->Update();
+  for (int x = 0; x < 80; ++x)
+  {
+    const double center = x + 0.5;
+    const double angle = vtkMath::DegreesFromRadians(std::atan(center / 100.0));
+    const double cone = angle <= 20.0 ? 1.0 : angle >= 35.0 ? 0.0 : (35.0 - angle) / 15.0;
+    const double expected = 255.0 * std::cos(vtkMath::RadiansFromDegrees(angle)) * cone;
+    EXPECT_NEAR(RgbaAt(filter->GetOutput(), x, 60)[0], expected, 1.0) << "x " << x;
+  }
+}
+
+//------------------------------------------------------------------------------
+TEST(Errors, PointIdsOutOfRangeGiveAnErrorAndAnEmptyOutput)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
+  const vtkIdType bad[3] = { 0, 1, 99 };
+  polys->InsertNextCell(3, bad);
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  MessageCounter errors(filter, vtkCommand::ErrorEvent);
+  filter->Update();
+  EXPECT_EQ(errors.Count, 1);
+  EXPECT_NE(errors.Last.find("is 99, outside [0, points.count)"), std::string::npos)
+    << errors.Last;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+TEST(Errors, BadSizeGivesAnError)
+{
+  vtkNew<vtkPolyData> input;
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  MessageCounter errors(filter, vtkCommand::ErrorEvent);
+  filter->SetSize(0, 100);
+  filter->Update();
+  EXPECT_GE(errors.Count, 1);
+  EXPECT_NE(errors.Last.find("Size is 0 x 100"), std::string::npos) << errors.Last;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  filter->SetSize(20000, 10);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+TEST(Errors, NonFinitePointsSkipTheirCellsWithOneWarning)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
+  AddSquare(points, polys, 90.0, 10.0, 150.0, 70.0);
+  points->SetPoint(5, std::numeric_limits<double>::quiet_NaN(), 10.0, 0.0);
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->SetPolys(polys);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  MessageCounter warnings(filter, vtkCommand::WarningEvent);
+  filter->Update();
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_NE(warnings.Last.find("skipped 1 cells"), std::string::npos) << warnings.Last;
+  EXPECT_EQ(CellIdAt(filter->GetOutput(), 40, 40), 0);
+  EXPECT_EQ(CellIdAt(filter->GetOutput(), 120, 40), -1);
+}
+
+TEST(Errors, EmptyInputGivesTheBackground)
+{
+  vtkNew<vtkPolyData> input;
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->SetBackground(0.2, 0.4, 0.6);
+  filter->Update();
+  vtkImageData* image = filter->GetOutput();
+  EXPECT_EQ(image->GetNumberOfPoints(), Width * Height);
+  EXPECT_EQ(RgbaAt(image, 3, 3), (std::array<int, 4>{ 51, 102, 153, 255 }));
+  EXPECT_EQ(CellIdAt(image, 3, 3), -1);
+}
+
+//------------------------------------------------------------------------------
+TEST(Output, ArraysExtentAndDeterminism)
+{
+  vtkSmartPointer<vtkPolyData> strips = StripSphere();
+  vtkNew<vtkFacetRenderFilter> one, two;
+  for (vtkFacetRenderFilter* filter : { one.Get(), two.Get() })
+  {
+    filter->SetInputData(strips);
+    filter->SetSize(Width, Height);
+    filter->SetCamera(PixelCamera());
+  }
+  one->SetNumberOfThreads(1);
+  two->SetNumberOfThreads(2);
+  one->Update();
+  two->Update();
+  vtkImageData* image = one->GetOutput();
+  int extent[6];
+  image->GetExtent(extent);
+  EXPECT_EQ(extent[1], Width - 1);
+  EXPECT_EQ(extent[3], Height - 1);
+  EXPECT_EQ(extent[5], 0);
+  EXPECT_STREQ(image->GetPointData()->GetScalars()->GetName(), "RGBA");
+  EXPECT_TRUE(vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Depth")));
+  EXPECT_TRUE(vtkIdTypeArray::SafeDownCast(image->GetPointData()->GetArray("CellId")));
+  for (const char* name : { "RGBA", "Depth", "CellId" })
+  {
+    vtkDataArray* a = image->GetPointData()->GetArray(name);
+    vtkDataArray* b = two->GetOutput()->GetPointData()->GetArray(name);
+    const vtkIdType bytes = a->GetNumberOfValues() * a->GetDataTypeSize();
+    EXPECT_EQ(std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes), 0) << name;
+  }
+  EXPECT_NE(std::string(one->GetRenderPlan()).find("z-buffer"), std::string::npos);
+}
+
+//------------------------------------------------------------------------------
+TEST(Caching, ANewCameraReusesTheConvertedMesh)
+{
+  vtkSmartPointer<vtkPolyData> strips = StripSphere();
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputData(strips);
+  filter->SetSize(Width, Height);
+  vtkSmartPointer<vtkCamera> camera = PixelCamera();
+  filter->SetCamera(camera);
+  filter->Update();
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetMeshConverted", "Converted"), 1.0);
+  camera->Azimuth(10.0);
+  filter->Update();
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetMeshConverted", "Converted"), 0.0)
+    << "only the camera changed";
+  strips->GetPoints()->SetPoint(0, 80.0, 60.0, 45.0);
+  strips->Modified();
+  filter->Update();
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetMeshConverted", "Converted"), 1.0)
+    << "the input changed";
+}
+
+//------------------------------------------------------------------------------
+TEST(Progress, ReportedAndAbortable)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(300);
+  sphere->SetPhiResolution(300);
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputConnection(sphere->GetOutputPort());
+  filter->SetSize(400, 300);
+  struct Progress
+  {
+    int Calls = 0;
+    bool Abort = false;
+  } progress;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&progress);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
+    auto* p = static_cast<Progress*>(data);
+    ++p->Calls;
+    if (p->Abort && *static_cast<double*>(fraction) > 0.1)
+    {
+      vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
+    }
+  });
+  filter->AddObserver(vtkCommand::ProgressEvent, observer);
+  filter->Update();
+  EXPECT_GT(progress.Calls, 3);
+  EXPECT_GT(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 1000.0);
+
+  progress.Abort = true;
+  filter->Modified();
+  filter->Update();
+  filter->SetAbortExecute(0);
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 0.0)
+    << "stopped early: a valid background image";
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 400 * 300);
+}

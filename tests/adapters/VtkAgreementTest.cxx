@@ -1,0 +1,205 @@
+// vtkFacetRenderFilter against VTK's own OpenGL renderer on the same vtkPolyData, camera and
+// light: silhouettes (coverage) differ on at most 0.5 % of the covered pixels, and flat-shaded
+// colors under a directional light by at most 2/255 per channel away from edges.
+//
+// Needs an X server: make test runs it under xvfb-run (Debian's VTK has no OSMesa/EGL).
+
+#include "AdapterTestUtilities.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+using namespace facet_test;
+
+namespace
+{
+constexpr int Width = 800, Height = 600;
+
+struct Scene
+{
+  vtkSmartPointer<vtkPolyData> Mesh;
+  vtkSmartPointer<vtkCamera> Camera;
+  vtkSmartPointer<vtkLight> Light;
+  double Color[3] = { 0.85, 0.7, 0.55 };
+};
+
+Scene LoadScene(const std::string& mesh, double azimuth, double elevation)
+{
+  vtkNew<vtkOBJReader> reader;
+  reader->SetFileName((std::string(FACET_SHARED_DATA_DIR) + "/meshes/" + mesh).c_str());
+  reader->Update();
+  Scene scene;
+  scene.Mesh = reader->GetOutput();
+  // The camera a VTK user would get: reset to the bounds, then turned.
+  vtkNew<vtkRenderer> fit;
+  fit->SetAspect(static_cast<double>(Width) / Height, 1.0);
+  scene.Camera = fit->GetActiveCamera();
+  fit->ResetCamera(scene.Mesh->GetBounds());
+  scene.Camera->Azimuth(azimuth);
+  scene.Camera->Elevation(elevation);
+  scene.Camera->OrthogonalizeViewUp();
+  fit->ResetCameraClippingRange(scene.Mesh->GetBounds());
+  scene.Light = vtkSmartPointer<vtkLight>::New();
+  scene.Light->SetLightTypeToSceneLight();
+  scene.Light->SetPosition(1.0, 2.0, 3.0); // directional: shines from (1, 2, 3) toward 0
+  scene.Light->SetFocalPoint(0.0, 0.0, 0.0);
+  scene.Light->SetColor(1.0, 0.95, 0.9);
+  return scene;
+}
+
+// VTK's OpenGL pipeline: flat interpolation, no multisampling, RGB and depth read back.
+struct VtkImages
+{
+  vtkSmartPointer<vtkImageData> Color;
+  vtkSmartPointer<vtkImageData> Depth;
+};
+
+VtkImages RenderWithVtk(const Scene& scene)
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(scene.Mesh);
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetInterpolationToFlat();
+  actor->GetProperty()->SetColor(scene.Color[0], scene.Color[1], scene.Color[2]);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  renderer->SetActiveCamera(scene.Camera);
+  renderer->AddLight(scene.Light);
+  renderer->AutomaticLightCreationOff();
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(Width, Height);
+  window->AddRenderer(renderer);
+  window->Render();
+  VtkImages images;
+  for (bool depth : { false, true })
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    if (depth)
+    {
+      grab->SetInputBufferTypeToZBuffer();
+    }
+    grab->Update();
+    (depth ? images.Depth : images.Color) = grab->GetOutput();
+  }
+  return images;
+}
+
+vtkSmartPointer<vtkImageData> RenderWithFacet(const Scene& scene)
+{
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputData(scene.Mesh);
+  filter->SetSize(Width, Height);
+  filter->SetCamera(scene.Camera);
+  filter->AddLight(scene.Light);
+  filter->SetAmbientLightColor(0.0, 0.0, 0.0); // VTK's renderer has no scene ambient
+  filter->ScalarVisibilityOff();
+  filter->GetProperty()->SetColor(scene.Color[0], scene.Color[1], scene.Color[2]);
+  filter->Update();
+  return filter->GetOutput();
+}
+
+void Compare(const std::string& mesh, double azimuth, double elevation)
+{
+  SCOPED_TRACE(mesh + ", azimuth " + std::to_string(azimuth));
+  const Scene scene = LoadScene(mesh, azimuth, elevation);
+  const VtkImages vtk = RenderWithVtk(scene);
+  vtkSmartPointer<vtkImageData> facet = RenderWithFacet(scene);
+  ASSERT_EQ(vtk.Color->GetDimensions()[0], Width);
+  auto* vtkDepth = vtkFloatArray::SafeDownCast(vtk.Depth->GetPointData()->GetScalars());
+  auto* vtkColor = vtkUnsignedCharArray::SafeDownCast(vtk.Color->GetPointData()->GetScalars());
+  ASSERT_NE(vtkDepth, nullptr);
+  ASSERT_NE(vtkColor, nullptr);
+  const int vtkComponents = vtkColor->GetNumberOfComponents();
+
+  const auto vtkCovered = [&](int x, int y) {
+    return vtkDepth->GetValue(PixelIndex(vtk.Depth, x, y)) < 1.0f;
+  };
+  long covered = 0, silhouetteDifferences = 0, interior = 0, colorMismatches = 0;
+  int worst = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      const vtkIdType id = CellIdAt(facet, x, y);
+      const bool ours = id >= 0, theirs = vtkCovered(x, y);
+      covered += theirs;
+      silhouetteDifferences += ours != theirs;
+      // Away from edges: the 3x3 neighbourhood is covered in both renderers and has one
+      // color in ours, so it does not matter which of two coplanar triangles owns the pixel.
+      bool inside = ours && theirs && x > 0 && y > 0 && x + 1 < Width && y + 1 < Height;
+      const std::array<int, 4> center = inside ? RgbaAt(facet, x, y) : std::array<int, 4>{};
+      for (int dy = -1; inside && dy <= 1; ++dy)
+      {
+        for (int dx = -1; inside && dx <= 1; ++dx)
+        {
+          inside = vtkCovered(x + dx, y + dy) && RgbaAt(facet, x + dx, y + dy) == center;
+        }
+      }
+      if (!inside)
+      {
+        continue;
+      }
+      ++interior;
+      const std::array<int, 4> rgba = RgbaAt(facet, x, y);
+      const unsigned char* reference = vtkColor->GetPointer(vtkComponents * PixelIndex(vtk.Color, x, y));
+      int difference = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        difference = std::max(difference, std::abs(rgba[c] - reference[c]));
+      }
+      worst = std::max(worst, difference);
+      if (difference > 2 && ++colorMismatches <= 5)
+      {
+        ADD_FAILURE() << "pixel (" << x << ", " << y << ") Facet " << rgba[0] << "," << rgba[1]
+                      << "," << rgba[2] << " VTK " << int(reference[0]) << ","
+                      << int(reference[1]) << "," << int(reference[2]);
+      }
+    }
+  }
+  std::printf("%s azimuth %g: %ld covered, %ld silhouette differences (%.3f %%), %ld interior "
+              "pixels, worst color difference %d/255\n",
+    mesh.c_str(), azimuth, covered, silhouetteDifferences, 100.0 * silhouetteDifferences / covered,
+    interior, worst);
+  EXPECT_GT(covered, Width * Height / 10);
+  EXPECT_LE(silhouetteDifferences, 0.005 * covered);
+  EXPECT_GT(interior, covered / 20) << "enough pixels away from edges to compare colors";
+  EXPECT_EQ(colorMismatches, 0);
+}
+}
+
+TEST(VtkAgreement, FandiskFlatFacets)
+{
+  Compare("fandisk.obj", 30.0, 20.0);
+}
+
+TEST(VtkAgreement, BunnyFromTheSide)
+{
+  Compare("stanford-bunny.obj", -60.0, 10.0);
+}
+
+TEST(VtkAgreement, SpotClosedMesh)
+{
+  Compare("spot.obj", 120.0, -15.0);
+}
