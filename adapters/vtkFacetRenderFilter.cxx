@@ -28,10 +28,16 @@
 
 #include "facet/Conventions.h"
 #include "facet/Error.h"
+#include "facet/HugePageAllocator.h"
 #include "facet/Renderer.h"
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+#include <algorithm>
 #include <chrono>
-#include <cstring>
+#include <cstdlib>
 #include <string>
 
 namespace
@@ -43,29 +49,55 @@ double SecondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The output's array of that name when only the output holds it and it has the right
-// shape (re-rendering then allocates nothing), else a new one. As vtkImageData reuses its
-// scalars, never an array somebody else may still be reading.
-template <class ArrayType>
-ArrayType* OutputArray(vtkPointData* pointData, const char* name, int components, vtkIdType tuples)
+// Memory for an image plane that the renderer writes directly: 2 MiB-aligned and advised
+// to use transparent huge pages when large (tile traversal otherwise misses the TLB, see
+// facet/HugePageAllocator.h). Released with free(), which VTK calls.
+void* AllocatePlane(std::size_t bytes)
 {
-  auto* existing = ArrayType::SafeDownCast(pointData->GetAbstractArray(name));
-  if (existing && existing->GetReferenceCount() == 1 &&
-    existing->GetNumberOfComponents() == components && existing->GetNumberOfTuples() == tuples)
+  constexpr std::size_t hugePage = facet::HugePageAllocator<char>::kHugePage;
+  if (bytes < hugePage)
   {
-    existing->Modified();
-    return existing;
+    return std::malloc(std::max<std::size_t>(bytes, 1));
   }
-  vtkNew<ArrayType> array;
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  if (!array->Allocate(tuples * components)) // false when memory runs out
+  const std::size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
+  void* plane = std::aligned_alloc(hugePage, rounded);
+#if defined(__linux__)
+  if (plane)
   {
+    madvise(plane, rounded, MADV_HUGEPAGE);
+  }
+#endif
+  return plane;
+}
+
+// An output plane: the one kept from the last execution when nobody else holds it any more
+// and it has the right shape (re-rendering then allocates and page-faults nothing; the
+// pipeline empties the output before every execution, so the filter keeps its own
+// reference), else a new one. Never an array somebody may still be reading.
+template <class ArrayType>
+ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept, const char* name, int components,
+  vtkIdType tuples)
+{
+  if (kept && kept->GetReferenceCount() == 1 && kept->GetNumberOfComponents() == components &&
+    kept->GetNumberOfTuples() == tuples)
+  {
+    kept->Modified();
+    return kept;
+  }
+  const vtkIdType values = tuples * components;
+  using Value = typename ArrayType::ValueType;
+  auto* memory = static_cast<Value*>(AllocatePlane(static_cast<std::size_t>(values) * sizeof(Value)));
+  if (!memory)
+  {
+    kept = nullptr;
     return nullptr;
   }
-  array->SetNumberOfTuples(tuples);
-  pointData->AddArray(array);
-  return array;
+  kept = vtkSmartPointer<ArrayType>::New();
+  kept->SetName(name);
+  kept->SetNumberOfComponents(components);
+  kept->SetArray(memory, values, /*save=*/0, ArrayType::VTK_DATA_ARRAY_USER_DEFINED);
+  kept->SetArrayFreeFunction(std::free);
+  return kept;
 }
 
 template <class ArrayType>
@@ -91,7 +123,10 @@ class vtkFacetRenderFilter::vtkInternals
 {
 public:
   facet::Renderer Renderer;
-  facet::Framebuffer Framebuffer;
+  facet::HugePageVector<std::int32_t> PolygonIds; // the renderer's id plane, before mapping
+  vtkSmartPointer<vtkUnsignedCharArray> Rgba;       // the output planes, kept for reuse
+  vtkSmartPointer<vtkFloatArray> Depth;
+  vtkSmartPointer<vtkIdTypeArray> CellIds;
   vtkFacetPolyDataConverter Mesh;
   vtkFacetScalarColors Colors;
   vtkNew<vtkRenderer> CameraReset; // no window: only for vtkRenderer::ResetCamera
@@ -409,7 +444,28 @@ int vtkFacetRenderFilter::RequestData(
     vtkWarningMacro(<< warning);
   }
 
-  // Render.
+  // Render straight into the output's RGBA and Depth arrays.
+  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
+  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+  output->SetSpacing(1.0, 1.0, 1.0);
+  output->SetOrigin(0.0, 0.0, 0.0);
+  vtkPointData* pointData = output->GetPointData();
+  auto* rgba = OutputArray(internals.Rgba, "RGBA", 4, pixels);
+  auto* depth = OutputArray(internals.Depth, "Depth", 1, pixels);
+  auto* cellIds = OutputArray(internals.CellIds, "CellId", 1, pixels);
+  if (!rgba || !depth || !cellIds)
+  {
+    return fail("cannot allocate the " + std::to_string(width) + " x " + std::to_string(height) +
+      " output image");
+  }
+  pointData->SetScalars(rgba);
+  pointData->AddArray(depth);
+  pointData->AddArray(cellIds);
+  internals.PolygonIds.resize(static_cast<std::size_t>(pixels));
+  const facet::FramebufferView target{ width, height,
+    reinterpret_cast<facet::Rgba8*>(rgba->GetPointer(0)), depth->GetPointer(0),
+    internals.PolygonIds.data() };
+
   facet::Renderer& renderer = internals.Renderer;
   facet::RenderStats stats;
   try
@@ -426,8 +482,7 @@ int vtkFacetRenderFilter::RequestData(
       this->UpdateProgress(0.05 + 0.9 * fraction);
       return !this->GetAbortExecute();
     });
-    internals.Framebuffer.resize(width, height);
-    stats = renderer.render(scene, facetCamera, internals.Framebuffer);
+    stats = renderer.render(scene, facetCamera, target);
   }
   catch (const facet::Error& e)
   {
@@ -439,31 +494,14 @@ int vtkFacetRenderFilter::RequestData(
                                << " cells that use points with NaN or infinite coordinates");
   }
 
-  // Output: the image, then what it cost.
+  // Cell ids, then what it cost.
   const Clock::time_point outputStart = Clock::now();
-  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
-  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
-  output->SetSpacing(1.0, 1.0, 1.0);
-  output->SetOrigin(0.0, 0.0, 0.0);
-  vtkPointData* pointData = output->GetPointData();
-  auto* rgba = OutputArray<vtkUnsignedCharArray>(pointData, "RGBA", 4, pixels);
-  auto* depth = OutputArray<vtkFloatArray>(pointData, "Depth", 1, pixels);
-  auto* cellIds = OutputArray<vtkIdTypeArray>(pointData, "CellId", 1, pixels);
-  if (!rgba || !depth || !cellIds)
-  {
-    return fail("cannot allocate the " + std::to_string(width) + " x " + std::to_string(height) +
-      " output image");
-  }
-  pointData->SetActiveScalars("RGBA");
-  const facet::Framebuffer& framebuffer = internals.Framebuffer;
-  std::memcpy(rgba->GetPointer(0), framebuffer.color().data(), framebuffer.color().size_bytes());
-  std::memcpy(depth->GetPointer(0), framebuffer.depth().data(), framebuffer.depth().size_bytes());
-  vtkIdType* ids = cellIds->GetPointer(0);
-  const std::int32_t* polygonIds = framebuffer.polygonId().data();
-  for (vtkIdType i = 0; i < pixels; ++i)
-  {
-    ids[i] = mesh.CellIdOf(polygonIds[i]);
-  }
+  // Memory-bound and elementwise: on the renderer's threads.
+  renderer.parallelFor(static_cast<std::size_t>(pixels), std::size_t{ 1 } << 16,
+    [&](std::size_t begin, std::size_t end) {
+      mesh.CellIdsOf(internals.PolygonIds.data(), cellIds->GetPointer(0),
+        static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end));
+    });
   const double outputSeconds = SecondsSince(outputStart);
 
   vtkFieldData* fieldData = output->GetFieldData();

@@ -159,6 +159,13 @@ void Renderer::setThreadCount(int threads) {
 
 int Renderer::threadCount() const { return workspace_->pool->threadCount(); }
 
+void Renderer::parallelFor(std::size_t count, std::size_t grain,
+                           const std::function<void(std::size_t, std::size_t)>& work) {
+  grain = std::max<std::size_t>(grain, 1);
+  auto block = [&](std::size_t i) { work(i * grain, std::min(count, (i + 1) * grain)); };
+  workspace_->pool->run((count + grain - 1) / grain, detail::FunctionRef<void(std::size_t)>(block));
+}
+
 RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, int height) const {
   validate(camera);
   validateImageSize(width, height);
@@ -168,15 +175,19 @@ RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, i
                   twoSidedLighting_);
 }
 
-RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuffer& framebuffer) {
+RenderStats Renderer::render(const Scene& scene, const Camera& camera,
+                             const FramebufferView& target) {
   const Clock::time_point start = Clock::now();
   Workspace& ws = *workspace_;
   FrameState& frame = ws.frame;
-  const int width = framebuffer.width(), height = framebuffer.height();
+  const int width = target.width, height = target.height;
 
   // --- Checks: everything that can throw does so before a pixel changes. -----------------
   validate(camera);
   validateImageSize(width, height);
+  if (!target.color || !target.depth || !target.polygonId) {
+    throw Error("FramebufferView has a null plane");
+  }
   validateMaterials(scene);
   frame.shader.reset(scene.lights);
   frame.plan = makePlan(scene, camera, width, height, frame.shader, threadCount(), visibility_,
@@ -339,8 +350,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
   // --- Phase 3: per tile, clear, paint depth and ids, mark the polygons shown. -----------
   phase = Clock::now();
   const Rgba8 background = toRgba8(background_, backgroundAlpha_);
-  const detail::Planes planes{framebuffer.color().data(), framebuffer.depth().data(),
-                              framebuffer.polygonId().data(), width};
+  const detail::Planes planes{target.color, target.depth, target.polygonId, width};
   ws.tiles.assign(tileCount, {});
   const auto tileBounds = [&](std::size_t t) {
     const int tx = static_cast<int>(t % plan.tilesX), ty = static_cast<int>(t / plan.tilesX);
@@ -401,10 +411,10 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera, Framebuff
                     progressOf(0.95, 1.0, tileCount));
   if (!colored) {
     // Stopped early: leave a valid image (background) rather than a half-cleared one.
-    std::fill(framebuffer.color().begin(), framebuffer.color().end(), background);
-    std::fill(framebuffer.depth().begin(), framebuffer.depth().end(), 1.0f);
-    std::fill(framebuffer.polygonId().begin(), framebuffer.polygonId().end(),
-              Framebuffer::kBackgroundId);
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    std::fill(target.color, target.color + pixels, background);
+    std::fill(target.depth, target.depth + pixels, 1.0f);
+    std::fill(target.polygonId, target.polygonId + pixels, Framebuffer::kBackgroundId);
   }
   stats.shadeSeconds = secondsSince(phase);
 

@@ -68,6 +68,17 @@ class PythonPipeline(unittest.TestCase):
             for index in (0, 120 * 320 + 160, 200 * 320 + 100):
                 self.assertEqual(written.GetTuple(index), rendered.GetTuple(index))
 
+    def test_arrays_kept_by_the_user_are_not_overwritten(self):
+        self.render.Update()
+        kept = self.render.GetOutput().GetPointData().GetArray("RGBA")
+        before = [kept.GetTuple(i) for i in range(0, 320 * 240, 997)]
+        self.render.SetBackground(1.0, 0.0, 0.0)
+        self.render.Update()
+        after = [kept.GetTuple(i) for i in range(0, 320 * 240, 997)]
+        self.assertEqual(before, after)
+        fresh = self.render.GetOutput().GetPointData().GetArray("RGBA")
+        self.assertEqual(fresh.GetTuple(0), (255.0, 0.0, 0.0, 255.0))
+
     def test_facet_light_from_python(self):
         light = vtkFacetLight()
         light.SetLightTypeToHeadlight()

@@ -15,6 +15,18 @@
 
 namespace facet {
 
+/// The planes a render writes, owned by the caller: color, depth and polygon id for
+/// width × height pixels each, with the layout of Framebuffer (row 0 at the bottom). A
+/// caller that keeps its image in its own arrays (the VTK filter renders straight into the
+/// output's RGBA and Depth arrays) renders into a view of them; nothing is copied.
+struct FramebufferView {
+  int width = 0;
+  int height = 0;
+  Rgba8* color = nullptr;
+  float* depth = nullptr;
+  std::int32_t* polygonId = nullptr;
+};
+
 class Framebuffer {
  public:
   /// Polygon id of a pixel no polygon covers.
@@ -44,6 +56,11 @@ class Framebuffer {
   /// then mesh 1, ...), or kBackgroundId.
   std::span<std::int32_t> polygonId() { return {polygonId_.data(), pixelCount()}; }
   std::span<const std::int32_t> polygonId() const { return {polygonId_.data(), pixelCount()}; }
+
+  /// The planes of this framebuffer, to render into.
+  FramebufferView view() {
+    return {width_, height_, color_.data(), depth_.data(), polygonId_.data()};
+  }
 
   std::size_t indexOf(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
   Rgba8 colorAt(int x, int y) const { return color_[indexOf(x, y)]; }

@@ -66,7 +66,19 @@ class Renderer {
   /// Renders the scene into the framebuffer (its size is the image size). Throws
   /// facet::Error, naming the offending value, for an invalid mesh structure, camera,
   /// light or material, before anything is painted.
-  RenderStats render(const Scene& scene, const Camera& camera, Framebuffer& framebuffer);
+  RenderStats render(const Scene& scene, const Camera& camera, Framebuffer& framebuffer) {
+    return render(scene, camera, framebuffer.view());
+  }
+
+  /// The same, into planes the caller owns (see FramebufferView). Throws facet::Error for a
+  /// size outside [1, kMaxImageSide] or a null plane.
+  RenderStats render(const Scene& scene, const Camera& camera, const FramebufferView& target);
+
+  /// Runs work(begin, end) over [0, count) in blocks of `grain`, on the renderer's threads
+  /// (the caller's included), for elementwise work on a rendered image such as converting
+  /// its ids. Returns when all blocks are done. The blocks must not depend on each other.
+  void parallelFor(std::size_t count, std::size_t grain,
+                   const std::function<void(std::size_t begin, std::size_t end)>& work);
 
  private:
   struct Workspace;
