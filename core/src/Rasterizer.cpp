@@ -1,6 +1,7 @@
 #include "Rasterizer.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "Assert.h"
 #include "facet/Conventions.h"
@@ -21,17 +22,58 @@ struct Edge {
   std::int64_t stepX;  // change per pixel to the right
   std::int64_t stepY;  // change per pixel up
   std::int64_t value;  // biased value at the first sample
+  bool biased;         // value is the edge function − 1 (not a top-left edge)
 
   Edge(const WindowVertex& p, const WindowVertex& q, std::int64_t sampleX, std::int64_t sampleY) {
     const std::int64_t dx = q.x - p.x;
     const std::int64_t dy = q.y - p.y;
     stepX = -dy * kSubpixelScale;
     stepY = dx * kSubpixelScale;
-    const bool topLeft = dy < 0 || (dy == 0 && dx < 0);
     // Samples exactly on a non-top-left edge are outside: bias them to −1.
-    value = dx * (sampleY - p.y) - dy * (sampleX - p.x) - (topLeft ? 0 : 1);
+    biased = !(dy < 0 || (dy == 0 && dx < 0));
+    value = dx * (sampleY - p.y) - dy * (sampleX - p.x) - (biased ? 1 : 0);
   }
 };
+
+
+// Writes one fragment if it passes the depth test.
+template <DepthMode kMode>
+void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
+                   PaintCounts& counts) {
+  if (kMode == DepthMode::Overwrite || depth < planes.depth[i]) {
+    // A written pixel's depth is < 1 under the depth test, so depth 1 means background;
+    // painter's order may write depth 1 (the far plane), so it asks the id.
+    counts.covered += kMode == DepthMode::Test ? planes.depth[i] == 1.0f
+                                               : planes.polygonId[i] == kBackgroundPolygon;
+    planes.depth[i] = depth;
+    planes.polygonId[i] = polygonId;
+    ++counts.written;
+    // Tiles sharing a polygon may race to store the same 1: relaxed atomics make it benign.
+    std::atomic_ref<std::uint8_t> shown(planes.shown[static_cast<std::size_t>(polygonId)]);
+    if (shown.load(std::memory_order_relaxed) == 0) shown.store(1, std::memory_order_relaxed);
+  }
+}
+
+// Most triangles of a dense mesh have a single sample in their bounding box: test it
+// exactly and interpolate its depth with barycentric weights, skipping the edge walker's
+// set-up. Same coverage decision (the same biased edge functions) and the same plane.
+template <DepthMode kMode>
+void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                       std::int64_t area, int x, int y, std::int32_t polygonId,
+                       const Planes& planes, PaintCounts& counts) {
+  const std::int64_t sampleX = std::int64_t{x} * kSubpixelScale + kHalfPixel;
+  const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
+  const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
+  if ((e0.value | e1.value | e2.value) < 0) return;
+  // The unbiased edge values are the barycentric weights times the area.
+  const double inverseArea = 1.0 / static_cast<double>(area);
+  const double wb = static_cast<double>(e1.value + (e1.biased ? 1 : 0)) * inverseArea;
+  const double wc = static_cast<double>(e2.value + (e2.biased ? 1 : 0)) * inverseArea;
+  const double z = a.z + wb * (static_cast<double>(b.z) - a.z) + wc * (static_cast<double>(c.z) - a.z);
+  const float depth = std::clamp(static_cast<float>(z), 0.0f, 1.0f);
+  writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, depth, polygonId, planes,
+                       counts);
+}
 
 }  // namespace
 
@@ -72,6 +114,10 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   FACET_ASSERT(area > 0);
   const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
   if (box.empty()) return;
+  if (box.x0 == box.x1 && box.y0 == box.y1) {
+    paintSingleSample<kMode>(a, b, c, area, box.x0, box.y0, polygonId, planes, counts);
+    return;
+  }
 
   const std::int64_t sampleX = std::int64_t{box.x0} * kSubpixelScale + kHalfPixel;
   const std::int64_t sampleY = std::int64_t{box.y0} * kSubpixelScale + kHalfPixel;
@@ -86,7 +132,6 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   const double dzdy = (dz2 * (b.x - a.x) - dz1 * (c.x - a.x)) * inverseArea;
   const float dzPerPixel = static_cast<float>(dzdx * kSubpixelScale);
 
-  std::size_t written = 0, covered = 0;
   for (int y = box.y0; y <= box.y1; ++y) {
     std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
     const double rowY = static_cast<double>(y - box.y0) * kSubpixelScale + (sampleY - a.y);
@@ -96,15 +141,7 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
       if ((w0 | w1 | w2) >= 0) {
         const std::size_t i = row + x;
         const float depth = std::clamp(z, 0.0f, 1.0f);
-        if (kMode == DepthMode::Overwrite || depth < planes.depth[i]) {
-          // A written pixel's depth is < 1 under the depth test, so depth 1 means background;
-          // painter's order may write depth 1 (the far plane), so it asks the id.
-          covered += kMode == DepthMode::Test ? planes.depth[i] == 1.0f
-                                              : planes.polygonId[i] == kBackgroundPolygon;
-          planes.depth[i] = depth;
-          planes.polygonId[i] = polygonId;
-          ++written;
-        }
+        writeFragment<kMode>(i, depth, polygonId, planes, counts);
       }
       w0 += e0.stepX;
       w1 += e1.stepX;
@@ -115,8 +152,6 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     e1.value += e1.stepY;
     e2.value += e2.stepY;
   }
-  counts.written += written;
-  counts.covered += covered;
 }
 
 template void paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,

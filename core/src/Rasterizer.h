@@ -42,12 +42,14 @@ PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
 bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                      const PixelBounds& bounds);
 
-// Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom).
+// Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom), and one
+// flag per polygon, set when the polygon wins a pixel (it will need shading).
 struct Planes {
   Rgba8* color;
   float* depth;
   std::int32_t* polygonId;
   int width;
+  std::uint8_t* shown;
 };
 
 enum class DepthMode { Test, Overwrite };

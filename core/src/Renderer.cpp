@@ -194,7 +194,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                         twoSidedLighting_);
   const RenderPlan& plan = frame.plan;
   constexpr std::size_t kMaxIds = std::numeric_limits<std::int32_t>::max();
-  if (plan.polygons > kMaxIds || plan.points > detail::kClippedVertexBit) {
+  if (plan.polygons > kMaxIds || plan.points > kMaxIds) {
     throw Error("Scene has " + std::to_string(plan.polygons) + " polygons and " +
                 std::to_string(plan.points) + " points; at most 2^31 - 1 of each render at once");
   }
@@ -333,7 +333,7 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
     }
   }
   frame.polygonColors.resize(plan.polygons);
-  frame.visible.resize(plan.polygons);
+  frame.shown.resize(plan.polygons);
   frame.chunks.resize(ws.polygonRanges.size());
   for (std::size_t i = 0; i < frame.chunks.size(); ++i) {
     frame.chunks[i].counts = {};  // an aborted render leaves chunks unvisited
@@ -347,10 +347,11 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                                progressOf(0.25, 0.65, frame.chunks.size()));
   stats.setupSeconds = secondsSince(phase);
 
-  // --- Phase 3: per tile, clear, paint depth and ids, mark the polygons shown. -----------
+  // --- Phase 3: per tile, clear, then paint depth and ids (marking the polygons shown). --
   phase = Clock::now();
   const Rgba8 background = toRgba8(background_, backgroundAlpha_);
-  const detail::Planes planes{target.color, target.depth, target.polygonId, width};
+  const detail::Planes planes{target.color, target.depth, target.polygonId, width,
+                              frame.shown.data()};
   ws.tiles.assign(tileCount, {});
   const auto tileBounds = [&](std::size_t t) {
     const int tx = static_cast<int>(t % plan.tilesX), ty = static_cast<int>(t / plan.tilesX);
@@ -385,7 +386,6 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                 }
               }
             }
-            detail::markVisiblePolygons(frame, tile, planes);
             ws.tiles[t] = counts;
           },
           progressOf(0.65, 0.85, tileCount));

@@ -1,10 +1,9 @@
-// Phase 3b–3d: colors. Flat shading is a function of the polygon alone, so only the
-// polygons that end up visible are lit: tiles mark the ids they show, the marked polygons
-// are shaded in id order (sequential reads of the mesh arrays; screen order would scatter
-// them), and tiles then look their pixels' colors up. Hidden polygons — behind others, or
-// the back faces of a closed surface — are never lit.
+// Phase 4: colors. Flat shading is a function of the polygon alone, so only polygons that
+// won a pixel while painting (Planes::shown) are lit — in id order, as sequential reads of
+// the mesh arrays (screen order would scatter them) — and tiles then look their pixels'
+// colors up. Polygons hidden all along — behind others, or the back faces of a closed
+// surface — are never lit; one overdrawn later is lit once for nothing.
 
-#include <atomic>
 #include <bit>
 
 #include "Frame.h"
@@ -46,18 +45,6 @@ Rgba8 shadePolygon(const FrameState& frame, const FrameMesh& mesh, PointsT point
 
 }  // namespace
 
-void markVisiblePolygons(FrameState& frame, const PixelBounds& tile, const Planes& planes) {
-  for (int y = tile.y0; y <= tile.y1; ++y) {
-    const std::int32_t* ids = planes.polygonId + static_cast<std::size_t>(y) * planes.width;
-    for (int x = tile.x0; x <= tile.x1; ++x) {
-      if (ids[x] < 0) continue;
-      // Tiles sharing a polygon race to write the same 1: relaxed atomics make that benign.
-      std::atomic_ref<std::uint8_t> flag(frame.visible[static_cast<std::size_t>(ids[x])]);
-      if (flag.load(std::memory_order_relaxed) == 0) flag.store(1, std::memory_order_relaxed);
-    }
-  }
-}
-
 std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::size_t begin,
                                  std::size_t end) {
   const FrameMesh& mesh = frame.meshes[meshIndex];
@@ -65,7 +52,7 @@ std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::
   withTypedMesh(mesh.source->mesh, [&](auto points, auto polygons) {
     for (std::size_t polygon = begin; polygon < end; ++polygon) {
       const std::size_t id = mesh.firstPolygon + polygon;
-      if (!frame.visible[id]) continue;
+      if (!frame.shown[id]) continue;
       ++shaded;
       const Rgba8 color =
           mesh.uniformColor ? *mesh.uniformColor

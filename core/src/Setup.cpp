@@ -33,7 +33,7 @@ class PolygonSetup {
   void run(std::size_t polygon) {
     polygon_ = polygon;
     polygonId_ = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
-    frame_.visible[static_cast<std::size_t>(polygonId_)] = 0;
+    frame_.shown[static_cast<std::size_t>(polygonId_)] = 0;
     const std::size_t n = polygons_.size(polygon);
     if (n == 3) {
       runTriangle();
@@ -197,8 +197,17 @@ class PolygonSetup {
       ++tally.outside;
       return;
     }
+    bin(static_cast<std::uint32_t>(chunk_.triangles.size()), bounds);
     chunk_.triangles.push_back({{r0, r1, r2}, polygonId_});
-    chunk_.pendingBounds.push_back(bounds);
+  }
+
+  void bin(std::uint32_t triangle, const PixelBounds& b) {
+    const int tilesX = frame_.plan.tilesX;
+    for (int ty = b.y0 / kTileSize; ty <= b.y1 / kTileSize; ++ty) {
+      for (int tx = b.x0 / kTileSize; tx <= b.x1 / kTileSize; ++tx) {
+        chunk_.bins[static_cast<std::size_t>(ty) * tilesX + tx].push_back(triangle);
+      }
+    }
   }
 
   void countDropped(const Tally& tally) {
@@ -211,23 +220,12 @@ class PolygonSetup {
     }
   }
 
-  // Bins the polygon's new triangles and notes, for the resolve, which side of it the
-  // viewer sees: clockwise on screen by the exact integer area, as OpenGL's gl_FrontFacing.
+  // Notes, for the shading, which side of the polygon the viewer sees: clockwise on screen
+  // by the exact integer area, as OpenGL's gl_FrontFacing.
   void finishPolygon(std::size_t first, bool seenFromBack) {
     frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
         seenFromBack ? kUnshadedBack : kUnshadedFront;
-    const int tilesX = frame_.plan.tilesX;
-    for (std::size_t i = first; i < chunk_.triangles.size(); ++i) {
-      const PixelBounds& b = chunk_.pendingBounds[i - first];
-      for (int ty = b.y0 / kTileSize; ty <= b.y1 / kTileSize; ++ty) {
-        for (int tx = b.x0 / kTileSize; tx <= b.x1 / kTileSize; ++tx) {
-          chunk_.bins[static_cast<std::size_t>(ty) * tilesX + tx].push_back(
-              static_cast<std::uint32_t>(i));
-        }
-      }
-    }
     chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
-    chunk_.pendingBounds.clear();
     ++chunk_.counts.drawn;
   }
 
