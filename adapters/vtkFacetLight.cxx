@@ -23,12 +23,12 @@ void vtkFacetLight::DeepCopy(vtkLight* light)
 void vtkFacetLight::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SpotModel: "
-     << (this->SpotModel == LinearFalloff ? "LinearFalloff" : "ConeWithExponent") << "\n";
+  os << indent
+     << "SpotModel: " << (this->SpotModel == LinearFalloff ? "LinearFalloff" : "ConeWithExponent")
+     << "\n";
   os << indent << "FullIntensityAngle: " << this->FullIntensityAngle << "\n";
   os << indent << "FalloffAngle: " << this->FalloffAngle << "\n";
   os << indent << "AttenuationModel: "
-     << (this->AttenuationModel == FalloffDistanceModel ? "FalloffDistance" : "Quadratic")
-     << "\n";
+     << (this->AttenuationModel == FalloffDistanceModel ? "FalloffDistance" : "Quadratic") << "\n";
   os << indent << "FalloffDistance: " << this->FalloffDistance << "\n";
 }

@@ -12,8 +12,7 @@
 
 #include <limits>
 
-namespace
-{
+namespace {
 constexpr vtkIdType MaxFacetIds = std::numeric_limits<std::int32_t>::max();
 }
 
@@ -24,8 +23,9 @@ void vtkFacetPolyDataConverter::Reset()
 }
 
 //------------------------------------------------------------------------------
-bool vtkFacetPolyDataConverter::Update(
-  vtkPolyData* input, bool detectClosedSurfaces, std::string& error)
+bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
+  bool detectClosedSurfaces,
+  std::string& error)
 {
   this->Converted = false;
   if (input == this->Input && input->GetMTime() == this->InputTime &&
@@ -183,8 +183,10 @@ vtkIdType vtkFacetPolyDataConverter::CellIdOf(std::int32_t polygonId) const
 }
 
 //------------------------------------------------------------------------------
-void vtkFacetPolyDataConverter::CellIdsOf(
-  const std::int32_t* polygonIds, vtkIdType* cellIds, vtkIdType begin, vtkIdType end) const
+void vtkFacetPolyDataConverter::CellIdsOf(const std::int32_t* polygonIds,
+  vtkIdType* cellIds,
+  vtkIdType begin,
+  vtkIdType end) const
 {
   if (this->StripOf.empty())
   {

@@ -46,8 +46,10 @@ public:
   /// The vtkPolyData cell id of a Facet polygon id; -1 for the background id (-1).
   vtkIdType CellIdOf(std::int32_t polygonId) const;
   /// CellIdOf for the ids in [begin, end) of an image's id plane.
-  void CellIdsOf(
-    const std::int32_t* polygonIds, vtkIdType* cellIds, vtkIdType begin, vtkIdType end) const;
+  void CellIdsOf(const std::int32_t* polygonIds,
+    vtkIdType* cellIds,
+    vtkIdType begin,
+    vtkIdType end) const;
 
   /// The strip (0-based, among the strips) that produced strip triangle `triangle`.
   vtkIdType StripOfTriangle(std::size_t triangle) const { return this->StripOf[triangle]; }

@@ -40,8 +40,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace
-{
+namespace {
 using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start)
@@ -74,8 +73,10 @@ void* AllocatePlane(std::size_t bytes)
 // and it has the right shape (re-rendering then allocates and page-faults nothing; the
 // pipeline empties the output before every execution, so the filter keeps its own
 // reference), else a new one. Never an array somebody may still be reading.
-template <class ArrayType>
-ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept, const char* name, int components,
+template<class ArrayType>
+ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept,
+  const char* name,
+  int components,
   vtkIdType tuples)
 {
   if (kept && kept->GetReferenceCount() == 1 && kept->GetNumberOfComponents() == components &&
@@ -86,7 +87,8 @@ ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept, const char* name, int c
   }
   const vtkIdType values = tuples * components;
   using Value = typename ArrayType::ValueType;
-  auto* memory = static_cast<Value*>(AllocatePlane(static_cast<std::size_t>(values) * sizeof(Value)));
+  auto* memory =
+    static_cast<Value*>(AllocatePlane(static_cast<std::size_t>(values) * sizeof(Value)));
   if (!memory)
   {
     kept = nullptr;
@@ -100,8 +102,9 @@ ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept, const char* name, int c
   return kept;
 }
 
-template <class ArrayType>
-void AddNamedComponents(vtkFieldData* fieldData, const char* name,
+template<class ArrayType>
+void AddNamedComponents(vtkFieldData* fieldData,
+  const char* name,
   std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
 {
   vtkNew<ArrayType> array;
@@ -124,7 +127,7 @@ class vtkFacetRenderFilter::vtkInternals
 public:
   facet::Renderer Renderer;
   facet::HugePageVector<std::int32_t> PolygonIds; // the renderer's id plane, before mapping
-  vtkSmartPointer<vtkUnsignedCharArray> Rgba;       // the output planes, kept for reuse
+  vtkSmartPointer<vtkUnsignedCharArray> Rgba;     // the output planes, kept for reuse
   vtkSmartPointer<vtkFloatArray> Depth;
   vtkSmartPointer<vtkIdTypeArray> CellIds;
   vtkFacetPolyDataConverter Mesh;
@@ -294,7 +297,8 @@ vtkMTimeType vtkFacetRenderFilter::GetMTime()
 {
   vtkMTimeType time = std::max(this->Superclass::GetMTime(), this->Lights->GetMTime());
   for (vtkObject* object : { static_cast<vtkObject*>(this->Camera),
-         static_cast<vtkObject*>(this->Property), static_cast<vtkObject*>(this->LookupTable) })
+         static_cast<vtkObject*>(this->Property),
+         static_cast<vtkObject*>(this->LookupTable) })
   {
     if (object)
     {
@@ -318,8 +322,9 @@ int vtkFacetRenderFilter::FillInputPortInformation(int, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
-int vtkFacetRenderFilter::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFacetRenderFilter::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const int width = this->Size[0], height = this->Size[1];
@@ -340,8 +345,9 @@ int vtkFacetRenderFilter::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
-int vtkFacetRenderFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFacetRenderFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   const Clock::time_point start = Clock::now();
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
@@ -401,8 +407,8 @@ int vtkFacetRenderFilter::RequestData(
                     "non-surface representation; Facet renders opaque flat-shaded surfaces "
                     "(said once)");
   }
-  const bool scalarColors = !internals.Colors.PolygonColors().empty() ||
-    !internals.Colors.StripColors().empty();
+  const bool scalarColors =
+    !internals.Colors.PolygonColors().empty() || !internals.Colors.StripColors().empty();
   const facet::Material material = vtkFacetSceneConverter::ConvertProperty(property, scalarColors);
   facet::Scene scene;
   if (mesh.Polygons().polygons.count > 0)
@@ -462,8 +468,10 @@ int vtkFacetRenderFilter::RequestData(
   pointData->AddArray(depth);
   pointData->AddArray(cellIds);
   internals.PolygonIds.resize(static_cast<std::size_t>(pixels));
-  const facet::FramebufferView target{ width, height,
-    reinterpret_cast<facet::Rgba8*>(rgba->GetPointer(0)), depth->GetPointer(0),
+  const facet::FramebufferView target{ width,
+    height,
+    reinterpret_cast<facet::Rgba8*>(rgba->GetPointer(0)),
+    depth->GetPointer(0),
     internals.PolygonIds.data() };
 
   facet::Renderer& renderer = internals.Renderer;
@@ -497,25 +505,34 @@ int vtkFacetRenderFilter::RequestData(
   // Cell ids, then what it cost.
   const Clock::time_point outputStart = Clock::now();
   // Memory-bound and elementwise: on the renderer's threads.
-  renderer.parallelFor(static_cast<std::size_t>(pixels), std::size_t{ 1 } << 16,
+  renderer.parallelFor(static_cast<std::size_t>(pixels),
+    std::size_t{ 1 } << 16,
     [&](std::size_t begin, std::size_t end) {
-      mesh.CellIdsOf(internals.PolygonIds.data(), cellIds->GetPointer(0),
-        static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end));
+      mesh.CellIdsOf(internals.PolygonIds.data(),
+        cellIds->GetPointer(0),
+        static_cast<vtkIdType>(begin),
+        static_cast<vtkIdType>(end));
     });
   const double outputSeconds = SecondsSince(outputStart);
 
   vtkFieldData* fieldData = output->GetFieldData();
   fieldData->Initialize();
-  AddNamedComponents<vtkDoubleArray>(fieldData, "FacetRenderSeconds", { { "Total",
-    SecondsSince(start) } });
-  AddNamedComponents<vtkDoubleArray>(fieldData, "FacetPhaseSeconds",
-    { { "Conversion", conversionSeconds }, { "Validate", stats.validateSeconds },
-      { "Transform", stats.transformSeconds }, { "Setup", stats.setupSeconds },
-      { "Raster", stats.rasterSeconds }, { "Shade", stats.shadeSeconds },
+  AddNamedComponents<vtkDoubleArray>(
+    fieldData, "FacetRenderSeconds", { { "Total", SecondsSince(start) } });
+  AddNamedComponents<vtkDoubleArray>(fieldData,
+    "FacetPhaseSeconds",
+    { { "Conversion", conversionSeconds },
+      { "Validate", stats.validateSeconds },
+      { "Transform", stats.transformSeconds },
+      { "Setup", stats.setupSeconds },
+      { "Raster", stats.rasterSeconds },
+      { "Shade", stats.shadeSeconds },
       { "Output", outputSeconds } });
   const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
-  AddNamedComponents<vtkIdTypeArray>(fieldData, "FacetCounts",
-    { { "Polygons", count(stats.plan.polygons) }, { "PolygonsDrawn", count(stats.polygonsDrawn) },
+  AddNamedComponents<vtkIdTypeArray>(fieldData,
+    "FacetCounts",
+    { { "Polygons", count(stats.plan.polygons) },
+      { "PolygonsDrawn", count(stats.polygonsDrawn) },
       { "PolygonsShaded", count(stats.polygonsShaded) },
       { "PolygonsCulled", count(stats.polygonsCulled) },
       { "PolygonsOutside", count(stats.polygonsOutside) },
@@ -557,11 +574,11 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayId: " << this->ArrayId << "\n";
   os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
   os << indent << "LookupTable: " << this->LookupTable << "\n";
-  os << indent << "ScalarRange: (" << this->ScalarRange[0] << ", " << this->ScalarRange[1]
-     << ")\n";
+  os << indent << "ScalarRange: (" << this->ScalarRange[0] << ", " << this->ScalarRange[1] << ")\n";
   os << indent << "UseLookupTableScalarRange: " << this->UseLookupTableScalarRange << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
-  os << indent << "VisibilityMode: "
-     << (this->VisibilityMode == PainterSort ? "PainterSort" : "ZBuffer") << "\n";
+  os << indent
+     << "VisibilityMode: " << (this->VisibilityMode == PainterSort ? "PainterSort" : "ZBuffer")
+     << "\n";
   os << indent << "DetectClosedSurfaces: " << this->DetectClosedSurfaces << "\n";
 }

@@ -9,8 +9,7 @@
 
 #include <cmath>
 
-namespace
-{
+namespace {
 facet::Rgba8 ColorAt(const unsigned char* rgba, vtkIdType tuple)
 {
   const unsigned char* c = rgba + 4 * tuple;
@@ -18,7 +17,7 @@ facet::Rgba8 ColorAt(const unsigned char* rgba, vtkIdType tuple)
 }
 
 // The mean of a polygon's point colors, rounded to nearest.
-template <class PointIdAt>
+template<class PointIdAt>
 facet::Rgba8 AverageColor(const unsigned char* rgba, std::size_t count, const PointIdAt& pointId)
 {
   unsigned sum[4] = { 0, 0, 0, 0 };
@@ -36,8 +35,9 @@ facet::Rgba8 AverageColor(const unsigned char* rgba, std::size_t count, const Po
   return { mean(0), mean(1), mean(2), mean(3) };
 }
 
-template <class Index>
-void AveragePerPolygon(const facet::PolygonArray& polygons, const unsigned char* rgba,
+template<class Index>
+void AveragePerPolygon(const facet::PolygonArray& polygons,
+  const unsigned char* rgba,
   std::vector<facet::Rgba8>& colors)
 {
   const auto* offsets = static_cast<const Index*>(polygons.offsets);
@@ -53,7 +53,8 @@ void AveragePerPolygon(const facet::PolygonArray& polygons, const unsigned char*
   }
 }
 
-void AveragePerPolygon(const facet::PolygonArray& polygons, const unsigned char* rgba,
+void AveragePerPolygon(const facet::PolygonArray& polygons,
+  const unsigned char* rgba,
   std::vector<facet::Rgba8>& colors)
 {
   if (polygons.type == facet::PolygonArray::Type::Int32)
@@ -90,7 +91,9 @@ vtkScalarsToColors* vtkFacetScalarColors::GetDefaultLookupTable()
 
 //------------------------------------------------------------------------------
 std::string vtkFacetScalarColors::Update(vtkPolyData* input,
-  const vtkFacetPolyDataConverter& mesh, bool meshConverted, const Settings& settings)
+  const vtkFacetPolyDataConverter& mesh,
+  bool meshConverted,
+  const Settings& settings)
 {
   if (this->Valid && !meshConverted && settings == this->Last)
   {
@@ -104,12 +107,17 @@ std::string vtkFacetScalarColors::Update(vtkPolyData* input,
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFacetScalarColors::Compute(
-  vtkPolyData* input, const vtkFacetPolyDataConverter& mesh, const Settings& settings)
+std::string vtkFacetScalarColors::Compute(vtkPolyData* input,
+  const vtkFacetPolyDataConverter& mesh,
+  const Settings& settings)
 {
   int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, settings.ScalarMode,
-    settings.ArrayAccessMode, settings.ArrayId, settings.ArrayName.c_str(), cellFlag);
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input,
+    settings.ScalarMode,
+    settings.ArrayAccessMode,
+    settings.ArrayId,
+    settings.ArrayName.c_str(),
+    cellFlag);
   if (!scalars)
   {
     return settings.ArrayName.empty() && settings.ArrayId < 0

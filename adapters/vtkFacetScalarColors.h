@@ -51,8 +51,10 @@ public:
    * Recomputes the colors when the mesh was converted again or the settings changed.
    * Returns a warning for the caller to report (empty if none).
    */
-  std::string Update(vtkPolyData* input, const vtkFacetPolyDataConverter& mesh,
-    bool meshConverted, const Settings& settings);
+  std::string Update(vtkPolyData* input,
+    const vtkFacetPolyDataConverter& mesh,
+    bool meshConverted,
+    const Settings& settings);
 
   /// One color per polygon and per strip triangle; empty without scalar coloring.
   std::span<const facet::Rgba8> PolygonColors() const { return this->Polygon; }
@@ -62,8 +64,9 @@ public:
   vtkScalarsToColors* GetDefaultLookupTable();
 
 private:
-  std::string Compute(
-    vtkPolyData* input, const vtkFacetPolyDataConverter& mesh, const Settings& settings);
+  std::string Compute(vtkPolyData* input,
+    const vtkFacetPolyDataConverter& mesh,
+    const Settings& settings);
 
   Settings Last;
   bool Valid = false;

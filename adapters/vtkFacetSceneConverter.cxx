@@ -12,8 +12,7 @@
 
 #include <cmath>
 
-namespace
-{
+namespace {
 glm::dvec3 ToVec(const double v[3])
 {
   return { v[0], v[1], v[2] };
@@ -55,12 +54,20 @@ facet::Light ConvertLight(vtkLight* light, const glm::dvec3& position, const glm
   auto* facetLight = vtkFacetLight::SafeDownCast(light);
   if (facetLight && facetLight->GetSpotModel() == vtkFacetLight::LinearFalloff)
   {
-    return facet::SpotLight{ position, focal - position, color, intensity, AttenuationOf(light),
+    return facet::SpotLight{ position,
+      focal - position,
+      color,
+      intensity,
+      AttenuationOf(light),
       facet::LinearSpotCone{ facetLight->GetFullIntensityAngle(), facetLight->GetFalloffAngle() } };
   }
   if (light->GetConeAngle() <= 90.0)
   {
-    return facet::SpotLight{ position, focal - position, color, intensity, AttenuationOf(light),
+    return facet::SpotLight{ position,
+      focal - position,
+      color,
+      intensity,
+      AttenuationOf(light),
       facet::ExponentSpotCone{ std::max(light->GetConeAngle(), 0.0), light->GetExponent() } };
   }
   return facet::PointLight{ position, color, intensity, AttenuationOf(light) };
@@ -68,8 +75,10 @@ facet::Light ConvertLight(vtkLight* light, const glm::dvec3& position, const glm
 }
 
 //------------------------------------------------------------------------------
-facet::Camera vtkFacetSceneConverter::ConvertCamera(
-  vtkCamera* camera, int width, int height, std::string& warning)
+facet::Camera vtkFacetSceneConverter::ConvertCamera(vtkCamera* camera,
+  int width,
+  int height,
+  std::string& warning)
 {
   const double aspect = static_cast<double>(width) / height;
   facet::Camera c;
@@ -113,7 +122,9 @@ facet::Camera vtkFacetSceneConverter::ConvertCamera(
 
 //------------------------------------------------------------------------------
 facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights,
-  vtkCamera* camera, bool automaticLightCreation, const double ambientColor[3],
+  vtkCamera* camera,
+  bool automaticLightCreation,
+  const double ambientColor[3],
   std::string& warning)
 {
   facet::LightSet set;

@@ -38,16 +38,21 @@ class vtkFacetSceneConverter
 {
 public:
   /// The camera for a width × height image; `warning` names what is not rendered.
-  static facet::Camera ConvertCamera(
-    vtkCamera* camera, int width, int height, std::string& warning);
+  static facet::Camera ConvertCamera(vtkCamera* camera,
+    int width,
+    int height,
+    std::string& warning);
 
   /**
    * The lights, plus the scene ambient light. With no light at all and
    * `automaticLightCreation`, one headlight, as vtkRenderer creates. `warning` names lights
    * that were skipped.
    */
-  static facet::LightSet ConvertLights(vtkLightCollection* lights, vtkCamera* camera,
-    bool automaticLightCreation, const double ambientColor[3], std::string& warning);
+  static facet::LightSet ConvertLights(vtkLightCollection* lights,
+    vtkCamera* camera,
+    bool automaticLightCreation,
+    const double ambientColor[3],
+    std::string& warning);
 
   static facet::Material ConvertProperty(vtkProperty* property, bool scalarColoring);
 };

@@ -4,9 +4,9 @@
 //   build/bench/facet_bench                       # all
 //   build/bench/facet_bench --benchmark_filter=Sphere/500000
 //
-// Counters: triangles/s (input polygons per second) and fragments/s (fill rate, pixel writes incl. overdraw), and the
-// heap peak during the benchmark (mesh + framebuffer + renderer) as a ratio of the bytes of
-// the mesh plus the framebuffer (target: at most 2).
+// Counters: triangles/s (input polygons per second) and fragments/s (fill rate, pixel writes incl.
+// overdraw), and the heap peak during the benchmark (mesh + framebuffer + renderer) as a ratio of
+// the bytes of the mesh plus the framebuffer (target: at most 2).
 
 #include <cstdint>
 #include <vector>
@@ -31,7 +31,8 @@ struct VtkLikeMesh {
     return {PointArray::ofXyz(xyz), PolygonArray::of(offsets, connectivity), {}, closed};
   }
   std::size_t bytes() const {
-    return xyz.size() * sizeof(float) + (offsets.size() + connectivity.size()) * sizeof(std::int64_t);
+    return xyz.size() * sizeof(float) +
+           (offsets.size() + connectivity.size()) * sizeof(std::int64_t);
   }
 };
 

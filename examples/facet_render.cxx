@@ -38,8 +38,7 @@
 #include <string>
 #include <vector>
 
-namespace
-{
+namespace {
 const char* const Usage = R"(usage: facet-render MESH [options]
 
 Renders a mesh with Facet, a CPU flat-shading rasterizer (no GPU, no display), and writes
@@ -79,8 +78,7 @@ struct Failure : std::runtime_error
   Failure(const std::string& message, bool usage)
     : std::runtime_error(message)
     , Usage(usage)
-  {
-  }
+  {}
   bool Usage;
 };
 
@@ -89,8 +87,11 @@ struct Failure : std::runtime_error
   throw Failure(message + " (see facet-render --help)", true);
 }
 
-std::vector<double> ParseNumbers(const std::string& text, char separator, std::size_t count,
-  const std::string& option, const std::string& form)
+std::vector<double> ParseNumbers(const std::string& text,
+  char separator,
+  std::size_t count,
+  const std::string& option,
+  const std::string& form)
 {
   std::vector<double> values;
   std::stringstream stream(text);
@@ -365,7 +366,8 @@ std::string FirstLine(std::string text)
   }
   const auto lastLine = text.find_last_of('\n');
   std::string line = lastLine == std::string::npos ? text : text.substr(lastLine + 1);
-  if (const auto header = line.find("): "); line.rfind("vtk", 0) == 0 && header != std::string::npos)
+  if (const auto header = line.find("): ");
+      line.rfind("vtk", 0) == 0 && header != std::string::npos)
   {
     line = line.substr(header + 3);
   }
@@ -482,8 +484,8 @@ void ColorBy(vtkFacetRenderFilter* render, vtkPolyData* mesh, const Options& o)
   }
   if (!array)
   {
-    throw Failure("--color-by: '" + o.Input + "' has no point or cell array '" + o.ColorBy + "'",
-      true);
+    throw Failure(
+      "--color-by: '" + o.Input + "' has no point or cell array '" + o.ColorBy + "'", true);
   }
   render->SelectColorArray(o.ColorBy.c_str());
   if (onPoints)
@@ -524,8 +526,13 @@ struct ProgressBar
     }
     bar->Shown = true;
     const int filled = static_cast<int>(fraction * 30.0);
-    std::fprintf(stderr, "\rrendering [%.*s%*s] %3d%%", filled,
-      "##############################", 30 - filled, "", static_cast<int>(fraction * 100.0));
+    std::fprintf(stderr,
+      "\rrendering [%.*s%*s] %3d%%",
+      filled,
+      "##############################",
+      30 - filled,
+      "",
+      static_cast<int>(fraction * 100.0));
     std::fflush(stderr);
   }
 
@@ -604,8 +611,11 @@ int Run(int argc, char** argv)
   if (!o.Quiet)
   {
     vtkFieldData* fieldData = render->GetOutput()->GetFieldData();
-    std::printf("facet-render: wrote %s (%dx%d, %lld polygons, %.1f ms)\n", o.Output.c_str(),
-      o.Width, o.Height, static_cast<long long>(mesh->GetNumberOfCells()),
+    std::printf("facet-render: wrote %s (%dx%d, %lld polygons, %.1f ms)\n",
+      o.Output.c_str(),
+      o.Width,
+      o.Height,
+      static_cast<long long>(mesh->GetNumberOfCells()),
       fieldData->GetArray("FacetRenderSeconds")->GetComponent(0, 0) * 1e3);
   }
   return 0;

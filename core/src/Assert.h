@@ -7,12 +7,12 @@
 #include <cstdlib>
 
 #if !defined(NDEBUG) || defined(FACET_ENABLE_ASSERTS)
-#define FACET_ASSERT(condition)                                                          \
-  do {                                                                                   \
-    if (!(condition)) {                                                                  \
+#define FACET_ASSERT(condition)                                                                    \
+  do {                                                                                             \
+    if (!(condition)) {                                                                            \
       std::fprintf(stderr, "%s:%d: facet invariant failed: %s\n", __FILE__, __LINE__, #condition); \
-      std::abort();                                                                      \
-    }                                                                                    \
+      std::abort();                                                                                \
+    }                                                                                              \
   } while (false)
 #else
 #define FACET_ASSERT(condition) ((void)0)

@@ -27,8 +27,8 @@ void validate(const Camera& camera) {
   const glm::dvec3 unitDirection = glm::normalize(direction);
   const glm::dvec3 unitUp = glm::normalize(camera.viewUp);
   if (glm::length(glm::cross(unitDirection, unitUp)) < 1e-12) {
-    detail::fail("Camera.viewUp", "is " + detail::formatVector(camera.viewUp) +
-                                      ", parallel to the view direction");
+    detail::fail("Camera.viewUp",
+                 "is " + detail::formatVector(camera.viewUp) + ", parallel to the view direction");
   }
   detail::requireFinite(camera.nearClip, "Camera.nearClip");
   detail::requireFinite(camera.farClip, "Camera.farClip");
@@ -37,8 +37,8 @@ void validate(const Camera& camera) {
   } else {
     detail::requireInRange(camera.viewAngleDegrees, 0.0, 180.0, "Camera.viewAngleDegrees");
     if (camera.viewAngleDegrees == 0.0 || camera.viewAngleDegrees == 180.0) {
-      detail::fail("Camera.viewAngleDegrees", "is " + detail::formatValue(camera.viewAngleDegrees) +
-                                                  ", must be in (0, 180)");
+      detail::fail("Camera.viewAngleDegrees",
+                   "is " + detail::formatValue(camera.viewAngleDegrees) + ", must be in (0, 180)");
     }
     detail::requirePositive(camera.nearClip, "Camera.nearClip (perspective)");
   }

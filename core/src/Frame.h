@@ -89,11 +89,11 @@ struct FrameState {
   // Buffers reused from render to render.
   std::vector<FrameMesh> meshes;
   HugePageVector<WindowVertex> vertices;  // every mesh's points, projected
-  std::vector<std::uint32_t> drawOrder;  // painter's order; empty means polygon id order
+  std::vector<std::uint32_t> drawOrder;   // painter's order; empty means polygon id order
   std::vector<std::pair<double, std::uint32_t>> sortKeys;
   std::vector<Chunk> chunks;
   HugePageVector<std::uint32_t> polygonColors;  // per polygon id; see kUnshadedFront
-  HugePageVector<std::uint8_t> shown;  // per polygon id: won a pixel (Planes::shown)
+  HugePageVector<std::uint8_t> shown;           // per polygon id: won a pixel (Planes::shown)
 
   std::size_t meshOfPolygon(std::size_t polygonId) const;
   const WindowVertex& vertex(const Chunk& chunk, std::uint32_t reference) const {

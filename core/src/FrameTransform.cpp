@@ -26,12 +26,18 @@ FrameTransform::FrameTransform(const Camera& camera, int width, int height)
 
 double FrameTransform::planeDistance(const glm::dvec4& c, int plane) const {
   switch (plane) {
-    case 0: return c.w + c.z;            // near:   z ≥ −w
-    case 1: return c.w - c.z;            // far:    z ≤ w
-    case 2: return guardX_ * c.w + c.x;  // left:   x ≥ −g·w
-    case 3: return guardX_ * c.w - c.x;  // right:  x ≤ g·w
-    case 4: return guardY_ * c.w + c.y;  // bottom: y ≥ −g·w
-    default: return guardY_ * c.w - c.y; // top:    y ≤ g·w
+    case 0:
+      return c.w + c.z;  // near:   z ≥ −w
+    case 1:
+      return c.w - c.z;  // far:    z ≤ w
+    case 2:
+      return guardX_ * c.w + c.x;  // left:   x ≥ −g·w
+    case 3:
+      return guardX_ * c.w - c.x;  // right:  x ≤ g·w
+    case 4:
+      return guardY_ * c.w + c.y;  // bottom: y ≥ −g·w
+    default:
+      return guardY_ * c.w - c.y;  // top:    y ≤ g·w
   }
 }
 

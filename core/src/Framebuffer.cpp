@@ -9,7 +9,9 @@
 
 namespace facet {
 
-Framebuffer::Framebuffer(int width, int height) { resize(width, height); }
+Framebuffer::Framebuffer(int width, int height) {
+  resize(width, height);
+}
 
 std::size_t Framebuffer::byteSize() const {
   return pixelCount() * (sizeof(Rgba8) + sizeof(float) + sizeof(std::int32_t));

@@ -86,28 +86,29 @@ void validateCone(const SpotCone& cone, const Name& name) {
 
 template <class Name>
 void validateLight(const Light& light, const Name& name) {
-  std::visit(detail::Overloaded{
-                 [&](const DirectionalLight& l) {
-                   detail::requireNonZeroDirection(l.direction, [&] { return name() + ".direction"; });
-                   detail::requireColor(l.color, [&] { return name() + ".color"; });
-                   detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
-                 },
-                 [&](const PointLight& l) {
-                   detail::requireFinite(l.position, [&] { return name() + ".position"; });
-                   detail::requireColor(l.color, [&] { return name() + ".color"; });
-                   detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
-                   validateAttenuation(l.attenuation, [&] { return name() + ".attenuation"; });
-                 },
-                 [&](const SpotLight& l) {
-                   detail::requireFinite(l.position, [&] { return name() + ".position"; });
-                   detail::requireNonZeroDirection(l.direction, [&] { return name() + ".direction"; });
-                   detail::requireColor(l.color, [&] { return name() + ".color"; });
-                   detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
-                   validateAttenuation(l.attenuation, [&] { return name() + ".attenuation"; });
-                   validateCone(l.cone, [&] { return name() + ".cone"; });
-                 },
-             },
-             light);
+  std::visit(
+      detail::Overloaded{
+          [&](const DirectionalLight& l) {
+            detail::requireNonZeroDirection(l.direction, [&] { return name() + ".direction"; });
+            detail::requireColor(l.color, [&] { return name() + ".color"; });
+            detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
+          },
+          [&](const PointLight& l) {
+            detail::requireFinite(l.position, [&] { return name() + ".position"; });
+            detail::requireColor(l.color, [&] { return name() + ".color"; });
+            detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
+            validateAttenuation(l.attenuation, [&] { return name() + ".attenuation"; });
+          },
+          [&](const SpotLight& l) {
+            detail::requireFinite(l.position, [&] { return name() + ".position"; });
+            detail::requireNonZeroDirection(l.direction, [&] { return name() + ".direction"; });
+            detail::requireColor(l.color, [&] { return name() + ".color"; });
+            detail::requireFinite(l.intensity, [&] { return name() + ".intensity"; });
+            validateAttenuation(l.attenuation, [&] { return name() + ".attenuation"; });
+            validateCone(l.cone, [&] { return name() + ".cone"; });
+          },
+      },
+      light);
 }
 
 }  // namespace
@@ -126,20 +127,18 @@ double attenuationFactor(const Attenuation& attenuation, double distance) {
 double spotFactor(const SpotCone& cone, double cosAngleFromAxis) {
   if (std::isnan(cosAngleFromAxis)) return 0.0;
   const double cosAngle = std::clamp(cosAngleFromAxis, -1.0, 1.0);
-  return std::visit(
-      detail::Overloaded{
-          [&](const LinearSpotCone& c) { return linearConeFactor(c, cosAngle); },
-          [&](const ExponentSpotCone& c) { return exponentConeFactor(c, cosAngle); },
-      },
-      cone);
+  return std::visit(detail::Overloaded{
+                        [&](const LinearSpotCone& c) { return linearConeFactor(c, cosAngle); },
+                        [&](const ExponentSpotCone& c) { return exponentConeFactor(c, cosAngle); },
+                    },
+                    cone);
 }
 
 void validate(const LightSet& lightSet) {
   detail::requireColor(lightSet.ambient.color, "LightSet.ambient.color");
   detail::requireFinite(lightSet.ambient.intensity, "LightSet.ambient.intensity");
   for (std::size_t i = 0; i < lightSet.lights.size(); ++i) {
-    validateLight(lightSet.lights[i],
-                  [i] { return "LightSet.lights[" + std::to_string(i) + "]"; });
+    validateLight(lightSet.lights[i], [i] { return "LightSet.lights[" + std::to_string(i) + "]"; });
   }
 }
 

@@ -15,8 +15,12 @@ namespace {
 
 // Caps a non-negative factor so that products of a handful of them stay finite in double
 // (see "Edge cases" in Lighting.h). NaN and negative values map to 0.
-double capped(double x) { return x > 0.0 ? std::min(x, kMaxRadiance) : 0.0; }
-glm::dvec3 capped(const Color& c) { return {capped(c.r), capped(c.g), capped(c.b)}; }
+double capped(double x) {
+  return x > 0.0 ? std::min(x, kMaxRadiance) : 0.0;
+}
+glm::dvec3 capped(const Color& c) {
+  return {capped(c.r), capped(c.g), capped(c.b)};
+}
 
 glm::dvec3 radianceOf(const Color& color, double intensity) {
   const double i = std::max(intensity, 0.0);
@@ -49,24 +53,30 @@ double preparedDiffuseFactor(const PreparedMaterial& m, double cosine) {
 
 Shader::PreparedLight Shader::prepare(const Light& light) {
   using Kind = PreparedLight::Kind;
-  return std::visit(
-      detail::Overloaded{
-          [](const DirectionalLight& l) {
-            return PreparedLight{Kind::Directional, glm::dvec3{0.0},
-                                 -detail::normalizeRobust(l.direction)->unit,
-                                 radianceOf(l.color, l.intensity), NoAttenuation{}, {}};
-          },
-          [](const PointLight& l) {
-            return PreparedLight{Kind::Point, l.position, glm::dvec3{0.0},
-                                 radianceOf(l.color, l.intensity), l.attenuation, {}};
-          },
-          [](const SpotLight& l) {
-            return PreparedLight{Kind::Spot, l.position,
-                                 detail::normalizeRobust(l.direction)->unit,
-                                 radianceOf(l.color, l.intensity), l.attenuation, l.cone};
-          },
-      },
-      light);
+  return std::visit(detail::Overloaded{
+                        [](const DirectionalLight& l) {
+                          return PreparedLight{Kind::Directional,
+                                               glm::dvec3{0.0},
+                                               -detail::normalizeRobust(l.direction)->unit,
+                                               radianceOf(l.color, l.intensity),
+                                               NoAttenuation{},
+                                               {}};
+                        },
+                        [](const PointLight& l) {
+                          return PreparedLight{Kind::Point,     l.position,
+                                               glm::dvec3{0.0}, radianceOf(l.color, l.intensity),
+                                               l.attenuation,   {}};
+                        },
+                        [](const SpotLight& l) {
+                          return PreparedLight{Kind::Spot,
+                                               l.position,
+                                               detail::normalizeRobust(l.direction)->unit,
+                                               radianceOf(l.color, l.intensity),
+                                               l.attenuation,
+                                               l.cone};
+                        },
+                    },
+                    light);
 }
 
 void Shader::reset(const LightSet& lightSet) {

@@ -54,13 +54,12 @@ void validateMeshHeader(const MeshView& mesh, std::size_t meshIndex) {
          "is null but polygons.count is " + std::to_string(mesh.polygons.count));
   }
   if (mesh.polygons.connectivitySize > 0 && mesh.polygons.connectivity == nullptr) {
-    fail(name(".polygons.connectivity"), "is null but connectivitySize is " +
-                                             std::to_string(mesh.polygons.connectivitySize));
+    fail(name(".polygons.connectivity"),
+         "is null but connectivitySize is " + std::to_string(mesh.polygons.connectivitySize));
   }
-  const std::int64_t firstOffset =
-      mesh.polygons.type == PolygonArray::Type::Int32
-          ? static_cast<const std::int32_t*>(mesh.polygons.offsets)[0]
-          : static_cast<const std::int64_t*>(mesh.polygons.offsets)[0];
+  const std::int64_t firstOffset = mesh.polygons.type == PolygonArray::Type::Int32
+                                       ? static_cast<const std::int32_t*>(mesh.polygons.offsets)[0]
+                                       : static_cast<const std::int64_t*>(mesh.polygons.offsets)[0];
   if (firstOffset != 0) {
     fail(name(".polygons.offsets[0]"), "is " + std::to_string(firstOffset) + ", must be 0");
   }
@@ -111,7 +110,6 @@ void validate(const MeshView& mesh) {
   }
 }
 
-
 namespace {
 
 // LSD radix sort of 64-bit keys, 16 bits a pass: linear time, for the tens of millions of
@@ -121,10 +119,13 @@ void radixSort(std::vector<std::uint64_t>& keys) {
   std::vector<std::size_t> counts(1 << 16);
   for (int shift = 0; shift < 64; shift += 16) {
     std::fill(counts.begin(), counts.end(), 0);
-    for (const std::uint64_t key : keys) ++counts[(key >> shift) & 0xffff];
+    for (const std::uint64_t key : keys)
+      ++counts[(key >> shift) & 0xffff];
     std::size_t total = 0;
-    for (std::size_t& count : counts) total += std::exchange(count, total);
-    for (const std::uint64_t key : keys) scratch[counts[(key >> shift) & 0xffff]++] = key;
+    for (std::size_t& count : counts)
+      total += std::exchange(count, total);
+    for (const std::uint64_t key : keys)
+      scratch[counts[(key >> shift) & 0xffff]++] = key;
     keys.swap(scratch);
   }
 }
@@ -140,7 +141,8 @@ bool isClosedSurface(const MeshView& mesh) {
     std::vector<std::uint64_t> edges;
     edges.reserve(mesh.polygons.connectivitySize);
     glm::dvec3 center(0.0);
-    for (std::size_t i = 0; i < mesh.points.count; ++i) center += points[i];
+    for (std::size_t i = 0; i < mesh.points.count; ++i)
+      center += points[i];
     center /= static_cast<double>(mesh.points.count);
     double volume = 0.0;  // six times the signed volume, by the divergence theorem
     for (std::size_t p = 0; p < mesh.polygons.count; ++p) {

@@ -27,7 +27,9 @@ template <class Index>
 struct Polygons {
   const Index* offsets;
   const Index* connectivity;
-  std::size_t begin(std::size_t polygon) const { return static_cast<std::size_t>(offsets[polygon]); }
+  std::size_t begin(std::size_t polygon) const {
+    return static_cast<std::size_t>(offsets[polygon]);
+  }
   std::size_t size(std::size_t polygon) const {
     return static_cast<std::size_t>(offsets[polygon + 1] - offsets[polygon]);
   }
@@ -41,11 +43,13 @@ template <class F>
 decltype(auto) withTypedMesh(const MeshView& mesh, F&& f) {
   auto withPolygons = [&](auto points) -> decltype(auto) {
     if (mesh.polygons.type == PolygonArray::Type::Int32) {
-      return f(points, Polygons<std::int32_t>{static_cast<const std::int32_t*>(mesh.polygons.offsets),
-                                              static_cast<const std::int32_t*>(mesh.polygons.connectivity)});
+      return f(points, Polygons<std::int32_t>{
+                           static_cast<const std::int32_t*>(mesh.polygons.offsets),
+                           static_cast<const std::int32_t*>(mesh.polygons.connectivity)});
     }
-    return f(points, Polygons<std::int64_t>{static_cast<const std::int64_t*>(mesh.polygons.offsets),
-                                            static_cast<const std::int64_t*>(mesh.polygons.connectivity)});
+    return f(points,
+             Polygons<std::int64_t>{static_cast<const std::int64_t*>(mesh.polygons.offsets),
+                                    static_cast<const std::int64_t*>(mesh.polygons.connectivity)});
   };
   if (mesh.points.type == PointArray::Type::Float32) {
     return withPolygons(Points<float>{static_cast<const float*>(mesh.points.data)});

@@ -14,8 +14,12 @@ constexpr std::int64_t kHalfPixel = kSubpixelScale / 2;
 constexpr std::int32_t kBackgroundPolygon = Framebuffer::kBackgroundId;
 
 // floor(value / 256) and ceil(value / 256) for any sign (C++20 >> is arithmetic).
-std::int64_t floorToPixel(std::int64_t value) { return value >> kSubpixelBits; }
-std::int64_t ceilToPixel(std::int64_t value) { return -((-value) >> kSubpixelBits); }
+std::int64_t floorToPixel(std::int64_t value) {
+  return value >> kSubpixelBits;
+}
+std::int64_t ceilToPixel(std::int64_t value) {
+  return -((-value) >> kSubpixelBits);
+}
 
 // One edge's function, stepped exactly in integers.
 struct Edge {
@@ -34,7 +38,6 @@ struct Edge {
     value = dx * (sampleY - p.y) - dy * (sampleX - p.x) - (biased ? 1 : 0);
   }
 };
-
 
 // Writes one fragment if it passes the depth test.
 template <DepthMode kMode>
@@ -69,7 +72,8 @@ void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const Windo
   const double inverseArea = 1.0 / static_cast<double>(area);
   const double wb = static_cast<double>(e1.value + (e1.biased ? 1 : 0)) * inverseArea;
   const double wc = static_cast<double>(e2.value + (e2.biased ? 1 : 0)) * inverseArea;
-  const double z = a.z + wb * (static_cast<double>(b.z) - a.z) + wc * (static_cast<double>(c.z) - a.z);
+  const double z =
+      a.z + wb * (static_cast<double>(b.z) - a.z) + wc * (static_cast<double>(c.z) - a.z);
   const float depth = std::clamp(static_cast<float>(z), 0.0f, 1.0f);
   writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, depth, polygonId, planes,
                        counts);
@@ -155,11 +159,10 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
 }
 
 template void paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
-                                             const WindowVertex&, std::int32_t,
-                                             const PixelBounds&, const Planes&, PaintCounts&);
+                                             const WindowVertex&, std::int32_t, const PixelBounds&,
+                                             const Planes&, PaintCounts&);
 template void paintTriangle<DepthMode::Overwrite>(const WindowVertex&, const WindowVertex&,
                                                   const WindowVertex&, std::int32_t,
-                                                  const PixelBounds&, const Planes&,
-                                                  PaintCounts&);
+                                                  const PixelBounds&, const Planes&, PaintCounts&);
 
 }  // namespace facet::detail

@@ -54,8 +54,8 @@ class PhaseProgress {
       : callback_(callback), start_(start), end_(end), tasks_(tasks) {}
   bool operator()(std::size_t done) const {
     if (!callback_) return true;
-    return callback_(done >= tasks_ ? end_
-                                    : start_ + (end_ - start_) * static_cast<double>(done) / tasks_);
+    return callback_(
+        done >= tasks_ ? end_ : start_ + (end_ - start_) * static_cast<double>(done) / tasks_);
   }
 
  private:
@@ -146,18 +146,23 @@ struct Renderer::Workspace {
   }
 };
 
-Renderer::Renderer() : workspace_(std::make_unique<Workspace>()) { setThreadCount(0); }
+Renderer::Renderer() : workspace_(std::make_unique<Workspace>()) {
+  setThreadCount(0);
+}
 Renderer::~Renderer() = default;
 
 void Renderer::setThreadCount(int threads) {
-  if (threads < 0) throw Error("Renderer thread count is " + std::to_string(threads) + ", must be >= 0");
+  if (threads < 0)
+    throw Error("Renderer thread count is " + std::to_string(threads) + ", must be >= 0");
   const int count = threads == 0 ? hardwareThreads() : threads;
   if (!workspace_->pool || workspace_->pool->threadCount() != count) {
     workspace_->pool = std::make_unique<detail::ThreadPool>(count);
   }
 }
 
-int Renderer::threadCount() const { return workspace_->pool->threadCount(); }
+int Renderer::threadCount() const {
+  return workspace_->pool->threadCount();
+}
 
 void Renderer::parallelFor(std::size_t count, std::size_t grain,
                            const std::function<void(std::size_t, std::size_t)>& work) {
@@ -211,8 +216,9 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
   // Structure of every mesh: offsets and point ids, in parallel; the first problem in id
   // order is reported, whatever the thread count.
   Clock::time_point phase = Clock::now();
-  splitPerMesh(scene, kMaxPolygonsPerChunk / 4, [](const MeshView& m) { return m.polygons.count; },
-               ws.polygonRanges);
+  splitPerMesh(
+      scene, kMaxPolygonsPerChunk / 4, [](const MeshView& m) { return m.polygons.count; },
+      ws.polygonRanges);
   ws.problems.assign(ws.polygonRanges.size(), std::nullopt);
   bool completed = ws.runPhase(
       ws.polygonRanges.size(),
@@ -247,26 +253,26 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
   // --- Phase 1: transform every point. ---------------------------------------------------
   phase = Clock::now();
   frame.vertices.resize(plan.points);
-  splitPerMesh(scene, kPointsPerTask, [](const MeshView& m) { return m.points.count; },
-               ws.pointRanges);
+  splitPerMesh(
+      scene, kPointsPerTask, [](const MeshView& m) { return m.points.count; }, ws.pointRanges);
   ws.rangeOutcodes.assign(ws.pointRanges.size(), 0);
-  completed = completed &&
-              ws.runPhase(
-                  ws.pointRanges.size(),
-                  [&](std::size_t i) {
-                    const MeshRange& r = ws.pointRanges[i];
-                    const FrameMesh& mesh = frame.meshes[r.mesh];
-                    detail::withTypedMesh(mesh.source->mesh, [&](auto points, auto) {
-                      std::uint32_t any = 0;
-                      for (std::size_t p = r.begin; p < r.end; ++p) {
-                        const detail::WindowVertex v = frame.transform->project(points[p]);
-                        frame.vertices[mesh.firstVertex + p] = v;
-                        any |= v.outcode;
-                      }
-                      ws.rangeOutcodes[i] = any;
-                    });
-                  },
-                  progressOf(0.05, 0.2, ws.pointRanges.size()));
+  completed = completed && ws.runPhase(
+                               ws.pointRanges.size(),
+                               [&](std::size_t i) {
+                                 const MeshRange& r = ws.pointRanges[i];
+                                 const FrameMesh& mesh = frame.meshes[r.mesh];
+                                 detail::withTypedMesh(mesh.source->mesh, [&](auto points, auto) {
+                                   std::uint32_t any = 0;
+                                   for (std::size_t p = r.begin; p < r.end; ++p) {
+                                     const detail::WindowVertex v =
+                                         frame.transform->project(points[p]);
+                                     frame.vertices[mesh.firstVertex + p] = v;
+                                     any |= v.outcode;
+                                   }
+                                   ws.rangeOutcodes[i] = any;
+                                 });
+                               },
+                               progressOf(0.05, 0.2, ws.pointRanges.size()));
 
   // Back faces of a closed surface are hidden while no point of it is beyond the near plane
   // (none behind the eye: the eye is outside) and none is non-finite (no polygon dropped).
@@ -296,7 +302,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
             for (std::size_t p = r.begin; p < r.end; ++p) {
               glm::dvec3 sum(0.0);
               const std::size_t n = polygons.size(p);
-              for (std::size_t k = 0; k < n; ++k) sum += points[polygons.pointId(p, k)];
+              for (std::size_t k = 0; k < n; ++k)
+                sum += points[polygons.pointId(p, k)];
               double distance = frame.transform->viewDistance(sum / static_cast<double>(n));
               if (!std::isfinite(distance)) distance = std::numeric_limits<double>::infinity();
               const std::size_t id = mesh.firstPolygon + p;
@@ -309,24 +316,25 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
       return a.first > b.first || (a.first == b.first && a.second < b.second);
     });
     frame.drawOrder.resize(plan.polygons);
-    for (std::size_t i = 0; i < plan.polygons; ++i) frame.drawOrder[i] = frame.sortKeys[i].second;
+    for (std::size_t i = 0; i < plan.polygons; ++i)
+      frame.drawOrder[i] = frame.sortKeys[i].second;
   }
   stats.transformSeconds = secondsSince(phase);
 
   // --- Phase 2: per polygon geometry, in chunks of draw positions. -----------------------
   phase = Clock::now();
   const std::size_t tileCount = static_cast<std::size_t>(plan.tilesX) * plan.tilesY;
-  const std::size_t perChunk = std::clamp<std::size_t>(
-      plan.polygons / (4 * static_cast<std::size_t>(plan.threads)) + 1, kMinPolygonsPerChunk,
-      kMaxPolygonsPerChunk);
+  const std::size_t perChunk =
+      std::clamp<std::size_t>(plan.polygons / (4 * static_cast<std::size_t>(plan.threads)) + 1,
+                              kMinPolygonsPerChunk, kMaxPolygonsPerChunk);
   if (plan.sortByDepth) {
     ws.polygonRanges.clear();
     for (std::size_t begin = 0; begin < plan.polygons; begin += perChunk) {
       ws.polygonRanges.push_back({0, begin, std::min(plan.polygons, begin + perChunk)});
     }
   } else {
-    splitPerMesh(scene, perChunk, [](const MeshView& m) { return m.polygons.count; },
-                 ws.polygonRanges);
+    splitPerMesh(
+        scene, perChunk, [](const MeshView& m) { return m.polygons.count; }, ws.polygonRanges);
     for (MeshRange& r : ws.polygonRanges) {  // to draw positions (= global polygon ids)
       r.begin += frame.meshes[r.mesh].firstPolygon;
       r.end += frame.meshes[r.mesh].firstPolygon;
@@ -378,11 +386,11 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                 const auto& b = frame.vertex(chunk, tri.vertex[1]);
                 const auto& c = frame.vertex(chunk, tri.vertex[2]);
                 if (plan.depthTest) {
-                  detail::paintTriangle<detail::DepthMode::Test>(a, b, c, tri.polygon, tile,
-                                                                 planes, counts);
+                  detail::paintTriangle<detail::DepthMode::Test>(a, b, c, tri.polygon, tile, planes,
+                                                                 counts);
                 } else {
-                  detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, tri.polygon,
-                                                                      tile, planes, counts);
+                  detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, tri.polygon, tile,
+                                                                      planes, counts);
                 }
               }
             }
@@ -393,21 +401,24 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
 
   // --- Phase 4: light the visible polygons (in id order), then color every tile. ---------
   phase = Clock::now();
-  splitPerMesh(scene, kMaxPolygonsPerChunk / 16, [](const MeshView& m) { return m.polygons.count; },
-               ws.polygonRanges);
+  splitPerMesh(
+      scene, kMaxPolygonsPerChunk / 16, [](const MeshView& m) { return m.polygons.count; },
+      ws.polygonRanges);
   ws.shadedCounts.assign(ws.polygonRanges.size(), 0);
-  const bool shaded =
-      painted && ws.runPhase(
-                     ws.polygonRanges.size(),
-                     [&](std::size_t i) {
-                       const MeshRange& r = ws.polygonRanges[i];
-                       ws.shadedCounts[i] = detail::shadeVisiblePolygons(frame, r.mesh, r.begin, r.end);
-                     },
-                     progressOf(0.85, 0.95, ws.polygonRanges.size()));
+  const bool shaded = painted && ws.runPhase(
+                                     ws.polygonRanges.size(),
+                                     [&](std::size_t i) {
+                                       const MeshRange& r = ws.polygonRanges[i];
+                                       ws.shadedCounts[i] = detail::shadeVisiblePolygons(
+                                           frame, r.mesh, r.begin, r.end);
+                                     },
+                                     progressOf(0.85, 0.95, ws.polygonRanges.size()));
   const bool colored =
       shaded && ws.runPhase(
                     tileCount,
-                    [&](std::size_t t) { detail::resolveTileColors(frame, tileBounds(t), planes, background); },
+                    [&](std::size_t t) {
+                      detail::resolveTileColors(frame, tileBounds(t), planes, background);
+                    },
                     progressOf(0.95, 1.0, tileCount));
   if (!colored) {
     // Stopped early: leave a valid image (background) rather than a half-cleared one.
@@ -433,7 +444,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
     stats.fragmentsWritten += tile.written;
     stats.pixelsCovered += tile.covered;
   }
-  for (std::size_t count : ws.shadedCounts) stats.polygonsShaded += count;
+  for (std::size_t count : ws.shadedCounts)
+    stats.polygonsShaded += count;
   if (stats.aborted) stats.pixelsCovered = 0;  // the image left is the background
   stats.totalSeconds = secondsSince(start);
   if (colored && progress_) progress_(1.0);

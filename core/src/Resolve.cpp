@@ -32,7 +32,8 @@ Rgba8 shadePolygon(const FrameState& frame, const FrameMesh& mesh, PointsT point
         n == 3 ? triangleNormal(corner(0), corner(1), corner(2)) : newellNormal(n, corner);
     if (frame.plan.polygonCenters) {
       glm::dvec3 sum(0.0);
-      for (std::size_t k = 0; k < n; ++k) sum += corner(k);
+      for (std::size_t k = 0; k < n; ++k)
+        sum += corner(k);
       sample.position = sum / static_cast<double>(n);
     }
     if (frame.plan.viewerDirection) sample.toViewer = frame.transform->toViewer(sample.position);
@@ -54,10 +55,10 @@ std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::
       const std::size_t id = mesh.firstPolygon + polygon;
       if (!frame.shown[id]) continue;
       ++shaded;
-      const Rgba8 color =
-          mesh.uniformColor ? *mesh.uniformColor
-                            : shadePolygon(frame, mesh, points, polygons, polygon,
-                                           frame.polygonColors[id] == kUnshadedBack);
+      const Rgba8 color = mesh.uniformColor
+                              ? *mesh.uniformColor
+                              : shadePolygon(frame, mesh, points, polygons, polygon,
+                                             frame.polygonColors[id] == kUnshadedBack);
       frame.polygonColors[id] = std::bit_cast<std::uint32_t>(color);
     }
   });

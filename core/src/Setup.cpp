@@ -104,8 +104,10 @@ class PolygonSetup {
   // (counted degenerate) when the polygon has no normal.
   bool triangulate(std::size_t n, Tally& tally) {
     chunk_.corners.resize(n);
-    for (std::size_t k = 0; k < n; ++k) chunk_.corners[k] = points_[pointId(k)];
-    const std::optional<glm::dvec3> normal = newellNormal(std::span<const glm::dvec3>(chunk_.corners));
+    for (std::size_t k = 0; k < n; ++k)
+      chunk_.corners[k] = points_[pointId(k)];
+    const std::optional<glm::dvec3> normal =
+        newellNormal(std::span<const glm::dvec3>(chunk_.corners));
     if (!normal) {
       ++chunk_.counts.degenerate;
       return false;
@@ -113,12 +115,14 @@ class PolygonSetup {
     std::vector<glm::dvec2>& projected = chunk_.triangulation.projected;
     projectToPolygonPlane(chunk_.corners, *normal, projected);
     if (isConvex(projected)) {
-      for (std::uint32_t k = 1; k + 1 < projected.size(); ++k) addTriangle(0, k, k + 1, tally);
+      for (std::uint32_t k = 1; k + 1 < projected.size(); ++k)
+        addTriangle(0, k, k + 1, tally);
       return true;
     }
     chunk_.localTriangles.clear();
     earClip(projected, chunk_.triangulation, chunk_.localTriangles);
-    for (const LocalTriangle& t : chunk_.localTriangles) addTriangle(t[0], t[1], t[2], tally);
+    for (const LocalTriangle& t : chunk_.localTriangles)
+      addTriangle(t[0], t[1], t[2], tally);
     return true;
   }
 
@@ -164,7 +168,8 @@ class PolygonSetup {
         chunk_.clippedVertices.push_back(transform.toWindow(clipped[i].clip));
       }
     }
-    for (int i = 1; i + 1 < count; ++i) keep(references[0], references[i], references[i + 1], tally);
+    for (int i = 1; i + 1 < count; ++i)
+      keep(references[0], references[i], references[i + 1], tally);
   }
 
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, Tally& tally) {
@@ -253,7 +258,8 @@ std::size_t FrameState::meshOfPolygon(std::size_t polygonId) const {
 void setUpChunk(FrameState& frame, Chunk& chunk) {
   chunk.triangles.clear();
   chunk.clippedVertices.clear();
-  for (auto& bin : chunk.bins) bin.clear();
+  for (auto& bin : chunk.bins)
+    bin.clear();
   chunk.counts = {};
   // Draw positions come in runs that share a mesh (the whole chunk, in z-buffer mode);
   // each run is set up by code specialized for that mesh's point and index types.

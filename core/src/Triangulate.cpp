@@ -62,7 +62,8 @@ void earClip(std::span<const glm::dvec2> projected, TriangulationScratch& scratc
              std::vector<LocalTriangle>& triangles) {
   std::vector<std::uint32_t>& remaining = scratch.remaining;
   remaining.clear();
-  for (std::uint32_t i = 0; i < projected.size(); ++i) remaining.push_back(i);
+  for (std::uint32_t i = 0; i < projected.size(); ++i)
+    remaining.push_back(i);
   std::size_t candidate = 0;
   std::size_t misses = 0;
   while (remaining.size() > 3) {

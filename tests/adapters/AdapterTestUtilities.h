@@ -16,8 +16,7 @@
 #include <array>
 #include <string>
 
-namespace facet_test
-{
+namespace facet_test {
 
 inline vtkIdType PixelIndex(vtkImageData* image, int x, int y)
 {
@@ -51,8 +50,13 @@ inline double FieldValue(vtkImageData* image, const char* array, const char* com
 }
 
 // A square in the z = 0 plane, [x0, x1] × [y0, y1], counter-clockwise seen from +z.
-inline vtkIdType AddSquare(vtkPoints* points, vtkCellArray* polys, double x0, double y0,
-  double x1, double y1, double z = 0.0)
+inline vtkIdType AddSquare(vtkPoints* points,
+  vtkCellArray* polys,
+  double x0,
+  double y0,
+  double x1,
+  double y1,
+  double z = 0.0)
 {
   const vtkIdType first = points->InsertNextPoint(x0, y0, z);
   points->InsertNextPoint(x1, y0, z);

@@ -29,8 +29,7 @@
 
 using namespace facet_test;
 
-namespace
-{
+namespace {
 constexpr int Width = 160, Height = 120;
 
 // A parallel camera for which world x, y are window pixels.
@@ -144,12 +143,15 @@ TEST(Conversion, CellIdsCountVertsLinesPolysStrips)
   lines->InsertNextCell(2, lineIds);
   AddSquare(points, polys, 10.3, 10.3, 40.7, 40.7);                      // cell 3
   const vtkIdType concave[6] = { points->InsertNextPoint(50.2, 10.2, 0), // cell 4: an L
-    points->InsertNextPoint(90.2, 10.2, 0), points->InsertNextPoint(90.2, 20.2, 0),
-    points->InsertNextPoint(60.2, 20.2, 0), points->InsertNextPoint(60.2, 50.2, 0),
+    points->InsertNextPoint(90.2, 10.2, 0),
+    points->InsertNextPoint(90.2, 20.2, 0),
+    points->InsertNextPoint(60.2, 20.2, 0),
+    points->InsertNextPoint(60.2, 50.2, 0),
     points->InsertNextPoint(50.2, 50.2, 0) };
   polys->InsertNextCell(6, concave);
   const vtkIdType strip[4] = { points->InsertNextPoint(100.1, 60.1, 0), // cell 5
-    points->InsertNextPoint(150.1, 60.1, 0), points->InsertNextPoint(100.1, 110.1, 0),
+    points->InsertNextPoint(150.1, 60.1, 0),
+    points->InsertNextPoint(100.1, 110.1, 0),
     points->InsertNextPoint(150.1, 110.1, 0) };
   strips->InsertNextCell(4, strip);
   vtkNew<vtkPolyData> input;
@@ -332,7 +334,8 @@ TEST(Camera, PointsLandWhereVtkCameraProjectsThem)
     camera->SetClippingRange(1.0, 100.0);
 
     // The world point on the focal plane that VTK maps to the center of pixel (px, py).
-    const int px = static_cast<int>(uniform(0, Width - 1)), py = static_cast<int>(uniform(0, Height - 1));
+    const int px = static_cast<int>(uniform(0, Width - 1)),
+              py = static_cast<int>(uniform(0, Height - 1));
     vtkNew<vtkMatrix4x4> inverse;
     vtkMatrix4x4::Invert(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1), inverse);
     const auto unproject = [&](double wx, double wy, double ndcZ) {
@@ -343,7 +346,8 @@ TEST(Camera, PointsLandWhereVtkCameraProjectsThem)
     vtkNew<vtkPoints> points;
     for (double angle : { 0.0, 2.1, 4.2 })
     {
-      const auto p = unproject(px + 0.5 + 0.3 * std::cos(angle), py + 0.5 + 0.3 * std::sin(angle), 0.2);
+      const auto p =
+        unproject(px + 0.5 + 0.3 * std::cos(angle), py + 0.5 + 0.3 * std::sin(angle), 0.2);
       points->InsertNextPoint(p.data());
     }
     vtkNew<vtkCellArray> polys;
@@ -453,8 +457,7 @@ TEST(Errors, PointIdsOutOfRangeGiveAnErrorAndAnEmptyOutput)
   MessageCounter errors(filter, vtkCommand::ErrorEvent);
   filter->Update();
   EXPECT_EQ(errors.Count, 1);
-  EXPECT_NE(errors.Last.find("is 99, outside [0, points.count)"), std::string::npos)
-    << errors.Last;
+  EXPECT_NE(errors.Last.find("is 99, outside [0, points.count)"), std::string::npos) << errors.Last;
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 }
 

@@ -26,8 +26,7 @@
 
 using namespace facet_test;
 
-namespace
-{
+namespace {
 constexpr int Width = 800, Height = 600;
 
 struct Scene
@@ -163,7 +162,8 @@ void Compare(const std::string& mesh, double azimuth, double elevation)
       }
       ++interior;
       const std::array<int, 4> rgba = RgbaAt(facet, x, y);
-      const unsigned char* reference = vtkColor->GetPointer(vtkComponents * PixelIndex(vtk.Color, x, y));
+      const unsigned char* reference =
+        vtkColor->GetPointer(vtkComponents * PixelIndex(vtk.Color, x, y));
       int difference = 0;
       for (int c = 0; c < 3; ++c)
       {
@@ -173,15 +173,20 @@ void Compare(const std::string& mesh, double azimuth, double elevation)
       if (difference > 2 && ++colorMismatches <= 5)
       {
         ADD_FAILURE() << "pixel (" << x << ", " << y << ") Facet " << rgba[0] << "," << rgba[1]
-                      << "," << rgba[2] << " VTK " << int(reference[0]) << ","
-                      << int(reference[1]) << "," << int(reference[2]);
+                      << "," << rgba[2] << " VTK " << int(reference[0]) << "," << int(reference[1])
+                      << "," << int(reference[2]);
       }
     }
   }
   std::printf("%s azimuth %g: %ld covered, %ld silhouette differences (%.3f %%), %ld interior "
               "pixels, worst color difference %d/255\n",
-    mesh.c_str(), azimuth, covered, silhouetteDifferences, 100.0 * silhouetteDifferences / covered,
-    interior, worst);
+    mesh.c_str(),
+    azimuth,
+    covered,
+    silhouetteDifferences,
+    100.0 * silhouetteDifferences / covered,
+    interior,
+    worst);
   EXPECT_GT(covered, Width * Height / 10);
   EXPECT_LE(silhouetteDifferences, 0.005 * covered);
   EXPECT_GT(interior, covered / 20) << "enough pixels away from edges to compare colors";

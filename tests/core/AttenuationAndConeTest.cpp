@@ -13,7 +13,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double cosDegrees(double degrees) { return std::cos(degrees * M_PI / 180.0); }
+double cosDegrees(double degrees) {
+  return std::cos(degrees * M_PI / 180.0);
+}
 
 TEST(QuadraticAttenuation, SixthDefaultGivesTheFormulasValues) {
   // 1/(1 + 0.0001·d²): the formula's values, not the guide's misprinted 0.99/0.52/0.29.

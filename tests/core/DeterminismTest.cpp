@@ -23,7 +23,8 @@ TEST_P(Determinism, BunnyRendersTheSameBytesOnOneTwoAndEightThreads) {
   const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
   ASSERT_EQ(bunny.polygonCount(), 69451u);
   LightSet lights;
-  lights.lights.push_back(PointLight{{0.3, 0.4, 0.5}, Color(1.0f, 0.6f, 0.3f), 1.5, QuadraticAttenuation{1, 0, 1}});
+  lights.lights.push_back(
+      PointLight{{0.3, 0.4, 0.5}, Color(1.0f, 0.6f, 0.3f), 1.5, QuadraticAttenuation{1, 0, 1}});
   lights.lights.push_back(DirectionalLight{{-1, -1, -1}, Color(0.3f, 0.4f, 1.0f), 0.8});
   Material material;
   material.specular = 0.4;

@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "facet/Lighting.h"
 
@@ -27,8 +27,10 @@ void expectFiniteInUnitRange(const Color& c, const std::string& what) {
 std::vector<SpotCone> extremeCones() {
   std::vector<SpotCone> cones;
   for (double angle : {0.0, 1e-9, 45.0, 90.0, 179.0, 180.0}) {
-    for (double falloff : {0.0, 1e-9, 15.0, 180.0}) cones.push_back(LinearSpotCone{angle, falloff});
-    for (double exponent : {0.0, 1.0, 1e6}) cones.push_back(ExponentSpotCone{angle, exponent});
+    for (double falloff : {0.0, 1e-9, 15.0, 180.0})
+      cones.push_back(LinearSpotCone{angle, falloff});
+    for (double exponent : {0.0, 1.0, 1e6})
+      cones.push_back(ExponentSpotCone{angle, exponent});
   }
   return cones;
 }
@@ -69,12 +71,12 @@ std::vector<Material> extremeMaterials() {
 TEST(LightingStability, ExtremeLightsOnExtremeSurfacesStayFiniteAndInRange) {
   const glm::dvec3 center(0.0);
   const std::vector<glm::dvec3> lightPositions = {
-      center,                        // light exactly at the polygon center (d = 0)
-      {0.0, 0.0, 1e-300},            // denormal distance
-      {0.0, 0.0, 1e20},              // d² overflows float
-      {1e200, -1e200, 1e200},        // d² overflows double
-      {-1e308, 1e308, 0.0},          // the offset itself overflows double
-      {3.0, 4.0, -5.0}};             // behind the surface
+      center,                  // light exactly at the polygon center (d = 0)
+      {0.0, 0.0, 1e-300},      // denormal distance
+      {0.0, 0.0, 1e20},        // d² overflows float
+      {1e200, -1e200, 1e200},  // d² overflows double
+      {-1e308, 1e308, 0.0},    // the offset itself overflows double
+      {3.0, 4.0, -5.0}};       // behind the surface
   const std::vector<double> intensities = {0.0, -1.0, -1e300, 1.0, 1e300};
   const std::vector<Color> colors = {Color(0.0f), Color(1.0f), Color(3e38f)};
 
@@ -98,7 +100,8 @@ TEST(LightingStability, ExtremeLightsOnExtremeSurfacesStayFiniteAndInRange) {
               sample.normal = glm::dvec3(0.0, 0.0, 1.0 + 4e-16);
               sample.toViewer = glm::normalize(glm::dvec3(1.0, 1.0, 1.0));
               sample.color = color;
-              expectFiniteInUnitRange(shader.shade(sample, material), "case " + std::to_string(shaded));
+              expectFiniteInUnitRange(shader.shade(sample, material),
+                                      "case " + std::to_string(shaded));
               ++shaded;
             }
           }
@@ -145,13 +148,13 @@ TEST(LightingStability, RandomFiniteInputsNeverLeaveTheUnitRange) {
   for (int i = 0; i < 20000; ++i) {
     LightSet lights;
     lights.ambient = AmbientLight{Color(float(std::abs(unit(random)))), wild()};
-    lights.lights.push_back(PointLight{wildVector(), Color(1.0f), wild(),
-                                       QuadraticAttenuation{std::abs(wild()), std::abs(wild()),
-                                                            std::abs(wild())}});
-    lights.lights.push_back(SpotLight{wildVector(), wildVector(), Color(0.5f), wild(),
-                                      FalloffDistanceAttenuation{std::abs(wild())},
-                                      ExponentSpotCone{90.0 * std::abs(unit(random)),
-                                                       std::abs(wild())}});
+    lights.lights.push_back(
+        PointLight{wildVector(), Color(1.0f), wild(),
+                   QuadraticAttenuation{std::abs(wild()), std::abs(wild()), std::abs(wild())}});
+    lights.lights.push_back(
+        SpotLight{wildVector(), wildVector(), Color(0.5f), wild(),
+                  FalloffDistanceAttenuation{std::abs(wild())},
+                  ExponentSpotCone{90.0 * std::abs(unit(random)), std::abs(wild())}});
     Material m;
     m.specular = std::abs(wild());
     m.specularPower = std::abs(wild());

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "facet/Error.h"
 #include "facet/Lighting.h"
@@ -93,14 +93,15 @@ TEST(Composition, ContributionsOfColoredLightsAdd) {
   one.lights = {red};
   other.lights = {green};
   both.lights = {red, green};
-  const Color sum = shade(facingUp(surface), Material{}, one) +
-                    shade(facingUp(surface), Material{}, other);
+  const Color sum =
+      shade(facingUp(surface), Material{}, one) + shade(facingUp(surface), Material{}, other);
   expectColorNear(shade(facingUp(surface), Material{}, both), sum);
 }
 
 TEST(Composition, SumSaturatesOnceAtWhite) {
   LightSet lights = noAmbient();
-  for (int i = 0; i < 3; ++i) lights.lights.push_back(directionalFrom({0, 0, 1}, Color(0.6f)));
+  for (int i = 0; i < 3; ++i)
+    lights.lights.push_back(directionalFrom({0, 0, 1}, Color(0.6f)));
   const Color c = shade(facingUp(Color(1.0f, 0.5f, 0.2f)), Material{}, lights);
   // 3 × 0.6 = 1.8 per light channel: red saturates, green 0.9, blue 0.36.
   expectColorNear(c, Color(1.0f, 0.9f, 0.36f));
@@ -231,14 +232,14 @@ TEST(LerpDiffuse, InterpolatesBetweenUnlitAndFull) {
   EXPECT_DOUBLE_EQ(diffuseFactor(m, 1.5), 0.9) << "cos clamped at 1";
   LightSet lights = noAmbient();
   lights.lights.push_back(directionalFrom(unitAtDegreesFromZ(60)));
-  expectColorNear(shade(facingUp(Color(1, 0.5f, 0)), m, lights),
-                  Color(0.55f, 0.275f, 0.0f));
+  expectColorNear(shade(facingUp(Color(1, 0.5f, 0)), m, lights), Color(0.55f, 0.275f, 0.0f));
 }
 
 TEST(LerpDiffuse, DefaultsEqualLambert) {
   Material lerp;
   lerp.diffuseModel = DiffuseModel::Lerp;
-  for (double c : {-1.0, 0.0, 0.3, 1.0}) EXPECT_DOUBLE_EQ(diffuseFactor(lerp, c), diffuseFactor(Material{}, c));
+  for (double c : {-1.0, 0.0, 0.3, 1.0})
+    EXPECT_DOUBLE_EQ(diffuseFactor(lerp, c), diffuseFactor(Material{}, c));
 }
 
 TEST(PointLight, AttenuationAtTheSeedDistances) {
@@ -279,8 +280,7 @@ TEST(Validation, ErrorsNameTheOffendingValue) {
     Shader shader(lights);
     FAIL() << "expected facet::Error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("lights[1].intensity"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("lights[1].intensity"), std::string::npos) << e.what();
   }
   lights.lights = {DirectionalLight{{0, 0, 0}}};
   EXPECT_THROW(Shader{lights}, Error);

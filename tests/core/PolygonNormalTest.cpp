@@ -69,7 +69,8 @@ TEST(NewellNormal, FarFromTheOriginLikeAtTheOrigin) {
   // Unit-sized: at 1e9 a double resolves 1.2e-7, so the normal can agree to about 1e-6.
   const std::vector<glm::dvec3> local = {{0, 0, 0}, {1, 0, 0}, {1, 2, 1}};
   std::vector<glm::dvec3> shifted;
-  for (const auto& v : local) shifted.push_back(v + far);
+  for (const auto& v : local)
+    shifted.push_back(v + far);
   const auto a = newellNormal(local);
   const auto b = newellNormal(shifted);
   ASSERT_TRUE(a && b);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "../support/TestRender.h"
 #include "facet/Camera.h"
@@ -71,8 +71,8 @@ Camera randomCamera(std::mt19937& random, bool parallel) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Camera c;
   c.position = {50 * u(random), 50 * u(random), 50 * u(random)};
-  c.focalPoint = c.position + glm::dvec3(u(random), u(random), u(random)) * 10.0 +
-                 glm::dvec3(0.0, 0.0, 0.1);
+  c.focalPoint =
+      c.position + glm::dvec3(u(random), u(random), u(random)) * 10.0 + glm::dvec3(0.0, 0.0, 0.1);
   c.viewUp = {u(random), u(random), u(random)};
   c.viewAngleDegrees = 20.0 + 60.0 * std::abs(u(random));
   c.parallelProjection = parallel;
@@ -91,7 +91,8 @@ TEST(Projection, MatricesAgreeWithTheClosedForms) {
     const int width = 320, height = 200;
     const glm::dvec3 p = unproject(c, {320 * std::abs(u(random)), 200 * std::abs(u(random))},
                                    c.nearClip + 30.0 * std::abs(u(random)), width, height);
-    const glm::dvec4 clip = clipFromView(c, double(width) / height) * viewFromWorld(c) * glm::dvec4(p, 1.0);
+    const glm::dvec4 clip =
+        clipFromView(c, double(width) / height) * viewFromWorld(c) * glm::dvec4(p, 1.0);
     const Expected e = project(c, p, width, height);
     EXPECT_NEAR((clip.x / clip.w + 1.0) * 0.5 * width, e.window.x, 1e-7);
     EXPECT_NEAR((clip.y / clip.w + 1.0) * 0.5 * height, e.window.y, 1e-7);
@@ -118,7 +119,8 @@ TEST(Projection, RandomCamerasPutPointsOnThePredictedPixel) {
     }
     triangle.addPolygon({0, 1, 2});
     const Rendered r = renderScene(oneMeshScene(triangle.view()), c, width, height);
-    SCOPED_TRACE("camera " + std::to_string(i) + (c.parallelProjection ? " parallel" : " perspective"));
+    SCOPED_TRACE("camera " + std::to_string(i) +
+                 (c.parallelProjection ? " parallel" : " perspective"));
     ASSERT_EQ(r.stats.pixelsCovered, 1u);
     EXPECT_EQ(r.framebuffer.polygonIdAt(x, y), 0) << "expected pixel (" << x << ", " << y << ")";
     const Expected e = project(c, triangle.points[0], width, height);

@@ -45,13 +45,16 @@ TEST(RendererErrors, PointIdOutOfRangeIsNamed) {
 TEST(RendererErrors, BadOffsetsAreNamed) {
   Mesh mesh = makeBox({-1, -1, -1}, {1, 1, 1});
   mesh.offsets[3] = 2;
-  EXPECT_NE(errorOf(oneMeshScene(mesh.view()), frontCamera()).find("offsets[3] is 2"), std::string::npos);
+  EXPECT_NE(errorOf(oneMeshScene(mesh.view()), frontCamera()).find("offsets[3] is 2"),
+            std::string::npos);
   mesh = makeBox({-1, -1, -1}, {1, 1, 1});
   mesh.offsets.back() = 1000;
-  EXPECT_NE(errorOf(oneMeshScene(mesh.view()), frontCamera()).find("past the end"), std::string::npos);
+  EXPECT_NE(errorOf(oneMeshScene(mesh.view()), frontCamera()).find("past the end"),
+            std::string::npos);
   mesh = makeBox({-1, -1, -1}, {1, 1, 1});
   mesh.offsets[0] = 1;
-  EXPECT_NE(errorOf(oneMeshScene(mesh.view()), frontCamera()).find("offsets[0] is 1"), std::string::npos);
+  EXPECT_NE(errorOf(oneMeshScene(mesh.view()), frontCamera()).find("offsets[0] is 1"),
+            std::string::npos);
 }
 
 TEST(RendererErrors, BadCameraSizeLightsAndMaterialsAreNamed) {
@@ -71,13 +74,15 @@ TEST(RendererErrors, BadCameraSizeLightsAndMaterialsAreNamed) {
 
   Material material;
   material.diffuse = std::nan("");
-  EXPECT_NE(errorOf(oneMeshScene(box.view(), material), frontCamera()).find("Scene.meshes[0].Material.diffuse"),
+  EXPECT_NE(errorOf(oneMeshScene(box.view(), material), frontCamera())
+                .find("Scene.meshes[0].Material.diffuse"),
             std::string::npos);
   LightSet lights;
   lights.lights.push_back(SpotLight{});
   std::get<SpotLight>(lights.lights[0]).direction = {0, 0, 0};
-  EXPECT_NE(errorOf(oneMeshScene(box.view(), {}, lights), frontCamera()).find("lights[0].direction"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf(oneMeshScene(box.view(), {}, lights), frontCamera()).find("lights[0].direction"),
+      std::string::npos);
 
   EXPECT_THROW(Framebuffer(0, 10), Error);
   EXPECT_THROW(Framebuffer(10, 100000), Error);
@@ -101,16 +106,19 @@ TEST(RendererRobustness, PolygonsWithNonFinitePointsAreSkippedAndCounted) {
   const Rendered r = renderScene(oneMeshScene(mesh.view()), frontCamera(), 64, 64);
   EXPECT_EQ(r.stats.polygonsNonFinite, 3u);
   mesh.points[7] = {std::numeric_limits<double>::infinity(), 1.0, 1.0};
-  EXPECT_EQ(renderScene(oneMeshScene(mesh.view()), frontCamera(), 64, 64).stats.polygonsNonFinite, 3u);
-  for (float depth : r.framebuffer.depth()) ASSERT_TRUE(depth >= 0.0f && depth <= 1.0f);
+  EXPECT_EQ(renderScene(oneMeshScene(mesh.view()), frontCamera(), 64, 64).stats.polygonsNonFinite,
+            3u);
+  for (float depth : r.framebuffer.depth())
+    ASSERT_TRUE(depth >= 0.0f && depth <= 1.0f);
 }
 
 TEST(RendererRobustness, DegeneratePolygonsAreSkippedAndCounted) {
   Mesh mesh;
-  for (glm::dvec3 p : {glm::dvec3{0, 0, 0}, {1, 1, 0}, {2, 2, 0}, {0, 1, 0}}) mesh.addPoint(p);
-  mesh.addPolygon({0, 1, 2});     // collinear
-  mesh.addPolygon({0, 0, 0});     // one point
-  mesh.addPolygon({0, 1, 2, 1});  // back and forth
+  for (glm::dvec3 p : {glm::dvec3{0, 0, 0}, {1, 1, 0}, {2, 2, 0}, {0, 1, 0}})
+    mesh.addPoint(p);
+  mesh.addPolygon({0, 1, 2});                       // collinear
+  mesh.addPolygon({0, 0, 0});                       // one point
+  mesh.addPolygon({0, 1, 2, 1});                    // back and forth
   mesh.offsets.push_back(mesh.offsets.back() + 2);  // two points only
   mesh.connectivity.insert(mesh.connectivity.end(), {0, 3});
   LightSet lights;
@@ -144,7 +152,8 @@ TEST(RendererRobustness, TranslationInvariantFarFromTheOrigin) {
   const Rendered reference = renderScene(oneMeshScene(sphere.view(), {}, lights), here, 200, 150);
   for (double offset : {1e6, 1e9}) {
     Mesh moved = sphere;
-    for (glm::dvec3& p : moved.points) p += glm::dvec3(offset, -offset, offset);
+    for (glm::dvec3& p : moved.points)
+      p += glm::dvec3(offset, -offset, offset);
     LightSet movedLights = lights;
     std::get<PointLight>(movedLights.lights[0]).position += glm::dvec3(offset, -offset, offset);
     Camera there = here;
@@ -171,7 +180,8 @@ TEST(RendererRobustness, TinyAndHugeScalesRenderAlike) {
   const Rendered reference = renderScene(oneMeshScene(unit.view(), {}, lights), camera, 120, 90);
   for (double scale : {1e-30, 1e-6, 1e6, 1e30}) {
     Mesh scaled = unit;
-    for (glm::dvec3& p : scaled.points) p *= scale;
+    for (glm::dvec3& p : scaled.points)
+      p *= scale;
     Camera c = camera;
     c.position *= scale;
     c.focalPoint *= scale;
@@ -224,7 +234,8 @@ TEST(RendererProgress, ReportsIncreasingFractionsAndCanAbort) {
   renderer.setProgressCallback([](double fraction) { return fraction < 0.3; });
   const RenderStats stopped = renderer.render(scene, camera, fb);
   EXPECT_TRUE(stopped.aborted);
-  for (std::int32_t id : fb.polygonId()) ASSERT_EQ(id, Framebuffer::kBackgroundId);
+  for (std::int32_t id : fb.polygonId())
+    ASSERT_EQ(id, Framebuffer::kBackgroundId);
 }
 
 TEST(RenderPlan, LeavesOutWhatTheSceneDoesNotNeed) {
@@ -234,14 +245,16 @@ TEST(RenderPlan, LeavesOutWhatTheSceneDoesNotNeed) {
   EXPECT_FALSE(ambientOnly.directLighting);
   EXPECT_FALSE(ambientOnly.polygonCenters);
   EXPECT_FALSE(ambientOnly.viewerDirection);
-  EXPECT_NE(ambientOnly.describe().find("normals skipped"), std::string::npos) << ambientOnly.describe();
+  EXPECT_NE(ambientOnly.describe().find("normals skipped"), std::string::npos)
+      << ambientOnly.describe();
 
   LightSet lights;
   lights.lights.push_back(PointLight{});
   lights.lights.push_back(DirectionalLight{{0, 0, -1}, Color(0.0f), 1.0});  // black: left out
   Material shiny;
   shiny.specular = 0.5;
-  const RenderPlan lit = renderer.plan(oneMeshScene(box.view(), shiny, lights), frontCamera(), 64, 48);
+  const RenderPlan lit =
+      renderer.plan(oneMeshScene(box.view(), shiny, lights), frontCamera(), 64, 48);
   EXPECT_TRUE(lit.directLighting);
   EXPECT_TRUE(lit.positionalLights);
   EXPECT_TRUE(lit.specular);
@@ -252,7 +265,8 @@ TEST(RenderPlan, LeavesOutWhatTheSceneDoesNotNeed) {
   LightSet dark;
   dark.lights.push_back(DirectionalLight{{0, 0, -1}, Color(1.0f), 0.0});  // zero intensity
   EXPECT_FALSE(renderer.plan(oneMeshScene(box.view()), frontCamera(), 8, 8).specular);
-  EXPECT_FALSE(renderer.plan(oneMeshScene(box.view(), shiny, dark), frontCamera(), 8, 8).directLighting);
+  EXPECT_FALSE(
+      renderer.plan(oneMeshScene(box.view(), shiny, dark), frontCamera(), 8, 8).directLighting);
 }
 
 }  // namespace

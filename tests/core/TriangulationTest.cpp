@@ -32,7 +32,9 @@ Mesh comb(int teeth) {
   return mesh;
 }
 
-std::size_t combArea(int teeth) { return teeth * 10u * 40u + (20u * (teeth - 1) + 10u) * 20u; }
+std::size_t combArea(int teeth) {
+  return teeth * 10u * 40u + (20u * (teeth - 1) + 10u) * 20u;
+}
 
 TEST(Triangulation, ConcaveCombFillsExactlyItsArea) {
   const Mesh mesh = comb(5);
@@ -58,7 +60,8 @@ TEST(Triangulation, SlightlyNonPlanarQuadsAndNgonsFromARealMesh) {
   LightSet lights;
   lights.lights.push_back(DirectionalLight{{-0.3, -0.5, -1.0}});
   RenderOptions options;
-  const Rendered r = renderScene(oneMeshScene(beast.view(), {}, lights), fitCamera(beast), 320, 240, options);
+  const Rendered r =
+      renderScene(oneMeshScene(beast.view(), {}, lights), fitCamera(beast), 320, 240, options);
   EXPECT_GT(r.stats.pixelsCovered, 5000u);
   EXPECT_GT(r.stats.trianglesBinned, r.stats.polygonsDrawn) << "quads become two triangles";
   EXPECT_EQ(r.stats.polygonsNonFinite, 0u);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
@@ -15,8 +15,14 @@ namespace {
 // above, B is nearer where x > 0 and A where x < 0.
 Mesh intersectingQuads() {
   Mesh mesh;
-  for (glm::dvec3 p : {glm::dvec3{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0},
-                       {-1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, -1}}) {
+  for (glm::dvec3 p : {glm::dvec3{-1, -1, 0},
+                       {1, -1, 0},
+                       {1, 1, 0},
+                       {-1, 1, 0},
+                       {-1, -1, -1},
+                       {1, -1, 1},
+                       {1, 1, 1},
+                       {-1, 1, -1}}) {
     mesh.addPoint(p);
   }
   mesh.addPolygon({0, 1, 2, 3});  // A: polygon 0
@@ -65,7 +71,8 @@ TEST(Visibility, PainterOrderDrawsFarToNear) {
   Mesh stack;  // two parallel squares, the far one listed last
   for (double z : {0.5, -0.5}) {
     const std::int64_t base = static_cast<std::int64_t>(stack.points.size());
-    for (glm::dvec3 p : {glm::dvec3{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}}) stack.addPoint(p);
+    for (glm::dvec3 p : {glm::dvec3{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}})
+      stack.addPoint(p);
     stack.addPolygon({base, base + 1, base + 2, base + 3});
   }
   RenderOptions painter;
@@ -90,13 +97,15 @@ void expectSameImage(const Framebuffer& a, const Framebuffer& b) {
 TEST(Culling, ClosedMeshLooksTheSameWithAndWithoutCulling) {
   const Mesh spot = readObj(sharedMeshPath("spot.obj"));
   LightSet lights;
-  lights.lights.push_back(PointLight{{3.0, 2.0, 4.0}, Color(1.0f, 0.9f, 0.8f), 1.0, NoAttenuation{}});
+  lights.lights.push_back(
+      PointLight{{3.0, 2.0, 4.0}, Color(1.0f, 0.9f, 0.8f), 1.0, NoAttenuation{}});
   for (const glm::dvec3 direction : {glm::dvec3(0, 0, -1), glm::dvec3(1, -0.5, 0.3)}) {
     Material culled;
     culled.backfaceCulling = true;
     const Camera camera = fitCamera(spot, direction);
     const Rendered with = renderScene(oneMeshScene(spot.view(), culled, lights), camera, 400, 300);
-    const Rendered without = renderScene(oneMeshScene(spot.view(), Material{}, lights), camera, 400, 300);
+    const Rendered without =
+        renderScene(oneMeshScene(spot.view(), Material{}, lights), camera, 400, 300);
     EXPECT_GT(with.stats.polygonsCulled, spot.polygonCount() / 3);
     EXPECT_EQ(without.stats.polygonsCulled, 0u);
     EXPECT_GT(with.stats.pixelsCovered, 10000u);
@@ -106,11 +115,13 @@ TEST(Culling, ClosedMeshLooksTheSameWithAndWithoutCulling) {
 
 TEST(Culling, BackFacesOfAnOpenSurfaceDisappear) {
   Mesh square;
-  for (glm::dvec3 p : {glm::dvec3{-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}}) square.addPoint(p);
+  for (glm::dvec3 p : {glm::dvec3{-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}})
+    square.addPoint(p);
   square.addPolygon({0, 1, 2, 3});  // clockwise seen from +z: a back face
   Material culled;
   culled.backfaceCulling = true;
-  EXPECT_EQ(renderScene(oneMeshScene(square.view(), culled), topDown(), 32, 32).stats.pixelsCovered, 0u);
+  EXPECT_EQ(renderScene(oneMeshScene(square.view(), culled), topDown(), 32, 32).stats.pixelsCovered,
+            0u);
   EXPECT_GT(renderScene(oneMeshScene(square.view()), topDown(), 32, 32).stats.pixelsCovered, 500u);
 }
 

@@ -28,7 +28,8 @@ RenderOptions painterOptions(int threads = 2) {
 
 // Compares coverage with the outline's inside (pixels whose center lies exactly on the
 // outline are skipped: the outline's own edges are not shared, so either answer is right).
-void expectCoverageMatchesOutline(const Rendered& rendered, const std::vector<FixedPoint>& outline) {
+void expectCoverageMatchesOutline(const Rendered& rendered,
+                                  const std::vector<FixedPoint>& outline) {
   EXPECT_EQ(rendered.stats.fragmentsWritten, rendered.stats.pixelsCovered)
       << "some pixel was painted more than once";
   int mismatches = 0, inside = 0;
@@ -41,8 +42,9 @@ void expectCoverageMatchesOutline(const Rendered& rendered, const std::vector<Fi
       inside += expected;
       const bool covered = fb.polygonIdAt(x, y) != Framebuffer::kBackgroundId;
       if (covered != expected && ++mismatches <= 5) {
-        ADD_FAILURE() << "pixel (" << x << ", " << y << ") " << (covered ? "covered" : "not covered")
-                      << " but the outline says " << (expected ? "inside" : "outside");
+        ADD_FAILURE() << "pixel (" << x << ", " << y << ") "
+                      << (covered ? "covered" : "not covered") << " but the outline says "
+                      << (expected ? "inside" : "outside");
       }
     }
   }
@@ -64,7 +66,8 @@ void checkFan(glm::dvec2 center, double radius, int triangles, double rotation, 
     mesh.addPoint({x, y, 0.0});
     outline.push_back(toFixed(x, y));
   }
-  for (int i = 0; i < triangles; ++i) mesh.addPolygon({0, 1 + i, 1 + (i + 1) % triangles});
+  for (int i = 0; i < triangles; ++i)
+    mesh.addPolygon({0, 1 + i, 1 + (i + 1) % triangles});
   const Rendered rendered = renderScene(oneMeshScene(mesh.view()), pixelCamera(kWidth, kHeight),
                                         kWidth, kHeight, painterOptions());
   SCOPED_TRACE("fan center (" + std::to_string(center.x) + ", " + std::to_string(center.y) +
@@ -79,7 +82,8 @@ void checkGrid(glm::dvec2 origin, double cell, int cells, double rotation) {
   Mesh mesh;
   auto gridPoint = [&](int i, int j) {
     const double u = i * cell - half, v = j * cell - half;
-    return glm::dvec2(snapToSubpixel(origin.x + c * u - s * v), snapToSubpixel(origin.y + s * u + c * v));
+    return glm::dvec2(snapToSubpixel(origin.x + c * u - s * v),
+                      snapToSubpixel(origin.y + s * u + c * v));
   };
   for (int j = 0; j <= cells; ++j) {
     for (int i = 0; i <= cells; ++i) {
@@ -101,10 +105,14 @@ void checkGrid(glm::dvec2 origin, double cell, int cells, double rotation) {
     }
   }
   std::vector<FixedPoint> outline;
-  for (int i = 0; i < cells; ++i) outline.push_back(toFixed(gridPoint(i, 0).x, gridPoint(i, 0).y));
-  for (int j = 0; j < cells; ++j) outline.push_back(toFixed(gridPoint(cells, j).x, gridPoint(cells, j).y));
-  for (int i = cells; i > 0; --i) outline.push_back(toFixed(gridPoint(i, cells).x, gridPoint(i, cells).y));
-  for (int j = cells; j > 0; --j) outline.push_back(toFixed(gridPoint(0, j).x, gridPoint(0, j).y));
+  for (int i = 0; i < cells; ++i)
+    outline.push_back(toFixed(gridPoint(i, 0).x, gridPoint(i, 0).y));
+  for (int j = 0; j < cells; ++j)
+    outline.push_back(toFixed(gridPoint(cells, j).x, gridPoint(cells, j).y));
+  for (int i = cells; i > 0; --i)
+    outline.push_back(toFixed(gridPoint(i, cells).x, gridPoint(i, cells).y));
+  for (int j = cells; j > 0; --j)
+    outline.push_back(toFixed(gridPoint(0, j).x, gridPoint(0, j).y));
   const Rendered rendered = renderScene(oneMeshScene(mesh.view()), pixelCamera(kWidth, kHeight),
                                         kWidth, kHeight, painterOptions());
   SCOPED_TRACE("grid rotation " + std::to_string(rotation));
@@ -191,7 +199,8 @@ TEST(Watertight, ClippedByTheNearPlane) {
       const bool expected = covers(x + 0.5, y + 0.5);
       bool boundary = false;
       for (double dx : {0.0, 1.0}) {
-        for (double dy : {0.0, 1.0}) boundary |= covers(x + dx, y + dy) != expected;
+        for (double dy : {0.0, 1.0})
+          boundary |= covers(x + dx, y + dy) != expected;
       }
       if (boundary) continue;
       ++checked;
@@ -214,8 +223,8 @@ TEST(FillRule, SamplesOnASharedDiagonalBelongToExactlyOneTriangle) {
   square.addPoint({0.5, 8.5, 0.0});
   square.addPolygon({0, 1, 2});  // lower right: the diagonal 2→0 is its left edge
   square.addPolygon({0, 2, 3});  // upper left: the diagonal 0→2 is its right edge
-  const Rendered r = renderScene(oneMeshScene(square.view()), pixelCamera(16, 16), 16, 16,
-                                 painterOptions());
+  const Rendered r =
+      renderScene(oneMeshScene(square.view()), pixelCamera(16, 16), 16, 16, painterOptions());
   EXPECT_EQ(r.stats.fragmentsWritten, r.stats.pixelsCovered);
   for (int i = 1; i < 8; ++i) {
     EXPECT_EQ(r.framebuffer.polygonIdAt(i, i), 0) << "diagonal sample " << i << " (top-left rule)";
@@ -229,19 +238,27 @@ TEST(FillRule, SamplesOnASharedDiagonalBelongToExactlyOneTriangle) {
 
 TEST(FillRule, HorizontalAndVerticalSharedEdgesThroughSampleRows) {
   Mesh mesh;  // two triangles stacked on a horizontal edge at y = 4.5, two side by side at x = 12.5
-  for (glm::dvec3 p : {glm::dvec3{1.3, 1.2, 0}, {7.9, 4.5, 0}, {1.1, 4.5, 0}, {5.2, 8.8, 0},
-                       {12.5, 1.1, 0}, {12.5, 9.3, 0}, {9.2, 5.1, 0}, {15.7, 4.9, 0}}) {
+  for (glm::dvec3 p : {glm::dvec3{1.3, 1.2, 0},
+                       {7.9, 4.5, 0},
+                       {1.1, 4.5, 0},
+                       {5.2, 8.8, 0},
+                       {12.5, 1.1, 0},
+                       {12.5, 9.3, 0},
+                       {9.2, 5.1, 0},
+                       {15.7, 4.9, 0}}) {
     mesh.addPoint(p);
   }
   mesh.addPolygon({0, 1, 2});  // below y = 4.5: the edge 1→2 runs leftward, its top edge
   mesh.addPolygon({2, 1, 3});  // above
   mesh.addPolygon({4, 5, 6});  // left of x = 12.5: the edge 4→5 runs upward, its right edge
   mesh.addPolygon({4, 7, 5});  // right: the edge 5→4 runs downward, its left edge
-  const Rendered r = renderScene(oneMeshScene(mesh.view()), pixelCamera(17, 10), 17, 10,
-                                 painterOptions());
+  const Rendered r =
+      renderScene(oneMeshScene(mesh.view()), pixelCamera(17, 10), 17, 10, painterOptions());
   EXPECT_EQ(r.stats.fragmentsWritten, r.stats.pixelsCovered);
-  for (int x = 2; x <= 6; ++x) EXPECT_EQ(r.framebuffer.polygonIdAt(x, 4), 0) << "x " << x;
-  for (int y = 2; y <= 7; ++y) EXPECT_EQ(r.framebuffer.polygonIdAt(12, y), 3) << "y " << y;
+  for (int x = 2; x <= 6; ++x)
+    EXPECT_EQ(r.framebuffer.polygonIdAt(x, 4), 0) << "x " << x;
+  for (int y = 2; y <= 7; ++y)
+    EXPECT_EQ(r.framebuffer.polygonIdAt(12, y), 3) << "y " << y;
 }
 
 TEST(Coverage, RandomTrianglesCoverTheirAreaWithinThePerimeter) {
@@ -250,19 +267,22 @@ TEST(Coverage, RandomTrianglesCoverTheirAreaWithinThePerimeter) {
   int checked = 0;
   for (int trial = 0; trial < 300; ++trial) {
     glm::dvec2 p[3];
-    for (auto& v : p) v = {snapToSubpixel(coordinate(random)), snapToSubpixel(coordinate(random))};
+    for (auto& v : p)
+      v = {snapToSubpixel(coordinate(random)), snapToSubpixel(coordinate(random))};
     // Clip the expectation to the image by keeping triangles inside it.
     bool inside = true;
-    for (auto& v : p) inside &= v.x >= 0 && v.y >= 0 && v.x <= 256 && v.y <= 256;
+    for (auto& v : p)
+      inside &= v.x >= 0 && v.y >= 0 && v.x <= 256 && v.y <= 256;
     if (!inside) continue;
     Mesh mesh;
-    for (auto& v : p) mesh.addPoint({v.x, v.y, 0.0});
+    for (auto& v : p)
+      mesh.addPoint({v.x, v.y, 0.0});
     mesh.addPolygon({0, 1, 2});
     const Rendered r = renderScene(oneMeshScene(mesh.view()), pixelCamera(256, 256), 256, 256);
     const double area = 0.5 * std::abs((p[1].x - p[0].x) * (p[2].y - p[0].y) -
                                        (p[2].x - p[0].x) * (p[1].y - p[0].y));
-    const double perimeter = glm::length(p[1] - p[0]) + glm::length(p[2] - p[1]) +
-                             glm::length(p[0] - p[2]);
+    const double perimeter =
+        glm::length(p[1] - p[0]) + glm::length(p[2] - p[1]) + glm::length(p[0] - p[2]);
     EXPECT_NEAR(double(r.stats.pixelsCovered), area, perimeter + 1.0)
         << "triangle (" << p[0].x << "," << p[0].y << ") (" << p[1].x << "," << p[1].y << ") ("
         << p[2].x << "," << p[2].y << ")";

@@ -45,8 +45,7 @@ Mesh readObj(const std::filesystem::path& path) {
   return mesh;
 }
 
-Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius,
-                  const glm::dvec3& center) {
+Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius, const glm::dvec3& center) {
   Mesh mesh;
   const std::int64_t north = mesh.addPoint(center + glm::dvec3(0, 0, radius));
   const std::int64_t south = mesh.addPoint(center - glm::dvec3(0, 0, radius));
@@ -62,14 +61,16 @@ Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius,
   const auto at = [&](int ring, int i) -> std::int64_t {
     return 2 + ring * thetaResolution + (i % thetaResolution);
   };
-  for (int i = 0; i < thetaResolution; ++i) mesh.addPolygon({north, at(0, i), at(0, i + 1)});
+  for (int i = 0; i < thetaResolution; ++i)
+    mesh.addPolygon({north, at(0, i), at(0, i + 1)});
   for (int ring = 0; ring + 1 < rings; ++ring) {
     for (int i = 0; i < thetaResolution; ++i) {
       mesh.addPolygon({at(ring, i), at(ring + 1, i), at(ring + 1, i + 1)});
       mesh.addPolygon({at(ring, i), at(ring + 1, i + 1), at(ring, i + 1)});
     }
   }
-  for (int i = 0; i < thetaResolution; ++i) mesh.addPolygon({south, at(rings - 1, i + 1), at(rings - 1, i)});
+  for (int i = 0; i < thetaResolution; ++i)
+    mesh.addPolygon({south, at(rings - 1, i + 1), at(rings - 1, i)});
   return mesh;
 }
 
@@ -99,8 +100,8 @@ Camera fitCamera(const Mesh& mesh, const glm::dvec3& direction, double viewAngle
   Camera camera;
   camera.focalPoint = center;
   camera.position = center - distance * glm::normalize(direction);
-  camera.viewUp = std::abs(glm::normalize(direction).y) > 0.9 ? glm::dvec3(0, 0, 1)
-                                                               : glm::dvec3(0, 1, 0);
+  camera.viewUp =
+      std::abs(glm::normalize(direction).y) > 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
   camera.viewAngleDegrees = viewAngleDegrees;
   camera.nearClip = std::max(distance - 1.01 * radius, 1e-3 * distance);
   camera.farClip = distance + 1.01 * radius;

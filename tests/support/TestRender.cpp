@@ -22,7 +22,9 @@ Scene oneMeshScene(const MeshView& mesh, const Material& material, const LightSe
   return scene;
 }
 
-double snapToSubpixel(double pixels) { return std::nearbyint(pixels * 256.0) / 256.0; }
+double snapToSubpixel(double pixels) {
+  return std::nearbyint(pixels * 256.0) / 256.0;
+}
 
 FixedPoint toFixed(double x, double y) {
   return {static_cast<std::int64_t>(std::nearbyint(x * 256.0)),

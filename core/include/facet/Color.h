@@ -19,10 +19,14 @@ struct Rgba8 {
 };
 
 /// Clamps to [0, 1]. NaN maps to 0, so no NaN can leave the shading stage.
-constexpr float saturate(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; }
+constexpr float saturate(float x) {
+  return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
+}
 
 /// Clamps each channel to [0, 1] (NaN → 0).
-inline Color saturate(const Color& c) { return {saturate(c.r), saturate(c.g), saturate(c.b)}; }
+inline Color saturate(const Color& c) {
+  return {saturate(c.r), saturate(c.g), saturate(c.b)};
+}
 
 /// Converts a channel to 8 bits, rounding to nearest after saturating (0.5/255 → 1).
 constexpr std::uint8_t toByte(float x) {

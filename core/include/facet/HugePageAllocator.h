@@ -34,7 +34,7 @@ struct HugePageAllocator {
     const std::size_t bytes = count * sizeof(T);
     if (bytes < kHugePage) return static_cast<T*>(::operator new(bytes));
     const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    void* p = ::operator new(rounded, std::align_val_t{kHugePage});
+    void* p = ::operator new (rounded, std::align_val_t{kHugePage});
 #if defined(__linux__)
     madvise(p, rounded, MADV_HUGEPAGE);  // advice only: failure changes nothing but speed
 #endif
@@ -46,7 +46,7 @@ struct HugePageAllocator {
     if (bytes < kHugePage) {
       ::operator delete(p);
     } else {
-      ::operator delete(p, std::align_val_t{kHugePage});
+      ::operator delete (p, std::align_val_t{kHugePage});
     }
   }
 

@@ -107,18 +107,18 @@ struct DirectionalLight {
 
 /// A light at a point, shining in every direction.
 struct PointLight {
-  glm::dvec3 position{0.0};                      ///< world coordinates (default: origin)
-  Color color{1.0f};                             ///< (default: white)
-  double intensity = 1.0;                        ///< 1 = normal (default: 1). Negative → 0.
+  glm::dvec3 position{0.0};                          ///< world coordinates (default: origin)
+  Color color{1.0f};                                 ///< (default: white)
+  double intensity = 1.0;                            ///< 1 = normal (default: 1). Negative → 0.
   Attenuation attenuation = QuadraticAttenuation{};  ///< (default: Sixth 3D's 1/(1+0.0001·d²))
 };
 
 /// A light at a point, shining into a cone around `direction`.
 struct SpotLight {
-  glm::dvec3 position{0.0};              ///< world coordinates (default: origin)
-  glm::dvec3 direction{0.0, 0.0, -1.0};  ///< cone axis, away from the light; not zero
-  Color color{1.0f};                     ///< (default: white)
-  double intensity = 1.0;                ///< 1 = normal (default: 1). Negative → 0.
+  glm::dvec3 position{0.0};                          ///< world coordinates (default: origin)
+  glm::dvec3 direction{0.0, 0.0, -1.0};              ///< cone axis, away from the light; not zero
+  Color color{1.0f};                                 ///< (default: white)
+  double intensity = 1.0;                            ///< 1 = normal (default: 1). Negative → 0.
   Attenuation attenuation = QuadraticAttenuation{};  ///< (default: Sixth 3D's)
   SpotCone cone = LinearSpotCone{};                  ///< (default: 20° + 15° linear falloff)
 };

@@ -59,10 +59,10 @@ inline constexpr double kMaxRadiance = 1e6;
 
 /// What the shading needs to know about one surface point.
 struct SurfaceSample {
-  glm::dvec3 position{0.0};  ///< world coordinates
-  glm::dvec3 normal{0.0, 0.0, 1.0};  ///< unit normal, facing the side being lit
+  glm::dvec3 position{0.0};            ///< world coordinates
+  glm::dvec3 normal{0.0, 0.0, 1.0};    ///< unit normal, facing the side being lit
   glm::dvec3 toViewer{0.0, 0.0, 1.0};  ///< unit vector toward the eye (parallel: −view dir)
-  Color color{1.0f};  ///< Cd, the surface color
+  Color color{1.0f};                   ///< Cd, the surface color
 };
 
 /// A Material with its coefficients and colors capped at kMaxRadiance once, for shading

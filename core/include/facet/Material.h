@@ -43,7 +43,7 @@ struct Material {
   /// Color of the Ka term. Unset means "the surface color", as vtkProperty::SetColor and
   /// scalar coloring make it. (default: unset)
   std::optional<Color> ambientColor;
-  Color specularColor{1.0f};  ///< (default: white, as vtkProperty)
+  Color specularColor{1.0f};   ///< (default: white, as vtkProperty)
   double ambient = 0.0;        ///< Ka, vtkProperty::Ambient (default: 0)
   double diffuse = 1.0;        ///< Kd, vtkProperty::Diffuse (default: 1)
   double specular = 0.0;       ///< Ks, vtkProperty::Specular (default: 0)

@@ -74,8 +74,9 @@ std::optional<glm::dvec3> newellNormal(std::size_t count, const VertexAt& vertex
 }
 
 /// The unit normal of triangle abc (counter-clockwise faces it), or nothing when it is
-/// degenerate (relative area below about kDegenerateAreaRatio, as for newellNormal). A plain cross product when the numbers
-/// are well inside double's range (the common case); newellNormal otherwise.
+/// degenerate (relative area below about kDegenerateAreaRatio, as for newellNormal). A plain cross
+/// product when the numbers are well inside double's range (the common case); newellNormal
+/// otherwise.
 inline std::optional<glm::dvec3> triangleNormal(const glm::dvec3& a, const glm::dvec3& b,
                                                 const glm::dvec3& c) {
   const glm::dvec3 ab = b - a, ac = c - a;
@@ -86,8 +87,8 @@ inline std::optional<glm::dvec3> triangleNormal(const glm::dvec3& a, const glm::
   if (lengthSquared > 1e-200 && lengthSquared < 1e200 && extentSquared > 1e-100 &&
       extentSquared < 1e100) {
     // |ab × ac| vs the bounding-box diagonal² (within a factor 3 of max(|ab|², |ac|²)).
-    if (!(lengthSquared > kDegenerateAreaRatio * kDegenerateAreaRatio * 9.0 * extentSquared *
-                              extentSquared)) {
+    if (!(lengthSquared >
+          kDegenerateAreaRatio * kDegenerateAreaRatio * 9.0 * extentSquared * extentSquared)) {
       return std::nullopt;
     }
     return cross * (1.0 / std::sqrt(lengthSquared));

@@ -14,7 +14,7 @@ namespace facet {
 /// Which code paths a render takes. Every flag that is false is work skipped.
 struct RenderPlan {
   Visibility visibility = Visibility::ZBuffer;
-  bool depthTest = true;    ///< z-buffer mode
+  bool depthTest = true;     ///< z-buffer mode
   bool sortByDepth = false;  ///< painter mode: sort polygons by centroid depth
   /// Some light other than the ambient one reaches the scene. Without one, a polygon's color
   /// does not depend on its orientation: no normal is computed, and a mesh without
@@ -66,7 +66,7 @@ struct RenderStats {
   std::size_t fragmentsWritten = 0;    ///< pixel writes, counting overdraw
   std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end
   std::size_t closedMeshesSkippingBackFaces = 0;  ///< closed meshes wholly in front of near
-  bool aborted = false;                ///< the progress callback asked to stop
+  bool aborted = false;                           ///< the progress callback asked to stop
 };
 
 }  // namespace facet
