@@ -139,6 +139,8 @@ public:
 
 vtkStandardNewMacro(vtkFacetRenderFilter);
 vtkCxxSetObjectMacro(vtkFacetRenderFilter, Camera, vtkCamera);
+vtkCxxSetObjectMacro(vtkFacetRenderFilter, Property, vtkProperty);
+vtkCxxSetObjectMacro(vtkFacetRenderFilter, LookupTable, vtkScalarsToColors);
 
 //------------------------------------------------------------------------------
 vtkFacetRenderFilter::vtkFacetRenderFilter()
@@ -156,10 +158,7 @@ vtkFacetRenderFilter::~vtkFacetRenderFilter()
 {
   this->SetCamera(nullptr);
   this->SetLookupTable(nullptr);
-  if (this->Property)
-  {
-    this->Property->UnRegister(this);
-  }
+  this->SetProperty(nullptr);
   this->Lights->Delete();
   this->SetArrayName(nullptr);
   delete this->Internals;
@@ -185,24 +184,6 @@ void vtkFacetRenderFilter::RemoveAllLights()
 }
 
 //------------------------------------------------------------------------------
-void vtkFacetRenderFilter::SetProperty(vtkProperty* property)
-{
-  if (property == this->Property)
-  {
-    return;
-  }
-  if (this->Property)
-  {
-    this->Property->UnRegister(this);
-  }
-  this->Property = property;
-  if (this->Property)
-  {
-    this->Property->Register(this);
-  }
-  this->Modified();
-}
-
 vtkProperty* vtkFacetRenderFilter::GetProperty()
 {
   if (!this->Property)
@@ -214,24 +195,6 @@ vtkProperty* vtkFacetRenderFilter::GetProperty()
 }
 
 //------------------------------------------------------------------------------
-void vtkFacetRenderFilter::SetLookupTable(vtkScalarsToColors* table)
-{
-  if (table == this->LookupTable)
-  {
-    return;
-  }
-  if (this->LookupTable)
-  {
-    this->LookupTable->UnRegister(this);
-  }
-  this->LookupTable = table;
-  if (this->LookupTable)
-  {
-    this->LookupTable->Register(this);
-  }
-  this->Modified();
-}
-
 vtkScalarsToColors* vtkFacetRenderFilter::GetLookupTable()
 {
   return this->LookupTable ? this->LookupTable : this->Internals->Colors.GetDefaultLookupTable();

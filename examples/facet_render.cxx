@@ -374,6 +374,14 @@ std::string FirstLine(std::string text)
   return line;
 }
 
+template<class Reader>
+vtkSmartPointer<vtkAlgorithm> MakeReader(const std::string& path)
+{
+  auto reader = vtkSmartPointer<Reader>::New();
+  reader->SetFileName(path.c_str());
+  return reader;
+}
+
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
 {
   if (!std::filesystem::is_regular_file(path))
@@ -385,33 +393,23 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
   vtkSmartPointer<vtkAlgorithm> reader;
   if (extension == ".vtp")
   {
-    auto xml = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-    xml->SetFileName(path.c_str());
-    reader = xml;
+    reader = MakeReader<vtkXMLPolyDataReader>(path);
   }
   else if (extension == ".vtk")
   {
-    auto legacy = vtkSmartPointer<vtkPolyDataReader>::New();
-    legacy->SetFileName(path.c_str());
-    reader = legacy;
+    reader = MakeReader<vtkPolyDataReader>(path);
   }
   else if (extension == ".obj")
   {
-    auto obj = vtkSmartPointer<vtkOBJReader>::New();
-    obj->SetFileName(path.c_str());
-    reader = obj;
+    reader = MakeReader<vtkOBJReader>(path);
   }
   else if (extension == ".ply")
   {
-    auto ply = vtkSmartPointer<vtkPLYReader>::New();
-    ply->SetFileName(path.c_str());
-    reader = ply;
+    reader = MakeReader<vtkPLYReader>(path);
   }
   else if (extension == ".stl")
   {
-    auto stl = vtkSmartPointer<vtkSTLReader>::New();
-    stl->SetFileName(path.c_str());
-    reader = stl;
+    reader = MakeReader<vtkSTLReader>(path);
   }
   else
   {

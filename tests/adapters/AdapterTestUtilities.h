@@ -66,4 +66,13 @@ inline vtkIdType AddSquare(vtkPoints* points,
   return polys->InsertNextCell(4, ids);
 }
 
+// A vtkPolyData of these points and polygons.
+inline vtkSmartPointer<vtkPolyData> PolyData(vtkPoints* points, vtkCellArray* polys)
+{
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetPolys(polys);
+  return data;
+}
+
 } // namespace facet_test

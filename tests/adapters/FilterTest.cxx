@@ -184,9 +184,7 @@ TEST(Conversion, CellIdsSurviveNearPlaneClipping)
   vtkNew<vtkCellArray> polys;
   AddSquare(points, polys, -50.0, -50.0, 50.0, 50.0); // a floor the near plane cuts
   AddSquare(points, polys, -5.0, 60.0, 5.0, 70.0);    // something beyond it
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkNew<vtkCamera> camera;
   camera->SetPosition(0.0, -40.0, 5.0);
   camera->SetFocalPoint(0.0, 0.0, 0.0);
@@ -234,9 +232,7 @@ TEST(Coloring, CellScalarsThroughALookupTableGiveItsExactBytes)
     AddSquare(points, polys, 5.0 + 30.0 * i, 20.0, 30.0 + 30.0 * i, 100.0);
     values->InsertNextValue(-3.0 + 2.7 * i);
   }
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   input->GetCellData()->SetScalars(values);
   vtkNew<vtkLookupTable> table;
   table->SetHueRange(0.667, 0.0);
@@ -269,9 +265,7 @@ TEST(Coloring, UnsignedCharColorsAreUsedDirectly)
   colors->SetNumberOfComponents(3);
   colors->InsertNextTuple3(200, 17, 99);
   colors->InsertNextTuple3(3, 250, 128);
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   input->GetCellData()->SetScalars(colors);
   vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
   filter->Update();
@@ -295,9 +289,7 @@ TEST(Coloring, PointScalarsAreAveragedPerPolygon)
   colors->InsertNextTuple4(0, 255, 0, 255);
   colors->InsertNextTuple4(0, 0, 255, 255);
   colors->InsertNextTuple4(255, 255, 255, 255);
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   input->GetPointData()->SetScalars(colors);
   vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
   filter->Update();
@@ -390,9 +382,7 @@ TEST(Lights, HeadlightByDefaultAndNoneWhenTurnedOff)
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> polys;
   AddSquare(points, polys, 10.0, 10.0, 150.0, 110.0);
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputData(input);
   filter->SetSize(Width, Height);
@@ -415,9 +405,7 @@ TEST(Lights, FacetLightLinearSpotFalloff)
   {
     AddSquare(points, polys, i, 0.0, i + 1.0, Height);
   }
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkNew<vtkFacetLight> spot;
   spot->SetLightTypeToSceneLight();
   spot->PositionalOn();
@@ -450,9 +438,7 @@ TEST(Errors, PointIdsOutOfRangeGiveAnErrorAndAnEmptyOutput)
   AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
   const vtkIdType bad[3] = { 0, 1, 99 };
   polys->InsertNextCell(3, bad);
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
   MessageCounter errors(filter, vtkCommand::ErrorEvent);
   filter->Update();
@@ -483,9 +469,7 @@ TEST(Errors, NonFinitePointsSkipTheirCellsWithOneWarning)
   AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
   AddSquare(points, polys, 90.0, 10.0, 150.0, 70.0);
   points->SetPoint(5, std::numeric_limits<double>::quiet_NaN(), 10.0, 0.0);
-  vtkNew<vtkPolyData> input;
-  input->SetPoints(points);
-  input->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
   MessageCounter warnings(filter, vtkCommand::WarningEvent);
   filter->Update();
