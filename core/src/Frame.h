@@ -84,7 +84,6 @@ struct FrameState {
   Shader shader;
   bool twoSidedLighting = true;
   PixelBounds viewport{0, 0, -1, -1};
-  std::size_t polygonCount = 0;
 
   // Buffers reused from render to render.
   std::vector<FrameMesh> meshes;

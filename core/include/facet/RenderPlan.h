@@ -56,7 +56,9 @@ struct RenderStats {
   double totalSeconds = 0.0;
 
   std::size_t polygonsDrawn = 0;       ///< sent to the tiles
-  std::size_t polygonsShaded = 0;      ///< lit: the polygons visible in the image
+  /// Lit: the polygons that won a pixel while painting (those visible in the image, and any
+  /// overdrawn later).
+  std::size_t polygonsShaded = 0;
   std::size_t polygonsCulled = 0;      ///< back-facing, culled or hidden (closed surface)
   std::size_t polygonsOutside = 0;     ///< outside the view, or covering no pixel center
   std::size_t polygonsDegenerate = 0;  ///< fewer than 3 points, or zero area

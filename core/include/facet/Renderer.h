@@ -8,10 +8,12 @@
 ///     inside the guard band and the near/far range, to 8-bit sub-pixel window coordinates;
 ///  2. per polygon: triangulate (fan if convex, ear clipping if concave), clip what crosses
 ///     the near/far planes or the guard band in homogeneous space, cull back faces, drop
-///     zero-area triangles by their exact integer area, light the polygon once (flat) and
-///     bin its triangles into screen tiles;
+///     zero-area triangles by their exact integer area, bin its triangles into screen tiles;
 ///  3. per tile, one thread each: clear, then paint the tile's triangles in polygon order with
-///     integer edge functions, a top-left fill rule and pixel centers at +0.5.
+///     integer edge functions, a top-left fill rule and pixel centers at +0.5 (depth and
+///     polygon id);
+///  4. light each polygon that won a pixel, once (flat shading is a function of the polygon,
+///     so hidden polygons are never lit), then color every pixel from its polygon id.
 /// The result is bit-identical for every thread count, and re-rendering the same scene at
 /// the same size allocates nothing.
 
