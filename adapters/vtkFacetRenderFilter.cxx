@@ -135,7 +135,125 @@ public:
   vtkNew<vtkRenderer> CameraReset; // no window: only for vtkRenderer::ResetCamera
   std::string Plan;
   bool WarnedAboutProperty = false;
+
+  static vtkFacetScalarColors::Settings ColoringOf(const vtkFacetRenderFilter& filter);
+  // The scene: polys (mesh 0) then strip triangles (mesh 1), as CellIdOf numbers them.
+  facet::Scene MeshesOf(const facet::Material& material) const;
+  // The filter's camera, or one reset to the input's bounds.
+  vtkCamera* CameraFor(vtkCamera* camera, vtkPolyData* input, int width, int height);
+  void AddFieldData(vtkImageData* output,
+    const facet::RenderStats& stats,
+    double conversionSeconds,
+    double outputSeconds,
+    double totalSeconds);
 };
+
+//------------------------------------------------------------------------------
+vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
+  const vtkFacetRenderFilter& filter)
+{
+  vtkFacetScalarColors::Settings coloring;
+  coloring.ScalarVisibility = filter.ScalarVisibility != 0;
+  coloring.ScalarMode = filter.ScalarMode;
+  coloring.ColorMode = filter.ColorMode;
+  coloring.ArrayAccessMode = filter.ArrayAccessMode;
+  coloring.ArrayId = filter.ArrayId;
+  coloring.ArrayName = filter.ArrayName ? filter.ArrayName : "";
+  coloring.ArrayComponent = filter.ArrayComponent;
+  coloring.LookupTable = filter.LookupTable;
+  coloring.LookupTableTime = filter.LookupTable ? filter.LookupTable->GetMTime() : 0;
+  coloring.ScalarRange[0] = filter.ScalarRange[0];
+  coloring.ScalarRange[1] = filter.ScalarRange[1];
+  coloring.UseLookupTableScalarRange = filter.UseLookupTableScalarRange != 0;
+  return coloring;
+}
+
+//------------------------------------------------------------------------------
+facet::Scene vtkFacetRenderFilter::vtkInternals::MeshesOf(const facet::Material& material) const
+{
+  facet::Scene scene;
+  if (this->Mesh.Polygons().polygons.count > 0)
+  {
+    facet::MeshView polygons = this->Mesh.Polygons();
+    polygons.polygonColors = this->Colors.PolygonColors();
+    scene.meshes.push_back({ polygons, material });
+  }
+  if (this->Mesh.StripTriangles().polygons.count > 0)
+  {
+    facet::MeshView strips = this->Mesh.StripTriangles();
+    strips.polygonColors = this->Colors.StripColors();
+    scene.meshes.push_back({ strips, material });
+  }
+  return scene;
+}
+
+//------------------------------------------------------------------------------
+vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
+  vtkPolyData* input,
+  int width,
+  int height)
+{
+  if (camera)
+  {
+    return camera;
+  }
+  vtkRenderer* reset = this->CameraReset;
+  camera = reset->GetActiveCamera();
+  camera->SetPosition(0.0, 0.0, 1.0);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  reset->SetAspect(static_cast<double>(width) / height, 1.0);
+  double bounds[6];
+  input->GetBounds(bounds);
+  if (input->GetNumberOfPoints() > 0 && bounds[0] <= bounds[1])
+  {
+    reset->ResetCamera(bounds);
+  }
+  return camera;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::vtkInternals::AddFieldData(vtkImageData* output,
+  const facet::RenderStats& stats,
+  double conversionSeconds,
+  double outputSeconds,
+  double totalSeconds)
+{
+  vtkFieldData* fieldData = output->GetFieldData();
+  fieldData->Initialize();
+  AddNamedComponents<vtkDoubleArray>(
+    fieldData, "FacetRenderSeconds", { { "Total", totalSeconds } });
+  AddNamedComponents<vtkDoubleArray>(fieldData,
+    "FacetPhaseSeconds",
+    { { "Conversion", conversionSeconds },
+      { "Validate", stats.validateSeconds },
+      { "Transform", stats.transformSeconds },
+      { "Setup", stats.setupSeconds },
+      { "Raster", stats.rasterSeconds },
+      { "Shade", stats.shadeSeconds },
+      { "Output", outputSeconds } });
+  const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
+  AddNamedComponents<vtkIdTypeArray>(fieldData,
+    "FacetCounts",
+    { { "Polygons", count(stats.plan.polygons) },
+      { "PolygonsDrawn", count(stats.polygonsDrawn) },
+      { "PolygonsShaded", count(stats.polygonsShaded) },
+      { "PolygonsCulled", count(stats.polygonsCulled) },
+      { "PolygonsOutside", count(stats.polygonsOutside) },
+      { "PolygonsDegenerate", count(stats.polygonsDegenerate) },
+      { "PolygonsNonFinite", count(stats.polygonsNonFinite) },
+      { "TrianglesBinned", count(stats.trianglesBinned) },
+      { "TrianglesClipped", count(stats.trianglesClipped) },
+      { "FragmentsWritten", count(stats.fragmentsWritten) },
+      { "PixelsCovered", count(stats.pixelsCovered) } });
+  AddNamedComponents<vtkIdTypeArray>(
+    fieldData, "FacetMeshConverted", { { "Converted", this->Mesh.ConvertedLastUpdate() ? 1 : 0 } });
+  this->Plan = stats.plan.describe();
+  vtkNew<vtkStringArray> plan;
+  plan->SetName("FacetRenderPlan");
+  plan->InsertNextValue(this->Plan);
+  fieldData->AddArray(plan);
+}
 
 vtkStandardNewMacro(vtkFacetRenderFilter);
 vtkCxxSetObjectMacro(vtkFacetRenderFilter, Camera, vtkCamera);
@@ -337,21 +455,8 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
                                << mesh.GetNumberOfLines()
                                << " line cells: Facet renders polygons and triangle strips");
   }
-  vtkFacetScalarColors::Settings coloring;
-  coloring.ScalarVisibility = this->ScalarVisibility != 0;
-  coloring.ScalarMode = this->ScalarMode;
-  coloring.ColorMode = this->ColorMode;
-  coloring.ArrayAccessMode = this->ArrayAccessMode;
-  coloring.ArrayId = this->ArrayId;
-  coloring.ArrayName = this->ArrayName ? this->ArrayName : "";
-  coloring.ArrayComponent = this->ArrayComponent;
-  coloring.LookupTable = this->LookupTable;
-  coloring.LookupTableTime = this->LookupTable ? this->LookupTable->GetMTime() : 0;
-  coloring.ScalarRange[0] = this->ScalarRange[0];
-  coloring.ScalarRange[1] = this->ScalarRange[1];
-  coloring.UseLookupTableScalarRange = this->UseLookupTableScalarRange != 0;
-  const std::string colorWarning =
-    internals.Colors.Update(input, mesh, mesh.ConvertedLastUpdate(), coloring);
+  const std::string colorWarning = internals.Colors.Update(
+    input, mesh, mesh.ConvertedLastUpdate(), vtkInternals::ColoringOf(*this));
   if (!colorWarning.empty())
   {
     vtkWarningMacro(<< colorWarning);
@@ -359,7 +464,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   const double conversionSeconds = SecondsSince(start);
   this->UpdateProgress(0.05);
 
-  // The scene: polys (mesh 0) then strip triangles (mesh 1), as CellIdOf numbers them.
+  // The scene: meshes and material, camera, lights.
   vtkProperty* property = this->GetProperty();
   if (!internals.WarnedAboutProperty &&
     (property->GetInterpolation() != VTK_FLAT || property->GetOpacity() < 1.0 ||
@@ -372,37 +477,9 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   }
   const bool scalarColors =
     !internals.Colors.PolygonColors().empty() || !internals.Colors.StripColors().empty();
-  const facet::Material material = vtkFacetSceneConverter::ConvertProperty(property, scalarColors);
-  facet::Scene scene;
-  if (mesh.Polygons().polygons.count > 0)
-  {
-    facet::MeshView polygons = mesh.Polygons();
-    polygons.polygonColors = internals.Colors.PolygonColors();
-    scene.meshes.push_back({ polygons, material });
-  }
-  if (mesh.StripTriangles().polygons.count > 0)
-  {
-    facet::MeshView strips = mesh.StripTriangles();
-    strips.polygonColors = internals.Colors.StripColors();
-    scene.meshes.push_back({ strips, material });
-  }
-
-  vtkCamera* camera = this->Camera;
-  if (!camera)
-  {
-    vtkRenderer* reset = internals.CameraReset;
-    camera = reset->GetActiveCamera();
-    camera->SetPosition(0.0, 0.0, 1.0);
-    camera->SetFocalPoint(0.0, 0.0, 0.0);
-    camera->SetViewUp(0.0, 1.0, 0.0);
-    reset->SetAspect(static_cast<double>(width) / height, 1.0);
-    double bounds[6];
-    input->GetBounds(bounds);
-    if (input->GetNumberOfPoints() > 0 && bounds[0] <= bounds[1])
-    {
-      reset->ResetCamera(bounds);
-    }
-  }
+  facet::Scene scene =
+    internals.MeshesOf(vtkFacetSceneConverter::ConvertProperty(property, scalarColors));
+  vtkCamera* camera = internals.CameraFor(this->Camera, input, width, height);
   std::string warning;
   const facet::Camera facetCamera =
     vtkFacetSceneConverter::ConvertCamera(camera, width, height, warning);
@@ -478,40 +555,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
     });
   const double outputSeconds = SecondsSince(outputStart);
 
-  vtkFieldData* fieldData = output->GetFieldData();
-  fieldData->Initialize();
-  AddNamedComponents<vtkDoubleArray>(
-    fieldData, "FacetRenderSeconds", { { "Total", SecondsSince(start) } });
-  AddNamedComponents<vtkDoubleArray>(fieldData,
-    "FacetPhaseSeconds",
-    { { "Conversion", conversionSeconds },
-      { "Validate", stats.validateSeconds },
-      { "Transform", stats.transformSeconds },
-      { "Setup", stats.setupSeconds },
-      { "Raster", stats.rasterSeconds },
-      { "Shade", stats.shadeSeconds },
-      { "Output", outputSeconds } });
-  const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
-  AddNamedComponents<vtkIdTypeArray>(fieldData,
-    "FacetCounts",
-    { { "Polygons", count(stats.plan.polygons) },
-      { "PolygonsDrawn", count(stats.polygonsDrawn) },
-      { "PolygonsShaded", count(stats.polygonsShaded) },
-      { "PolygonsCulled", count(stats.polygonsCulled) },
-      { "PolygonsOutside", count(stats.polygonsOutside) },
-      { "PolygonsDegenerate", count(stats.polygonsDegenerate) },
-      { "PolygonsNonFinite", count(stats.polygonsNonFinite) },
-      { "TrianglesBinned", count(stats.trianglesBinned) },
-      { "TrianglesClipped", count(stats.trianglesClipped) },
-      { "FragmentsWritten", count(stats.fragmentsWritten) },
-      { "PixelsCovered", count(stats.pixelsCovered) } });
-  AddNamedComponents<vtkIdTypeArray>(
-    fieldData, "FacetMeshConverted", { { "Converted", mesh.ConvertedLastUpdate() ? 1 : 0 } });
-  internals.Plan = stats.plan.describe();
-  vtkNew<vtkStringArray> plan;
-  plan->SetName("FacetRenderPlan");
-  plan->InsertNextValue(internals.Plan);
-  fieldData->AddArray(plan);
+  internals.AddFieldData(output, stats, conversionSeconds, outputSeconds, SecondsSince(start));
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -90,12 +90,17 @@ class PolygonSetup {
     finish(first, tally);
   }
 
+  // Counts the polygon, and notes for its shading which side the viewer sees: clockwise on
+  // screen by the exact integer area, as OpenGL's gl_FrontFacing.
   void finish(std::size_t first, const Tally& tally) {
     if (chunk_.triangles.size() == first) {
       countDropped(tally);
-    } else {
-      finishPolygon(first, tally.backFacing > 0);
+      return;
     }
+    frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
+        tally.backFacing > 0 ? kUnshadedBack : kUnshadedFront;
+    chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
+    ++chunk_.counts.drawn;
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -223,15 +228,6 @@ class PolygonSetup {
     } else {
       ++chunk_.counts.outside;
     }
-  }
-
-  // Notes, for the shading, which side of the polygon the viewer sees: clockwise on screen
-  // by the exact integer area, as OpenGL's gl_FrontFacing.
-  void finishPolygon(std::size_t first, bool seenFromBack) {
-    frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
-        seenFromBack ? kUnshadedBack : kUnshadedFront;
-    chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
-    ++chunk_.counts.drawn;
   }
 
   FrameState& frame_;

@@ -55,7 +55,7 @@ struct RenderStats {
   double shadeSeconds = 0.0;      ///< light the visible polygons, color the pixels
   double totalSeconds = 0.0;
 
-  std::size_t polygonsDrawn = 0;       ///< sent to the tiles
+  std::size_t polygonsDrawn = 0;  ///< sent to the tiles
   /// Lit: the polygons that won a pixel while painting (those visible in the image, and any
   /// overdrawn later).
   std::size_t polygonsShaded = 0;
