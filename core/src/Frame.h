@@ -57,7 +57,6 @@ struct Chunk {
   std::vector<WindowVertex> clippedVertices;
   std::vector<std::vector<std::uint32_t>> bins;
   PolygonCounts counts;
-  std::optional<MeshProblem> problem;  // from the validation pass
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;
   std::vector<LocalTriangle> localTriangles;

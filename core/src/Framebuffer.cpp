@@ -14,7 +14,7 @@ Framebuffer::Framebuffer(int width, int height) {
 }
 
 std::size_t Framebuffer::byteSize() const {
-  return pixelCount() * (sizeof(Rgba8) + sizeof(float) + sizeof(std::int32_t));
+  return pixelCount() * kBytesPerPixel;
 }
 
 void Framebuffer::resize(int width, int height) {
@@ -31,7 +31,7 @@ void Framebuffer::resize(int width, int height) {
     depth_ = {};
     polygonId_ = {};
     throw Error("Framebuffer " + std::to_string(width) + "x" + std::to_string(height) + " needs " +
-                std::to_string(pixels * 12) + " bytes: allocation failed");
+                std::to_string(pixels * kBytesPerPixel) + " bytes: allocation failed");
   }
   width_ = width;
   height_ = height;

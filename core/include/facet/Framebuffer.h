@@ -31,6 +31,9 @@ class Framebuffer {
  public:
   /// Polygon id of a pixel no polygon covers.
   static constexpr std::int32_t kBackgroundId = -1;
+  /// Bytes a pixel takes in the three planes.
+  static constexpr std::size_t kBytesPerPixel =
+      sizeof(Rgba8) + sizeof(float) + sizeof(std::int32_t);
 
   Framebuffer() = default;
   /// Allocates width × height pixels. Throws facet::Error for a side ≤ 0 or above
