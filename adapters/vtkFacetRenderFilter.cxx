@@ -161,7 +161,6 @@ vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
   coloring.ArrayName = filter.ArrayName ? filter.ArrayName : "";
   coloring.ArrayComponent = filter.ArrayComponent;
   coloring.LookupTable = filter.LookupTable;
-  coloring.LookupTableTime = filter.LookupTable ? filter.LookupTable->GetMTime() : 0;
   coloring.ScalarRange[0] = filter.ScalarRange[0];
   coloring.ScalarRange[1] = filter.ScalarRange[1];
   coloring.UseLookupTableScalarRange = filter.UseLookupTableScalarRange != 0;
