@@ -8,8 +8,10 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkProperty.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -195,4 +197,52 @@ facet::Material vtkFacetSceneConverter::ConvertProperty(vtkProperty* property, b
   m.specularPower = property->GetSpecularPower();
   m.backfaceCulling = property->GetBackfaceCulling() != 0;
   return m;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetSceneConverter::FitCamera(vtkCamera* camera,
+  const double bounds[6],
+  int width,
+  int height)
+{
+  if (!vtkMath::AreBoundsInitialized(bounds))
+  {
+    return;
+  }
+  double fitted[6];
+  for (int i = 0; i < 6; ++i)
+  {
+    fitted[i] = std::clamp(bounds[i], -kLargestBound, kLargestBound);
+  }
+  double direction[3];
+  camera->GetDirectionOfProjection(direction);
+  vtkNew<vtkRenderer> renderer; // never rendered: only for ResetCamera
+  renderer->SetActiveCamera(camera);
+  renderer->SetAspect(static_cast<double>(width) / height, 1.0);
+  renderer->SetNearClippingPlaneTolerance(0.001);
+  renderer->ResetCamera(fitted);
+  const double* position = camera->GetPosition();
+  const double* focal = camera->GetFocalPoint();
+  if (position[0] != focal[0] || position[1] != focal[1] || position[2] != focal[2])
+  {
+    return;
+  }
+  // The camera's distance rounded away against its position (a 1e-10 cell at 1e20), and
+  // vtkCamera lost the direction with it: restore the direction and fit a box 2^-40 of its
+  // distance from the origin wide, thousands of ulps.
+  camera->SetPosition(0.0, 0.0, 0.0);
+  camera->SetFocalPoint(direction);
+  double largest = 0.0;
+  for (double bound : fitted)
+  {
+    largest = std::max(largest, std::abs(bound));
+  }
+  const double half = std::ldexp(largest, -40);
+  for (int i = 0; i < 6; i += 2)
+  {
+    const double center = 0.5 * fitted[i] + 0.5 * fitted[i + 1];
+    fitted[i] = center - half;
+    fitted[i + 1] = center + half;
+  }
+  renderer->ResetCamera(fitted);
 }

@@ -61,25 +61,6 @@ vtkSmartPointer<vtkFacetRenderFilter> UnlitFilter(vtkPolyData* input)
   return filter;
 }
 
-// Counts the messages of one kind (vtkCommand::ErrorEvent or WarningEvent) and keeps the
-// last, instead of letting VTK print them.
-struct MessageCounter
-{
-  explicit MessageCounter(vtkObject* object, unsigned long event)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
-      auto* counter = static_cast<MessageCounter*>(self);
-      ++counter->Count;
-      counter->Last = data ? static_cast<const char*>(data) : "";
-    });
-    object->AddObserver(event, this->Callback);
-  }
-  int Count = 0;
-  std::string Last;
-  vtkNew<vtkCallbackCommand> Callback;
-};
-
 vtkSmartPointer<vtkPolyData> StripSphere()
 {
   vtkNew<vtkSphereSource> sphere;
@@ -557,6 +538,29 @@ TEST(Errors, BadSizeGivesAnError)
   filter->SetSize(20000, 10);
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// Issue 7: SetNumberOfThreads(-3) used to mean "all cores" without a word.
+TEST(Errors, ThreadCountsOutsideTheRangeAreRefusedAndKeepThePreviousOne)
+{
+  vtkNew<vtkFacetRenderFilter> filter;
+  MessageCounter errors(filter, vtkCommand::ErrorEvent);
+  filter->SetNumberOfThreads(2);
+  EXPECT_EQ(errors.Count, 0);
+  const vtkMTimeType time = filter->GetMTime();
+  for (int bad : { -3, -1, 1025 })
+  {
+    filter->SetNumberOfThreads(bad);
+    EXPECT_EQ(filter->GetNumberOfThreads(), 2) << bad;
+    EXPECT_NE(
+      errors.Last.find("SetNumberOfThreads(" + std::to_string(bad) + ")"), std::string::npos)
+      << errors.Last;
+  }
+  EXPECT_EQ(errors.Count, 3);
+  EXPECT_EQ(filter->GetMTime(), time) << "nothing changed";
+  filter->SetNumberOfThreads(0);
+  EXPECT_EQ(filter->GetNumberOfThreads(), 0);
+  EXPECT_EQ(errors.Count, 3);
 }
 
 TEST(Errors, NonFinitePointsSkipTheirCellsWithOneWarning)
