@@ -66,6 +66,32 @@ Scene LoadScene(const std::string& mesh, double azimuth, double elevation)
   return scene;
 }
 
+// Renders off screen, without multisampling, at the test's size.
+vtkSmartPointer<vtkRenderWindow> RenderOffScreen(vtkRenderer* renderer)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(Width, Height);
+  window->AddRenderer(renderer);
+  window->Render();
+  return window;
+}
+
+// The window's color (RGB) or depth buffer.
+vtkSmartPointer<vtkImageData> ReadBack(vtkRenderWindow* window, bool depth)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  if (depth)
+  {
+    grab->SetInputBufferTypeToZBuffer();
+  }
+  grab->Update();
+  return grab->GetOutput();
+}
+
 // VTK's OpenGL pipeline: flat interpolation, no multisampling, RGB and depth read back.
 struct VtkImages
 {
@@ -88,26 +114,8 @@ VtkImages RenderWithVtk(const Scene& scene)
   renderer->SetActiveCamera(scene.Camera);
   renderer->AddLight(scene.Light);
   renderer->AutomaticLightCreationOff();
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Width, Height);
-  window->AddRenderer(renderer);
-  window->Render();
-  VtkImages images;
-  for (bool depth : { false, true })
-  {
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->ReadFrontBufferOff();
-    if (depth)
-    {
-      grab->SetInputBufferTypeToZBuffer();
-    }
-    grab->Update();
-    (depth ? images.Depth : images.Color) = grab->GetOutput();
-  }
-  return images;
+  vtkSmartPointer<vtkRenderWindow> window = RenderOffScreen(renderer);
+  return { ReadBack(window, false), ReadBack(window, true) };
 }
 
 // VTK's polygon at each pixel: every cell colored by its id + 1 (RGB, 24 bits), unlit,
@@ -137,17 +145,8 @@ std::vector<vtkIdType> RenderIdsWithVtk(const Scene& scene)
   vtkNew<vtkRenderer> renderer;
   renderer->AddActor(actor);
   renderer->SetActiveCamera(scene.Camera);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Width, Height);
-  window->AddRenderer(renderer);
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkDataArray* rgb = grab->GetOutput()->GetPointData()->GetScalars();
+  vtkSmartPointer<vtkImageData> image = ReadBack(RenderOffScreen(renderer), false);
+  vtkDataArray* rgb = image->GetPointData()->GetScalars();
   std::vector<vtkIdType> cells(static_cast<std::size_t>(Width) * Height);
   for (std::size_t i = 0; i < cells.size(); ++i)
   {
