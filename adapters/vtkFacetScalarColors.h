@@ -8,11 +8,11 @@
  * so colors are the exact bytes VTK's own mappers use; unsigned char RGB(A) arrays are used
  * directly under the default color mode. The lookup table is prepared as
  * vtkMapper::MapScalars prepares it: the array's own table if it has one, else the given one
- * or a default vtkLookupTable; built (vtkScalarsToColors::Build, which leaves a table with
- * values the user inserted alone); given the scalar range unless UseLookupTableScalarRange. Cell
- * scalars color each polygon (and every triangle of a strip); point scalars are averaged per
- * polygon, as flat shading shows one color per polygon. The result is kept while the input and the
- * settings are unchanged.
+ * or a default vtkLookupTable; built (vtkScalarsToColors::Build, which leaves alone a table
+ * whose values the user inserted); given the scalar range unless UseLookupTableScalarRange.
+ * Cell scalars color each polygon (and every triangle of a strip); point scalars are averaged
+ * per polygon, as flat shading shows one color per polygon. The result is kept while the
+ * input, the settings and the table are unchanged.
  */
 
 #ifndef vtkFacetScalarColors_h

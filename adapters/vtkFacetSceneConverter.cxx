@@ -33,6 +33,31 @@ glm::dvec3 Transform(vtkMatrix4x4* matrix, const double point[3])
   return glm::dvec3(out[0], out[1], out[2]) / out[3];
 }
 
+bool PositionIsFocalPoint(vtkCamera* camera)
+{
+  const double* position = camera->GetPosition();
+  const double* focal = camera->GetFocalPoint();
+  return position[0] == focal[0] && position[1] == focal[1] && position[2] == focal[2];
+}
+
+// Bounds about their centers, 2^-40 of their largest coordinate wide: thousands of ulps, so
+// a camera fitted to them is resolvably far from its focal point.
+void WidenToResolve(double bounds[6])
+{
+  double largest = 0.0;
+  for (int i = 0; i < 6; ++i)
+  {
+    largest = std::max(largest, std::abs(bounds[i]));
+  }
+  const double half = std::ldexp(largest, -40);
+  for (int i = 0; i < 6; i += 2)
+  {
+    const double center = 0.5 * bounds[i] + 0.5 * bounds[i + 1];
+    bounds[i] = center - half;
+    bounds[i + 1] = center + half;
+  }
+}
+
 facet::Attenuation AttenuationOf(vtkLight* light)
 {
   auto* facetLight = vtkFacetLight::SafeDownCast(light);
@@ -221,28 +246,14 @@ void vtkFacetSceneConverter::FitCamera(vtkCamera* camera,
   renderer->SetAspect(static_cast<double>(width) / height, 1.0);
   renderer->SetNearClippingPlaneTolerance(0.001);
   renderer->ResetCamera(fitted);
-  const double* position = camera->GetPosition();
-  const double* focal = camera->GetFocalPoint();
-  if (position[0] != focal[0] || position[1] != focal[1] || position[2] != focal[2])
+  if (!PositionIsFocalPoint(camera))
   {
     return;
   }
   // The camera's distance rounded away against its position (a 1e-10 cell at 1e20), and
-  // vtkCamera lost the direction with it: restore the direction and fit a box 2^-40 of its
-  // distance from the origin wide, thousands of ulps.
+  // vtkCamera lost the direction with it: restore the direction, fit a resolvable box.
   camera->SetPosition(0.0, 0.0, 0.0);
   camera->SetFocalPoint(direction);
-  double largest = 0.0;
-  for (double bound : fitted)
-  {
-    largest = std::max(largest, std::abs(bound));
-  }
-  const double half = std::ldexp(largest, -40);
-  for (int i = 0; i < 6; i += 2)
-  {
-    const double center = 0.5 * fitted[i] + 0.5 * fitted[i + 1];
-    fitted[i] = center - half;
-    fitted[i + 1] = center + half;
-  }
+  WidenToResolve(fitted);
   renderer->ResetCamera(fitted);
 }
