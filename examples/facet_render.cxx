@@ -54,6 +54,18 @@ struct Failure : std::runtime_error
   throw Failure(message + " (see facet-render --help)", true);
 }
 
+std::vector<std::string> Split(const std::string& text, char separator)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+  {
+    parts.push_back(part);
+  }
+  return parts;
+}
+
 // Finite numbers separated by `separator`, as many as there are.
 std::vector<double> ParseNumberList(const std::string& text,
   char separator,
@@ -61,9 +73,7 @@ std::vector<double> ParseNumberList(const std::string& text,
   const std::string& form)
 {
   std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, separator))
+  for (const std::string& item : Split(text, separator))
   {
     std::size_t used = 0;
     double value = 0.0;
@@ -104,18 +114,6 @@ Vector3 ParseVector(const std::string& text, const std::string& option, const st
 {
   const auto v = ParseNumbers(text, ',', 3, option, form);
   return { v[0], v[1], v[2] };
-}
-
-std::vector<std::string> Split(const std::string& text, char separator)
-{
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, separator))
-  {
-    parts.push_back(part);
-  }
-  return parts;
 }
 
 // --light: what kind, where, toward what, its cone and color.
