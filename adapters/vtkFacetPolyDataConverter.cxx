@@ -1,5 +1,6 @@
 #include "vtkFacetPolyDataConverter.h"
 
+#include "vtkBoundingBox.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDoubleArray.h"
@@ -10,6 +11,7 @@
 
 #include "facet/Error.h"
 
+#include <cmath>
 #include <limits>
 
 namespace {
@@ -44,7 +46,7 @@ bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
       " points; Facet renders at most 2^31 - 1";
     return false;
   }
-  this->ConvertPoints(input);
+  this->Points = PointsOf(input->GetPoints(), this->PointCopy);
   this->ConvertPolys(input);
   this->ConvertStrips(input);
   if (this->NumberOfPolys + static_cast<vtkIdType>(this->StripOf.size()) > MaxFacetIds)
@@ -77,33 +79,65 @@ bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
 }
 
 //------------------------------------------------------------------------------
-void vtkFacetPolyDataConverter::ConvertPoints(vtkPolyData* input)
+facet::PointArray vtkFacetPolyDataConverter::PointsOf(vtkPoints* points, std::vector<double>& copy)
 {
-  vtkPoints* points = input->GetPoints();
   if (!points || points->GetNumberOfPoints() == 0)
   {
-    this->Points = facet::PointArray{};
-    return;
+    return {};
   }
   const auto count = static_cast<std::size_t>(points->GetNumberOfPoints());
   vtkDataArray* data = points->GetData();
   if (auto* floats = vtkFloatArray::FastDownCast(data))
   {
-    this->Points = { floats->GetPointer(0), facet::PointArray::Type::Float32, count };
+    return { floats->GetPointer(0), facet::PointArray::Type::Float32, count };
   }
-  else if (auto* doubles = vtkDoubleArray::FastDownCast(data))
+  if (auto* doubles = vtkDoubleArray::FastDownCast(data))
   {
-    this->Points = { doubles->GetPointer(0), facet::PointArray::Type::Float64, count };
+    return { doubles->GetPointer(0), facet::PointArray::Type::Float64, count };
+  }
+  copy.resize(3 * count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    points->GetPoint(static_cast<vtkIdType>(i), &copy[3 * i]);
+  }
+  return facet::PointArray::ofXyz(std::span<const double>(copy));
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetPolyDataConverter::ComputeFiniteBounds(const facet::PointArray& points,
+  double bounds[6])
+{
+  vtkBoundingBox box; // uninitialized until a point is added
+  const auto add = [&](const auto* xyz) {
+    for (std::size_t i = 0; i < points.count; ++i, xyz += 3)
+    {
+      const double x = xyz[0], y = xyz[1], z = xyz[2];
+      if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z))
+      {
+        box.AddPoint(x, y, z);
+      }
+    }
+  };
+  if (points.type == facet::PointArray::Type::Float32)
+  {
+    add(static_cast<const float*>(points.data));
   }
   else
   {
-    this->PointCopy.resize(3 * count);
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      points->GetPoint(static_cast<vtkIdType>(i), &this->PointCopy[3 * i]);
-    }
-    this->Points = facet::PointArray::ofXyz(std::span<const double>(this->PointCopy));
+    add(static_cast<const double*>(points.data));
   }
+  box.GetBounds(bounds);
+}
+
+//------------------------------------------------------------------------------
+const double* vtkFacetPolyDataConverter::GetFiniteBounds()
+{
+  if (!this->FiniteBoundsComputed)
+  {
+    ComputeFiniteBounds(this->Points, this->FiniteBounds);
+    this->FiniteBoundsComputed = true;
+  }
+  return this->FiniteBounds;
 }
 
 //------------------------------------------------------------------------------

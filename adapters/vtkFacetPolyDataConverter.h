@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+class vtkPoints;
 class vtkPolyData;
 
 class vtkFacetPolyDataConverter
@@ -62,8 +63,26 @@ public:
   /// Forgets the cached conversion (and every pointer into the last input).
   void Reset();
 
+  /**
+   * The bounds of the converted input's points whose coordinates are all finite (see
+   * ComputeFiniteBounds), computed once per conversion.
+   */
+  const double* GetFiniteBounds();
+
+  /**
+   * Points as Facet reads them: float and double xyz in place, other types copied to double
+   * into `copy`.
+   */
+  static facet::PointArray PointsOf(vtkPoints* points, std::vector<double>& copy);
+
+  /**
+   * (xmin, xmax, ymin, ymax, zmin, zmax) of the points whose three coordinates are finite:
+   * vtkPolyData::GetBounds without the points the render skips with their cells;
+   * uninitialized (vtkMath::AreBoundsInitialized is false) when there is none.
+   */
+  static void ComputeFiniteBounds(const facet::PointArray& points, double bounds[6]);
+
 private:
-  void ConvertPoints(vtkPolyData* input);
   void ConvertPolys(vtkPolyData* input);
   void ConvertStrips(vtkPolyData* input);
 
@@ -79,6 +98,8 @@ private:
 
   facet::PointArray Points;
   std::vector<double> PointCopy; // only for point types other than float and double
+  double FiniteBounds[6] = { 0, 0, 0, 0, 0, 0 };
+  bool FiniteBoundsComputed = false;
   facet::MeshView PolygonView;
   facet::MeshView StripView;
   std::vector<std::int64_t> StripOffsets;

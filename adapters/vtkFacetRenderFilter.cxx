@@ -20,7 +20,6 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
-#include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -39,6 +38,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -132,15 +132,15 @@ public:
   vtkSmartPointer<vtkIdTypeArray> CellIds;
   vtkFacetPolyDataConverter Mesh;
   vtkFacetScalarColors Colors;
-  vtkNew<vtkRenderer> CameraReset; // no window: only for vtkRenderer::ResetCamera
+  vtkNew<vtkCamera> AutomaticCamera; // fitted at every execution without a camera
   std::string Plan;
   bool WarnedAboutProperty = false;
 
   static vtkFacetScalarColors::Settings ColoringOf(const vtkFacetRenderFilter& filter);
   // The scene: polys (mesh 0) then strip triangles (mesh 1), as CellIdOf numbers them.
   facet::Scene MeshesOf(const facet::Material& material) const;
-  // The filter's camera, or one reset to the input's bounds.
-  vtkCamera* CameraFor(vtkCamera* camera, vtkPolyData* input, int width, int height);
+  // The filter's camera, or the automatic camera fitted to the input's finite points.
+  vtkCamera* CameraFor(vtkCamera* camera, int width, int height);
   void AddFieldData(vtkImageData* output,
     const facet::RenderStats& stats,
     double conversionSeconds,
@@ -161,7 +161,6 @@ vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
   coloring.ArrayName = filter.ArrayName ? filter.ArrayName : "";
   coloring.ArrayComponent = filter.ArrayComponent;
   coloring.LookupTable = filter.LookupTable;
-  coloring.LookupTableTime = filter.LookupTable ? filter.LookupTable->GetMTime() : 0;
   coloring.ScalarRange[0] = filter.ScalarRange[0];
   coloring.ScalarRange[1] = filter.ScalarRange[1];
   coloring.UseLookupTableScalarRange = filter.UseLookupTableScalarRange != 0;
@@ -188,28 +187,17 @@ facet::Scene vtkFacetRenderFilter::vtkInternals::MeshesOf(const facet::Material&
 }
 
 //------------------------------------------------------------------------------
-vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
-  vtkPolyData* input,
-  int width,
-  int height)
+vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera, int width, int height)
 {
   if (camera)
   {
     return camera;
   }
-  vtkRenderer* reset = this->CameraReset;
-  camera = reset->GetActiveCamera();
-  camera->SetPosition(0.0, 0.0, 1.0);
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetViewUp(0.0, 1.0, 0.0);
-  reset->SetAspect(static_cast<double>(width) / height, 1.0);
-  double bounds[6];
-  input->GetBounds(bounds);
-  if (input->GetNumberOfPoints() > 0 && bounds[0] <= bounds[1])
-  {
-    reset->ResetCamera(bounds);
-  }
-  return camera;
+  vtkNew<vtkCamera> fresh; // whatever the user did to the last automatic camera
+  this->AutomaticCamera->DeepCopy(fresh);
+  vtkFacetSceneConverter::FitCamera(
+    this->AutomaticCamera, this->Mesh.GetFiniteBounds(), width, height);
+  return this->AutomaticCamera;
 }
 
 //------------------------------------------------------------------------------
@@ -267,8 +255,6 @@ vtkFacetRenderFilter::vtkFacetRenderFilter()
   this->Lights = vtkLightCollection::New();
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
-  // The reset camera gets a 24-bit depth buffer's near-plane tolerance.
-  this->Internals->CameraReset->SetNearClippingPlaneTolerance(0.001);
 }
 
 //------------------------------------------------------------------------------
@@ -310,6 +296,43 @@ vtkProperty* vtkFacetRenderFilter::GetProperty()
     this->Property->SetInterpolationToFlat(); // what Facet renders
   }
   return this->Property;
+}
+
+//------------------------------------------------------------------------------
+vtkCamera* vtkFacetRenderFilter::GetActiveCamera()
+{
+  return this->Camera ? this->Camera : this->Internals->AutomaticCamera.Get();
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::ResetCamera(vtkCamera* camera, vtkPolyData* input, int width, int height)
+{
+  if (!camera || !input || width < 1 || height < 1)
+  {
+    return;
+  }
+  std::vector<double> copy;
+  double bounds[6];
+  vtkFacetPolyDataConverter::ComputeFiniteBounds(
+    vtkFacetPolyDataConverter::PointsOf(input->GetPoints(), copy), bounds);
+  vtkFacetSceneConverter::FitCamera(camera, bounds, width, height);
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::SetNumberOfThreads(int threads)
+{
+  if (threads < 0 || threads > 1024)
+  {
+    vtkErrorMacro("SetNumberOfThreads(" << threads << "): the thread count must be in [0, 1024] "
+                                        << "(0: one per hardware thread); keeping "
+                                        << this->NumberOfThreads);
+    return;
+  }
+  if (threads != this->NumberOfThreads)
+  {
+    this->NumberOfThreads = threads;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -479,7 +502,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
     !internals.Colors.PolygonColors().empty() || !internals.Colors.StripColors().empty();
   facet::Scene scene =
     internals.MeshesOf(vtkFacetSceneConverter::ConvertProperty(property, scalarColors));
-  vtkCamera* camera = internals.CameraFor(this->Camera, input, width, height);
+  vtkCamera* camera = internals.CameraFor(this->Camera, width, height);
   std::string warning;
   const facet::Camera facetCamera =
     vtkFacetSceneConverter::ConvertCamera(camera, width, height, warning);
@@ -568,6 +591,8 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Background: (" << this->Background[0] << ", " << this->Background[1] << ", "
      << this->Background[2] << "), alpha " << this->BackgroundAlpha << "\n";
   os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "ActiveCamera: " << this->GetActiveCamera()
+     << (this->Camera ? "" : " (automatic)") << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
   os << indent << "AutomaticLightCreation: " << this->AutomaticLightCreation << "\n";
   os << indent << "AmbientLightColor: (" << this->AmbientLightColor[0] << ", "

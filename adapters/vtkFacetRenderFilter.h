@@ -18,7 +18,8 @@
  * conversion kept from the last one) and `FacetRenderPlan` (what the render did and left out).
  *
  * Scene settings mean what they mean on vtkRenderer, vtkActor and vtkMapper: a vtkCamera
- * (none: one reset to the input's bounds by vtkRenderer::ResetCamera), vtkLights (none: a
+ * (none: one fitted to the input's finite points by vtkRenderer::ResetCamera, which
+ * GetActiveCamera returns after the execution), vtkLights (none: a
  * headlight, unless AutomaticLightCreation is off), a vtkProperty and vtkMapper's coloring by
  * data. vtkFacetLight adds the light models vtkLight lacks. Shading is flat (per polygon);
  * the property's Interpolation, Opacity and Representation are not used yet: everything
@@ -53,6 +54,7 @@
 class vtkCamera;
 class vtkLight;
 class vtkLightCollection;
+class vtkPolyData;
 class vtkProperty;
 class vtkScalarsToColors;
 
@@ -84,13 +86,43 @@ public:
   ///@{
   /**
    * The camera, used exactly as VTK uses it: view angle or parallel scale, window center and
-   * clipping range as given (default: none, meaning a camera reset to the input's bounds as
-   * vtkRenderer::ResetCamera does, with a 0.001 near-plane tolerance as for a 24-bit depth
-   * buffer).
+   * clipping range as given (default: none, meaning the automatic camera: at every execution,
+   * a new vtkCamera fitted to the input as ResetCamera fits it).
    */
   void SetCamera(vtkCamera* camera);
   vtkGetObjectMacro(Camera, vtkCamera);
   ///@}
+
+  /**
+   * The camera to render with, as vtkRenderer::GetActiveCamera: the one set with SetCamera,
+   * else the automatic camera as the last execution fitted it (before the first: a default
+   * vtkCamera). Never null. The automatic camera is fitted again at every execution, so
+   * changing it changes nothing; to orbit from it, copy it and set the copy:
+   * @code{.cpp}
+   * vtkNew<vtkCamera> camera;
+   * camera->DeepCopy(filter->GetActiveCamera());
+   * camera->Azimuth(30.0);
+   * vtkFacetRenderFilter::ResetCamera(camera, input, width, height); // optional: refit
+   * filter->SetCamera(camera);
+   * @endcode
+   * ResetCamera after turning keeps the new direction and gives the clipping range for it
+   * (turning alone can move part of the data in front of the near plane); it also resets
+   * the view angle, so Zoom after it.
+   */
+  vtkCamera* GetActiveCamera();
+
+  /**
+   * Fits `camera` to `input` for a width × height image as the automatic camera is fitted:
+   * vtkRenderer::ResetCamera (view direction and view up kept; focal point, position, a
+   * 30 degree view angle, parallel scale and clipping range set, with a 24-bit depth
+   * buffer's 0.001 near-plane tolerance) on the bounds of the points whose coordinates are
+   * all finite, as the render skips cells with other points. The result is VTK's to the bit
+   * for bounds within ±1e100; beyond, the bounds are clamped to ±1e100 so the camera stays
+   * finite (its squared distance must not overflow), and data too small to resolve against
+   * its distance from the origin gets a box the camera's position can resolve. With no
+   * finite point the camera is left as it is.
+   */
+  static void ResetCamera(vtkCamera* camera, vtkPolyData* input, int width, int height);
 
   ///@{
   /**
@@ -221,10 +253,11 @@ public:
 
   ///@{
   /**
-   * Threads that render; 0 means one per hardware thread (default: 0). The image is the same
-   * bytes for every thread count.
+   * Threads that render, from 0 to 1024; 0 means one per hardware thread (default: 0). The
+   * image is the same bytes for every thread count. Other values are an error that keeps the
+   * previous setting.
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  void SetNumberOfThreads(int threads);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 

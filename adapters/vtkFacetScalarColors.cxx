@@ -74,9 +74,8 @@ bool vtkFacetScalarColors::Settings::operator==(const Settings& o) const
   return ScalarVisibility == o.ScalarVisibility && ScalarMode == o.ScalarMode &&
     ColorMode == o.ColorMode && ArrayAccessMode == o.ArrayAccessMode && ArrayId == o.ArrayId &&
     ArrayName == o.ArrayName && ArrayComponent == o.ArrayComponent &&
-    LookupTable == o.LookupTable && LookupTableTime == o.LookupTableTime &&
-    ScalarRange[0] == o.ScalarRange[0] && ScalarRange[1] == o.ScalarRange[1] &&
-    UseLookupTableScalarRange == o.UseLookupTableScalarRange;
+    LookupTable == o.LookupTable && ScalarRange[0] == o.ScalarRange[0] &&
+    ScalarRange[1] == o.ScalarRange[1] && UseLookupTableScalarRange == o.UseLookupTableScalarRange;
 }
 
 //------------------------------------------------------------------------------
@@ -95,43 +94,69 @@ std::string vtkFacetScalarColors::Update(vtkPolyData* input,
   bool meshConverted,
   const Settings& settings)
 {
-  if (this->Valid && !meshConverted && settings == this->Last)
+  int cellFlag = 0;
+  vtkDataArray* scalars = settings.ScalarVisibility ? vtkAbstractMapper::GetScalars(input,
+                                                        settings.ScalarMode,
+                                                        settings.ArrayAccessMode,
+                                                        settings.ArrayId,
+                                                        settings.ArrayName.c_str(),
+                                                        cellFlag)
+                                                    : nullptr;
+  // Prepared before the comparison: setting the range may modify the table.
+  vtkScalarsToColors* table = scalars ? this->PrepareLookupTable(scalars, settings) : nullptr;
+  const vtkMTimeType tableTime = table ? table->GetMTime() : 0;
+  if (this->Valid && !meshConverted && settings == this->Last && table == this->LastTable &&
+    tableTime == this->LastTableTime)
   {
     return {};
   }
   this->Polygon.clear();
   this->Strip.clear();
   this->Last = settings;
+  this->LastTable = table;
+  this->LastTableTime = tableTime;
   this->Valid = true;
-  return settings.ScalarVisibility ? this->Compute(input, mesh, settings) : std::string();
-}
-
-//------------------------------------------------------------------------------
-std::string vtkFacetScalarColors::Compute(vtkPolyData* input,
-  const vtkFacetPolyDataConverter& mesh,
-  const Settings& settings)
-{
-  int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input,
-    settings.ScalarMode,
-    settings.ArrayAccessMode,
-    settings.ArrayId,
-    settings.ArrayName.c_str(),
-    cellFlag);
   if (!scalars)
   {
-    return settings.ArrayName.empty() && settings.ArrayId < 0
+    return !settings.ScalarVisibility || (settings.ArrayName.empty() && settings.ArrayId < 0)
       ? std::string()
       : "no array '" + settings.ArrayName + "' to color by; using the property's color";
   }
-  vtkScalarsToColors* table =
-    settings.LookupTable ? settings.LookupTable : this->GetDefaultLookupTable();
+  return this->Compute(scalars, cellFlag != 0, table, input, mesh, settings);
+}
+
+//------------------------------------------------------------------------------
+vtkScalarsToColors* vtkFacetScalarColors::PrepareLookupTable(vtkDataArray* scalars,
+  const Settings& settings)
+{
+  // vtkMapper::MapScalars, except that an array's own table is built too: an unbuilt
+  // vtkLookupTable holds uninitialized colors.
+  vtkScalarsToColors* table = scalars->GetLookupTable();
+  if (!table)
+  {
+    table = settings.LookupTable ? settings.LookupTable : this->GetDefaultLookupTable();
+  }
+  table->Build();
   if (!settings.UseLookupTableScalarRange)
   {
-    table->SetRange(settings.ScalarRange); // as vtkMapper::MapScalars does
+    table->SetRange(settings.ScalarRange);
   }
-  vtkSmartPointer<vtkUnsignedCharArray> colors = vtk::TakeSmartPointer(
-    table->MapScalars(scalars, settings.ColorMode, settings.ArrayComponent, VTK_RGBA));
+  return table;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkFacetScalarColors::Compute(vtkDataArray* scalars,
+  bool cellScalars,
+  vtkScalarsToColors* table,
+  vtkPolyData* input,
+  const vtkFacetPolyDataConverter& mesh,
+  const Settings& settings)
+{
+  // vtkMapper maps component 0 when the array has no component ArrayComponent.
+  const int component =
+    settings.ArrayComponent < scalars->GetNumberOfComponents() ? settings.ArrayComponent : 0;
+  vtkSmartPointer<vtkUnsignedCharArray> colors =
+    vtk::TakeSmartPointer(table->MapScalars(scalars, settings.ColorMode, component, VTK_RGBA));
   if (!colors || colors->GetNumberOfComponents() != 4)
   {
     return "the lookup table gave no RGBA colors; using the property's color";
@@ -139,7 +164,7 @@ std::string vtkFacetScalarColors::Compute(vtkPolyData* input,
   const unsigned char* rgba = colors->GetPointer(0);
   const vtkIdType tuples = colors->GetNumberOfTuples();
 
-  if (cellFlag == 0)
+  if (!cellScalars)
   {
     if (tuples < input->GetNumberOfPoints())
     {

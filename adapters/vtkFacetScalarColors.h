@@ -6,9 +6,13 @@
  * The scalars are found with vtkAbstractMapper::GetScalars (scalar mode, array access mode,
  * array name or id) and mapped with vtkScalarsToColors::MapScalars (color mode, component),
  * so colors are the exact bytes VTK's own mappers use; unsigned char RGB(A) arrays are used
- * directly under the default color mode. Cell scalars color each polygon (and every
- * triangle of a strip); point scalars are averaged per polygon, as flat shading shows one
- * color per polygon. The result is kept while the input and the settings are unchanged.
+ * directly under the default color mode. The lookup table is prepared as
+ * vtkMapper::MapScalars prepares it: the array's own table if it has one, else the given one
+ * or a default vtkLookupTable; built (vtkScalarsToColors::Build, which leaves alone a table
+ * whose values the user inserted); given the scalar range unless UseLookupTableScalarRange.
+ * Cell scalars color each polygon (and every triangle of a strip); point scalars are averaged
+ * per polygon, as flat shading shows one color per polygon. The result is kept while the
+ * input, the settings and the table are unchanged.
  */
 
 #ifndef vtkFacetScalarColors_h
@@ -23,6 +27,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataArray;
 class vtkFacetPolyDataConverter;
 class vtkPolyData;
 class vtkScalarsToColors;
@@ -41,7 +46,6 @@ public:
     std::string ArrayName;
     int ArrayComponent = 0;
     vtkScalarsToColors* LookupTable = nullptr; // null: a default vtkLookupTable
-    vtkMTimeType LookupTableTime = 0;
     double ScalarRange[2] = { 0.0, 1.0 };
     bool UseLookupTableScalarRange = false;
     bool operator==(const Settings& other) const;
@@ -64,11 +68,18 @@ public:
   vtkScalarsToColors* GetDefaultLookupTable();
 
 private:
-  std::string Compute(vtkPolyData* input,
+  vtkScalarsToColors* PrepareLookupTable(vtkDataArray* scalars, const Settings& settings);
+  std::string Compute(vtkDataArray* scalars,
+    bool cellScalars,
+    vtkScalarsToColors* table,
+    vtkPolyData* input,
     const vtkFacetPolyDataConverter& mesh,
     const Settings& settings);
 
+  // What the kept colors were computed from: the settings and the table as prepared.
   Settings Last;
+  vtkScalarsToColors* LastTable = nullptr; // identity only
+  vtkMTimeType LastTableTime = 0;
   bool Valid = false;
   std::vector<facet::Rgba8> Polygon;
   std::vector<facet::Rgba8> Strip;

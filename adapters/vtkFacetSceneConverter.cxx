@@ -8,8 +8,10 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkProperty.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -29,6 +31,31 @@ glm::dvec3 Transform(vtkMatrix4x4* matrix, const double point[3])
   double out[4];
   matrix->MultiplyPoint(in, out);
   return glm::dvec3(out[0], out[1], out[2]) / out[3];
+}
+
+bool PositionIsFocalPoint(vtkCamera* camera)
+{
+  const double* position = camera->GetPosition();
+  const double* focal = camera->GetFocalPoint();
+  return position[0] == focal[0] && position[1] == focal[1] && position[2] == focal[2];
+}
+
+// Bounds about their centers, 2^-40 of their largest coordinate wide: thousands of ulps, so
+// a camera fitted to them is resolvably far from its focal point.
+void WidenToResolve(double bounds[6])
+{
+  double largest = 0.0;
+  for (int i = 0; i < 6; ++i)
+  {
+    largest = std::max(largest, std::abs(bounds[i]));
+  }
+  const double half = std::ldexp(largest, -40);
+  for (int i = 0; i < 6; i += 2)
+  {
+    const double center = 0.5 * bounds[i] + 0.5 * bounds[i + 1];
+    bounds[i] = center - half;
+    bounds[i + 1] = center + half;
+  }
 }
 
 facet::Attenuation AttenuationOf(vtkLight* light)
@@ -195,4 +222,38 @@ facet::Material vtkFacetSceneConverter::ConvertProperty(vtkProperty* property, b
   m.specularPower = property->GetSpecularPower();
   m.backfaceCulling = property->GetBackfaceCulling() != 0;
   return m;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetSceneConverter::FitCamera(vtkCamera* camera,
+  const double bounds[6],
+  int width,
+  int height)
+{
+  if (!vtkMath::AreBoundsInitialized(bounds))
+  {
+    return;
+  }
+  double fitted[6];
+  for (int i = 0; i < 6; ++i)
+  {
+    fitted[i] = std::clamp(bounds[i], -kLargestBound, kLargestBound);
+  }
+  double direction[3];
+  camera->GetDirectionOfProjection(direction);
+  vtkNew<vtkRenderer> renderer; // never rendered: only for ResetCamera
+  renderer->SetActiveCamera(camera);
+  renderer->SetAspect(static_cast<double>(width) / height, 1.0);
+  renderer->SetNearClippingPlaneTolerance(0.001);
+  renderer->ResetCamera(fitted);
+  if (!PositionIsFocalPoint(camera))
+  {
+    return;
+  }
+  // The camera's distance rounded away against its position (a 1e-10 cell at 1e20), and
+  // vtkCamera lost the direction with it: restore the direction, fit a resolvable box.
+  camera->SetPosition(0.0, 0.0, 0.0);
+  camera->SetFocalPoint(direction);
+  WidenToResolve(fitted);
+  renderer->ResetCamera(fitted);
 }

@@ -55,6 +55,22 @@ public:
     std::string& warning);
 
   static facet::Material ConvertProperty(vtkProperty* property, bool scalarColoring);
+
+  /**
+   * Fits `camera` to `bounds` for a width × height image as vtkRenderer::ResetCamera does,
+   * with the 0.001 near-plane tolerance of a 24-bit depth buffer; the result is VTK's, to the
+   * bit, for bounds within ±kLargestBound. Bounds beyond are clamped to it, and bounds too
+   * small to resolve against their distance from the origin are widened, so the camera is
+   * always finite and usable. Uninitialized bounds leave the camera as it is.
+   */
+  static void FitCamera(vtkCamera* camera, const double bounds[6], int width, int height);
+
+  /**
+   * vtkCamera and the core square the camera's distance to its focal point: 1e100 keeps
+   * that finite for the narrowest view (a 1 × 16384 image puts the camera 1e5 bounding radii
+   * away) with room for products of a few such magnitudes.
+   */
+  static constexpr double kLargestBound = 1e100;
 };
 
 #endif

@@ -19,7 +19,6 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataReader.h"
 #include "vtkProperty.h"
-#include "vtkRenderer.h"
 #include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringOutputWindow.h"
@@ -30,6 +29,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -39,39 +39,6 @@
 #include <vector>
 
 namespace {
-const char* const Usage = R"(usage: facet-render MESH [options]
-
-Renders a mesh with Facet, a CPU flat-shading rasterizer (no GPU, no display), and writes
-a PNG. MESH is a .vtp, .vtk (polydata), .obj, .ply or .stl file.
-
-options:
-  -o, --output FILE       the PNG to write (default: MESH's name with .png, here)
-  -s, --size WxH          image size in pixels (default: 800x600)
-      --azimuth DEG       turn the camera around the mesh, about the view up (default: 0)
-      --elevation DEG     raise the camera over the mesh (default: 0)
-      --zoom FACTOR       magnify; 2 shows half as much (default: 1)
-      --parallel          parallel projection instead of perspective
-  -l, --light SPEC        add a light (repeat for more; default: one headlight):
-                            headlight[@R,G,B]
-                            directional:DX,DY,DZ[@R,G,B]  (the direction it shines)
-                            point:X,Y,Z[@R,G,B]           (world coordinates)
-      --ambient R,G,B     scene ambient light (default: 0.2,0.2,0.2)
-      --color R,G,B       surface color (default: 0.9,0.9,0.9)
-      --color-by ARRAY    color by a point or cell data array, through a lookup table
-      --range MIN,MAX     the values spanning the lookup table (default: the array's range)
-      --interpolation I   shading interpolation; only "flat" is supported yet
-      --background R,G,B  (default: 0.1,0.1,0.12)
-      --painter           painter's algorithm instead of the z-buffer
-  -t, --threads N         threads; 0 uses every core (default: 0)
-      --progress          always show the progress bar (default: on a terminal only)
-  -q, --quiet             no progress bar and no summary
-  -h, --help              this text
-
-Colors are in [0, 1]. Example:
-  facet-render bunny.obj -o bunny.png --size 1280x960 --azimuth 30 \
-      --light point:0.3,0.4,0.5@1,0.8,0.6 --light headlight@0.3,0.3,0.4
-)";
-
 // A one-line error for the user; `usage` errors exit with 2, others with 1.
 struct Failure : std::runtime_error
 {
@@ -87,31 +54,53 @@ struct Failure : std::runtime_error
   throw Failure(message + " (see facet-render --help)", true);
 }
 
+std::vector<std::string> Split(const std::string& text, char separator)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+  {
+    parts.push_back(part);
+  }
+  return parts;
+}
+
+// Finite numbers separated by `separator`, as many as there are.
+std::vector<double> ParseNumberList(const std::string& text,
+  char separator,
+  const std::string& option,
+  const std::string& form)
+{
+  std::vector<double> values;
+  for (const std::string& item : Split(text, separator))
+  {
+    std::size_t used = 0;
+    double value = 0.0;
+    try
+    {
+      value = std::stod(item, &used);
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(value))
+    {
+      BadOption(option + " expects " + form + " (finite numbers), got '" + text + "'");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
 std::vector<double> ParseNumbers(const std::string& text,
   char separator,
   std::size_t count,
   const std::string& option,
   const std::string& form)
 {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, separator))
-  {
-    std::size_t used = 0;
-    try
-    {
-      values.push_back(std::stod(item, &used));
-    }
-    catch (const std::exception&)
-    {
-      used = 0;
-    }
-    if (used == 0 || used != item.size())
-    {
-      BadOption(option + " expects " + form + ", got '" + text + "'");
-    }
-  }
+  std::vector<double> values = ParseNumberList(text, separator, option, form);
   if (values.size() != count)
   {
     BadOption(option + " expects " + form + ", got '" + text + "'");
@@ -119,12 +108,50 @@ std::vector<double> ParseNumbers(const std::string& text,
   return values;
 }
 
+using Vector3 = std::array<double, 3>;
+
+Vector3 ParseVector(const std::string& text, const std::string& option, const std::string& form)
+{
+  const auto v = ParseNumbers(text, ',', 3, option, form);
+  return { v[0], v[1], v[2] };
+}
+
+// --light: what kind, where, toward what, its cone and color.
 struct LightSpec
 {
-  std::string Kind; // headlight, directional, point
-  std::array<double, 3> Vector{ 0, 0, 0 };
-  std::array<double, 3> Color{ 1, 1, 1 };
+  std::string Kind;          // headlight, directional, point, spot, linear-spot
+  Vector3 Vector{ 0, 0, 0 }; // direction (directional) or position (point, spots)
+  Vector3 Focal{ 0, 0, 0 };  // spots: where they point
+  std::vector<double> Cone;  // spot: angle[, exponent]; linear-spot: full, falloff
+  Vector3 Color{ 1, 1, 1 };
 };
+
+const char* const LightForms = "headlight, directional:DX,DY,DZ, point:X,Y,Z, "
+                               "spot:X,Y,Z:FX,FY,FZ[:ANGLE[,EXP]] or "
+                               "linear-spot:X,Y,Z:FX,FY,FZ[:FULL,FALLOFF]";
+
+// The cone of a spot light, checked against the ranges vtkLight and vtkFacetLight accept.
+std::vector<double> ParseCone(const std::string& kind, const std::string& text)
+{
+  const std::string option = "--light " + kind + " cone";
+  if (kind == "spot")
+  {
+    const auto cone = ParseNumberList(text, ',', option, "ANGLE[,EXPONENT]");
+    if (cone.empty() || cone.size() > 2 || cone[0] < 0 || cone[0] > 90 ||
+      (cone.size() == 2 && (cone[1] < 0 || cone[1] > 128)))
+    {
+      BadOption(
+        option + " expects ANGLE in [0, 90] degrees and EXPONENT in [0, 128], got '" + text + "'");
+    }
+    return cone;
+  }
+  const auto cone = ParseNumbers(text, ',', 2, option, "FULL,FALLOFF");
+  if (cone[0] < 0 || cone[0] > 180 || cone[1] < 0 || cone[1] > 180)
+  {
+    BadOption(option + " expects FULL and FALLOFF in [0, 180] degrees, got '" + text + "'");
+  }
+  return cone;
+}
 
 LightSpec ParseLight(const std::string& text)
 {
@@ -132,25 +159,40 @@ LightSpec ParseLight(const std::string& text)
   std::string body = text;
   if (const auto at = body.find('@'); at != std::string::npos)
   {
-    const auto c = ParseNumbers(body.substr(at + 1), ',', 3, "--light color", "R,G,B");
-    light.Color = { c[0], c[1], c[2] };
+    light.Color = ParseVector(body.substr(at + 1), "--light color", "R,G,B");
     body.resize(at);
   }
-  const auto colon = body.find(':');
-  light.Kind = body.substr(0, colon);
-  if (light.Kind == "headlight" && colon == std::string::npos)
+  const std::vector<std::string> parts = Split(body, ':');
+  light.Kind = parts.empty() ? "" : parts[0];
+  const std::string option = "--light " + light.Kind;
+  if (light.Kind == "headlight" && parts.size() == 1)
   {
     return light;
   }
-  if ((light.Kind == "directional" || light.Kind == "point") && colon != std::string::npos)
+  if ((light.Kind == "directional" || light.Kind == "point") && parts.size() == 2)
   {
-    const auto v = ParseNumbers(body.substr(colon + 1), ',', 3, "--light " + light.Kind, "X,Y,Z");
-    light.Vector = { v[0], v[1], v[2] };
+    light.Vector = ParseVector(parts[1], option, "X,Y,Z");
     return light;
   }
-  BadOption("--light expects headlight, directional:DX,DY,DZ or point:X,Y,Z, got '" + text + "'");
+  if ((light.Kind == "spot" || light.Kind == "linear-spot") &&
+    (parts.size() == 3 || parts.size() == 4))
+  {
+    light.Vector = ParseVector(parts[1], option + " position", "X,Y,Z");
+    light.Focal = ParseVector(parts[2], option + " focal point", "FX,FY,FZ");
+    if (light.Vector == light.Focal)
+    {
+      BadOption(option + " points nowhere: its focal point is its position, in '" + text + "'");
+    }
+    if (parts.size() == 4)
+    {
+      light.Cone = ParseCone(light.Kind, parts[3]);
+    }
+    return light;
+  }
+  BadOption(std::string("--light expects ") + LightForms + ", got '" + text + "'");
 }
 
+// Settings left unset (std::nullopt) keep vtkFacetRenderFilter's defaults.
 struct Options
 {
   std::string Input;
@@ -159,19 +201,93 @@ struct Options
   double Azimuth = 0, Elevation = 0, Zoom = 1;
   bool Parallel = false;
   std::vector<LightSpec> Lights;
-  std::array<double, 3> Ambient{ 0.2, 0.2, 0.2 };
-  std::array<double, 3> Color{ 0.9, 0.9, 0.9 };
+  std::optional<Vector3> Ambient;
+  Vector3 Color{ 0.9, 0.9, 0.9 };
   std::string ColorBy;
   std::optional<std::array<double, 2>> Range;
-  std::array<double, 3> Background{ 0.1, 0.1, 0.12 };
+  Vector3 Background{ 0.1, 0.1, 0.12 };
   bool Painter = false;
-  int Threads = 0;
+  std::optional<int> Threads;
   bool Progress = false, Quiet = false, Help = false;
 };
 
-std::array<double, 3> ParseColor(const std::string& text, const std::string& option)
+std::string Format(double value)
 {
-  const auto c = ParseNumbers(text, ',', 3, option, "R,G,B");
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+std::string Format(const double* values, int count)
+{
+  std::string text;
+  for (int i = 0; i < count; ++i)
+  {
+    text += (i ? "," : "") + Format(values[i]);
+  }
+  return text;
+}
+
+// The help text, with the defaults read from Options and from the VTK classes themselves.
+std::string UsageText()
+{
+  const Options tool;
+  vtkNew<vtkFacetRenderFilter> filter;
+  vtkNew<vtkFacetLight> light;
+  const std::string size = std::to_string(tool.Width) + "x" + std::to_string(tool.Height);
+  return R"(usage: facet-render MESH [options]
+
+Renders a mesh with Facet, a CPU flat-shading rasterizer (no GPU, no display), and writes
+a PNG. MESH is a .vtp, .vtk (polydata), .obj, .ply or .stl file.
+
+options:
+  -o, --output FILE       the PNG to write (default: MESH's name with .png, here)
+  -s, --size WxH          image size in pixels (default: )" +
+    size + R"()
+      --azimuth DEG       turn the camera around the mesh, about the view up (default: )" +
+    Format(tool.Azimuth) + R"()
+      --elevation DEG     raise the camera over the mesh (default: )" +
+    Format(tool.Elevation) + R"()
+      --zoom FACTOR       magnify; 2 shows half as much (default: )" +
+    Format(tool.Zoom) + R"()
+      --parallel          parallel projection instead of perspective
+  -l, --light SPEC        add a light (repeat for more; default: one headlight):
+                            headlight[@R,G,B]
+                            directional:DX,DY,DZ[@R,G,B]  (the direction it shines)
+                            point:X,Y,Z[@R,G,B]           (world coordinates)
+                            spot:X,Y,Z:FX,FY,FZ[:ANGLE[,EXP]][@R,G,B]
+                              at X,Y,Z toward FX,FY,FZ; vtkLight's cone: cos^EXP of the
+                              angle from the axis, none beyond ANGLE degrees (default: )" +
+    Format(light->GetConeAngle()) + "," + Format(light->GetExponent()) + R"()
+                            linear-spot:X,Y,Z:FX,FY,FZ[:FULL,FALLOFF][@R,G,B]
+                              vtkFacetLight's cone: full within FULL degrees of the axis,
+                              fading linearly to none over FALLOFF more (default: )" +
+    Format(light->GetFullIntensityAngle()) + "," + Format(light->GetFalloffAngle()) + R"()
+      --ambient R,G,B     scene ambient light (default: )" +
+    Format(filter->GetAmbientLightColor(), 3) + R"()
+      --color R,G,B       surface color (default: )" +
+    Format(tool.Color.data(), 3) + R"()
+      --color-by ARRAY    color by a point or cell data array, through a lookup table
+      --range MIN,MAX     the values spanning the lookup table (default: the array's range)
+      --interpolation I   shading interpolation; only "flat" is supported yet
+      --background R,G,B  (default: )" +
+    Format(tool.Background.data(), 3) + R"()
+      --painter           painter's algorithm instead of the z-buffer
+  -t, --threads N         threads; 0 uses every core (default: )" +
+    std::to_string(filter->GetNumberOfThreads()) + R"()
+      --progress          always show the progress bar (default: on a terminal only)
+  -q, --quiet             no progress bar and no summary
+  -h, --help              this text
+
+Colors are in [0, 1]. Example:
+  facet-render bunny.obj -o bunny.png --size 1280x960 --azimuth 30 \
+      --light point:0.3,0.4,0.5@1,0.8,0.6 --light headlight@0.3,0.3,0.4
+)";
+}
+
+Vector3 ParseColor(const std::string& text, const std::string& option)
+{
+  const Vector3 c = ParseVector(text, option, "R,G,B");
   for (double channel : c)
   {
     if (channel < 0.0 || channel > 1.0)
@@ -179,7 +295,7 @@ std::array<double, 3> ParseColor(const std::string& text, const std::string& opt
       BadOption(option + " channels must be in [0, 1], got '" + text + "'");
     }
   }
-  return { c[0], c[1], c[2] };
+  return c;
 }
 
 Options ParseOptions(int argc, char** argv)
@@ -430,21 +546,17 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
   return mesh;
 }
 
-// The camera vtkRenderer::ResetCamera fits to the mesh, then turned and zoomed.
+// The automatic camera's view turned by azimuth and elevation, fitted to the mesh as the
+// filter fits it (so the clipping range suits the turned view), then zoomed.
 vtkSmartPointer<vtkCamera> FitCamera(vtkPolyData* mesh, const Options& o)
 {
-  vtkNew<vtkRenderer> renderer; // never rendered: only its camera reset
-  renderer->SetAspect(static_cast<double>(o.Width) / o.Height, 1.0);
-  renderer->SetNearClippingPlaneTolerance(0.001);
-  vtkCamera* camera = renderer->GetActiveCamera();
+  auto camera = vtkSmartPointer<vtkCamera>::New();
   camera->SetParallelProjection(o.Parallel);
-  const double* bounds = mesh->GetBounds();
-  renderer->ResetCamera(bounds);
   camera->Azimuth(o.Azimuth);
   camera->Elevation(o.Elevation);
   camera->OrthogonalizeViewUp();
+  vtkFacetRenderFilter::ResetCamera(camera, mesh, o.Width, o.Height);
   camera->Zoom(o.Zoom);
-  renderer->ResetCameraClippingRange(bounds);
   return camera;
 }
 
@@ -462,12 +574,35 @@ vtkSmartPointer<vtkLight> MakeLight(const LightSpec& spec)
   {
     light->SetPosition(0, 0, 0);
     light->SetFocalPoint(spec.Vector.data());
+    return light;
   }
-  else
+  light->SetPositional(true);
+  light->SetPosition(spec.Vector.data());
+  if (spec.Kind == "point")
   {
-    light->SetPositional(true);
     light->SetConeAngle(180); // all around
-    light->SetPosition(spec.Vector.data());
+  }
+  else if (spec.Kind == "spot")
+  {
+    light->SetFocalPoint(spec.Focal.data());
+    if (!spec.Cone.empty())
+    {
+      light->SetConeAngle(spec.Cone[0]);
+    }
+    if (spec.Cone.size() > 1)
+    {
+      light->SetExponent(spec.Cone[1]);
+    }
+  }
+  else // linear-spot
+  {
+    light->SetFocalPoint(spec.Focal.data());
+    light->SetSpotModelToLinearFalloff();
+    if (!spec.Cone.empty())
+    {
+      light->SetFullIntensityAngle(spec.Cone[0]);
+      light->SetFalloffAngle(spec.Cone[1]);
+    }
   }
   return light;
 }
@@ -548,7 +683,7 @@ int Run(int argc, char** argv)
   const Options o = ParseOptions(argc, argv);
   if (o.Help)
   {
-    std::fputs(Usage, stdout);
+    std::fputs(UsageText().c_str(), stdout);
     return 0;
   }
   vtkSmartPointer<vtkPolyData> mesh = ReadMesh(o.Input);
@@ -559,8 +694,14 @@ int Run(int argc, char** argv)
   render->SetInputData(mesh);
   render->SetSize(o.Width, o.Height);
   render->SetBackground(o.Background.data());
-  render->SetAmbientLightColor(o.Ambient.data());
-  render->SetNumberOfThreads(o.Threads);
+  if (o.Ambient)
+  {
+    render->SetAmbientLightColor(o.Ambient->data());
+  }
+  if (o.Threads)
+  {
+    render->SetNumberOfThreads(*o.Threads);
+  }
   render->SetCamera(FitCamera(mesh, o));
   render->GetProperty()->SetColor(o.Color[0], o.Color[1], o.Color[2]);
   if (o.Painter)

@@ -6,10 +6,16 @@
 #include "vtkOBJReader.h"
 #include "vtkPNGWriter.h"
 
+#include <cstdio>
+
 int main(int argc, char** argv)
 {
   if (argc != 3)
   {
+    std::fprintf(stderr,
+      "usage: facet-vtk-pipeline MESH.obj OUT.png\n"
+      "Renders MESH.obj with vtkFacetRenderFilter (800 x 600, the camera fitted to the mesh,\n"
+      "one headlight) and writes OUT.png.\n");
     return 2;
   }
   vtkNew<vtkOBJReader> reader;

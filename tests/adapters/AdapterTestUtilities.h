@@ -2,11 +2,13 @@
 
 // Helpers shared by the adapter tests.
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkFacetRenderFilter.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -74,5 +76,24 @@ inline vtkSmartPointer<vtkPolyData> PolyData(vtkPoints* points, vtkCellArray* po
   data->SetPolys(polys);
   return data;
 }
+
+// Counts the messages of one kind (vtkCommand::ErrorEvent or WarningEvent) and keeps the
+// last, instead of letting VTK print them.
+struct MessageCounter
+{
+  explicit MessageCounter(vtkObject* object, unsigned long event)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      auto* counter = static_cast<MessageCounter*>(self);
+      ++counter->Count;
+      counter->Last = data ? static_cast<const char*>(data) : "";
+    });
+    object->AddObserver(event, this->Callback);
+  }
+  int Count = 0;
+  std::string Last;
+  vtkNew<vtkCallbackCommand> Callback;
+};
 
 } // namespace facet_test

@@ -8,6 +8,7 @@
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkElevationFilter.h"
 #include "vtkFacetLight.h"
 #include "vtkFloatArray.h"
 #include "vtkLookupTable.h"
@@ -59,25 +60,6 @@ vtkSmartPointer<vtkFacetRenderFilter> UnlitFilter(vtkPolyData* input)
   filter->GetProperty()->SetDiffuse(0.0);
   return filter;
 }
-
-// Counts the messages of one kind (vtkCommand::ErrorEvent or WarningEvent) and keeps the
-// last, instead of letting VTK print them.
-struct MessageCounter
-{
-  explicit MessageCounter(vtkObject* object, unsigned long event)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
-      auto* counter = static_cast<MessageCounter*>(self);
-      ++counter->Count;
-      counter->Last = data ? static_cast<const char*>(data) : "";
-    });
-    object->AddObserver(event, this->Callback);
-  }
-  int Count = 0;
-  std::string Last;
-  vtkNew<vtkCallbackCommand> Callback;
-};
 
 vtkSmartPointer<vtkPolyData> StripSphere()
 {
@@ -221,7 +203,7 @@ TEST(Conversion, CellIdsSurviveNearPlaneClipping)
 }
 
 //------------------------------------------------------------------------------
-TEST(Coloring, CellScalarsThroughALookupTableGiveItsExactBytes)
+TEST(Coloring, CellScalarsThroughAnUnbuiltLookupTableGiveTheBuiltTablesBytes)
 {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> polys;
@@ -234,10 +216,15 @@ TEST(Coloring, CellScalarsThroughALookupTableGiveItsExactBytes)
   }
   vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   input->GetCellData()->SetScalars(values);
-  vtkNew<vtkLookupTable> table;
-  table->SetHueRange(0.667, 0.0);
-  table->SetNumberOfTableValues(17);
-  table->Build();
+  // The user's table, never built (vtkMapper builds it before mapping), and a built twin.
+  vtkNew<vtkLookupTable> table, twin;
+  for (vtkLookupTable* t : { table.Get(), twin.Get() })
+  {
+    t->SetHueRange(0.667, 0.0);
+    t->SetNumberOfTableValues(17);
+  }
+  twin->Build();
+  twin->SetRange(-4.0, 9.0);
 
   vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
   filter->SetLookupTable(table);
@@ -245,13 +232,104 @@ TEST(Coloring, CellScalarsThroughALookupTableGiveItsExactBytes)
   filter->Update();
   for (int i = 0; i < 5; ++i)
   {
-    const unsigned char* expected = table->MapValue(values->GetValue(i));
+    const unsigned char* expected = twin->MapValue(values->GetValue(i));
     const std::array<int, 4> pixel = RgbaAt(filter->GetOutput(), 17 + 30 * i, 60);
     for (int c = 0; c < 3; ++c)
     {
       EXPECT_EQ(pixel[c], expected[c]) << "square " << i << " channel " << c;
     }
   }
+  EXPECT_EQ(table->GetRange()[0], -4.0) << "the table gets the scalar range, as vtkMapper sets it";
+  EXPECT_EQ(table->GetRange()[1], 9.0);
+}
+
+//------------------------------------------------------------------------------
+// Issue 7, defect 1: the default lookup table was read unbuilt (uninitialized colors that
+// changed from run to run). Every pixel must show the mean of its polygon's point colors as
+// VTK's own vtkLookupTable maps them, in two filters alike.
+TEST(Coloring, TheDefaultLookupTableMapsAsVtksOwn)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(18);
+  sphere->SetRadius(40.0);
+  sphere->SetCenter(80.0, 60.0, 0.0);
+  vtkNew<vtkElevationFilter> elevation; // point scalars in [0, 1], bottom to top
+  elevation->SetInputConnection(sphere->GetOutputPort());
+  elevation->SetLowPoint(0.0, 20.0, 0.0);
+  elevation->SetHighPoint(0.0, 100.0, 0.0);
+  elevation->Update();
+  vtkPolyData* input = elevation->GetPolyDataOutput();
+
+  // VTK's mapping: vtkMapper's default table (a vtkLookupTable, built) over its default
+  // scalar range (0, 1).
+  vtkNew<vtkLookupTable> reference;
+  reference->Build();
+  reference->SetRange(0.0, 1.0);
+  auto pointColors = vtk::TakeSmartPointer(
+    reference->MapScalars(input->GetPointData()->GetScalars(), VTK_COLOR_MODE_DEFAULT, 0));
+  const auto expectedAt = [&](vtkIdType cell) {
+    vtkIdType count;
+    const vtkIdType* ids;
+    input->GetCellPoints(cell, count, ids);
+    std::array<int, 4> mean{};
+    for (int c = 0; c < 4; ++c)
+    {
+      double sum = 0.0;
+      for (vtkIdType k = 0; k < count; ++k)
+      {
+        sum += pointColors->GetValue(4 * ids[k] + c);
+      }
+      mean[c] = static_cast<int>(std::lround(sum / count));
+    }
+    return mean;
+  };
+
+  vtkSmartPointer<vtkFacetRenderFilter> first = UnlitFilter(input), second = UnlitFilter(input);
+  first->Update();
+  second->Update();
+  double ours[3] = { 0, 0, 0 }, theirs[3] = { 0, 0, 0 };
+  int covered = 0, mismatches = 0, lowestRed = 255, highestRed = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      ASSERT_EQ(RgbaAt(first->GetOutput(), x, y), RgbaAt(second->GetOutput(), x, y))
+        << "two runs differ at " << x << ", " << y;
+      const vtkIdType cell = CellIdAt(first->GetOutput(), x, y);
+      if (cell < 0)
+      {
+        continue;
+      }
+      ++covered;
+      const std::array<int, 4> pixel = RgbaAt(first->GetOutput(), x, y);
+      const std::array<int, 4> expected = expectedAt(cell);
+      for (int c = 0; c < 3; ++c)
+      {
+        ours[c] += pixel[c];
+        theirs[c] += expected[c];
+      }
+      lowestRed = std::min(lowestRed, pixel[0]);
+      highestRed = std::max(highestRed, pixel[0]);
+      if (pixel[0] != expected[0] || pixel[1] != expected[1] || pixel[2] != expected[2])
+      {
+        if (++mismatches <= 5)
+        {
+          ADD_FAILURE() << "pixel " << x << ", " << y << " (cell " << cell << ") is " << pixel[0]
+                        << "," << pixel[1] << "," << pixel[2] << "; VTK's table gives "
+                        << expected[0] << "," << expected[1] << "," << expected[2];
+        }
+      }
+    }
+  }
+  ASSERT_GT(covered, 4000);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_EQ(ours[c] / covered, theirs[c] / covered) << "mean of channel " << c;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_LT(lowestRed, 40) << "blue at the bottom";
+  EXPECT_GT(highestRed, 215) << "red at the top";
 }
 
 //------------------------------------------------------------------------------
@@ -460,6 +538,29 @@ TEST(Errors, BadSizeGivesAnError)
   filter->SetSize(20000, 10);
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// Issue 7: SetNumberOfThreads(-3) used to mean "all cores" without a word.
+TEST(Errors, ThreadCountsOutsideTheRangeAreRefusedAndKeepThePreviousOne)
+{
+  vtkNew<vtkFacetRenderFilter> filter;
+  MessageCounter errors(filter, vtkCommand::ErrorEvent);
+  filter->SetNumberOfThreads(2);
+  EXPECT_EQ(errors.Count, 0);
+  const vtkMTimeType time = filter->GetMTime();
+  for (int bad : { -3, -1, 1025 })
+  {
+    filter->SetNumberOfThreads(bad);
+    EXPECT_EQ(filter->GetNumberOfThreads(), 2) << bad;
+    EXPECT_NE(
+      errors.Last.find("SetNumberOfThreads(" + std::to_string(bad) + ")"), std::string::npos)
+      << errors.Last;
+  }
+  EXPECT_EQ(errors.Count, 3);
+  EXPECT_EQ(filter->GetMTime(), time) << "nothing changed";
+  filter->SetNumberOfThreads(0);
+  EXPECT_EQ(filter->GetNumberOfThreads(), 0);
+  EXPECT_EQ(errors.Count, 3);
 }
 
 TEST(Errors, NonFinitePointsSkipTheirCellsWithOneWarning)

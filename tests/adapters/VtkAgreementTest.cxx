@@ -1,6 +1,9 @@
 // vtkFacetRenderFilter against VTK's own OpenGL renderer on the same vtkPolyData, camera and
-// light: silhouettes (coverage) differ on at most 0.5 % of the covered pixels, and flat-shaded
-// colors under a directional light by at most 2/255 per channel away from edges.
+// light: silhouettes (coverage) are the same to the pixel, flat-shaded colors under a
+// directional light differ by at most 1/255 per channel away from edges, and pixels whose
+// polygon differs lie on an edge between that polygon and its neighbour (the two renderers
+// snap vertices from differently rounded projections), a small fraction of the image. These
+// are the figures README.md states.
 //
 // Needs an X server: make test runs it under xvfb-run (Debian's VTK has no OSMesa/EGL).
 
@@ -8,6 +11,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
@@ -23,6 +27,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 using namespace facet_test;
 
@@ -61,6 +66,32 @@ Scene LoadScene(const std::string& mesh, double azimuth, double elevation)
   return scene;
 }
 
+// Renders off screen, without multisampling, at the test's size.
+vtkSmartPointer<vtkRenderWindow> RenderOffScreen(vtkRenderer* renderer)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(Width, Height);
+  window->AddRenderer(renderer);
+  window->Render();
+  return window;
+}
+
+// The window's color (RGB) or depth buffer.
+vtkSmartPointer<vtkImageData> ReadBack(vtkRenderWindow* window, bool depth)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  if (depth)
+  {
+    grab->SetInputBufferTypeToZBuffer();
+  }
+  grab->Update();
+  return grab->GetOutput();
+}
+
 // VTK's OpenGL pipeline: flat interpolation, no multisampling, RGB and depth read back.
 struct VtkImages
 {
@@ -83,26 +114,48 @@ VtkImages RenderWithVtk(const Scene& scene)
   renderer->SetActiveCamera(scene.Camera);
   renderer->AddLight(scene.Light);
   renderer->AutomaticLightCreationOff();
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Width, Height);
-  window->AddRenderer(renderer);
-  window->Render();
-  VtkImages images;
-  for (bool depth : { false, true })
+  vtkSmartPointer<vtkRenderWindow> window = RenderOffScreen(renderer);
+  return { ReadBack(window, false), ReadBack(window, true) };
+}
+
+// VTK's polygon at each pixel: every cell colored by its id + 1 (RGB, 24 bits), unlit,
+// read back. 0 is the background.
+std::vector<vtkIdType> RenderIdsWithVtk(const Scene& scene)
+{
+  vtkNew<vtkPolyData> mesh;
+  mesh->ShallowCopy(scene.Mesh);
+  vtkNew<vtkUnsignedCharArray> ids;
+  ids->SetNumberOfComponents(3);
+  ids->SetNumberOfTuples(mesh->GetNumberOfCells());
+  for (vtkIdType cell = 0; cell < mesh->GetNumberOfCells(); ++cell)
   {
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->ReadFrontBufferOff();
-    if (depth)
+    for (int c = 0; c < 3; ++c)
     {
-      grab->SetInputBufferTypeToZBuffer();
+      ids->SetTypedComponent(cell, c, static_cast<unsigned char>((cell + 1) >> (8 * c)));
     }
-    grab->Update();
-    (depth ? images.Depth : images.Color) = grab->GetOutput();
   }
-  return images;
+  mesh->GetCellData()->SetScalars(ids);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(mesh);
+  mapper->SetScalarModeToUseCellData();
+  mapper->SetColorModeToDirectScalars();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->LightingOff(); // the scalar color itself, exactly
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->SetActiveCamera(scene.Camera);
+  vtkSmartPointer<vtkImageData> image = ReadBack(RenderOffScreen(renderer), false);
+  vtkDataArray* rgb = image->GetPointData()->GetScalars();
+  std::vector<vtkIdType> cells(static_cast<std::size_t>(Width) * Height);
+  for (std::size_t i = 0; i < cells.size(); ++i)
+  {
+    const auto channel = [&](int c) {
+      return static_cast<vtkIdType>(rgb->GetComponent(static_cast<vtkIdType>(i), c));
+    };
+    cells[i] = (channel(0) | channel(1) << 8 | channel(2) << 16) - 1;
+  }
+  return cells;
 }
 
 vtkSmartPointer<vtkImageData> RenderWithFacet(const Scene& scene)
@@ -117,6 +170,61 @@ vtkSmartPointer<vtkImageData> RenderWithFacet(const Scene& scene)
   filter->GetProperty()->SetColor(scene.Color[0], scene.Color[1], scene.Color[2]);
   filter->Update();
   return filter->GetOutput();
+}
+
+// Whether two cells of the mesh share a point position (OBJ readers may duplicate points):
+// neighbours on the surface.
+bool Adjacent(vtkPolyData* mesh, vtkIdType a, vtkIdType b)
+{
+  vtkIdType countA, countB;
+  const vtkIdType *pointsA, *pointsB;
+  mesh->GetCellPoints(a, countA, pointsA);
+  mesh->GetCellPoints(b, countB, pointsB);
+  for (vtkIdType i = 0; i < countA; ++i)
+  {
+    for (vtkIdType j = 0; j < countB; ++j)
+    {
+      double p[3], q[3];
+      mesh->GetPoint(pointsA[i], p);
+      mesh->GetPoint(pointsB[j], q);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// Which polygon each covered pixel shows: where the renderers disagree, VTK's polygon is a
+// neighbour of ours on the surface, so the pixel lies on the edge (or corner) between them.
+void CompareOwners(const Scene& scene, vtkImageData* facet, long covered)
+{
+  const std::vector<vtkIdType> vtkIds = RenderIdsWithVtk(scene);
+  long differentOwner = 0, notNeighbours = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      const vtkIdType ours = CellIdAt(facet, x, y);
+      const vtkIdType theirs = vtkIds[static_cast<std::size_t>(y) * Width + x];
+      if (ours < 0 || theirs < 0 || ours == theirs)
+      {
+        continue;
+      }
+      ++differentOwner;
+      if (!Adjacent(scene.Mesh, ours, theirs) && ++notNeighbours <= 5)
+      {
+        ADD_FAILURE() << "pixel (" << x << ", " << y << "): Facet shows cell " << ours
+                      << ", VTK cell " << theirs << ", which is not its neighbour";
+      }
+    }
+  }
+  std::printf("  %ld pixels (%.4f %% of the covered) show a neighbouring polygon\n",
+    differentOwner,
+    100.0 * differentOwner / covered);
+  EXPECT_EQ(notNeighbours, 0);
+  EXPECT_LE(differentOwner, 0.001 * covered) << "a few edge pixels";
 }
 
 void Compare(const std::string& mesh, double azimuth, double elevation)
@@ -170,7 +278,7 @@ void Compare(const std::string& mesh, double azimuth, double elevation)
         difference = std::max(difference, std::abs(rgba[c] - reference[c]));
       }
       worst = std::max(worst, difference);
-      if (difference > 2 && ++colorMismatches <= 5)
+      if (difference > 1 && ++colorMismatches <= 5)
       {
         ADD_FAILURE() << "pixel (" << x << ", " << y << ") Facet " << rgba[0] << "," << rgba[1]
                       << "," << rgba[2] << " VTK " << int(reference[0]) << "," << int(reference[1])
@@ -188,9 +296,11 @@ void Compare(const std::string& mesh, double azimuth, double elevation)
     interior,
     worst);
   EXPECT_GT(covered, Width * Height / 10);
-  EXPECT_LE(silhouetteDifferences, 0.005 * covered);
+  EXPECT_EQ(silhouetteDifferences, 0) << "silhouettes to the pixel";
   EXPECT_GT(interior, covered / 20) << "enough pixels away from edges to compare colors";
+  EXPECT_LE(worst, 1) << "colors to 1/255";
   EXPECT_EQ(colorMismatches, 0);
+  CompareOwners(scene, facet, covered);
 }
 }
 

@@ -1,16 +1,49 @@
-"""facet-render: help, a render to PNG, and one-line errors with the right exit codes."""
+"""facet-render and facet-vtk-pipeline: help, renders to PNG (coloring by data, spot lights),
+and one-line errors with the right exit codes."""
 import os
 import subprocess
 import sys
 import tempfile
 import unittest
 
+from vtkmodules.vtkFiltersCore import vtkElevationFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+from facet import vtkFacetLight, vtkFacetRenderFilter
+
 TOOL = os.environ["FACET_RENDER"]
+PIPELINE = os.environ["FACET_VTK_PIPELINE"]
 MESHES = os.environ["FACET_SHARED_DATA_DIR"] + "/meshes"
 
 
-def run(*args):
-    return subprocess.run([TOOL, *args], capture_output=True, text=True, timeout=120)
+def run(*args, tool=TOOL):
+    return subprocess.run([tool, *args], capture_output=True, text=True, timeout=120)
+
+
+def write_vtp(source, path):
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputConnection(source.GetOutputPort())
+    writer.SetFileName(path)
+    writer.Write()
+    return path
+
+
+def read_png(path):
+    """Pixels as {(x, y): (r, g, b)}, row 0 at the bottom (as vtkImageData)."""
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    scalars = image.GetPointData().GetScalars()
+    return {(x, y): tuple(int(scalars.GetComponent(y * width + x, c)) for c in range(3))
+            for y in range(height) for x in range(width)}
+
+
+def formatted(values):
+    return ",".join("%.3g" % v for v in values)
 
 
 class FacetRenderCli(unittest.TestCase):
@@ -20,6 +53,73 @@ class FacetRenderCli(unittest.TestCase):
         self.assertIn("usage: facet-render MESH", result.stdout)
         for option in ("--size", "--azimuth", "--light", "--color-by", "--threads"):
             self.assertIn(option, result.stdout)
+
+    def test_help_states_the_real_defaults(self):
+        """Issue 7: the help said 0.2 for the ambient default; it is the filter's 50/255."""
+        text = run("--help").stdout
+        render, light = vtkFacetRenderFilter(), vtkFacetLight()
+        lines = {line.split()[0]: line for line in text.splitlines() if line.strip()}
+        self.assertIn("(default: %s)" % formatted(render.GetAmbientLightColor()),
+                      lines["--ambient"])
+        self.assertIn("(default: %d)" % render.GetNumberOfThreads(), lines["-t,"])
+        self.assertIn("(default: %s)" % formatted((light.GetConeAngle(), light.GetExponent())),
+                      text)
+        self.assertIn("(default: %s)" % formatted((light.GetFullIntensityAngle(),
+                                                   light.GetFalloffAngle())), text)
+
+    def test_color_by_varies_across_the_image_and_is_deterministic(self):
+        """Issue 7, defect 1: --color-by read an unbuilt lookup table and never worked."""
+        sphere = vtkSphereSource()
+        sphere.SetThetaResolution(32)
+        sphere.SetPhiResolution(24)
+        elevation = vtkElevationFilter()
+        elevation.SetInputConnection(sphere.GetOutputPort())
+        elevation.SetLowPoint(0, -0.5, 0)
+        elevation.SetHighPoint(0, 0.5, 0)
+        with tempfile.TemporaryDirectory() as folder:
+            mesh = write_vtp(elevation, os.path.join(folder, "elevation.vtp"))
+            images = []
+            for name in ("one.png", "two.png"):
+                out = os.path.join(folder, name)
+                result = run(mesh, "-o", out, "--size", "120x90", "--background", "0,0,0",
+                             "--color-by", "Elevation", "-q")
+                self.assertEqual(result.returncode, 0, result.stderr)
+                with open(out, "rb") as png:
+                    images.append(png.read())
+            self.assertEqual(images[0], images[1], "two runs, two images")
+            pixels = read_png(os.path.join(folder, "one.png"))
+        surface = [rgb for rgb in pixels.values() if rgb != (0, 0, 0)]
+        self.assertGreater(len(surface), 1000)
+        self.assertGreater(len(set(surface)), 20, "colors vary across the sphere")
+        self.assertGreater(max(r for r, g, b in surface), 200, "red at one end")
+        self.assertGreater(max(b for r, g, b in surface), 200, "blue at the other")
+
+    def test_spot_lights(self):
+        """A plane lit from 2 above its center: VTK's cone (10 degrees, exponent 1) and
+        vtkFacetLight's linear falloff (full within 5 degrees, none beyond 10)."""
+        plane = vtkPlaneSource()  # [-0.5, 0.5]^2, facing +z
+        plane.SetResolution(60, 60)
+        with tempfile.TemporaryDirectory() as folder:
+            mesh = write_vtp(plane, os.path.join(folder, "plane.vtp"))
+            images = {}
+            for spec in ("spot:0,0,2:0,0,0:10", "linear-spot:0,0,2:0,0,0:5,5"):
+                out = os.path.join(folder, spec.split(":")[0] + ".png")
+                result = run(mesh, "-o", out, "--size", "200x150", "--ambient", "0,0,0",
+                             "--color", "1,1,1", "--light", spec, "-q")
+                self.assertEqual(result.returncode, 0, result.stderr)
+                images[spec.split(":")[0]] = read_png(out)
+        # The fitted camera shows the plane's bounding circle (radius 0.707) in the image's
+        # height: world (x, 0) is near pixel (100 + 102.4 x, 75).
+        def at(image, x):
+            return images[image][(int(100 + 102.4 * x), 75)][0]
+        # Spot: cos(angle)^1 from the cone times Lambert's cos(angle), up to 10 degrees.
+        self.assertGreaterEqual(at("spot", 0.0), 254)
+        self.assertGreaterEqual(at("spot", 0.25), 240)       # 7 degrees: 0.985
+        self.assertEqual(at("spot", 0.45), 0)                # 12.7 degrees: outside
+        # Linear: full within 5 degrees, (10 - angle) / 5 up to 10.
+        self.assertGreaterEqual(at("linear-spot", 0.1), 250)  # 2.9 degrees
+        self.assertTrue(120 <= at("linear-spot", 0.25) <= 190, at("linear-spot", 0.25))
+        self.assertEqual(at("linear-spot", 0.45), 0)
 
     def test_renders_every_format_to_png(self):
         with tempfile.TemporaryDirectory() as folder:
@@ -62,7 +162,17 @@ class FacetRenderCli(unittest.TestCase):
                                (("--light", "laser:1"), "--light expects"),
                                (("--color", "2,0,0"), "must be in [0, 1]"),
                                (("--interpolation", "gouraud"), "not supported yet"),
-                               (("--color-by", "nothing"), "no point or cell array 'nothing'")):
+                               (("--color-by", "nothing"), "no point or cell array 'nothing'"),
+                               # Issue 7: NaN and infinities were render errors (exit 1).
+                               (("--azimuth", "nan"), "finite numbers"),
+                               (("--zoom", "inf"), "finite numbers"),
+                               (("--range", "0,-inf"), "finite numbers"),
+                               (("--light", "point:1,nan,2"), "finite numbers"),
+                               (("--background", "nan,0,0"), "finite numbers"),
+                               (("--light", "spot:0,0,1"), "--light expects"),
+                               (("--light", "spot:0,0,1:0,0,1"), "points nowhere"),
+                               (("--light", "spot:0,0,2:0,0,0:95"), "ANGLE in [0, 90]"),
+                               (("--light", "linear-spot:0,0,2:0,0,0:5"), "FULL,FALLOFF")):
             result = run(mesh, *args)
             self.assertEqual(result.returncode, 2, args)
             lines = result.stderr.strip().splitlines()
@@ -77,6 +187,22 @@ class FacetRenderCli(unittest.TestCase):
         self.assertEqual(result.returncode, 1)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
         self.assertIn("cannot read", result.stderr)
+
+
+class VtkPipelineExample(unittest.TestCase):
+    def test_without_arguments_prints_usage_and_exits_2(self):
+        result = run(tool=PIPELINE)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("usage: facet-vtk-pipeline MESH.obj OUT.png", result.stderr)
+
+    def test_renders_an_obj_to_png(self):
+        with tempfile.TemporaryDirectory() as folder:
+            out = os.path.join(folder, "spot.png")
+            result = run(os.path.join(MESHES, "spot.obj"), out, tool=PIPELINE)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            pixels = read_png(out)
+        self.assertEqual(len(pixels), 800 * 600)
+        self.assertGreater(sum(rgb != (0, 0, 0) for rgb in pixels.values()), 800 * 600 // 10)
 
 
 if __name__ == "__main__":

@@ -3,18 +3,32 @@
 Checks the output's array names, types, extent and a few pixel values, and that the PNG
 written reads back as the same image.
 """
+import math
 import os
+import re
 import sys
 import tempfile
+import textwrap
 import unittest
 
 from vtkmodules.vtkCommonCore import VTK_FLOAT, VTK_ID_TYPE, VTK_UNSIGNED_CHAR
 from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkRenderingCore import vtkCamera
 
 from facet import vtkFacetLight, vtkFacetRenderFilter
 
 MESHES = os.environ["FACET_SHARED_DATA_DIR"] + "/meshes"
+README = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
+
+
+def readme_python_block(containing):
+    """The README's ```python block that contains `containing`, dedented."""
+    with open(README, encoding="utf-8") as readme:
+        blocks = re.findall(r"^( *)```python\n(.*?)^\1```", readme.read(), re.M | re.S)
+    matches = [textwrap.dedent(body) for _, body in blocks if containing in body]
+    assert len(matches) == 1, "README.md has %d python blocks with %r" % (len(matches), containing)
+    return matches[0]
 
 
 class PythonPipeline(unittest.TestCase):
@@ -90,6 +104,26 @@ class PythonPipeline(unittest.TestCase):
             120 * 320 + 160)
         self.assertGreater(red, 50)
         self.assertEqual((green, blue), (0.0, 0.0))
+
+    def test_orbit_from_the_fitted_camera_as_the_readme_says(self):
+        self.render.Update()
+        fitted = vtkCamera()
+        fitted.DeepCopy(self.render.GetActiveCamera())
+        self.assertIsNone(self.render.GetCamera())
+        namespace = {"render": self.render, "reader": self.reader, "vtkCamera": vtkCamera,
+                     "vtkFacetRenderFilter": vtkFacetRenderFilter}
+        exec(readme_python_block("GetActiveCamera"), namespace)
+        self.render.SetSize(800, 600)  # the size the snippet fitted for
+        self.render.Update()
+        camera = self.render.GetActiveCamera()
+        self.assertIs(camera, self.render.GetCamera())
+        self.assertEqual(camera.GetFocalPoint(), fitted.GetFocalPoint())
+        turned = sum(a * b for a, b in zip(camera.GetDirectionOfProjection(),
+                                           fitted.GetDirectionOfProjection()))
+        self.assertAlmostEqual(turned, math.cos(math.radians(30)), places=9)
+        center = 300 * 800 + 400
+        self.assertGreaterEqual(
+            self.render.GetOutput().GetPointData().GetArray("CellId").GetValue(center), 0)
 
 
 if __name__ == "__main__":
