@@ -17,7 +17,7 @@ import sys
 import time
 
 from vtkmodules.vtkFiltersSources import vtkSphereSource
-from vtkmodules.vtkRenderingCore import vtkCamera, vtkLight, vtkRenderer
+from vtkmodules.vtkRenderingCore import vtkLight, vtkRenderer
 
 from facet import vtkFacetRenderFilter
 

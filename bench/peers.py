@@ -77,38 +77,38 @@ def measure_size(triangles, theta, args, bin_dir, update_seconds):
         "VTK 1x": vtk_off.seconds,
         "VTK default": vtk_default.seconds,
         "OSMesa": osmesa and osmesa["seconds_per_frame"],
-        "Embree": embree and embree["seconds_per_frame"],
-        "BVH build": embree and embree["build_seconds"],
+        "Embree trace": embree and embree["seconds_per_frame"],
+        "Embree BVH": embree and embree["build_seconds"],
         "Update every": every_face,
         "Update closed": closed,
     }, {"vtk": vtk_default, "osmesa": osmesa, "embree": embree}
 
 
-def cell(seconds, width=9):
-    return f"{'n/a':>{width}}" if seconds is None else f"{1000 * seconds:>{width}.1f}"
+def milliseconds(seconds):
+    return "n/a" if seconds is None else f"{1000 * seconds:.1f}"
 
 
 def ratio(facet, peer):
-    return f"{'n/a':>8}" if facet is None or peer is None else f"{facet / peer:>8.3f}"
+    return "n/a" if facet is None or peer is None else f"{facet / peer:.3f}"
 
 
 def print_tables(rows):
-    columns = ["VTK 1x", "VTK default", "OSMesa", "Embree", "BVH build", "core every",
+    columns = ["VTK 1x", "VTK default", "OSMesa", "Embree trace", "Embree BVH", "core every",
                "core closed", "Update every", "Update closed", "limit"]
-    print("\nMilliseconds per 1920x1080 frame (BVH build: once per mesh)")
+    print("\nMilliseconds per 1920x1080 frame (Embree BVH: the build, once per mesh)")
     print(f"{'triangles':>10}" + "".join(f"{name:>14}" for name in columns))
     for triangles, row in rows.items():
-        print(f"{triangles:>10}" + "".join(cell(row.get(name), 14) for name in columns))
+        print(f"{triangles:>10}" + "".join(f"{milliseconds(row.get(name)):>14}" for name in columns))
 
-    peers = ["VTK 1x", "VTK default", "OSMesa", "Embree", "limit"]
+    peers = ["VTK 1x", "VTK default", "OSMesa", "Embree trace", "limit"]
     print("\nFacet time / peer time (below 1: Facet is faster)")
-    print(f"{'triangles':>10} {'Facet':>14}" + "".join(f"{'/ ' + name:>14}" for name in peers))
+    print(f"{'triangles':>10} {'Facet':>14}" + "".join(f"{'/ ' + name:>16}" for name in peers))
     for triangles, row in rows.items():
         for facet in ("core every", "core closed", "Update every", "Update closed"):
             if row.get(facet) is None:
                 continue
             print(f"{triangles:>10} {facet:>14}"
-                  + "".join(f"{ratio(row[facet], row.get(name)):>14}" for name in peers))
+                  + "".join(f"{ratio(row[facet], row.get(name)):>16}" for name in peers))
 
 
 def print_targets(rows):
@@ -130,25 +130,75 @@ def print_targets(rows):
             check(f"{triangles}: Update closed / VTK 1x", over(triangles, "Update closed", "VTK 1x"),
                   0.1)
             check(f"{triangles}: Update closed / Embree frame",
-                  over(triangles, "Update closed", "Embree"), 1.0)
+                  over(triangles, "Update closed", "Embree trace"), 1.0)
     for triangles in rows:
         check(f"{triangles}: Update every face / Update closed",
               over(triangles, "Update every", "Update closed"), 1.5)
     if 8000000 in rows:
-        check("8000000: Update closed / Embree frame", over(8000000, "Update closed", "Embree"), 1.5)
+        check("8000000: Update closed / Embree frame", over(8000000, "Update closed", "Embree trace"), 1.5)
     if 2000000 in rows:
         check("2000000: Update closed / memory-bound limit",
               over(2000000, "Update closed", "limit"), 8.0)
 
 
-def print_coverage(rows_pixels):
-    """The peers must have drawn the same sphere: their covered pixel counts agree."""
-    for triangles, counts in rows_pixels.items():
-        problem = coverage_disagreement(counts)
+def print_coverage(rows):
+    """The programs must have drawn the same sphere: their covered pixel counts agree."""
+    for triangles, row in rows.items():
+        problem = coverage_disagreement(row["pixels"])
         if problem:
             print(f"WARNING: {triangles} triangles: {problem}")
-    print("Covered pixels (OSMesa, Embree, Facet core): "
-          + "; ".join(f"{t}: " + ", ".join(str(n) for n in c.values()) for t, c in rows_pixels.items()))
+    print("Covered pixels (OSMesa, Embree, Facet core): " + "; ".join(
+        f"{triangles}: " + ", ".join(str(n or "n/a") for n in row["pixels"].values())
+        for triangles, row in rows.items()))
+
+
+def print_notes(args, rows, bandwidth):
+    reports = [row["reports"] for row in rows.values()]
+    vtk = reports[0]["vtk"]
+    osmesa = next((r["osmesa"] for r in reports if r["osmesa"]), None)
+    embree = next((r["embree"] for r in reports if r["embree"]), None)
+    print(f"VTK default: asks for {vtk.requested} samples per pixel, llvmpipe granted "
+          f"{vtk.samples}; VTK 1x: 1. {vtk.renderer}, LP_NUM_THREADS={args.threads}.")
+    print("OSMesa: " + (osmesa["renderer"] if osmesa else
+                        "osmesa_peer not built (Debian: libosmesa6-dev, then re-run cmake)"))
+    print("Embree: " + (f"{embree['renderer']}, {embree['packet']}-ray packets" if embree else
+                        "embree_peer not built (Debian: libembree-dev, then re-run cmake)"))
+    if any(t not in SIZES for t in rows):
+        print("core: n/a at 8000000 triangles (facet_bench's BM_Sphere has no 8M case)")
+    print(f"Bandwidth ({args.threads} threads, best of {bandwidth['passes']} sweeps of "
+          f"{bandwidth['bytes'] >> 20} MiB): read {bandwidth['read_bytes_per_second'] / 1e9:.1f} "
+          f"GB/s, write {bandwidth['write_bytes_per_second'] / 1e9:.1f} GB/s")
+    print(LIMIT_FORMULA)
+    print(f"Threads: {args.threads} for Facet, Embree (BVH build and trace), llvmpipe's "
+          "rasterizer and the bandwidth sweep; llvmpipe's vertex and set-up work uses one.")
+
+
+def measure(args, bin_dir):
+    """({triangles: row}, bandwidth): a row holds every column's seconds (None where a
+    program was not built), the peers' reports and the covered pixels."""
+    sys.path[:0] = glob.glob(str(args.build_dir / "lib" / "python3*" / "dist-packages"))
+    from filter_speed import facet_seconds_per_frame as update_seconds
+
+    bandwidth = run_program(bin_dir / "bandwidth_bench", "--threads", args.threads)
+    if bandwidth is None:
+        sys.exit(f"{bin_dir / 'bandwidth_bench'} does not exist: build it (make build)")
+    rows = {}
+    for triangles in args.sizes:
+        theta = PEER_SIZES[triangles]
+        row, reports = measure_size(triangles, theta, args, bin_dir, update_seconds)
+        row["limit"] = memory_bound_seconds(triangles, theta, bandwidth)
+        row["reports"] = reports
+        rows[triangles] = row
+    core = facet_seconds_per_frame(bin_dir / "facet_bench", args.threads,
+                                   [t for t in args.sizes if t in SIZES])
+    for triangles, row in rows.items():
+        every, closed = core.get((triangles, 0)), core.get((triangles, 1))
+        row["core every"] = every and every.seconds
+        row["core closed"] = closed and closed.seconds
+        row["pixels"] = {name: row["reports"][name] and row["reports"][name]["pixels_covered"]
+                         for name in ("osmesa", "embree")}
+        row["pixels"]["facet_bench"] = every and every.pixels
+    return rows, bandwidth
 
 
 def main():
@@ -161,53 +211,16 @@ def main():
                         choices=list(PEER_SIZES), help="triangle counts (default: all)")
     args = parser.parse_args()
     os.environ["LP_NUM_THREADS"] = str(args.threads)  # read when llvmpipe's screen is created
-    bin_dir = args.build_dir / "bin"
-    sys.path[:0] = glob.glob(str(args.build_dir / "lib" / "python3*" / "dist-packages"))
-    from filter_speed import facet_seconds_per_frame as update_seconds
 
     load_start = uptime()
-    bandwidth = run_program(bin_dir / "bandwidth_bench", "--threads", args.threads)
-    if bandwidth is None:
-        sys.exit(f"{bin_dir / 'bandwidth_bench'} does not exist: build it (make build)")
-    rows, pixels, reports = {}, {}, {}
-    for triangles in args.sizes:
-        theta = PEER_SIZES[triangles]
-        rows[triangles], reports[triangles] = measure_size(triangles, theta, args, bin_dir,
-                                                          update_seconds)
-        rows[triangles]["limit"] = memory_bound_seconds(triangles, theta, bandwidth)
-    core = facet_seconds_per_frame(bin_dir / "facet_bench", args.threads,
-                                   [t for t in args.sizes if t in SIZES])
-    for triangles in args.sizes:
-        every, closed = core.get((triangles, 0)), core.get((triangles, 1))
-        rows[triangles]["core every"] = every and every.seconds
-        rows[triangles]["core closed"] = closed and closed.seconds
-        pixels[triangles] = {
-            "OSMesa": reports[triangles]["osmesa"] and reports[triangles]["osmesa"]["pixels_covered"],
-            "Embree": reports[triangles]["embree"] and reports[triangles]["embree"]["pixels_covered"],
-            "Facet": every and every.pixels}
+    rows, bandwidth = measure(args, args.build_dir / "bin")
     load_end = uptime()
 
     print_tables(rows)
     print_targets(rows)
     print()
-    print_coverage(pixels)
-    vtk = next(iter(reports.values()))["vtk"]
-    embree = next((r["embree"] for r in reports.values() if r["embree"]), None)
-    osmesa = next((r["osmesa"] for r in reports.values() if r["osmesa"]), None)
-    print(f"VTK default: asks for {vtk.requested} samples per pixel, llvmpipe granted "
-          f"{vtk.samples}; VTK 1x: 1. {vtk.renderer}, LP_NUM_THREADS={args.threads}.")
-    print("OSMesa: " + (osmesa["renderer"] if osmesa else
-                        "osmesa_peer not built (Debian: libosmesa6-dev, then re-run cmake)"))
-    print("Embree: " + (f"{embree['renderer']}, {embree['packet']}-ray packets" if embree else
-                        "embree_peer not built (Debian: libembree-dev, then re-run cmake)"))
-    if 8000000 in rows:
-        print("core 8000000: n/a (facet_bench's BM_Sphere has no 8M case)")
-    print(f"Bandwidth ({args.threads} threads, best of {bandwidth['passes']} sweeps of "
-          f"{bandwidth['bytes'] >> 20} MiB): read {bandwidth['read_bytes_per_second'] / 1e9:.1f} GB/s, "
-          f"write {bandwidth['write_bytes_per_second'] / 1e9:.1f} GB/s")
-    print(LIMIT_FORMULA)
-    print(f"Threads: {args.threads} for Facet, Embree (BVH build and trace), llvmpipe's "
-          "rasterizer and the bandwidth sweep; llvmpipe's vertex and set-up work uses one.")
+    print_coverage(rows)
+    print_notes(args, rows, bandwidth)
     print(f"Load at start: {load_start}")
     print(f"Load at end:   {load_end}")
 
