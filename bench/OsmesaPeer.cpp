@@ -80,8 +80,8 @@ GLuint linkProgram() {
   return program;
 }
 
-// The mesh in GPU buffers, once: a vertex array with the positions and the indices.
-GLuint upload(const PeerScene& scene) {
+// The mesh in GPU buffers, once: a vertex array (left bound) with the positions and indices.
+void upload(const PeerScene& scene) {
   GLuint vertexArray = 0, buffers[2] = {};
   glGenVertexArrays(1, &vertexArray);
   glBindVertexArray(vertexArray);
@@ -94,7 +94,6 @@ GLuint upload(const PeerScene& scene) {
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(scene.indices.size() * sizeof(std::uint32_t)),
                scene.indices.data(), GL_STATIC_DRAW);
-  return vertexArray;
 }
 
 void setUniforms(GLuint program, const PeerScene& scene) {
@@ -106,21 +105,16 @@ void setUniforms(GLuint program, const PeerScene& scene) {
 }
 
 OSMesaContext createContext() {
-  const int attributes[] = {OSMESA_FORMAT,
-                            OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,
-                            24,
-                            OSMESA_STENCIL_BITS,
-                            0,
-                            OSMESA_ACCUM_BITS,
-                            0,
-                            OSMESA_PROFILE,
-                            OSMESA_CORE_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION,
-                            3,
-                            OSMESA_CONTEXT_MINOR_VERSION,
-                            3,
+  // clang-format off
+  const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS, 24,
+                            OSMESA_STENCIL_BITS, 0,
+                            OSMESA_ACCUM_BITS, 0,
+                            OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                            OSMESA_CONTEXT_MAJOR_VERSION, 3,
+                            OSMESA_CONTEXT_MINOR_VERSION, 3,
                             0};
+  // clang-format on
   OSMesaContext context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!context) throw Failure("OSMesaCreateContextAttribs failed (OpenGL 3.3 core, 24-bit depth)");
   return context;

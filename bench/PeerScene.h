@@ -54,8 +54,8 @@ PeerScene makePeerScene(std::int64_t triangles);
 // Pixels whose depth is below the background's 1 (a check that the peers drew the same).
 std::size_t coveredPixels(const std::vector<float>& depth);
 
-// Writes width × height RGBA8 pixels, row 0 at the bottom, as a binary PPM (top row first).
-// Throws facet::Error when the file cannot be written.
+// Writes kPeerWidth × kPeerHeight RGBA8 pixels, row 0 at the bottom, as a binary PPM (top row
+// first). Throws facet::Error when the file cannot be written.
 void writePpm(const std::string& path, const std::uint8_t* rgba);
 
 // Runs `frame` once to warm up, then `frames` times; returns the median seconds per frame.
