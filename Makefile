@@ -1,7 +1,7 @@
 # Facet's two quick-start commands, on a fresh Debian 12 machine as root:
 #   make demo   installs what is missing, builds, renders the demo scene, prints the image path
 #   make test   installs what is missing, builds, runs every test suite
-# Other targets: deps, build, bench, clean.
+# Other targets: deps, build, bench, bench-peers, clean.
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -17,10 +17,12 @@ CMAKE_FLAGS ?=
 # tests that compare with VTK's own OpenGL renderer.
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth
+# The peers of `make bench-peers` (optional: the build skips a peer whose library is missing).
+PEER_PACKAGES := libosmesa6-dev libembree-dev
 DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
-.PHONY: all deps build test test-main test-core-sanitized demo bench clean
+.PHONY: all deps build test test-main test-core-sanitized demo bench bench-peers clean
 
 all: build
 
@@ -63,7 +65,16 @@ demo: build
 	@echo "Demo image: $(CURDIR)/out/facet-demo.png"
 
 bench: build
-	$(BUILD_DIR)/bench/facet_bench
+	$(BUILD_DIR)/bin/facet_bench
+
+# Facet against VTK (MSAA off and default), raw llvmpipe (OSMesa), an Embree ray caster and
+# the memory-bound limit, in one run and one table (bench/peers.py). Configures again so
+# that CMake finds the peers' libraries just installed.
+bench-peers: deps
+	@$(MAKE) --no-print-directory deps PACKAGES="$(PEER_PACKAGES)"
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+	xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/peers.py --build-dir $(BUILD_DIR)
 
 clean:
 	rm -rf $(BUILD_DIR) $(CORE_BUILD_DIR)

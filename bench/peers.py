@@ -1,0 +1,229 @@
+#!/usr/bin/env python3
+"""Facet and its peers per 1920x1080 frame, measured in one run (`make bench-peers`).
+
+Every column draws the same vtkSphereSource-topology sphere (20k, 500k, 2M, 8M triangles)
+from the same camera (vtkRenderer::ResetCamera's, looking down -Z), lit by one positional
+light at the camera, at 1920x1080 with one sample per pixel (except "VTK default"), on
+--threads threads wherever the program can use them:
+
+  VTK 1x       VTK 9.1 + llvmpipe under Xvfb, multisampling off, flat interpolation, every
+               frame read back (RGB) with vtkWindowToImageFilter (bench/compare_vtk.py)
+  VTK default  the same with VTK's default multisampling (asks for 8 samples, llvmpipe grants 4)
+  OSMesa       llvmpipe through OSMesa without VTK: the mesh in buffer objects once, flat
+               shading from the face normal, RGBA + depth read back (build/bin/osmesa_peer)
+  Embree       an Embree 3 packet ray caster, one primary ray per pixel, flat shading from
+               the geometric normal, RGBA + depth + primitive id (build/bin/embree_peer);
+               its BVH build, done once per mesh, is a column of its own
+  core         Facet's core, facet_bench's BM_Sphere (Google Benchmark mean; every face drawn
+               / closed-surface hint)
+  Update       vtkFacetRenderFilter.Update() from Python with the camera turning every frame,
+               RGBA + Depth + CellId output (bench/filter_speed.py; every face / closed check)
+  limit        the memory-bound limit: bytes a frame must move over the measured bandwidth
+
+llvmpipe (VTK, OSMesa) rasterizes on LP_NUM_THREADS = --threads threads; it transforms
+vertices and sets up triangles on the calling thread alone. Peer times are the median of
+--frames frames after a warm-up frame.
+
+    make bench-peers
+    xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/peers.py --sizes 500000
+"""
+import argparse
+import glob
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from check_peers import coverage_disagreement, run_program  # noqa: E402
+from compare_vtk import SIZES, WIDTH, HEIGHT, facet_seconds_per_frame, vtk_seconds_per_frame  # noqa: E402
+
+PEER_SIZES = {**SIZES, 8000000: 2000}  # triangles: theta = phi - 2 resolution
+
+FRAMEBUFFER_BYTES_PER_PIXEL = 4 + 4 + 4  # RGBA8, float depth, int32 polygon id
+LIMIT_FORMULA = (
+    "limit = mesh bytes / read bandwidth + framebuffer bytes / write bandwidth, where\n"
+    "  mesh bytes        = 12 B x points (float xyz) + 8 B x (triangles + 1) (offsets)\n"
+    "                      + 8 B x 3 x triangles (connectivity): VTK's 64-bit cell array, read once\n"
+    f"  framebuffer bytes = {FRAMEBUFFER_BYTES_PER_PIXEL} B x {WIDTH} x {HEIGHT} "
+    "(RGBA8 + float depth + int32 id), written once")
+
+
+def memory_bound_seconds(triangles, theta, bandwidth):
+    points = theta * theta + 2  # theta * (phi - 2) ring points and two poles
+    mesh = 12 * points + 8 * (triangles + 1) + 8 * 3 * triangles
+    framebuffer = FRAMEBUFFER_BYTES_PER_PIXEL * WIDTH * HEIGHT
+    return (mesh / bandwidth["read_bytes_per_second"]
+            + framebuffer / bandwidth["write_bytes_per_second"])
+
+
+def uptime():
+    return subprocess.run(["uptime"], check=True, capture_output=True, text=True).stdout.strip()
+
+
+def measure_size(triangles, theta, args, bin_dir, update_seconds):
+    """{column: seconds or None} for one sphere, plus the peers' reports."""
+    peer_args = ("--triangles", triangles, "--frames", args.frames, "--threads", args.threads)
+    osmesa = run_program(bin_dir / "osmesa_peer", *peer_args)
+    embree = run_program(bin_dir / "embree_peer", *peer_args)
+    vtk_off = vtk_seconds_per_frame(theta, args.vtk_frames, 0)
+    vtk_default = vtk_seconds_per_frame(theta, args.vtk_frames)
+    if vtk_off.samples != 1:
+        sys.exit(f"VTK with multisampling off still drew {vtk_off.samples} samples per pixel")
+    every_face, _ = update_seconds(theta, args.frames, args.threads, False)
+    closed, _ = update_seconds(theta, args.frames, args.threads, True)
+    return {
+        "VTK 1x": vtk_off.seconds,
+        "VTK default": vtk_default.seconds,
+        "OSMesa": osmesa and osmesa["seconds_per_frame"],
+        "Embree trace": embree and embree["seconds_per_frame"],
+        "Embree BVH": embree and embree["build_seconds"],
+        "Update every": every_face,
+        "Update closed": closed,
+    }, {"vtk": vtk_default, "osmesa": osmesa, "embree": embree}
+
+
+def milliseconds(seconds):
+    return "n/a" if seconds is None else f"{1000 * seconds:.1f}"
+
+
+def ratio(facet, peer):
+    return "n/a" if facet is None or peer is None else f"{facet / peer:.3f}"
+
+
+def print_tables(rows):
+    columns = ["VTK 1x", "VTK default", "OSMesa", "Embree trace", "Embree BVH", "core every",
+               "core closed", "Update every", "Update closed", "limit"]
+    print("\nMilliseconds per 1920x1080 frame (Embree BVH: the build, once per mesh)")
+    print(f"{'triangles':>10}" + "".join(f"{name:>14}" for name in columns))
+    for triangles, row in rows.items():
+        print(f"{triangles:>10}" + "".join(f"{milliseconds(row.get(name)):>14}" for name in columns))
+
+    peers = ["VTK 1x", "VTK default", "OSMesa", "Embree trace", "limit"]
+    print("\nFacet time / peer time (below 1: Facet is faster)")
+    print(f"{'triangles':>10} {'Facet':>14}" + "".join(f"{'/ ' + name:>16}" for name in peers))
+    for triangles, row in rows.items():
+        for facet in ("core every", "core closed", "Update every", "Update closed"):
+            if row.get(facet) is None:
+                continue
+            print(f"{triangles:>10} {facet:>14}"
+                  + "".join(f"{ratio(row[facet], row.get(name)):>16}" for name in peers))
+
+
+def print_targets(rows):
+    """Issue 11's targets, on the filter's Update() (closed check on: the filter's default)."""
+    def check(text, value, bound):
+        verdict = "n/a" if value is None else ("met" if value <= bound else "NOT met")
+        shown = "n/a" if value is None else f"{value:.3f}"
+        print(f"  {text:<62} {shown:>7} (target <= {bound}) {verdict}")
+
+    def over(triangles, facet, peer):
+        row = rows.get(triangles, {})
+        if row.get(facet) is None or row.get(peer) is None:
+            return None
+        return row[facet] / row[peer]
+
+    print("\nIssue 11's targets (Update = the filter's Update(), turning camera)")
+    for triangles in (500000, 2000000):
+        if triangles in rows:
+            check(f"{triangles}: Update closed / VTK 1x", over(triangles, "Update closed", "VTK 1x"),
+                  0.1)
+            check(f"{triangles}: Update closed / Embree frame",
+                  over(triangles, "Update closed", "Embree trace"), 1.0)
+    for triangles in rows:
+        check(f"{triangles}: Update every face / Update closed",
+              over(triangles, "Update every", "Update closed"), 1.5)
+    if 8000000 in rows:
+        check("8000000: Update closed / Embree frame", over(8000000, "Update closed", "Embree trace"), 1.5)
+    if 2000000 in rows:
+        check("2000000: Update closed / memory-bound limit",
+              over(2000000, "Update closed", "limit"), 8.0)
+
+
+def print_coverage(rows):
+    """The programs must have drawn the same sphere: their covered pixel counts agree."""
+    for triangles, row in rows.items():
+        problem = coverage_disagreement(row["pixels"])
+        if problem:
+            print(f"WARNING: {triangles} triangles: {problem}")
+    print("Covered pixels (OSMesa, Embree, Facet core): " + "; ".join(
+        f"{triangles}: " + ", ".join(str(n or "n/a") for n in row["pixels"].values())
+        for triangles, row in rows.items()))
+
+
+def print_notes(args, rows, bandwidth):
+    reports = [row["reports"] for row in rows.values()]
+    vtk = reports[0]["vtk"]
+    osmesa = next((r["osmesa"] for r in reports if r["osmesa"]), None)
+    embree = next((r["embree"] for r in reports if r["embree"]), None)
+    print(f"VTK default: asks for {vtk.requested} samples per pixel, llvmpipe granted "
+          f"{vtk.samples}; VTK 1x: 1. {vtk.renderer}, LP_NUM_THREADS={args.threads}.")
+    print("OSMesa: " + (osmesa["renderer"] if osmesa else
+                        "osmesa_peer not built (Debian: libosmesa6-dev, then re-run cmake)"))
+    print("Embree: " + (f"{embree['renderer']}, {embree['packet']}-ray packets" if embree else
+                        "embree_peer not built (Debian: libembree-dev, then re-run cmake)"))
+    if any(t not in SIZES for t in rows):
+        print("core: n/a at 8000000 triangles (facet_bench's BM_Sphere has no 8M case)")
+    print(f"Bandwidth ({args.threads} threads, best of {bandwidth['passes']} sweeps of "
+          f"{bandwidth['bytes'] >> 20} MiB): read {bandwidth['read_bytes_per_second'] / 1e9:.1f} "
+          f"GB/s, write {bandwidth['write_bytes_per_second'] / 1e9:.1f} GB/s")
+    print(LIMIT_FORMULA)
+    print(f"Threads: {args.threads} for Facet, Embree (BVH build and trace), llvmpipe's "
+          "rasterizer and the bandwidth sweep; llvmpipe's vertex and set-up work uses one.")
+
+
+def measure(args, bin_dir):
+    """({triangles: row}, bandwidth): a row holds every column's seconds (None where a
+    program was not built), the peers' reports and the covered pixels."""
+    sys.path[:0] = glob.glob(str(args.build_dir / "lib" / "python3*" / "dist-packages"))
+    from filter_speed import facet_seconds_per_frame as update_seconds
+
+    bandwidth = run_program(bin_dir / "bandwidth_bench", "--threads", args.threads)
+    if bandwidth is None:
+        sys.exit(f"{bin_dir / 'bandwidth_bench'} does not exist: build it (make build)")
+    rows = {}
+    for triangles in args.sizes:
+        theta = PEER_SIZES[triangles]
+        row, reports = measure_size(triangles, theta, args, bin_dir, update_seconds)
+        row["limit"] = memory_bound_seconds(triangles, theta, bandwidth)
+        row["reports"] = reports
+        rows[triangles] = row
+    core = facet_seconds_per_frame(bin_dir / "facet_bench", args.threads,
+                                   [t for t in args.sizes if t in SIZES])
+    for triangles, row in rows.items():
+        every, closed = core.get((triangles, 0)), core.get((triangles, 1))
+        row["core every"] = every and every.seconds
+        row["core closed"] = closed and closed.seconds
+        row["pixels"] = {name: row["reports"][name] and row["reports"][name]["pixels_covered"]
+                         for name in ("osmesa", "embree")}
+        row["pixels"]["facet_bench"] = every and every.pixels
+    return rows, bandwidth
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--build-dir", type=Path, default=HERE.parent / "build")
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--frames", type=int, default=10, help="frames per peer and Update()")
+    parser.add_argument("--vtk-frames", type=int, default=5)
+    parser.add_argument("--sizes", type=int, nargs="+", default=list(PEER_SIZES),
+                        choices=list(PEER_SIZES), help="triangle counts (default: all)")
+    args = parser.parse_args()
+    os.environ["LP_NUM_THREADS"] = str(args.threads)  # read when llvmpipe's screen is created
+
+    load_start = uptime()
+    rows, bandwidth = measure(args, args.build_dir / "bin")
+    load_end = uptime()
+
+    print_tables(rows)
+    print_targets(rows)
+    print()
+    print_coverage(rows)
+    print_notes(args, rows, bandwidth)
+    print(f"Load at start: {load_start}")
+    print(f"Load at end:   {load_end}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
