@@ -136,11 +136,11 @@ public:
   std::string Plan;
   bool WarnedAboutProperty = false;
 
-  static vtkFacetScalarColors::Settings ColoringOf(const vtkFacetRenderFilter& filter);
+  static vtkFacetScalarColors::Settings ColoringOf(vtkFacetRenderFilter& filter);
   // The scene: polys (mesh 0) then strip triangles (mesh 1), as CellIdOf numbers them.
   facet::Scene MeshesOf(const facet::Material& material) const;
-  // The filter's camera, or one reset to the input's bounds.
-  vtkCamera* CameraFor(vtkCamera* camera, vtkPolyData* input, int width, int height);
+  // The filter's camera, or one reset to the input's bounds (a copy of the filter's, if any).
+  vtkCamera* CameraFor(vtkCamera* camera, bool fit, vtkPolyData* input, int width, int height);
   void AddFieldData(vtkImageData* output,
     const facet::RenderStats& stats,
     double conversionSeconds,
@@ -150,7 +150,7 @@ public:
 
 //------------------------------------------------------------------------------
 vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
-  const vtkFacetRenderFilter& filter)
+  vtkFacetRenderFilter& filter)
 {
   vtkFacetScalarColors::Settings coloring;
   coloring.ScalarVisibility = filter.ScalarVisibility != 0;
@@ -165,6 +165,23 @@ vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
   coloring.ScalarRange[0] = filter.ScalarRange[0];
   coloring.ScalarRange[1] = filter.ScalarRange[1];
   coloring.UseLookupTableScalarRange = filter.UseLookupTableScalarRange != 0;
+
+  // An input array to process that names a point or cell array (ParaView's array selection).
+  vtkInformation* array = filter.GetInputArrayInformation(0);
+  const char* name = array->Get(vtkDataObject::FIELD_NAME());
+  const int association = array->Has(vtkDataObject::FIELD_ASSOCIATION())
+    ? array->Get(vtkDataObject::FIELD_ASSOCIATION())
+    : -1;
+  if (name && *name &&
+    (association == vtkDataObject::FIELD_ASSOCIATION_POINTS ||
+      association == vtkDataObject::FIELD_ASSOCIATION_CELLS))
+  {
+    coloring.ScalarMode = association == vtkDataObject::FIELD_ASSOCIATION_POINTS
+      ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA
+      : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
+    coloring.ArrayAccessMode = VTK_GET_ARRAY_BY_NAME;
+    coloring.ArrayName = name;
+  }
   return coloring;
 }
 
@@ -189,19 +206,21 @@ facet::Scene vtkFacetRenderFilter::vtkInternals::MeshesOf(const facet::Material&
 
 //------------------------------------------------------------------------------
 vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
+  bool fit,
   vtkPolyData* input,
   int width,
   int height)
 {
-  if (camera)
+  if (camera && !fit)
   {
     return camera;
   }
   vtkRenderer* reset = this->CameraReset;
-  camera = reset->GetActiveCamera();
-  camera->SetPosition(0.0, 0.0, 1.0);
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetViewUp(0.0, 1.0, 0.0);
+  vtkCamera* fitted = reset->GetActiveCamera();
+  // The direction of view, view up, view angle and projection stay; with no camera, VTK's
+  // defaults: at (0, 0, 1) looking down -Z, 30 degrees.
+  vtkNew<vtkCamera> defaults;
+  fitted->DeepCopy(camera ? camera : defaults.Get());
   reset->SetAspect(static_cast<double>(width) / height, 1.0);
   double bounds[6];
   input->GetBounds(bounds);
@@ -209,7 +228,7 @@ vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
   {
     reset->ResetCamera(bounds);
   }
-  return camera;
+  return fitted;
 }
 
 //------------------------------------------------------------------------------
@@ -479,7 +498,8 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
     !internals.Colors.PolygonColors().empty() || !internals.Colors.StripColors().empty();
   facet::Scene scene =
     internals.MeshesOf(vtkFacetSceneConverter::ConvertProperty(property, scalarColors));
-  vtkCamera* camera = internals.CameraFor(this->Camera, input, width, height);
+  vtkCamera* camera =
+    internals.CameraFor(this->Camera, this->FitCameraToInput != 0, input, width, height);
   std::string warning;
   const facet::Camera facetCamera =
     vtkFacetSceneConverter::ConvertCamera(camera, width, height, warning);
@@ -568,6 +588,7 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Background: (" << this->Background[0] << ", " << this->Background[1] << ", "
      << this->Background[2] << "), alpha " << this->BackgroundAlpha << "\n";
   os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "FitCameraToInput: " << this->FitCameraToInput << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
   os << indent << "AutomaticLightCreation: " << this->AutomaticLightCreation << "\n";
   os << indent << "AmbientLightColor: (" << this->AmbientLightColor[0] << ", "

@@ -94,6 +94,19 @@ public:
 
   ///@{
   /**
+   * Fit the camera to the input's bounds as vtkRenderer::ResetCamera does: the camera's
+   * direction of view, view up, view angle and projection are kept; its focal point moves to
+   * the center of the bounds, its distance (or parallel scale) makes them fill the view, and
+   * its clipping range is reset. The camera set with SetCamera is not changed: a copy is
+   * fitted. With no camera set, the camera is always fitted, looking down -Z (default: off).
+   */
+  vtkSetMacro(FitCameraToInput, vtkTypeBool);
+  vtkGetMacro(FitCameraToInput, vtkTypeBool);
+  vtkBooleanMacro(FitCameraToInput, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Scene lights: headlights, camera lights and scene lights as vtkLight defines them
    * (positional, cone angle, exponent, attenuation values, intensity, diffuse color), and
    * vtkFacetLight's models (default: none).
@@ -182,6 +195,12 @@ public:
   /**
    * The array to color by with the field-data scalar modes (or any mode, by name), as
    * vtkMapper::SelectColorArray (default: none, the active scalars).
+   *
+   * The array can also be named as VTK filters name their input arrays, which is how
+   * ParaView's array selection names it: SetInputArrayToProcess(0, 0, 0, association, name)
+   * with vtkDataObject::FIELD_ASSOCIATION_POINTS or FIELD_ASSOCIATION_CELLS colors by that
+   * point or cell array, in place of ScalarMode and the array selected here (an empty name
+   * leaves them in charge).
    */
   void SelectColorArray(int arrayId);
   void SelectColorArray(const char* arrayName);
@@ -283,6 +302,7 @@ protected:
   double Background[3] = { 0.0, 0.0, 0.0 };
   double BackgroundAlpha = 1.0;
   vtkCamera* Camera = nullptr;
+  vtkTypeBool FitCameraToInput = 0;
   vtkLightCollection* Lights = nullptr;
   vtkTypeBool AutomaticLightCreation = 1;
   double AmbientLightColor[3] = { 50.0 / 255.0, 50.0 / 255.0, 50.0 / 255.0 };
