@@ -22,7 +22,7 @@ PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpn
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
 # and the hierarchy files the plugin build needs).
 PLUGIN_BUILD_DIR ?= build-plugin
-PLUGIN_PACKAGES := paraview-dev
+PLUGIN_PACKAGES := paraview-dev python3-numpy
 PARAVIEW_PYTHON_ROOT := $(PLUGIN_BUILD_DIR)/python3-paraview
 DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
