@@ -4,8 +4,8 @@ camera and two lights), save the image as a PNG. Runs in pvbatch (or pvpython):
     PYTHONPATH=build-plugin/python3-paraview/usr/lib/python3/dist-packages \\
         pvbatch examples/paraview/render_mesh.py ../shared/data/meshes/spot.obj spot.png
 
-The plugin is taken from --plugin, else from $FACET_PLUGIN, else from the build tree
-(`make plugin` builds it in build-plugin/).
+The plugin is the one loaded from $PV_PLUGIN_PATH if any, else --plugin, else $FACET_PLUGIN,
+else the build tree's (`make plugin` builds it in build-plugin/).
 """
 import argparse
 import os
@@ -26,7 +26,8 @@ parser.add_argument("--view", type=float, nargs=3, default=[0.6, 0.35, 1.0],
                     metavar=("X", "Y", "Z"), help="direction from the mesh to the camera")
 args = parser.parse_args()
 
-LoadPlugin(args.plugin, remote=False, ns=globals())
+if "FacetRender" not in globals():  # else already loaded from $PV_PLUGIN_PATH
+    LoadPlugin(args.plugin, remote=False, ns=globals())
 
 # Facet renders polygonal data: any dataset gives its outer surface.
 mesh = ExtractSurface(Input=OpenDataFile(args.mesh))
