@@ -217,8 +217,8 @@ vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
   }
   vtkRenderer* reset = this->CameraReset;
   vtkCamera* fitted = reset->GetActiveCamera();
-  // The direction of view, view up, view angle and projection stay; with no camera, VTK's
-  // defaults: at (0, 0, 1) looking down -Z, 30 degrees.
+  // The direction of view, view up and projection stay; with no camera, VTK's defaults: at
+  // (0, 0, 1) looking down -Z.
   vtkNew<vtkCamera> defaults;
   fitted->DeepCopy(camera ? camera : defaults.Get());
   reset->SetAspect(static_cast<double>(width) / height, 1.0);

@@ -95,10 +95,11 @@ public:
   ///@{
   /**
    * Fit the camera to the input's bounds as vtkRenderer::ResetCamera does: the camera's
-   * direction of view, view up, view angle and projection are kept; its focal point moves to
-   * the center of the bounds, its distance (or parallel scale) makes them fill the view, and
-   * its clipping range is reset. The camera set with SetCamera is not changed: a copy is
-   * fitted. With no camera set, the camera is always fitted, looking down -Z (default: off).
+   * direction of view, view up and projection are kept; its focal point moves to the center
+   * of the bounds, its view angle returns to 30 degrees, its distance (or parallel scale)
+   * makes them fill the view, and its clipping range is reset. The camera set with SetCamera
+   * is not changed: a copy is fitted. With no camera set, the camera is always fitted,
+   * looking down -Z (default: off).
    */
   vtkSetMacro(FitCameraToInput, vtkTypeBool);
   vtkGetMacro(FitCameraToInput, vtkTypeBool);

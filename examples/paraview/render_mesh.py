@@ -42,7 +42,6 @@ render.DiffuseColor = [0.92, 0.88, 0.82]
 render.CameraPosition = args.view
 render.CameraFocalPoint = [0.0, 0.0, 0.0]
 render.CameraViewUp = [0.0, 1.0, 0.0]
-render.CameraViewAngle = 30.0
 
 # Two lights that move with the camera (camera lights: positions in the camera's frame,
 # where the camera sits at (0, 0, 1) looking at the origin): a warm key light from the
