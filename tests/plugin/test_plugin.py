@@ -201,6 +201,21 @@ class Coloring(unittest.TestCase):
         self.assertEqual(tuple(Image(render).rgba[H // 2, W // 2]), (51, 102, 153, 255))
 
 
+class Rendering(unittest.TestCase):
+    def test_backface_culling_hides_a_plane_seen_from_behind(self):
+        # Plane's polygons face +z; the fitted camera looks at them from -z.
+        render = FacetRender(Input=Plane(), Size=[W, H], CameraPosition=[0.0, 0.0, -1.0])
+        self.assertGreater(Image(render).covered().mean(), 0.3)
+        render.BackfaceCulling = 1
+        self.assertEqual(Image(render).covered().sum(), 0)
+
+    def test_same_bytes_for_any_number_of_threads(self):
+        render = FacetRender(Input=sphere(), Size=[W, H], NumberOfThreads=1)
+        one = Image(render).rgba.copy()
+        render.NumberOfThreads = 2
+        numpy.testing.assert_array_equal(Image(render).rgba, one)
+
+
 class ProgressAndAbort(unittest.TestCase):
     def big_render(self):
         # About two million triangles: a render long enough to report progress many times.
