@@ -1,7 +1,8 @@
 # Facet's two quick-start commands, on a fresh Debian 12 machine as root:
 #   make demo   installs what is missing, builds, renders the demo scene, prints the image path
 #   make test   installs what is missing, builds, runs every test suite
-# Other targets: deps, build, bench, bench-peers, clean.
+# Other targets: deps, build, plugin (the ParaView plugin), test-plugin, bench, bench-peers,
+#                clean.
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -17,25 +18,42 @@ CMAKE_FLAGS ?=
 # tests that compare with VTK's own OpenGL renderer.
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth
+# The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev
+# without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
+# package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
+# and the hierarchy files the plugin build needs).
+PLUGIN_BUILD_DIR ?= build-plugin
+PLUGIN_PACKAGES := paraview-dev python3-numpy
+PARAVIEW_PYTHON_ROOT := $(PLUGIN_BUILD_DIR)/python3-paraview
 # The peers of `make bench-peers` (optional: the build skips a peer whose library is missing).
 PEER_PACKAGES := libosmesa6-dev libembree-dev
 DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
-.PHONY: all deps build test test-main test-core-sanitized demo bench bench-peers clean
+.PHONY: all deps deps-plugin build plugin test test-main test-core-sanitized test-plugin demo \
+        bench bench-peers clean
 
 all: build
 
-deps:
-	@missing=""; \
-	for p in $(PACKAGES); do \
+# $(call install-missing,PACKAGES): installs those not installed yet, without recommends.
+define install-missing
+@missing=""; \
+	for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' "$$p" 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing:$$missing"; \
 	  $(SUDO) apt-get update -q; \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends \
+	    -o DPkg::Lock::Timeout=900 $$missing; \
 	fi
+endef
+
+deps:
+	$(call install-missing,$(PACKAGES))
+
+deps-plugin: deps
+	$(call install-missing,$(PLUGIN_PACKAGES))
 
 $(BUILD_DIR)/build.ninja:
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
@@ -53,7 +71,26 @@ test-core-sanitized: deps
 	cmake --build $(CORE_BUILD_DIR) -j $(JOBS)
 	cd $(CORE_BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-test: test-main test-core-sanitized
+# python3-paraview, the same version as the installed ParaView, unpacked (not installed).
+$(PARAVIEW_PYTHON_ROOT)/.unpacked: | deps-plugin
+	rm -rf $(PARAVIEW_PYTHON_ROOT) && mkdir -p $(PARAVIEW_PYTHON_ROOT)
+	version=$$(dpkg-query -W -f='$${Version}' paraview) && cd $(PARAVIEW_PYTHON_ROOT) && \
+	  { apt-get download -q -o APT::Sandbox::User=root python3-paraview=$$version || \
+	    { $(SUDO) apt-get update -q && apt-get download -q -o APT::Sandbox::User=root python3-paraview=$$version; }; } && \
+	  dpkg-deb -x python3-paraview_*.deb . && rm python3-paraview_*.deb
+	touch $@
+
+$(PLUGIN_BUILD_DIR)/build.ninja: | $(PARAVIEW_PYTHON_ROOT)/.unpacked
+	cmake -S plugin -B $(PLUGIN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release \
+	  -DFACET_PARAVIEW_PYTHON_ROOT=$(CURDIR)/$(PARAVIEW_PYTHON_ROOT) $(CMAKE_FLAGS)
+
+plugin: deps-plugin $(PARAVIEW_PYTHON_ROOT)/.unpacked $(PLUGIN_BUILD_DIR)/build.ninja
+	cmake --build $(PLUGIN_BUILD_DIR) -j $(JOBS)
+
+test-plugin: plugin
+	cd $(PLUGIN_BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+test: test-main test-core-sanitized test-plugin
 	@echo "All test suites passed."
 
 demo: build
@@ -71,10 +108,10 @@ bench: build
 # the memory-bound limit, in one run and one table (bench/peers.py). Configures again so
 # that CMake finds the peers' libraries just installed.
 bench-peers: deps
-	@$(MAKE) --no-print-directory deps PACKAGES="$(PEER_PACKAGES)"
+	$(call install-missing,$(PEER_PACKAGES))
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 	xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/peers.py --build-dir $(BUILD_DIR)
 
 clean:
-	rm -rf $(BUILD_DIR) $(CORE_BUILD_DIR)
+	rm -rf $(BUILD_DIR) $(CORE_BUILD_DIR) $(PLUGIN_BUILD_DIR)

@@ -136,11 +136,12 @@ public:
   std::string Plan;
   bool WarnedAboutProperty = false;
 
-  static vtkFacetScalarColors::Settings ColoringOf(const vtkFacetRenderFilter& filter);
+  static vtkFacetScalarColors::Settings ColoringOf(vtkFacetRenderFilter& filter);
   // The scene: polys (mesh 0) then strip triangles (mesh 1), as CellIdOf numbers them.
   facet::Scene MeshesOf(const facet::Material& material) const;
-  // The filter's camera, or the automatic camera fitted to the input's finite points.
-  vtkCamera* CameraFor(vtkCamera* camera, int width, int height);
+  // The filter's camera, or the automatic camera: a copy of the filter's camera (FitCameraToInput)
+  // or VTK's default camera, fitted to the input's finite points.
+  vtkCamera* CameraFor(vtkCamera* camera, bool fit, int width, int height);
   void AddFieldData(vtkImageData* output,
     const facet::RenderStats& stats,
     double conversionSeconds,
@@ -150,7 +151,7 @@ public:
 
 //------------------------------------------------------------------------------
 vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
-  const vtkFacetRenderFilter& filter)
+  vtkFacetRenderFilter& filter)
 {
   vtkFacetScalarColors::Settings coloring;
   coloring.ScalarVisibility = filter.ScalarVisibility != 0;
@@ -164,6 +165,23 @@ vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
   coloring.ScalarRange[0] = filter.ScalarRange[0];
   coloring.ScalarRange[1] = filter.ScalarRange[1];
   coloring.UseLookupTableScalarRange = filter.UseLookupTableScalarRange != 0;
+
+  // An input array to process that names a point or cell array (ParaView's array selection).
+  vtkInformation* array = filter.GetInputArrayInformation(0);
+  const char* name = array->Get(vtkDataObject::FIELD_NAME());
+  const int association = array->Has(vtkDataObject::FIELD_ASSOCIATION())
+    ? array->Get(vtkDataObject::FIELD_ASSOCIATION())
+    : -1;
+  if (name && *name &&
+    (association == vtkDataObject::FIELD_ASSOCIATION_POINTS ||
+      association == vtkDataObject::FIELD_ASSOCIATION_CELLS))
+  {
+    coloring.ScalarMode = association == vtkDataObject::FIELD_ASSOCIATION_POINTS
+      ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA
+      : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
+    coloring.ArrayAccessMode = VTK_GET_ARRAY_BY_NAME;
+    coloring.ArrayName = name;
+  }
   return coloring;
 }
 
@@ -187,14 +205,19 @@ facet::Scene vtkFacetRenderFilter::vtkInternals::MeshesOf(const facet::Material&
 }
 
 //------------------------------------------------------------------------------
-vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera, int width, int height)
+vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
+  bool fit,
+  int width,
+  int height)
 {
-  if (camera)
+  if (camera && !fit)
   {
     return camera;
   }
-  vtkNew<vtkCamera> fresh; // whatever the user did to the last automatic camera
-  this->AutomaticCamera->DeepCopy(fresh);
+  // The direction of view, view up and projection stay; with no camera, VTK's defaults (at
+  // (0, 0, 1) looking down -Z), whatever the user did to the last automatic camera.
+  vtkNew<vtkCamera> fresh;
+  this->AutomaticCamera->DeepCopy(camera ? camera : fresh.Get());
   vtkFacetSceneConverter::FitCamera(
     this->AutomaticCamera, this->Mesh.GetFiniteBounds(), width, height);
   return this->AutomaticCamera;
@@ -301,7 +324,8 @@ vtkProperty* vtkFacetRenderFilter::GetProperty()
 //------------------------------------------------------------------------------
 vtkCamera* vtkFacetRenderFilter::GetActiveCamera()
 {
-  return this->Camera ? this->Camera : this->Internals->AutomaticCamera.Get();
+  return this->Camera && !this->FitCameraToInput ? this->Camera
+                                                : this->Internals->AutomaticCamera.Get();
 }
 
 //------------------------------------------------------------------------------
@@ -502,7 +526,8 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
     !internals.Colors.PolygonColors().empty() || !internals.Colors.StripColors().empty();
   facet::Scene scene =
     internals.MeshesOf(vtkFacetSceneConverter::ConvertProperty(property, scalarColors));
-  vtkCamera* camera = internals.CameraFor(this->Camera, width, height);
+  vtkCamera* camera =
+    internals.CameraFor(this->Camera, this->FitCameraToInput != 0, width, height);
   std::string warning;
   const facet::Camera facetCamera =
     vtkFacetSceneConverter::ConvertCamera(camera, width, height, warning);
@@ -591,8 +616,9 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Background: (" << this->Background[0] << ", " << this->Background[1] << ", "
      << this->Background[2] << "), alpha " << this->BackgroundAlpha << "\n";
   os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "FitCameraToInput: " << this->FitCameraToInput << "\n";
   os << indent << "ActiveCamera: " << this->GetActiveCamera()
-     << (this->Camera ? "" : " (automatic)") << "\n";
+     << (this->Camera && !this->FitCameraToInput ? "" : " (automatic)") << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
   os << indent << "AutomaticLightCreation: " << this->AutomaticLightCreation << "\n";
   os << indent << "AmbientLightColor: (" << this->AmbientLightColor[0] << ", "

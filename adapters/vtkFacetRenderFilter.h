@@ -94,9 +94,9 @@ public:
   ///@}
 
   /**
-   * The camera to render with, as vtkRenderer::GetActiveCamera: the one set with SetCamera,
-   * else the automatic camera as the last execution fitted it (before the first: a default
-   * vtkCamera). Never null. The automatic camera is fitted again at every execution, so
+   * The camera to render with, as vtkRenderer::GetActiveCamera: the one set with SetCamera
+   * (unless FitCameraToInput is on), else the automatic camera as the last execution fitted
+   * it (before the first: a default vtkCamera). Never null. The automatic camera is fitted again at every execution, so
    * changing it changes nothing; to orbit from it, copy it and set the copy:
    * @code{.cpp}
    * vtkNew<vtkCamera> camera;
@@ -123,6 +123,20 @@ public:
    * finite point the camera is left as it is.
    */
   static void ResetCamera(vtkCamera* camera, vtkPolyData* input, int width, int height);
+
+  ///@{
+  /**
+   * Fit the camera to the input's bounds as vtkRenderer::ResetCamera does: the camera's
+   * direction of view, view up and projection are kept; its focal point moves to the center
+   * of the bounds, its view angle returns to 30 degrees, its distance (or parallel scale)
+   * makes them fill the view, and its clipping range is reset. The camera set with SetCamera
+   * is not changed: a copy is fitted. With no camera set, the camera is always fitted,
+   * looking down -Z (default: off).
+   */
+  vtkSetMacro(FitCameraToInput, vtkTypeBool);
+  vtkGetMacro(FitCameraToInput, vtkTypeBool);
+  vtkBooleanMacro(FitCameraToInput, vtkTypeBool);
+  ///@}
 
   ///@{
   /**
@@ -214,6 +228,12 @@ public:
   /**
    * The array to color by with the field-data scalar modes (or any mode, by name), as
    * vtkMapper::SelectColorArray (default: none, the active scalars).
+   *
+   * The array can also be named as VTK filters name their input arrays, which is how
+   * ParaView's array selection names it: SetInputArrayToProcess(0, 0, 0, association, name)
+   * with vtkDataObject::FIELD_ASSOCIATION_POINTS or FIELD_ASSOCIATION_CELLS colors by that
+   * point or cell array, in place of ScalarMode and the array selected here (an empty name
+   * leaves them in charge).
    */
   void SelectColorArray(int arrayId);
   void SelectColorArray(const char* arrayName);
@@ -316,6 +336,7 @@ protected:
   double Background[3] = { 0.0, 0.0, 0.0 };
   double BackgroundAlpha = 1.0;
   vtkCamera* Camera = nullptr;
+  vtkTypeBool FitCameraToInput = 0;
   vtkLightCollection* Lights = nullptr;
   vtkTypeBool AutomaticLightCreation = 1;
   double AmbientLightColor[3] = { 50.0 / 255.0, 50.0 / 255.0, 50.0 / 255.0 };

@@ -378,6 +378,43 @@ TEST(Coloring, PointScalarsAreAveragedPerPolygon)
 }
 
 //------------------------------------------------------------------------------
+// ParaView's array selection names the color array with SetInputArrayToProcess(0, ...).
+TEST(Coloring, InputArrayToProcessNamesThePointOrCellArray)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 10.0, 10.0, 70.0, 70.0);
+  vtkNew<vtkUnsignedCharArray> cellColors;
+  cellColors->SetName("cellColors");
+  cellColors->SetNumberOfComponents(3);
+  cellColors->InsertNextTuple3(200, 17, 99);
+  vtkNew<vtkUnsignedCharArray> pointColors;
+  pointColors->SetName("pointColors");
+  pointColors->SetNumberOfComponents(3);
+  for (int i = 0; i < 4; ++i)
+  {
+    pointColors->InsertNextTuple3(10 + 20 * i, 60, 250);
+  }
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
+  input->GetCellData()->AddArray(cellColors); // neither is the active scalars
+  input->GetPointData()->AddArray(pointColors);
+  vtkSmartPointer<vtkFacetRenderFilter> filter = UnlitFilter(input);
+  filter->GetProperty()->SetColor(1.0, 1.0, 1.0);
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 255, 255, 255, 255 }));
+
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "cellColors");
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 200, 17, 99, 255 }));
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "pointColors");
+  filter->Update();
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 40, 60, 250, 255 }));
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "");
+  filter->Update(); // an empty name leaves ScalarMode in charge: no active scalars, no colors
+  EXPECT_EQ(RgbaAt(filter->GetOutput(), 40, 40), (std::array<int, 4>{ 255, 255, 255, 255 }));
+}
+
+//------------------------------------------------------------------------------
 // Tiny triangles centered on points that VTK's composite projection matrix puts on pixel
 // centers must cover exactly those pixels, for random perspective and parallel cameras with
 // off-center window centers.
@@ -452,6 +489,41 @@ TEST(Camera, WithoutACameraTheViewIsResetToTheBounds)
   EXPECT_EQ(CellIdAt(image, 2, 2), -1);
   const double covered = FieldValue(image, "FacetCounts", "PixelsCovered");
   EXPECT_GT(covered, 0.1 * Width * Height) << "and fills a good part of the view";
+}
+
+//------------------------------------------------------------------------------
+// A unit square in the plane z = 3 far from the origin: fitted, a camera looking down -z
+// sees it fill the view, and one looking down -x sees it edge-on; the camera set is kept.
+TEST(Camera, FitCameraToInputKeepsTheCamerasDirection)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddSquare(points, polys, 999.5, -50.5, 1000.5, -49.5, 3.0);
+  vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputData(input);
+  filter->SetSize(Width, Height);
+  filter->FitCameraToInputOn();
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0.0, 0.0, 5.0);
+  filter->SetCamera(camera);
+  filter->Update();
+  const double facing = FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered");
+  EXPECT_GT(facing, 0.2 * Width * Height);
+  EXPECT_NE(CellIdAt(filter->GetOutput(), Width / 2, Height / 2), -1);
+  const double* position = camera->GetPosition();
+  EXPECT_TRUE(position[0] == 0.0 && position[1] == 0.0 && position[2] == 5.0)
+    << "the camera set was moved to " << position[0] << ", " << position[1] << ", " << position[2];
+
+  camera->SetPosition(5.0, 0.0, 0.0);
+  filter->Update();
+  const double edgeOn = FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered");
+  EXPECT_LT(edgeOn, 0.01 * facing) << "facing " << facing;
+
+  filter->FitCameraToInputOff(); // the camera as set: the square is 995 units off its axis
+  camera->SetPosition(0.0, 0.0, 5.0);
+  filter->Update();
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 0.0);
 }
 
 //------------------------------------------------------------------------------
