@@ -1,10 +1,13 @@
 #pragma once
 
 // World → clip → window for one frame, in double precision relative to the eye, so that data
-// far from the origin (1e6, 1e9) projects like data at the origin.
+// far from the origin (1e6, 1e9) projects like data at the origin; and the depth key the
+// depth test compares.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -31,12 +34,32 @@ enum Outcode : std::uint32_t {
 };
 inline constexpr int kClipPlaneCount = 6;
 
-// A vertex in window space: x, y in fixed point (kSubpixelBits fraction bits), z the window
-// depth in [0, 1]. x, y and z are meaningful only when outcode is kInside.
+// A point in Facet's clip coordinates: OpenGL's clip x and y, the view distance d (−z in view
+// space; OpenGL's clip w in perspective) and the homogeneous weight h of the view-space point
+// (OpenGL's clip w in parallel projection), all four times one positive scale. The scale does
+// not move the point, so a point of any finite magnitude is represented without overflow
+// (FrameTransform::toClip); every clip plane is linear in (x, y, d, h) and is written with the
+// camera's near and far distances themselves (planeDistance), not with OpenGL's clip z, whose
+// terms (f + n)/(f − n) and 2fn/(f − n) cancel and overflow.
+struct ClipPoint {
+  double x, y, d, h;
+};
+
+// The depth test compares depth keys, larger = nearer: perspective n/d (1 at the near plane,
+// n/f at the far plane), parallel −d. Both are affine in window coordinates (1/w is), so they
+// are interpolated exactly like a plane. Perspective keys keep float's relative precision
+// (2^-24) at every distance — the reversed float depth buffer (Reed, "Depth Precision
+// Visualized", 2015) — so surfaces whose distances differ by a few 1e-7 of the distance
+// resolve at any far/near ratio up to 2^126; parallel keys have the same relative precision
+// in the distance from the eye. The background is below every key.
+inline constexpr float kBackgroundDepthKey = -std::numeric_limits<float>::infinity();
+
+// A vertex in window space: x, y in fixed point (kSubpixelBits fraction bits) and the depth
+// key. x, y and depth are meaningful only when outcode is kInside.
 struct WindowVertex {
   std::int32_t x = 0;
   std::int32_t y = 0;
-  float z = 1.0f;
+  float depth = kBackgroundDepthKey;
   std::uint32_t outcode = kInside;
 };
 
@@ -53,47 +76,66 @@ inline std::int32_t roundToInteger(double x) {
   return static_cast<std::int32_t>((x + kShift) - kShift);
 }
 
+// Eye-relative coordinates above this magnitude are scaled down by kShrink (exactly: powers
+// of two) before anything multiplies them, weight h = kShrink: every later product (the
+// rotation, the projection's entries up to 2^400, the guard band's factor, the clipper's
+// differences) then stays far below double's 2^1024, and h stays a normal number.
+inline constexpr double kLargeCoordinate = 0x1p500;
+inline constexpr double kShrink = 0x1p-520;
+
 class FrameTransform {
  public:
   FrameTransform(const Camera& camera, int width, int height);
 
   // Inline: these run once per point of every mesh.
-  glm::dvec4 toClip(const glm::dvec3& world) const {
-    const glm::dvec3 relative = world - eye_;
+  ClipPoint toClip(const glm::dvec3& world) const {
+    glm::dvec3 relative = world - eye_;
+    double h = 1.0;
+    // Also taken for NaN and for a difference that overflowed.
+    if (!(largestMagnitude(relative) <= kLargeCoordinate)) [[unlikely]] {
+      relative = world * kShrink - eye_ * kShrink;
+      h = kShrink;
+    }
     const glm::dvec4 view(glm::dot(right_, relative), glm::dot(up_, relative),
-                          glm::dot(back_, relative), 1.0);
-    return clipFromView_ * view;
+                          glm::dot(back_, relative), h);
+    return {glm::dot(clipX_, view), glm::dot(clipY_, view), -view.z, h};
   }
-  std::uint32_t outcode(const glm::dvec4& c) const {
-    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w)) {
+  std::uint32_t outcode(const ClipPoint& c) const {
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.d) || !std::isfinite(c.h)) {
       return kNonFinite;
     }
-    // The planes of planeDistance, unrolled. In perspective, w ≤ 0 (at or behind the eye)
-    // is beyond the near plane (near > 0); parallel projection has w = 1.
-    const double gx = guardX_ * c.w, gy = guardY_ * c.w;
-    return (c.w + c.z < 0.0 ? kBeyondNear : 0u) | (c.w - c.z < 0.0 ? kBeyondFar : 0u) |
-           (gx + c.x < 0.0 ? kBeyondLeft : 0u) | (gx - c.x < 0.0 ? kBeyondRight : 0u) |
-           (gy + c.y < 0.0 ? kBeyondBottom : 0u) | (gy - c.y < 0.0 ? kBeyondTop : 0u);
+    // The planes of planeDistance, unrolled. A point at or behind the eye (w ≤ 0, possible in
+    // perspective only) is beyond the near plane even when n·h underflows.
+    const double w = clipW(c);
+    const double gx = guardX_ * w, gy = guardY_ * w;
+    return (c.d - near_ * c.h < 0.0 || !(w > 0.0) ? kBeyondNear : 0u) |
+           (far_ * c.h - c.d < 0.0 ? kBeyondFar : 0u) | (gx + c.x < 0.0 ? kBeyondLeft : 0u) |
+           (gx - c.x < 0.0 ? kBeyondRight : 0u) | (gy + c.y < 0.0 ? kBeyondBottom : 0u) |
+           (gy - c.y < 0.0 ? kBeyondTop : 0u);
   }
   // Signed distance-like value of the clip point to plane `plane` (≥ 0 inside).
-  double planeDistance(const glm::dvec4& clip, int plane) const;
-  // Window coordinates of a clip point that is inside the guard band and in front of the
-  // eye (w > 0).
-  WindowVertex toWindow(const glm::dvec4& clip) const {
-    const double inverseW = 1.0 / clip.w;
-    const double x = (clip.x * inverseW + 1.0) * halfWidth_;
-    const double y = (clip.y * inverseW + 1.0) * halfHeight_;
-    const double z = (clip.z * inverseW + 1.0) * 0.5;
+  double planeDistance(const ClipPoint& c, int plane) const;
+  // Moves a point the clipper computed on plane `plane` exactly onto it, setting the one
+  // coordinate the plane constrains (for the near plane d = n·h) instead of keeping the
+  // interpolated value, which cancellation can leave on either side.
+  void placeOnPlane(ClipPoint& c, int plane) const;
+  // Window coordinates and depth key of a clip point inside the guard band and the near/far
+  // range (w > 0). Clamping to the guard band only absorbs the rounding of points the
+  // clipper put on its planes; it also keeps a point that is not inside from ever reaching
+  // roundToInteger out of range.
+  WindowVertex toWindow(const ClipPoint& c) const {
+    const double inverseW = 1.0 / clipW(c);
+    const double x = (clampToGuard(c.x * inverseW, guardX_) + 1.0) * halfWidth_;
+    const double y = (clampToGuard(c.y * inverseW, guardY_) + 1.0) * halfHeight_;
     WindowVertex v;
     // Round onto the 1/256-pixel grid: every later coverage test is exact.
     v.x = roundToInteger(x * kSubpixelScale);
     v.y = roundToInteger(y * kSubpixelScale);
-    // Clipped vertices on the near/far planes may round a hair outside [0, 1].
-    v.z = static_cast<float>(z < 0.0 ? 0.0 : (z > 1.0 ? 1.0 : z));
+    v.depth = depthKey(c);
     return v;
   }
   WindowVertex project(const glm::dvec3& world) const {
-    const glm::dvec4 clip = toClip(world);
+    const ClipPoint clip = toClip(world);
     const std::uint32_t code = outcode(clip);
     if (code != kInside) {
       WindowVertex outside;
@@ -103,17 +145,37 @@ class FrameTransform {
     return toWindow(clip);
   }
 
+  // Window depth (Conventions.h, "Depth") of a depth key, computed in double and rounded to
+  // the nearest float: perspective (1 − n/d)/(1 − n/f), parallel (d − n)/(f − n).
+  float windowDepth(float key) const;
+
   // View-space depth (−Z, so larger is farther) for painter's sort.
   double viewDistance(const glm::dvec3& world) const;
   // Unit vector from a world point toward the viewer (parallel projection: the reverse of
   // the view direction).
   glm::dvec3 toViewer(const glm::dvec3& world) const;
+  // Whether the viewer sees the side of a surface at `point` that `normal` points to
+  // (perspective: the eye is on that side of the surface's plane; parallel: the normal has a
+  // component toward the viewer). Edge-on counts as facing. Exact in sign for any finite
+  // input: no product overflows.
+  bool facesViewer(const glm::dvec3& normal, const glm::dvec3& point) const;
 
  private:
+  static double largestMagnitude(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  }
+  // fmin/fmax turn NaN into the bound.
+  static double clampToGuard(double ndc, double guard) {
+    return std::fmin(std::fmax(ndc, -guard), guard);
+  }
+  double clipW(const ClipPoint& c) const { return parallel_ ? c.h : c.d; }
+  float depthKey(const ClipPoint& c) const;
+
   glm::dvec3 eye_;
   glm::dvec3 right_, up_, back_;  // rows of viewFromWorld's rotation
-  glm::dmat4 clipFromView_;
+  glm::dvec4 clipX_, clipY_;      // rows of clipFromView giving clip x and y
   bool parallel_;
+  double near_, far_;
   double halfWidth_, halfHeight_;
   double guardX_, guardY_;  // guard band half-extent in NDC units
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 
 #include "Assert.h"
 #include "facet/Conventions.h"
@@ -39,15 +40,20 @@ struct Edge {
   }
 };
 
-// Writes one fragment if it passes the depth test.
+// Rounds an interpolated depth key to float once; finite, so that no key ties with the
+// background (−∞) or becomes NaN.
+float toDepthKey(double key) {
+  constexpr double kLargest = std::numeric_limits<float>::max();
+  return static_cast<float>(std::clamp(key, -kLargest, kLargest));
+}
+
+// Writes one fragment if it passes the depth test: strictly nearer (a larger key), so an
+// exact tie keeps the polygon drawn first.
 template <DepthMode kMode>
 void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
                    PaintCounts& counts) {
-  if (kMode == DepthMode::Overwrite || depth < planes.depth[i]) {
-    // A written pixel's depth is < 1 under the depth test, so depth 1 means background;
-    // painter's order may write depth 1 (the far plane), so it asks the id.
-    counts.covered += kMode == DepthMode::Test ? planes.depth[i] == 1.0f
-                                               : planes.polygonId[i] == kBackgroundPolygon;
+  if (kMode == DepthMode::Overwrite || depth > planes.depth[i]) {
+    counts.covered += planes.polygonId[i] == kBackgroundPolygon;
     planes.depth[i] = depth;
     planes.polygonId[i] = polygonId;
     ++counts.written;
@@ -72,11 +78,10 @@ void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const Windo
   const double inverseArea = 1.0 / static_cast<double>(area);
   const double wb = static_cast<double>(e1.value + (e1.biased ? 1 : 0)) * inverseArea;
   const double wc = static_cast<double>(e2.value + (e2.biased ? 1 : 0)) * inverseArea;
-  const double z =
-      a.z + wb * (static_cast<double>(b.z) - a.z) + wc * (static_cast<double>(c.z) - a.z);
-  const float depth = std::clamp(static_cast<float>(z), 0.0f, 1.0f);
-  writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, depth, polygonId, planes,
-                       counts);
+  const double key = a.depth + wb * (static_cast<double>(b.depth) - a.depth) +
+                     wc * (static_cast<double>(c.depth) - a.depth);
+  writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, toDepthKey(key), polygonId,
+                       planes, counts);
 }
 
 }  // namespace
@@ -129,28 +134,28 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   Edge e1(c, a, sampleX, sampleY);  // opposite b
   Edge e2(a, b, sampleX, sampleY);  // opposite c
 
-  // Depth is affine in window x, y: z = a.z + dzdx·(X − a.x) + dzdy·(Y − a.y) (fixed units).
+  // The depth key is affine in window x, y: key = a + dkdx·(X − a.x) + dkdy·(Y − a.y) (fixed
+  // units). It is stepped in double and rounded to float once per fragment: stepping in
+  // float would add a rounding per pixel, enough to tie surfaces 1e-6 apart.
   const double inverseArea = 1.0 / static_cast<double>(area);
-  const double dz1 = static_cast<double>(b.z) - a.z, dz2 = static_cast<double>(c.z) - a.z;
-  const double dzdx = (dz1 * (c.y - a.y) - dz2 * (b.y - a.y)) * inverseArea;
-  const double dzdy = (dz2 * (b.x - a.x) - dz1 * (c.x - a.x)) * inverseArea;
-  const float dzPerPixel = static_cast<float>(dzdx * kSubpixelScale);
+  const double dk1 = static_cast<double>(b.depth) - a.depth;
+  const double dk2 = static_cast<double>(c.depth) - a.depth;
+  const double dkdx = (dk1 * (c.y - a.y) - dk2 * (b.y - a.y)) * inverseArea;
+  const double dkdy = (dk2 * (b.x - a.x) - dk1 * (c.x - a.x)) * inverseArea;
+  const double keyPerPixel = dkdx * kSubpixelScale;
 
   for (int y = box.y0; y <= box.y1; ++y) {
     std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
     const double rowY = static_cast<double>(y - box.y0) * kSubpixelScale + (sampleY - a.y);
-    float z = static_cast<float>(a.z + dzdx * static_cast<double>(sampleX - a.x) + dzdy * rowY);
+    double key = a.depth + dkdx * static_cast<double>(sampleX - a.x) + dkdy * rowY;
     const std::size_t row = static_cast<std::size_t>(y) * planes.width;
     for (int x = box.x0; x <= box.x1; ++x) {
-      if ((w0 | w1 | w2) >= 0) {
-        const std::size_t i = row + x;
-        const float depth = std::clamp(z, 0.0f, 1.0f);
-        writeFragment<kMode>(i, depth, polygonId, planes, counts);
-      }
+      if ((w0 | w1 | w2) >= 0)
+        writeFragment<kMode>(row + x, toDepthKey(key), polygonId, planes, counts);
       w0 += e0.stepX;
       w1 += e1.stepX;
       w2 += e2.stepX;
-      z += dzPerPixel;
+      key += keyPerPixel;
     }
     e0.value += e0.stepY;
     e1.value += e1.stepY;

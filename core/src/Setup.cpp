@@ -14,10 +14,24 @@ namespace {
 
 // Why a polygon's triangles were dropped, to count the polygon once under one reason.
 struct Tally {
-  int zeroArea = 0, culled = 0, outside = 0;
-  int backFacing = 0;  // kept triangles that were clockwise on screen
+  int zeroArea = 0, outside = 0;
 };
 
+// The mean of the corners, each divided first so that no sum overflows.
+glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
+  const double weight = 1.0 / static_cast<double>(corners.size());
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& corner : corners)
+    sum += corner * weight;
+  return sum;
+}
+
+// Facing. A polygon is seen from one side as a whole: its normal (polygonNormal) against the
+// direction to the viewer, never the snapped window area of one of its triangles, which a
+// sliver can flip. It is lit from that side and, when back faces are skipped, dropped as a
+// whole. A triangle the clipper leaves alone is decided by its exact integer window area
+// instead, as OpenGL's gl_FrontFacing (VTK agreement); one the clipper cuts by its plane.
+// The triangles of a kept polygon are painted whatever their own winding.
 template <class PointsT, class PolygonsT>
 class PolygonSetup {
  public:
@@ -57,11 +71,7 @@ class PolygonSetup {
       ++chunk_.counts.outside;
       return;
     }
-
-    const std::size_t first = chunk_.triangles.size();
-    Tally tally;
-    if (!triangulate(n, tally)) return;
-    finish(first, tally);
+    runPolygon(n);
   }
 
  private:
@@ -80,55 +90,88 @@ class PolygonSetup {
       ++chunk_.counts.outside;
       return;
     }
+    if (any != kInside) {
+      runClippedTriangle(ids, any);
+      return;
+    }
+    const std::int64_t area = doubleSignedArea(a, b, c);
+    if (area < 0 && mesh_.skipBackFaces) {
+      ++chunk_.counts.culled;
+      return;
+    }
     const std::size_t first = chunk_.triangles.size();
     Tally tally;
-    if (any == kInside) {
-      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, tally);
-    } else {
-      clip(ids, any, tally);
-    }
-    finish(first, tally);
+    keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, tally);
+    finish(first, tally, area < 0);
   }
 
-  // Counts the polygon, and notes for its shading which side the viewer sees: clockwise on
-  // screen by the exact integer area, as OpenGL's gl_FrontFacing.
-  void finish(std::size_t first, const Tally& tally) {
+  void runClippedTriangle(const std::size_t (&ids)[3], std::uint32_t planes) {
+    const glm::dvec3 corners[3] = {points_[ids[0]], points_[ids[1]], points_[ids[2]]};
+    const std::optional<glm::dvec3> normal = triangleNormal(corners[0], corners[1], corners[2]);
+    if (!normal) {
+      ++chunk_.counts.degenerate;
+      return;
+    }
+    const bool back = !frame_.transform->facesViewer(*normal, centerOf(corners));
+    if (back && mesh_.skipBackFaces) {
+      ++chunk_.counts.culled;
+      return;
+    }
+    const std::size_t first = chunk_.triangles.size();
+    Tally tally;
+    clip(ids, planes, tally);
+    finish(first, tally, back);
+  }
+
+  void runPolygon(std::size_t n) {
+    chunk_.corners.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      chunk_.corners[k] = points_[pointId(k)];
+    const std::span<const glm::dvec3> corners(chunk_.corners);
+    const std::optional<glm::dvec3> normal = polygonNormal(corners);
+    if (!normal) {
+      ++chunk_.counts.degenerate;
+      return;
+    }
+    const bool back = !frame_.transform->facesViewer(*normal, centerOf(corners));
+    if (back && mesh_.skipBackFaces) {
+      ++chunk_.counts.culled;
+      return;
+    }
+    const std::size_t first = chunk_.triangles.size();
+    Tally tally;
+    triangulate(*normal, tally);
+    finish(first, tally, back);
+  }
+
+  // Counts the polygon, and notes for its shading which side the viewer sees.
+  void finish(std::size_t first, const Tally& tally, bool back) {
     if (chunk_.triangles.size() == first) {
       countDropped(tally);
       return;
     }
     frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
-        tally.backFacing > 0 ? kUnshadedBack : kUnshadedFront;
+        back ? kUnshadedBack : kUnshadedFront;
     chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
     ++chunk_.counts.drawn;
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
 
-  // Fan for convex polygons, ear clipping for concave ones, in the polygon's plane. False
-  // (counted degenerate) when the polygon has no normal.
-  bool triangulate(std::size_t n, Tally& tally) {
-    chunk_.corners.resize(n);
-    for (std::size_t k = 0; k < n; ++k)
-      chunk_.corners[k] = points_[pointId(k)];
-    const std::optional<glm::dvec3> normal =
-        newellNormal(std::span<const glm::dvec3>(chunk_.corners));
-    if (!normal) {
-      ++chunk_.counts.degenerate;
-      return false;
-    }
+  // In the polygon's plane (Triangulate.h): a fan from corner 0 for convex and
+  // self-intersecting polygons (VTK's rule for the latter), ear clipping for the others.
+  void triangulate(const glm::dvec3& normal, Tally& tally) {
     std::vector<glm::dvec2>& projected = chunk_.triangulation.projected;
-    projectToPolygonPlane(chunk_.corners, *normal, projected);
-    if (isConvex(projected)) {
+    projectToPolygonPlane(chunk_.corners, normal, projected);
+    if (isConvex(projected) || selfIntersects(projected, chunk_.triangulation)) {
       for (std::uint32_t k = 1; k + 1 < projected.size(); ++k)
         addTriangle(0, k, k + 1, tally);
-      return true;
+      return;
     }
     chunk_.localTriangles.clear();
     earClip(projected, chunk_.triangulation, chunk_.localTriangles);
     for (const LocalTriangle& t : chunk_.localTriangles)
       addTriangle(t[0], t[1], t[2], tally);
-    return true;
   }
 
   // One triangle of the polygon, by corner index: kept whole, clipped, or dropped.
@@ -178,29 +221,25 @@ class PolygonSetup {
   }
 
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, Tally& tally) {
-    keep(r0, r1, r2, frame_.vertex(chunk_, r0), frame_.vertex(chunk_, r1),
-         frame_.vertex(chunk_, r2), tally);
+    const WindowVertex &a = frame_.vertex(chunk_, r0), &b = frame_.vertex(chunk_, r1),
+                       &c = frame_.vertex(chunk_, r2);
+    keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), tally);
   }
 
-  // Keeps a triangle whose corners all have window coordinates, unless it has zero area,
-  // is a culled back face, or covers no pixel center.
+  // Keeps a triangle whose corners all have window coordinates, counter-clockwise on screen
+  // (swapped if need be), unless it has zero area or covers no pixel center.
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
-            const WindowVertex& vertex1, const WindowVertex& vertex2, Tally& tally) {
+            const WindowVertex& vertex1, const WindowVertex& vertex2, std::int64_t area,
+            Tally& tally) {
     const WindowVertex* b = &vertex1;
     const WindowVertex* c = &vertex2;
-    const std::int64_t area = doubleSignedArea(a, *b, *c);
     if (area == 0) {
       ++tally.zeroArea;
       return;
     }
     if (area < 0) {
-      if (mesh_.skipBackFaces) {
-        ++tally.culled;
-        return;
-      }
       std::swap(r1, r2);
       std::swap(b, c);
-      ++tally.backFacing;
     }
     const PixelBounds bounds = samplesInBoundingBox(a, *b, *c, frame_.viewport);
     if (bounds.empty() || !coversAnySample(a, *b, *c, bounds)) {
@@ -221,9 +260,7 @@ class PolygonSetup {
   }
 
   void countDropped(const Tally& tally) {
-    if (tally.culled > 0 && tally.outside == 0) {
-      ++chunk_.counts.culled;
-    } else if (tally.zeroArea > 0 && tally.outside == 0) {
+    if (tally.zeroArea > 0 && tally.outside == 0) {
       ++chunk_.counts.degenerate;
     } else {
       ++chunk_.counts.outside;

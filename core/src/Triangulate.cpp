@@ -1,6 +1,8 @@
 #include "Triangulate.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <glm/common.hpp>
 
@@ -34,6 +36,15 @@ bool isEar(std::span<const glm::dvec2> projected, const std::vector<std::uint32_
   return true;
 }
 
+// Segments ab and cd cross at a point interior to both.
+bool properlyCross(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
+                   const glm::dvec2& d) {
+  const auto opposite = [](double s, double t) {
+    return (s > 0.0 && t < 0.0) || (s < 0.0 && t > 0.0);
+  };
+  return opposite(cross(a, b, c), cross(a, b, d)) && opposite(cross(c, d, a), cross(c, d, b));
+}
+
 }  // namespace
 
 void projectToPolygonPlane(std::span<const glm::dvec3> vertices, const glm::dvec3& normal,
@@ -56,6 +67,27 @@ bool isConvex(std::span<const glm::dvec2> projected) {
     if (cross(projected[i], projected[(i + 1) % n], projected[(i + 2) % n]) < 0.0) return false;
   }
   return true;
+}
+
+bool selfIntersects(std::span<const glm::dvec2> projected, TriangulationScratch& scratch) {
+  const std::size_t n = projected.size();
+  const auto start = [&](std::uint32_t e) { return projected[e]; };
+  const auto end = [&](std::uint32_t e) { return projected[(e + 1) % n]; };
+  const auto left = [&](std::uint32_t e) { return std::min(start(e).x, end(e).x); };
+  const auto right = [&](std::uint32_t e) { return std::max(start(e).x, end(e).x); };
+  std::vector<std::uint32_t>& order = scratch.edgeOrder;
+  order.resize(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](auto e, auto f) { return left(e) < left(f); });
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t e = order[i];
+    for (std::size_t j = i + 1; j < n && left(order[j]) <= right(e); ++j) {
+      const std::uint32_t f = order[j];
+      const bool adjacent = (e + 1) % n == f || (f + 1) % n == e;
+      if (!adjacent && properlyCross(start(e), end(e), start(f), end(f))) return true;
+    }
+  }
+  return false;
 }
 
 void earClip(std::span<const glm::dvec2> projected, TriangulationScratch& scratch,
