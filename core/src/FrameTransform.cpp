@@ -83,14 +83,14 @@ void FrameTransform::placeOnPlane(ClipPoint& c, int plane) const {
 float FrameTransform::depthKey(const ClipPoint& c) const {
   // h/d = 1/distance keeps n·h from underflowing for points scaled by kShrink.
   if (!parallel_) return toFloatWithin(near_ * (c.h / c.d), 0.0, kLargestFloat);
-  return toFloatWithin(-(c.d / c.h), -kLargestFloat, kLargestFloat);
+  return toFloatWithin(-planeDistance(c, 0) / c.h, -kLargestFloat, kLargestFloat);
 }
 
 float FrameTransform::windowDepth(float key) const {
   double depth;
   if (parallel_) {
-    // Halved so that neither difference overflows for clipping distances near ±DBL_MAX.
-    depth = (-0.5 * key - 0.5 * near_) / (0.5 * far_ - 0.5 * near_);
+    // Halved so that f − n does not overflow for clipping distances near ±DBL_MAX.
+    depth = (-0.5 * key) / (0.5 * far_ - 0.5 * near_);
   } else {
     depth = (1.0 - key) / (1.0 - near_ / far_);
   }

@@ -45,23 +45,33 @@ struct ClipPoint {
   double x, y, d, h;
 };
 
-// The depth test compares depth keys, larger = nearer: perspective n/d (1 at the near plane,
-// n/f at the far plane), parallel −d. Both are affine in window coordinates (1/w is), so they
-// are interpolated exactly like a plane. Perspective keys keep float's relative precision
-// (2^-24) at every distance — the reversed float depth buffer (Reed, "Depth Precision
-// Visualized", 2015) — so surfaces whose distances differ by a few 1e-7 of the distance
-// resolve at any far/near ratio up to 2^126; parallel keys have the same relative precision
-// in the distance from the eye. The background is below every key.
+// The depth test compares depth keys, larger = nearer, rounded to float once per fragment:
+// - perspective: n/d (1 at the near plane, n/f at the far plane), the reversed float depth
+//   buffer (Reed, "Depth Precision Visualized", 2015). 1/d is affine in window coordinates,
+//   and float keeps its relative precision 2^-24 at every distance, so surfaces whose
+//   distances differ by a few 1e-7 of the distance resolve at any far/near ratio up to 2^126
+//   (OpenGL's window depth, f(d − n)/(d(f − n)), rounds everything beyond ~1e7·n to 1);
+// - parallel: n − d, minus the distance from the near plane. d itself is affine there, so a
+//   float of the distance from the near plane resolves surfaces a few 1e-7 of that distance
+//   apart (never coarser than relative to the eye distance when the near plane is in front
+//   of the eye), and its window depth (d − n)/(f − n) keeps full float precision.
+// The background is below every key.
 inline constexpr float kBackgroundDepthKey = -std::numeric_limits<float>::infinity();
 
 // A vertex in window space: x, y in fixed point (kSubpixelBits fraction bits) and the depth
-// key. x, y and depth are meaningful only when outcode is kInside.
+// key. x, y, residues and depth are meaningful only when outcode is kInside.
 struct WindowVertex {
   std::int32_t x = 0;
   std::int32_t y = 0;
   float depth = kBackgroundDepthKey;
-  std::uint32_t outcode = kInside;
+  std::uint16_t outcode = kInside;
+  // What snapping x and y to the grid left out, in 1/kResidueScale of a grid step (rounded):
+  // coverage uses the snapped position, the depth plane the unsnapped one (Rasterizer.cpp).
+  std::int8_t residueX = 0;
+  std::int8_t residueY = 0;
 };
+inline constexpr int kResidueBits = 8;
+inline constexpr int kResidueScale = 1 << kResidueBits;
 
 // Pixels of guard band on each side of the viewport. Window coordinates inside it stay below
 // kMaxImageSide + 2·8192 < 2^15 pixels, i.e. 2^23 in fixed point, so every edge-function
@@ -131,6 +141,8 @@ class FrameTransform {
     // Round onto the 1/256-pixel grid: every later coverage test is exact.
     v.x = roundToInteger(x * kSubpixelScale);
     v.y = roundToInteger(y * kSubpixelScale);
+    v.residueX = residue(x * kSubpixelScale, v.x);
+    v.residueY = residue(y * kSubpixelScale, v.y);
     v.depth = depthKey(c);
     return v;
   }
@@ -146,7 +158,8 @@ class FrameTransform {
   }
 
   // Window depth (Conventions.h, "Depth") of a depth key, computed in double and rounded to
-  // the nearest float: perspective (1 − n/d)/(1 − n/f), parallel (d − n)/(f − n).
+  // the nearest float: perspective (1 − n/d)/(1 − n/f) = f(d − n)/(d(f − n)), parallel
+  // (d − n)/(f − n).
   float windowDepth(float key) const;
 
   // View-space depth (−Z, so larger is farther) for painter's sort.
@@ -167,6 +180,11 @@ class FrameTransform {
   // fmin/fmax turn NaN into the bound.
   static double clampToGuard(double ndc, double guard) {
     return std::fmin(std::fmax(ndc, -guard), guard);
+  }
+  // In [−0.5, 0.5] grid steps, times kResidueScale; ±128 (a tie) is kept as ±127.
+  static std::int8_t residue(double fixed, std::int32_t snapped) {
+    const std::int32_t r = roundToInteger((fixed - snapped) * kResidueScale);
+    return static_cast<std::int8_t>(std::clamp(r, -127, 127));
   }
   double clipW(const ClipPoint& c) const { return parallel_ ? c.h : c.d; }
   float depthKey(const ClipPoint& c) const;

@@ -40,6 +40,50 @@ struct Edge {
   }
 };
 
+// The depth key's plane over the window, in double: key = key0 + perX·(X − x0) + perY·(Y − y0),
+// with X, Y in fine units (1/kResidueScale of a grid step). It goes through the vertices'
+// unsnapped positions (snapped + residue): snapping moves a vertex by up to 1/512 pixel, and
+// on a steep surface that moves its key by more than the gap between two surfaces 1e-6 of
+// their distance apart. A triangle that snapping made much larger than it is (a sliver, whose
+// unsnapped plane is ill-conditioned) keeps the snapped positions.
+class DepthPlane {
+ public:
+  DepthPlane(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+             std::int64_t snappedArea) {
+    Fine pa = fine(a, true), pb = fine(b, true), pc = fine(c, true);
+    double area = doubleArea(pa, pb, pc);
+    if (!(area >= 0.5 * static_cast<double>(snappedArea) * kResidueScale * kResidueScale)) {
+      pa = fine(a, false), pb = fine(b, false), pc = fine(c, false);
+      area = doubleArea(pa, pb, pc);
+    }
+    const double dk1 = static_cast<double>(b.depth) - a.depth;
+    const double dk2 = static_cast<double>(c.depth) - a.depth;
+    key0_ = a.depth;
+    x0_ = pa.x, y0_ = pa.y;
+    perX_ = (dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) / area;
+    perY_ = (dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x)) / area;
+  }
+  // At a sample given in grid units (kSubpixelBits).
+  double at(std::int64_t sampleX, std::int64_t sampleY) const {
+    return key0_ + perX_ * (static_cast<double>(sampleX) * kResidueScale - x0_) +
+           perY_ * (static_cast<double>(sampleY) * kResidueScale - y0_);
+  }
+  double perPixelX() const { return perX_ * kSubpixelScale * kResidueScale; }
+
+ private:
+  struct Fine {
+    double x, y;
+  };
+  static Fine fine(const WindowVertex& v, bool unsnapped) {
+    return {static_cast<double>(v.x) * kResidueScale + (unsnapped ? v.residueX : 0),
+            static_cast<double>(v.y) * kResidueScale + (unsnapped ? v.residueY : 0)};
+  }
+  static double doubleArea(const Fine& a, const Fine& b, const Fine& c) {
+    return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  }
+  double key0_, x0_, y0_, perX_, perY_;
+};
+
 // Rounds an interpolated depth key to float once; finite, so that no key ties with the
 // background (−∞) or becomes NaN.
 float toDepthKey(double key) {
@@ -64,8 +108,8 @@ void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Pla
 }
 
 // Most triangles of a dense mesh have a single sample in their bounding box: test it
-// exactly and interpolate its depth with barycentric weights, skipping the edge walker's
-// set-up. Same coverage decision (the same biased edge functions) and the same plane.
+// exactly, skipping the edge walker's set-up. Same coverage decision (the same biased edge
+// functions) and the same depth plane.
 template <DepthMode kMode>
 void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                        std::int64_t area, int x, int y, std::int32_t polygonId,
@@ -74,12 +118,7 @@ void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const Windo
   const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
   const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
   if ((e0.value | e1.value | e2.value) < 0) return;
-  // The unbiased edge values are the barycentric weights times the area.
-  const double inverseArea = 1.0 / static_cast<double>(area);
-  const double wb = static_cast<double>(e1.value + (e1.biased ? 1 : 0)) * inverseArea;
-  const double wc = static_cast<double>(e2.value + (e2.biased ? 1 : 0)) * inverseArea;
-  const double key = a.depth + wb * (static_cast<double>(b.depth) - a.depth) +
-                     wc * (static_cast<double>(c.depth) - a.depth);
+  const double key = DepthPlane(a, b, c, area).at(sampleX, sampleY);
   writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, toDepthKey(key), polygonId,
                        planes, counts);
 }
@@ -134,20 +173,15 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   Edge e1(c, a, sampleX, sampleY);  // opposite b
   Edge e2(a, b, sampleX, sampleY);  // opposite c
 
-  // The depth key is affine in window x, y: key = a + dkdx·(X − a.x) + dkdy·(Y − a.y) (fixed
-  // units). It is stepped in double and rounded to float once per fragment: stepping in
-  // float would add a rounding per pixel, enough to tie surfaces 1e-6 apart.
-  const double inverseArea = 1.0 / static_cast<double>(area);
-  const double dk1 = static_cast<double>(b.depth) - a.depth;
-  const double dk2 = static_cast<double>(c.depth) - a.depth;
-  const double dkdx = (dk1 * (c.y - a.y) - dk2 * (b.y - a.y)) * inverseArea;
-  const double dkdy = (dk2 * (b.x - a.x) - dk1 * (c.x - a.x)) * inverseArea;
-  const double keyPerPixel = dkdx * kSubpixelScale;
+  // The depth key is affine in window x, y. It is stepped in double and rounded to float
+  // once per fragment: stepping in float would add a rounding per pixel, enough to tie
+  // surfaces 1e-6 apart.
+  const DepthPlane depth(a, b, c, area);
+  const double keyPerPixel = depth.perPixelX();
 
   for (int y = box.y0; y <= box.y1; ++y) {
     std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
-    const double rowY = static_cast<double>(y - box.y0) * kSubpixelScale + (sampleY - a.y);
-    double key = a.depth + dkdx * static_cast<double>(sampleX - a.x) + dkdy * rowY;
+    double key = depth.at(sampleX, sampleY + std::int64_t{y - box.y0} * kSubpixelScale);
     const std::size_t row = static_cast<std::size_t>(y) * planes.width;
     for (int x = box.x0; x <= box.x1; ++x) {
       if ((w0 | w1 | w2) >= 0)
