@@ -23,7 +23,8 @@ ClipVertex intersect(const FrameTransform& transform, int plane, const ClipVerte
   FACET_ASSERT(fromInside >= 0.0 && fromInside <= 1.0 && fromOutside >= 0.0);
   ClipVertex crossing{fromInside <= fromOutside ? lerp(inside.clip, outside.clip, fromInside)
                                                 : lerp(outside.clip, inside.clip, fromOutside),
-                      ClipVertex::kNewVertex};
+                      ClipVertex::kNewVertex,
+                      static_cast<std::uint8_t>(inside.onEdges & outside.onEdges)};
   transform.placeOnPlane(crossing.clip, plane);
   return crossing;
 }

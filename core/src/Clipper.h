@@ -9,11 +9,14 @@
 namespace facet::detail {
 
 // A clip-space vertex, remembering which input vertex it is (or kNewVertex for a vertex the
-// clipper made), so that unclipped corners keep their already-snapped window coordinates.
+// clipper made), so that unclipped corners keep their already-snapped window coordinates,
+// and which edges of the input triangle it lies on (bit i: the edge opposite corner i), so
+// that the sides of the clipped polygon know which input edge they are part of.
 struct ClipVertex {
   static constexpr std::uint32_t kNewVertex = 0xffffffffu;
   ClipPoint clip;
   std::uint32_t source = kNewVertex;
+  std::uint8_t onEdges = 0;
 };
 
 // One extra vertex per plane at most.

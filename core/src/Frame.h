@@ -54,6 +54,7 @@ struct PolygonCounts {
 struct Chunk {
   std::size_t begin = 0, end = 0;
   HugePageVector<BinnedTriangle> triangles;
+  HugePageVector<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   std::vector<WindowVertex> clippedVertices;
   std::vector<std::vector<std::uint32_t>> bins;
   PolygonCounts counts;

@@ -8,22 +8,15 @@
 #include "facet/Conventions.h"
 
 namespace facet::detail {
-namespace {
-
-constexpr double kLargestFloat = std::numeric_limits<float>::max();
-
-// Rounds to the nearest float within [low, high]; NaN becomes `low`.
-float toFloatWithin(double value, double low, double high) {
-  return static_cast<float>(std::fmin(std::fmax(value, low), high));
-}
-
-}  // namespace
 
 FrameTransform::FrameTransform(const Camera& camera, int width, int height)
     : eye_(camera.position),
       parallel_(camera.parallelProjection),
       near_(camera.nearClip),
       far_(camera.farClip),
+      inversePerspectiveRange_(1.0 / (1.0 - camera.nearClip / camera.farClip)),
+      // f − n may overflow (clipping distances near ±DBL_MAX): then every depth rounds to 0.
+      inverseParallelRange_(1.0 / (camera.farClip - camera.nearClip)),
       halfWidth_(0.5 * width),
       halfHeight_(0.5 * height),
       guardX_(1.0 + kGuardBandPixels / (0.5 * width)),
@@ -78,23 +71,6 @@ void FrameTransform::placeOnPlane(ClipPoint& c, int plane) const {
       c.y = guardY_ * clipW(c);
       break;
   }
-}
-
-float FrameTransform::depthKey(const ClipPoint& c) const {
-  // h/d = 1/distance keeps n·h from underflowing for points scaled by kShrink.
-  if (!parallel_) return toFloatWithin(near_ * (c.h / c.d), 0.0, kLargestFloat);
-  return toFloatWithin(-planeDistance(c, 0) / c.h, -kLargestFloat, kLargestFloat);
-}
-
-float FrameTransform::windowDepth(float key) const {
-  double depth;
-  if (parallel_) {
-    // Halved so that f − n does not overflow for clipping distances near ±DBL_MAX.
-    depth = (-0.5 * key) / (0.5 * far_ - 0.5 * near_);
-  } else {
-    depth = (1.0 - key) / (1.0 - near_ / far_);
-  }
-  return toFloatWithin(depth, 0.0, 1.0);
 }
 
 double FrameTransform::viewDistance(const glm::dvec3& world) const {

@@ -81,9 +81,12 @@ inline constexpr double kGuardBandPixels = 8192.0;
 // Round to nearest, ties to even, without a libm call (std::nearbyint is one on baseline
 // x86-64): adding 1.5·2^52 pushes the fraction out of the mantissa in the default rounding
 // mode. Exact for |x| < 2^51; window coordinates in the guard band stay below 2^23.
-inline std::int32_t roundToInteger(double x) {
+inline double roundToNearest(double x) {
   constexpr double kShift = 6755399441055744.0;  // 1.5 · 2^52
-  return static_cast<std::int32_t>((x + kShift) - kShift);
+  return (x + kShift) - kShift;
+}
+inline std::int32_t roundToInteger(double x) {
+  return static_cast<std::int32_t>(roundToNearest(x));
 }
 
 // Eye-relative coordinates above this magnitude are scaled down by kShrink (exactly: powers
@@ -137,13 +140,15 @@ class FrameTransform {
     const double inverseW = 1.0 / clipW(c);
     const double x = (clampToGuard(c.x * inverseW, guardX_) + 1.0) * halfWidth_;
     const double y = (clampToGuard(c.y * inverseW, guardY_) + 1.0) * halfHeight_;
-    WindowVertex v;
     // Round onto the 1/256-pixel grid: every later coverage test is exact.
-    v.x = roundToInteger(x * kSubpixelScale);
-    v.y = roundToInteger(y * kSubpixelScale);
-    v.residueX = residue(x * kSubpixelScale, v.x);
-    v.residueY = residue(y * kSubpixelScale, v.y);
-    v.depth = depthKey(c);
+    const double fixedX = x * kSubpixelScale, fixedY = y * kSubpixelScale;
+    const double snappedX = roundToNearest(fixedX), snappedY = roundToNearest(fixedY);
+    WindowVertex v;
+    v.x = static_cast<std::int32_t>(snappedX);
+    v.y = static_cast<std::int32_t>(snappedY);
+    v.residueX = residue(fixedX - snappedX);
+    v.residueY = residue(fixedY - snappedY);
+    v.depth = depthKey(c, inverseW);
     return v;
   }
   WindowVertex project(const glm::dvec3& world) const {
@@ -159,8 +164,12 @@ class FrameTransform {
 
   // Window depth (Conventions.h, "Depth") of a depth key, computed in double and rounded to
   // the nearest float: perspective (1 − n/d)/(1 − n/f) = f(d − n)/(d(f − n)), parallel
-  // (d − n)/(f − n).
-  float windowDepth(float key) const;
+  // (d − n)/(f − n). Runs once per pixel.
+  float windowDepth(float key) const {
+    const double depth =
+        parallel_ ? -key * inverseParallelRange_ : (1.0 - key) * inversePerspectiveRange_;
+    return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
+  }
 
   // View-space depth (−Z, so larger is farther) for painter's sort.
   double viewDistance(const glm::dvec3& world) const;
@@ -177,23 +186,32 @@ class FrameTransform {
   static double largestMagnitude(const glm::dvec3& v) {
     return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   }
-  // fmin/fmax turn NaN into the bound.
+  // NaN becomes the upper bound. (Not std::fmin/fmax: those are libm calls.)
   static double clampToGuard(double ndc, double guard) {
-    return std::fmin(std::fmax(ndc, -guard), guard);
+    return ndc < guard ? (ndc > -guard ? ndc : -guard) : guard;
   }
-  // In [−0.5, 0.5] grid steps, times kResidueScale; ±128 (a tie) is kept as ±127.
-  static std::int8_t residue(double fixed, std::int32_t snapped) {
-    const std::int32_t r = roundToInteger((fixed - snapped) * kResidueScale);
+  // A rounding remainder in [−0.5, 0.5] grid steps, times kResidueScale; ±128 (a tie) is
+  // kept as ±127.
+  static std::int8_t residue(double remainder) {
+    const std::int32_t r = roundToInteger(remainder * kResidueScale);
     return static_cast<std::int8_t>(std::clamp(r, -127, 127));
   }
   double clipW(const ClipPoint& c) const { return parallel_ ? c.h : c.d; }
-  float depthKey(const ClipPoint& c) const;
+  // `inverseW` is 1/d in perspective (h/d = 1/distance, so n·h cannot underflow for points
+  // scaled by kShrink) and 1/h in parallel projection. Finite.
+  float depthKey(const ClipPoint& c, double inverseW) const {
+    constexpr double kLargest = std::numeric_limits<float>::max();
+    const double key = parallel_ ? (near_ * c.h - c.d) * inverseW : near_ * (c.h * inverseW);
+    return static_cast<float>(key < kLargest ? (key > -kLargest ? key : -kLargest) : kLargest);
+  }
 
   glm::dvec3 eye_;
   glm::dvec3 right_, up_, back_;  // rows of viewFromWorld's rotation
   glm::dvec4 clipX_, clipY_;      // rows of clipFromView giving clip x and y
   bool parallel_;
   double near_, far_;
+  double inversePerspectiveRange_;  // 1/(1 − n/f)
+  double inverseParallelRange_;     // 1/(f − n), 0 if that overflows
   double halfWidth_, halfHeight_;
   double guardX_, guardY_;  // guard band half-extent in NDC units
 };

@@ -40,48 +40,111 @@ struct Edge {
   }
 };
 
-// The depth key's plane over the window, in double: key = key0 + perX·(X − x0) + perY·(Y − y0),
-// with X, Y in fine units (1/kResidueScale of a grid step). It goes through the vertices'
-// unsnapped positions (snapped + residue): snapping moves a vertex by up to 1/512 pixel, and
-// on a steep surface that moves its key by more than the gap between two surfaces 1e-6 of
-// their distance apart. A triangle that snapping made much larger than it is (a sliver, whose
-// unsnapped plane is ill-conditioned) keeps the snapped positions.
-class DepthPlane {
+// Window positions in fine units: 1/kResidueScale of a grid step.
+struct FinePoint {
+  double x, y;
+};
+FinePoint finePoint(const WindowVertex& v, bool unsnapped) {
+  return {static_cast<double>(v.x) * kResidueScale + (unsnapped ? v.residueX : 0),
+          static_cast<double>(v.y) * kResidueScale + (unsnapped ? v.residueY : 0)};
+}
+FinePoint finePoint(std::int64_t gridX, std::int64_t gridY) {
+  return {static_cast<double>(gridX) * kResidueScale, static_cast<double>(gridY) * kResidueScale};
+}
+double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) {
+  return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
+}
+
+// A depth key affine in the window position, through three vertices' keys, in double.
+struct KeyPlane {
+  double key0 = 0.0, x0 = 0.0, y0 = 0.0, perX = 0.0, perY = 0.0;
+  KeyPlane() = default;
+  KeyPlane(const FinePoint& a, const FinePoint& b, const FinePoint& c, float ka, float kb, float kc,
+           double area) {
+    const double dk1 = static_cast<double>(kb) - ka, dk2 = static_cast<double>(kc) - ka;
+    key0 = ka, x0 = a.x, y0 = a.y;
+    perX = (dk1 * (c.y - a.y) - dk2 * (b.y - a.y)) / area;
+    perY = (dk2 * (b.x - a.x) - dk1 * (c.x - a.x)) / area;
+  }
+  double at(const FinePoint& s) const { return key0 + perX * (s.x - x0) + perY * (s.y - y0); }
+};
+
+// The depth keys of one triangle. Coverage is decided on the snapped vertices (exact, VTK's
+// 1/256 pixel); keys come from the plane through the unsnapped ones (snapped + residue):
+// snapping moves a vertex by up to 1/512 pixel, which on a steep surface moves its key by
+// more than the gap between two surfaces 1e-6 of their distance apart. A sample that only
+// the snapped triangle covers, beyond one of its polygon-boundary edges (within 1/512 pixel
+// of it), takes the snapped plane's key instead: there, the unsnapped planes of a front and
+// a back face meeting at a silhouette have already crossed, while the snapped ones keep the
+// front face in front, as culling would. Beyond a diagonal the unsnapped plane goes on: the
+// triangle on the other side is in the same plane; so it does everywhere for a mesh whose
+// back faces are skipped (Setup.cpp passes no boundary edges then): no fold can form.
+class TriangleDepth {
  public:
-  DepthPlane(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-             std::int64_t snappedArea) {
-    Fine pa = fine(a, true), pb = fine(b, true), pc = fine(c, true);
-    double area = doubleArea(pa, pb, pc);
-    if (!(area >= 0.5 * static_cast<double>(snappedArea) * kResidueScale * kResidueScale)) {
-      pa = fine(a, false), pb = fine(b, false), pc = fine(c, false);
-      area = doubleArea(pa, pb, pc);
-    }
-    const double dk1 = static_cast<double>(b.depth) - a.depth;
-    const double dk2 = static_cast<double>(c.depth) - a.depth;
-    key0_ = a.depth;
-    x0_ = pa.x, y0_ = pa.y;
-    perX_ = (dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) / area;
-    perY_ = (dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x)) / area;
+  TriangleDepth(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                std::int64_t snappedArea, EdgeMask boundary)
+      : a_(a), b_(b), c_(c), snappedArea_(snappedArea), boundary_(boundary) {
+    fa_ = finePoint(a, true), fb_ = finePoint(b, true), fc_ = finePoint(c, true);
+    const double fineArea = edgeFunction(fa_, fb_, fc_);
+    unsnapped_ = fineArea > 0.0;
+    // Turned over by snapping (a sliver): the snapped plane everywhere.
+    plane_ =
+        unsnapped_ ? KeyPlane(fa_, fb_, fc_, a.depth, b.depth, c.depth, fineArea) : snappedPlane();
   }
-  // At a sample given in grid units (kSubpixelBits).
+  // The key at a sample (grid units) by the plane stepped across the triangle.
   double at(std::int64_t sampleX, std::int64_t sampleY) const {
-    return key0_ + perX_ * (static_cast<double>(sampleX) * kResidueScale - x0_) +
-           perY_ * (static_cast<double>(sampleY) * kResidueScale - y0_);
+    return plane_.at(finePoint(sampleX, sampleY));
   }
-  double perPixelX() const { return perX_ * kSubpixelScale * kResidueScale; }
+  double perPixelX() const { return plane_.perX * kSubpixelScale * kResidueScale; }
+  // The key of one covered sample.
+  double keyAt(std::int64_t sampleX, std::int64_t sampleY) const {
+    const FinePoint s = finePoint(sampleX, sampleY);
+    return unsnapped_ && beyondBoundary(s) ? snappedPlane().at(s) : plane_.at(s);
+  }
+  // For many samples: prepares refine().
+  void boundSamplesSurelyInside() {
+    if (!unsnapped_) return;
+    const std::int64_t box = std::max({a_.x, b_.x, c_.x}) - std::min({a_.x, b_.x, c_.x}) +
+                             std::max({a_.y, b_.y, c_.y}) - std::min({a_.y, b_.y, c_.y});
+    const WindowVertex* ends[3][2] = {{&b_, &c_}, {&c_, &a_}, {&a_, &b_}};
+    for (int i = 0; i < 3; ++i) {
+      if (!isBoundary(i)) continue;
+      const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
+      sureInside_[i] = (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+    }
+  }
+  // keyAt(sample), given at(sample) and the sample's biased edge values. A snapped edge
+  // value of at least sureInside_ (grid units²) means the sample is inside the unsnapped edge
+  // too: residues below 1/2 change (q − p) × (s − p) by at most ½(|dx| + |dy|) + |s − p|₁ +
+  // 1, and s stays in the triangle's bounding box. Far from the edges (the common case) three
+  // comparisons decide.
+  double refine(double key, std::int64_t w0, std::int64_t w1, std::int64_t w2, std::int64_t sampleX,
+                std::int64_t sampleY) const {
+    if (w0 >= sureInside_[0] && w1 >= sureInside_[1] && w2 >= sureInside_[2]) return key;
+    return keyAt(sampleX, sampleY);
+  }
 
  private:
-  struct Fine {
-    double x, y;
-  };
-  static Fine fine(const WindowVertex& v, bool unsnapped) {
-    return {static_cast<double>(v.x) * kResidueScale + (unsnapped ? v.residueX : 0),
-            static_cast<double>(v.y) * kResidueScale + (unsnapped ? v.residueY : 0)};
+  KeyPlane snappedPlane() const {
+    const double scale = double{kResidueScale} * kResidueScale;
+    return KeyPlane(finePoint(a_, false), finePoint(b_, false), finePoint(c_, false), a_.depth,
+                    b_.depth, c_.depth, static_cast<double>(snappedArea_) * scale);
   }
-  static double doubleArea(const Fine& a, const Fine& b, const Fine& c) {
-    return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  bool isBoundary(int edge) const { return (boundary_ >> edge) & 1u; }
+  bool beyondBoundary(const FinePoint& s) const {
+    return (isBoundary(0) && edgeFunction(fb_, fc_, s) < 0.0) ||
+           (isBoundary(1) && edgeFunction(fc_, fa_, s) < 0.0) ||
+           (isBoundary(2) && edgeFunction(fa_, fb_, s) < 0.0);
   }
-  double key0_, x0_, y0_, perX_, perY_;
+
+  static constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::min();
+  const WindowVertex &a_, &b_, &c_;
+  std::int64_t snappedArea_;
+  EdgeMask boundary_;
+  bool unsnapped_;
+  FinePoint fa_, fb_, fc_;
+  KeyPlane plane_;
+  std::int64_t sureInside_[3] = {kNever, kNever, kNever};  // diagonals: always
 };
 
 // Rounds an interpolated depth key to float once; finite, so that no key ties with the
@@ -112,13 +175,13 @@ void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Pla
 // functions) and the same depth plane.
 template <DepthMode kMode>
 void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                       std::int64_t area, int x, int y, std::int32_t polygonId,
+                       std::int64_t area, EdgeMask boundary, int x, int y, std::int32_t polygonId,
                        const Planes& planes, PaintCounts& counts) {
   const std::int64_t sampleX = std::int64_t{x} * kSubpixelScale + kHalfPixel;
   const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
   const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
   if ((e0.value | e1.value | e2.value) < 0) return;
-  const double key = DepthPlane(a, b, c, area).at(sampleX, sampleY);
+  const double key = TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY);
   writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, toDepthKey(key), polygonId,
                        planes, counts);
 }
@@ -156,14 +219,14 @@ bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowV
 
 template <DepthMode kMode>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                   std::int32_t polygonId, const PixelBounds& tile, const Planes& planes,
-                   PaintCounts& counts) {
+                   EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                   const Planes& planes, PaintCounts& counts) {
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
   const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
   if (box.empty()) return;
   if (box.x0 == box.x1 && box.y0 == box.y1) {
-    paintSingleSample<kMode>(a, b, c, area, box.x0, box.y0, polygonId, planes, counts);
+    paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
 
@@ -176,16 +239,21 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   // The depth key is affine in window x, y. It is stepped in double and rounded to float
   // once per fragment: stepping in float would add a rounding per pixel, enough to tie
   // surfaces 1e-6 apart.
-  const DepthPlane depth(a, b, c, area);
+  TriangleDepth depth(a, b, c, area, boundary);
+  depth.boundSamplesSurelyInside();
   const double keyPerPixel = depth.perPixelX();
 
   for (int y = box.y0; y <= box.y1; ++y) {
     std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
-    double key = depth.at(sampleX, sampleY + std::int64_t{y - box.y0} * kSubpixelScale);
+    const std::int64_t rowY = sampleY + std::int64_t{y - box.y0} * kSubpixelScale;
+    double key = depth.at(sampleX, rowY);
     const std::size_t row = static_cast<std::size_t>(y) * planes.width;
     for (int x = box.x0; x <= box.x1; ++x) {
-      if ((w0 | w1 | w2) >= 0)
-        writeFragment<kMode>(row + x, toDepthKey(key), polygonId, planes, counts);
+      if ((w0 | w1 | w2) >= 0) {
+        const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
+        const double refined = depth.refine(key, w0, w1, w2, columnX, rowY);
+        writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
+      }
       w0 += e0.stepX;
       w1 += e1.stepX;
       w2 += e2.stepX;
@@ -198,10 +266,10 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
 }
 
 template void paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
-                                             const WindowVertex&, std::int32_t, const PixelBounds&,
-                                             const Planes&, PaintCounts&);
+                                             const WindowVertex&, EdgeMask, std::int32_t,
+                                             const PixelBounds&, const Planes&, PaintCounts&);
 template void paintTriangle<DepthMode::Overwrite>(const WindowVertex&, const WindowVertex&,
-                                                  const WindowVertex&, std::int32_t,
+                                                  const WindowVertex&, EdgeMask, std::int32_t,
                                                   const PixelBounds&, const Planes&, PaintCounts&);
 
 }  // namespace facet::detail

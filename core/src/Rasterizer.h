@@ -55,6 +55,11 @@ struct Planes {
 
 enum class DepthMode { Test, Overwrite };
 
+// Which edges of a triangle lie on its polygon's boundary: bit i for the edge opposite
+// corner i (a, b, c). The others are diagonals the triangulation or the clipper added.
+using EdgeMask = std::uint8_t;
+inline constexpr EdgeMask kAllEdges = 0b111;
+
 struct PaintCounts {
   std::size_t written = 0;  // pixel writes, counting overdraw
   std::size_t covered = 0;  // background pixels that received their first polygon
@@ -62,12 +67,13 @@ struct PaintCounts {
 
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
-// (FrameTransform.h) until the tile resolves. DepthMode::Test keeps the nearest fragment
-// (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
+// (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
+// says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
+// fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
 // is painter's order.
 template <DepthMode kMode>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                   std::int32_t polygonId, const PixelBounds& tile, const Planes& planes,
-                   PaintCounts& counts);
+                   EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                   const Planes& planes, PaintCounts& counts);
 
 }  // namespace facet::detail

@@ -358,12 +358,13 @@ bool Renderer::Workspace::paintTiles(const detail::Planes& planes) {
             const auto& a = frame.vertex(chunk, tri.vertex[0]);
             const auto& b = frame.vertex(chunk, tri.vertex[1]);
             const auto& c = frame.vertex(chunk, tri.vertex[2]);
+            const detail::EdgeMask boundary = chunk.boundaryEdges[index];
             if (frame.plan.depthTest) {
-              detail::paintTriangle<detail::DepthMode::Test>(a, b, c, tri.polygon, tile, planes,
-                                                             counts);
+              detail::paintTriangle<detail::DepthMode::Test>(a, b, c, boundary, tri.polygon, tile,
+                                                             planes, counts);
             } else {
-              detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, tri.polygon, tile,
-                                                                  planes, counts);
+              detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, boundary, tri.polygon,
+                                                                  tile, planes, counts);
             }
           }
         }

@@ -68,20 +68,20 @@ std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::
 
 void resolveTile(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
                  Rgba8 background) {
-  const FrameTransform& transform = *frame.transform;
+  // Locals: the color stores (bytes) may alias anything, which would reload these per pixel.
+  const std::uint32_t* colors = frame.polygonColors.data();
+  const FrameTransform transform = *frame.transform;
   for (int y = tile.y0; y <= tile.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * planes.width;
+    const std::int32_t* ids = planes.polygonId + row;
+    Rgba8* color = planes.color + row;
+    float* depth = planes.depth + row;
     for (int x = tile.x0; x <= tile.x1; ++x) {
-      const std::size_t i = row + x;
-      const std::int32_t id = planes.polygonId[i];
-      if (id < 0) {
-        planes.color[i] = background;
-        planes.depth[i] = 1.0f;
-      } else {
-        planes.color[i] = std::bit_cast<Rgba8>(frame.polygonColors[static_cast<std::size_t>(id)]);
-        planes.depth[i] = transform.windowDepth(planes.depth[i]);
-      }
+      const std::int32_t id = ids[x];
+      color[x] = id < 0 ? background : std::bit_cast<Rgba8>(colors[static_cast<std::size_t>(id)]);
     }
+    for (int x = tile.x0; x <= tile.x1; ++x)
+      depth[x] = ids[x] < 0 ? 1.0f : transform.windowDepth(depth[x]);
   }
 }
 

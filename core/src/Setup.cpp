@@ -17,6 +17,33 @@ struct Tally {
   int zeroArea = 0, outside = 0;
 };
 
+// The boundary edges of triangle (c0, c1, c2) of an n-corner polygon, by corner index: an
+// edge is on the boundary when its corners are neighbours in the polygon.
+EdgeMask boundaryEdges(std::uint32_t c0, std::uint32_t c1, std::uint32_t c2, std::size_t n) {
+  const auto neighbours = [n](std::uint32_t i, std::uint32_t j) {
+    return (i + 1) % n == j || (j + 1) % n == i;
+  };
+  return static_cast<EdgeMask>(neighbours(c1, c2) | neighbours(c2, c0) << 1 |
+                               neighbours(c0, c1) << 2);
+}
+
+// Whether side j (vertex j to j + 1) of a clipped triangle lies on its polygon's boundary:
+// on an input edge that is, or on a clip plane (no input edge).
+bool clippedSideOnBoundary(const ClipVertex* clipped, int count, int j, EdgeMask boundary) {
+  const unsigned onEdges = clipped[j].onEdges & clipped[(j + 1) % count].onEdges;
+  return onEdges == 0 || (onEdges & boundary) != 0;
+}
+
+// The boundary edges of fan triangle (0, i, i + 1) of a clipped triangle with `count`
+// vertices: side i always is a side of the clipped polygon, sides (0, i) and (i + 1, 0)
+// only for the first and last triangles.
+EdgeMask clippedFanEdges(const ClipVertex* clipped, int count, int i, EdgeMask boundary) {
+  const bool opposite0 = clippedSideOnBoundary(clipped, count, i, boundary);
+  const bool opposite1 = i + 2 == count && clippedSideOnBoundary(clipped, count, i + 1, boundary);
+  const bool opposite2 = i == 1 && clippedSideOnBoundary(clipped, count, 0, boundary);
+  return static_cast<EdgeMask>(opposite0 | opposite1 << 1 | opposite2 << 2);
+}
+
 // The mean of the corners, each divided first so that no sum overflows.
 glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
   const double weight = 1.0 / static_cast<double>(corners.size());
@@ -101,7 +128,8 @@ class PolygonSetup {
     }
     const std::size_t first = chunk_.triangles.size();
     Tally tally;
-    keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, tally);
+    keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
+         tally);
     finish(first, tally, area < 0);
   }
 
@@ -119,7 +147,7 @@ class PolygonSetup {
     }
     const std::size_t first = chunk_.triangles.size();
     Tally tally;
-    clip(ids, planes, tally);
+    clip(ids, planes, kAllEdges, tally);
     finish(first, tally, back);
   }
 
@@ -180,12 +208,13 @@ class PolygonSetup {
     const std::uint32_t codes[3] = {meshVertices_[ids[0]].outcode, meshVertices_[ids[1]].outcode,
                                     meshVertices_[ids[2]].outcode};
     const std::uint32_t any = codes[0] | codes[1] | codes[2];
+    const EdgeMask boundary = boundaryEdges(c0, c1, c2, chunk_.corners.size());
     if (any == kInside) {
-      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), tally);
+      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), boundary, tally);
     } else if ((codes[0] & codes[1] & codes[2]) != kInside) {
       ++tally.outside;
     } else {
-      clip(ids, any, tally);
+      clip(ids, any, boundary, tally);
     }
   }
 
@@ -193,12 +222,13 @@ class PolygonSetup {
     return static_cast<std::uint32_t>(mesh_.firstVertex + pointId);
   }
 
-  void clip(const std::size_t (&ids)[3], std::uint32_t planes, Tally& tally) {
+  void clip(const std::size_t (&ids)[3], std::uint32_t planes, EdgeMask boundary, Tally& tally) {
     ++chunk_.counts.trianglesClipped;
     const FrameTransform& transform = *frame_.transform;
     ClipVertex triangle[3];
     for (int i = 0; i < 3; ++i) {
-      triangle[i] = {transform.toClip(points_[ids[i]]), frameIndex(ids[i])};
+      const auto onEdges = static_cast<std::uint8_t>(kAllEdges & ~(1u << i));  // not opposite
+      triangle[i] = {transform.toClip(points_[ids[i]]), frameIndex(ids[i]), onEdges};
     }
     ClipVertex clipped[kMaxClippedVertices];
     const int count = clipTriangle(transform, triangle, planes, clipped);
@@ -216,30 +246,34 @@ class PolygonSetup {
         chunk_.clippedVertices.push_back(transform.toWindow(clipped[i].clip));
       }
     }
-    for (int i = 1; i + 1 < count; ++i)
-      keep(references[0], references[i], references[i + 1], tally);
+    for (int i = 1; i + 1 < count; ++i) {
+      keep(references[0], references[i], references[i + 1],
+           clippedFanEdges(clipped, count, i, boundary), tally);
+    }
   }
 
-  void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, Tally& tally) {
+  void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, EdgeMask boundary, Tally& tally) {
     const WindowVertex &a = frame_.vertex(chunk_, r0), &b = frame_.vertex(chunk_, r1),
                        &c = frame_.vertex(chunk_, r2);
-    keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), tally);
+    keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), boundary, tally);
   }
 
   // Keeps a triangle whose corners all have window coordinates, counter-clockwise on screen
   // (swapped if need be), unless it has zero area or covers no pixel center.
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
             const WindowVertex& vertex1, const WindowVertex& vertex2, std::int64_t area,
-            Tally& tally) {
+            EdgeMask boundary, Tally& tally) {
     const WindowVertex* b = &vertex1;
     const WindowVertex* c = &vertex2;
     if (area == 0) {
       ++tally.zeroArea;
       return;
     }
-    if (area < 0) {
+    if (area < 0) {  // corners 1 and 2 trade places, and so do the edges opposite them
       std::swap(r1, r2);
       std::swap(b, c);
+      boundary =
+          static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
     }
     const PixelBounds bounds = samplesInBoundingBox(a, *b, *c, frame_.viewport);
     if (bounds.empty() || !coversAnySample(a, *b, *c, bounds)) {
@@ -248,6 +282,8 @@ class PolygonSetup {
     }
     bin(static_cast<std::uint32_t>(chunk_.triangles.size()), bounds);
     chunk_.triangles.push_back({{r0, r1, r2}, polygonId_});
+    // Without back faces no silhouette fold can form: the unsnapped plane everywhere.
+    chunk_.boundaryEdges.push_back(mesh_.skipBackFaces ? EdgeMask{0} : boundary);
   }
 
   void bin(std::uint32_t triangle, const PixelBounds& b) {
@@ -290,6 +326,7 @@ std::size_t FrameState::meshOfPolygon(std::size_t polygonId) const {
 
 void setUpChunk(FrameState& frame, Chunk& chunk) {
   chunk.triangles.clear();
+  chunk.boundaryEdges.clear();
   chunk.clippedVertices.clear();
   for (auto& bin : chunk.bins)
     bin.clear();

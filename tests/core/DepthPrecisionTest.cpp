@@ -50,13 +50,16 @@ std::string describe(double separation, double ratio, bool tinyNear, bool parall
          (parallel ? ", parallel" : ", perspective");
 }
 
-// Renders the scene of two meshes (0 drawn first) and counts the covered pixels that do not
-// show the polygons of mesh `nearer`.
+// Renders the scene of two meshes (0 drawn first; closed: marked MeshView::closedSurface)
+// and counts the covered pixels that do not show the polygons of mesh `nearer`.
 std::size_t pixelsNotShowing(const Mesh& first, const Mesh& second, int nearer,
-                             const Camera& camera, std::size_t& covered) {
+                             const Camera& camera, std::size_t& covered, bool closed = false) {
   Scene scene;
-  scene.meshes.push_back({first.view(), Material{}});
-  scene.meshes.push_back({second.view(), Material{}});
+  for (const Mesh* mesh : {&first, &second}) {
+    MeshView view = mesh->view();
+    view.closedSurface = closed;
+    scene.meshes.push_back({view, Material{}});
+  }
   const Rendered r = renderScene(scene, camera, kWidth, kHeight);
   const std::int32_t firstOfSecond = static_cast<std::int32_t>(first.polygonCount());
   std::size_t wrong = 0;
@@ -99,20 +102,31 @@ TEST(DepthPrecision, NearerOfTwoTiltedPlanesWinsAtEveryFarNearRatio) {
 }
 
 // Concentric spheres (radius 1 at distance D, and 1 + separation·D): the outer one's facets
-// are parallel to the inner one's and snap to other sub-pixel positions.
+// are parallel to the inner one's and snap to other sub-pixel positions. Marked closed, their
+// back faces are skipped and keys come from the unsnapped planes everywhere. Drawn with their
+// back faces, samples only snapping covers (within 1/512 pixel beyond a triangle's edge) take
+// the snapped plane's key, so that silhouettes fold as culling would: there a gap of 1e-6
+// can be below the snapping error on steep facets, and a handful of such samples may go to
+// the inner sphere.
 TEST(DepthPrecision, OuterOfTwoConcentricSpheresWinsAtEveryFarNearRatio) {
   const glm::dvec3 center(0.0, 0.0, -kEyeDistance);
-  for (double separation : {1e-4, 1e-5, 1e-6}) {
-    const Mesh inner = makeUvSphere(48, 32, 1.0, center);
-    const Mesh outer = makeUvSphere(48, 32, 1.0 + separation * kEyeDistance, center);
-    for (double ratio : {1e4, 1e6, 1e8, 1e10, 1e12}) {
-      for (bool tinyNear : {true, false}) {
-        SCOPED_TRACE(describe(separation, ratio, tinyNear, false));
-        const Camera camera = cameraWithRatio(ratio, tinyNear, false);
-        std::size_t covered = 0;
-        EXPECT_EQ(pixelsNotShowing(inner, outer, 1, camera, covered), 0u) << "inner drawn first";
-        EXPECT_GT(covered, 2000u);
-        EXPECT_EQ(pixelsNotShowing(outer, inner, 0, camera, covered), 0u) << "outer drawn first";
+  for (bool closed : {true, false}) {
+    for (double separation : {1e-4, 1e-5, 1e-6}) {
+      Mesh inner = makeUvSphere(48, 32, 1.0, center);
+      Mesh outer = makeUvSphere(48, 32, 1.0 + separation * kEyeDistance, center);
+      const std::size_t allowed = closed || separation > 1e-6 ? 0 : kWidth * kHeight / 5000;
+      for (double ratio : {1e4, 1e6, 1e8, 1e10, 1e12}) {
+        for (bool tinyNear : {true, false}) {
+          SCOPED_TRACE(describe(separation, ratio, tinyNear, false) +
+                       (closed ? ", closed" : ", back faces drawn"));
+          const Camera camera = cameraWithRatio(ratio, tinyNear, false);
+          std::size_t covered = 0;
+          EXPECT_LE(pixelsNotShowing(inner, outer, 1, camera, covered, closed), allowed)
+              << "inner drawn first";
+          EXPECT_GT(covered, 2000u);
+          EXPECT_LE(pixelsNotShowing(outer, inner, 0, camera, covered, closed), allowed)
+              << "outer drawn first";
+        }
       }
     }
   }
