@@ -14,9 +14,8 @@ FrameTransform::FrameTransform(const Camera& camera, int width, int height)
       parallel_(camera.parallelProjection),
       near_(camera.nearClip),
       far_(camera.farClip),
-      inversePerspectiveRange_(1.0 / (1.0 - camera.nearClip / camera.farClip)),
-      // f − n may overflow (clipping distances near ±DBL_MAX): then every depth rounds to 0.
-      inverseParallelRange_(1.0 / (camera.farClip - camera.nearClip)),
+      depthFromKeyOffset_(parallel_ ? 0.0 : 1.0 / (1.0 - near_ / far_)),
+      depthFromKeyScale_(parallel_ ? -1.0 / (far_ - near_) : -depthFromKeyOffset_),
       halfWidth_(0.5 * width),
       halfHeight_(0.5 * height),
       guardX_(1.0 + kGuardBandPixels / (0.5 * width)),

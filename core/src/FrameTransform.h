@@ -166,8 +166,7 @@ class FrameTransform {
   // the nearest float: perspective (1 − n/d)/(1 − n/f) = f(d − n)/(d(f − n)), parallel
   // (d − n)/(f − n). Runs once per pixel.
   float windowDepth(float key) const {
-    const double depth =
-        parallel_ ? -key * inverseParallelRange_ : (1.0 - key) * inversePerspectiveRange_;
+    const double depth = depthFromKeyOffset_ + depthFromKeyScale_ * key;
     return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
   }
 
@@ -210,8 +209,9 @@ class FrameTransform {
   glm::dvec4 clipX_, clipY_;      // rows of clipFromView giving clip x and y
   bool parallel_;
   double near_, far_;
-  double inversePerspectiveRange_;  // 1/(1 − n/f)
-  double inverseParallelRange_;     // 1/(f − n), 0 if that overflows
+  // Window depth = offset + scale·key: perspective 1/(1 − n/f) and −1/(1 − n/f), parallel 0
+  // and −1/(f − n) (0 when f − n overflows, near ±DBL_MAX: every depth then rounds to 0).
+  double depthFromKeyOffset_, depthFromKeyScale_;
   double halfWidth_, halfHeight_;
   double guardX_, guardY_;  // guard band half-extent in NDC units
 };

@@ -38,6 +38,7 @@ struct Edge {
     biased = !(dy < 0 || (dy == 0 && dx < 0));
     value = dx * (sampleY - p.y) - dy * (sampleX - p.x) - (biased ? 1 : 0);
   }
+  std::int64_t unbiased(std::int64_t biasedValue) const { return biasedValue + (biased ? 1 : 0); }
 };
 
 // Window positions in fine units: 1/kResidueScale of a grid step.
@@ -45,8 +46,9 @@ struct FinePoint {
   double x, y;
 };
 FinePoint finePoint(const WindowVertex& v, bool unsnapped) {
-  return {static_cast<double>(v.x) * kResidueScale + (unsnapped ? v.residueX : 0),
-          static_cast<double>(v.y) * kResidueScale + (unsnapped ? v.residueY : 0)};
+  // Exact integers below 2^32: one conversion each.
+  return {static_cast<double>(std::int64_t{v.x} * kResidueScale + (unsnapped ? v.residueX : 0)),
+          static_cast<double>(std::int64_t{v.y} * kResidueScale + (unsnapped ? v.residueY : 0))};
 }
 FinePoint finePoint(std::int64_t gridX, std::int64_t gridY) {
   return {static_cast<double>(gridX) * kResidueScale, static_cast<double>(gridY) * kResidueScale};
@@ -54,20 +56,6 @@ FinePoint finePoint(std::int64_t gridX, std::int64_t gridY) {
 double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) {
   return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
 }
-
-// A depth key affine in the window position, through three vertices' keys, in double.
-struct KeyPlane {
-  double key0 = 0.0, x0 = 0.0, y0 = 0.0, perX = 0.0, perY = 0.0;
-  KeyPlane() = default;
-  KeyPlane(const FinePoint& a, const FinePoint& b, const FinePoint& c, float ka, float kb, float kc,
-           double area) {
-    const double dk1 = static_cast<double>(kb) - ka, dk2 = static_cast<double>(kc) - ka;
-    key0 = ka, x0 = a.x, y0 = a.y;
-    perX = (dk1 * (c.y - a.y) - dk2 * (b.y - a.y)) / area;
-    perY = (dk2 * (b.x - a.x) - dk1 * (c.x - a.x)) / area;
-  }
-  double at(const FinePoint& s) const { return key0 + perX * (s.x - x0) + perY * (s.y - y0); }
-};
 
 // The depth keys of one triangle. Coverage is decided on the snapped vertices (exact, VTK's
 // 1/256 pixel); keys come from the plane through the unsnapped ones (snapped + residue):
@@ -79,71 +67,97 @@ struct KeyPlane {
 // front face in front, as culling would. Beyond a diagonal the unsnapped plane goes on: the
 // triangle on the other side is in the same plane; so it does everywhere for a mesh whose
 // back faces are skipped (Setup.cpp passes no boundary edges then): no fold can form.
+//
+// Keys are barycentric interpolations, key = a + (dk1·λb + dk2·λc)/area, with the λ the
+// edge functions at the sample (snapped or unsnapped), in double.
 class TriangleDepth {
  public:
   TriangleDepth(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                 std::int64_t snappedArea, EdgeMask boundary)
-      : a_(a), b_(b), c_(c), snappedArea_(snappedArea), boundary_(boundary) {
-    fa_ = finePoint(a, true), fb_ = finePoint(b, true), fc_ = finePoint(c, true);
+      : key0_(a.depth),
+        dk1_(static_cast<double>(b.depth) - a.depth),
+        dk2_(static_cast<double>(c.depth) - a.depth),
+        snappedArea_(static_cast<double>(snappedArea)),
+        boundary_(boundary),
+        fa_(finePoint(a, true)),
+        fb_(finePoint(b, true)),
+        fc_(finePoint(c, true)) {
+    // Turned over by snapping (a sliver): the snapped plane everywhere.
     const double fineArea = edgeFunction(fa_, fb_, fc_);
     unsnapped_ = fineArea > 0.0;
-    // Turned over by snapping (a sliver): the snapped plane everywhere.
-    plane_ =
-        unsnapped_ ? KeyPlane(fa_, fb_, fc_, a.depth, b.depth, c.depth, fineArea) : snappedPlane();
+    inverseFineArea_ = unsnapped_ ? 1.0 / fineArea : 0.0;
   }
-  // The key at a sample (grid units) by the plane stepped across the triangle.
+  // The key of one covered sample, given its snapped edge values (unbiased).
+  double keyAt(std::int64_t sampleX, std::int64_t sampleY, const std::int64_t (&snapped)[3]) const {
+    if (unsnapped_) {
+      const FinePoint s = finePoint(sampleX, sampleY);
+      const double fine[3] = {edgeFunction(fb_, fc_, s), edgeFunction(fc_, fa_, s),
+                              edgeFunction(fa_, fb_, s)};
+      if (!beyondBoundary(fine)) return interpolate(fine[1], fine[2], inverseFineArea_);
+    }
+    return interpolate(static_cast<double>(snapped[1]), static_cast<double>(snapped[2]),
+                       1.0 / snappedArea_);
+  }
+
+  // For many samples: the key stepped along a row, keyAt() near boundary edges only.
+  void prepareRows(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+    const FinePoint pa = unsnapped_ ? fa_ : finePoint(a, false);
+    const FinePoint pb = unsnapped_ ? fb_ : finePoint(b, false);
+    const FinePoint pc = unsnapped_ ? fc_ : finePoint(c, false);
+    const double inverse = unsnapped_ ? inverseFineArea_ : 1.0 / (snappedArea_ * kFinePerGrid2);
+    x0_ = pa.x, y0_ = pa.y;
+    perX_ = (dk1_ * (pc.y - pa.y) - dk2_ * (pb.y - pa.y)) * inverse;
+    perY_ = (dk2_ * (pb.x - pa.x) - dk1_ * (pc.x - pa.x)) * inverse;
+    if (unsnapped_) boundSurelyInside(a, b, c);
+  }
   double at(std::int64_t sampleX, std::int64_t sampleY) const {
-    return plane_.at(finePoint(sampleX, sampleY));
-  }
-  double perPixelX() const { return plane_.perX * kSubpixelScale * kResidueScale; }
-  // The key of one covered sample.
-  double keyAt(std::int64_t sampleX, std::int64_t sampleY) const {
     const FinePoint s = finePoint(sampleX, sampleY);
-    return unsnapped_ && beyondBoundary(s) ? snappedPlane().at(s) : plane_.at(s);
+    return key0_ + perX_ * (s.x - x0_) + perY_ * (s.y - y0_);
   }
-  // For many samples: prepares refine().
-  void boundSamplesSurelyInside() {
-    if (!unsnapped_) return;
-    const std::int64_t box = std::max({a_.x, b_.x, c_.x}) - std::min({a_.x, b_.x, c_.x}) +
-                             std::max({a_.y, b_.y, c_.y}) - std::min({a_.y, b_.y, c_.y});
-    const WindowVertex* ends[3][2] = {{&b_, &c_}, {&c_, &a_}, {&a_, &b_}};
+  double perPixelX() const { return perX_ * kSubpixelScale * kResidueScale; }
+  // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values. A
+  // snapped edge value of at least sureInside_ (grid units²) means the sample is inside the
+  // unsnapped edge too: residues below 1/2 change (q − p) × (s − p) by at most
+  // ½(|dx| + |dy|) + |s − p|₁ + 1, and s stays in the triangle's bounding box. Far from the
+  // edges (the common case) three comparisons decide.
+  double refine(double key, std::int64_t sampleX, std::int64_t sampleY,
+                const std::int64_t (&snapped)[3]) const {
+    if (snapped[0] >= sureInside_[0] && snapped[1] >= sureInside_[1] &&
+        snapped[2] >= sureInside_[2]) {
+      return key;
+    }
+    return keyAt(sampleX, sampleY, snapped);
+  }
+
+ private:
+  static constexpr double kFinePerGrid2 = double{kResidueScale} * kResidueScale;
+  static constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::min();
+
+  double interpolate(double weightB, double weightC, double inverseArea) const {
+    return key0_ + (dk1_ * weightB + dk2_ * weightC) * inverseArea;
+  }
+  bool isBoundary(int edge) const { return (boundary_ >> edge) & 1u; }
+  bool beyondBoundary(const double (&fine)[3]) const {
+    return (isBoundary(0) && fine[0] < 0.0) || (isBoundary(1) && fine[1] < 0.0) ||
+           (isBoundary(2) && fine[2] < 0.0);
+  }
+  void boundSurelyInside(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+    const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
+                             std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
+    const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
     for (int i = 0; i < 3; ++i) {
       if (!isBoundary(i)) continue;
       const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
       sureInside_[i] = (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
     }
   }
-  // keyAt(sample), given at(sample) and the sample's biased edge values. A snapped edge
-  // value of at least sureInside_ (grid units²) means the sample is inside the unsnapped edge
-  // too: residues below 1/2 change (q − p) × (s − p) by at most ½(|dx| + |dy|) + |s − p|₁ +
-  // 1, and s stays in the triangle's bounding box. Far from the edges (the common case) three
-  // comparisons decide.
-  double refine(double key, std::int64_t w0, std::int64_t w1, std::int64_t w2, std::int64_t sampleX,
-                std::int64_t sampleY) const {
-    if (w0 >= sureInside_[0] && w1 >= sureInside_[1] && w2 >= sureInside_[2]) return key;
-    return keyAt(sampleX, sampleY);
-  }
 
- private:
-  KeyPlane snappedPlane() const {
-    const double scale = double{kResidueScale} * kResidueScale;
-    return KeyPlane(finePoint(a_, false), finePoint(b_, false), finePoint(c_, false), a_.depth,
-                    b_.depth, c_.depth, static_cast<double>(snappedArea_) * scale);
-  }
-  bool isBoundary(int edge) const { return (boundary_ >> edge) & 1u; }
-  bool beyondBoundary(const FinePoint& s) const {
-    return (isBoundary(0) && edgeFunction(fb_, fc_, s) < 0.0) ||
-           (isBoundary(1) && edgeFunction(fc_, fa_, s) < 0.0) ||
-           (isBoundary(2) && edgeFunction(fa_, fb_, s) < 0.0);
-  }
-
-  static constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::min();
-  const WindowVertex &a_, &b_, &c_;
-  std::int64_t snappedArea_;
+  double key0_, dk1_, dk2_;
+  double snappedArea_, inverseFineArea_ = 0.0;
   EdgeMask boundary_;
-  bool unsnapped_;
+  bool unsnapped_ = false;
   FinePoint fa_, fb_, fc_;
-  KeyPlane plane_;
+  double x0_ = 0.0, y0_ = 0.0, perX_ = 0.0, perY_ = 0.0;
   std::int64_t sureInside_[3] = {kNever, kNever, kNever};  // diagonals: always
 };
 
@@ -181,7 +195,9 @@ void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const Windo
   const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
   const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
   if ((e0.value | e1.value | e2.value) < 0) return;
-  const double key = TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY);
+  const std::int64_t snapped[3] = {e0.unbiased(e0.value), e1.unbiased(e1.value),
+                                   e2.unbiased(e2.value)};
+  const double key = TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped);
   writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, toDepthKey(key), polygonId,
                        planes, counts);
 }
@@ -240,7 +256,7 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   // once per fragment: stepping in float would add a rounding per pixel, enough to tie
   // surfaces 1e-6 apart.
   TriangleDepth depth(a, b, c, area, boundary);
-  depth.boundSamplesSurelyInside();
+  depth.prepareRows(a, b, c);
   const double keyPerPixel = depth.perPixelX();
 
   for (int y = box.y0; y <= box.y1; ++y) {
@@ -251,7 +267,8 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     for (int x = box.x0; x <= box.x1; ++x) {
       if ((w0 | w1 | w2) >= 0) {
         const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
-        const double refined = depth.refine(key, w0, w1, w2, columnX, rowY);
+        const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
+        const double refined = depth.refine(key, columnX, rowY, snapped);
         writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
       }
       w0 += e0.stepX;
