@@ -1,5 +1,6 @@
 #include "FrameTransform.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -8,11 +9,25 @@
 #include "facet/Conventions.h"
 
 namespace facet::detail {
+namespace {
+
+// The perspective near distance the clipper uses: the camera's, but at least 2^-480 (about
+// 1e-144) while the far plane is beyond it. A new vertex on the near plane gets d = n·h, and
+// h goes down to kShrink (2^-520) for points beyond kLargeCoordinate: n·h must stay a normal
+// number for x/d and y/d to be finite. Nothing nearer than 1e-144 can be told from the eye in
+// a float depth key anyway (keys n/d of the scene would underflow).
+double clippingNear(const Camera& camera) {
+  constexpr double kSmallestNear = 0x1p-480;
+  if (camera.parallelProjection || !(camera.farClip > 2.0 * kSmallestNear)) return camera.nearClip;
+  return std::max(camera.nearClip, kSmallestNear);
+}
+
+}  // namespace
 
 FrameTransform::FrameTransform(const Camera& camera, int width, int height)
     : eye_(camera.position),
       parallel_(camera.parallelProjection),
-      near_(camera.nearClip),
+      near_(clippingNear(camera)),
       far_(camera.farClip),
       depthFromKeyOffset_(parallel_ ? 0.0 : 1.0 / (1.0 - near_ / far_)),
       depthFromKeyScale_(parallel_ ? -1.0 / (far_ - near_) : -depthFromKeyOffset_),

@@ -53,6 +53,22 @@ std::optional<PolygonExtent> polygonExtent(std::size_t count, const VertexAt& ve
   return PolygonExtent{unit, glm::dot(extent / unit, extent / unit)};
 }
 
+/// Calls f(vertexAt, extent) with the polygon's extent, and nothing when it has none. The
+/// normal does not depend on scale: when differences of the coordinates overflow (finite
+/// coordinates beyond ±DBL_MAX/2), f gets the vertices divided by 256 (exactly) instead.
+template <class VertexAt, class F>
+auto withExtent(std::size_t count, const VertexAt& vertexAt, const F& f)
+    -> std::optional<glm::dvec3> {
+  if (const std::optional<PolygonExtent> extent = polygonExtent(count, vertexAt)) {
+    return f(vertexAt, *extent);
+  }
+  const auto scaled = [&](std::size_t i) { return vertexAt(i) * 0x1p-8; };
+  if (const std::optional<PolygonExtent> extent = polygonExtent(count, scaled)) {
+    return f(scaled, *extent);
+  }
+  return std::nullopt;
+}
+
 /// `area` (in units of the extent²) as a unit normal, unless it is degenerate (see
 /// kDegenerateAreaRatio) or not finite.
 inline std::optional<glm::dvec3> unitNormalOf(const glm::dvec3& area, const PolygonExtent& extent) {
@@ -91,13 +107,13 @@ glm::dvec3 newellAreaVector(std::size_t count, const VertexAt& vertexAt, double 
 
 /// The unit normal of a polygon (counter-clockwise winding faces the normal), or nothing
 /// when the polygon has fewer than 3 vertices, zero area (see kDegenerateAreaRatio), or
-/// non-finite coordinates. Never NaN.
+/// non-finite coordinates. Never NaN; any finite coordinates, up to ±DBL_MAX, work.
 template <class VertexAt>
 std::optional<glm::dvec3> newellNormal(std::size_t count, const VertexAt& vertexAt) {
   if (count < 3) return std::nullopt;
-  const std::optional<detail::PolygonExtent> extent = detail::polygonExtent(count, vertexAt);
-  if (!extent) return std::nullopt;
-  return detail::unitNormalOf(newellAreaVector(count, vertexAt, extent->unit), *extent);
+  return detail::withExtent(count, vertexAt, [count](const auto& at, const auto& extent) {
+    return detail::unitNormalOf(newellAreaVector(count, at, extent.unit), extent);
+  });
 }
 
 /// The normal of the plane of a self-intersecting polygon whose lobes cancel, such as a
@@ -108,25 +124,25 @@ std::optional<glm::dvec3> newellNormal(std::size_t count, const VertexAt& vertex
 template <class VertexAt>
 std::optional<glm::dvec3> alignedFanNormal(std::size_t count, const VertexAt& vertexAt) {
   if (count < 3) return std::nullopt;
-  const std::optional<detail::PolygonExtent> extent = detail::polygonExtent(count, vertexAt);
-  if (!extent) return std::nullopt;
-  const glm::dvec3 origin = vertexAt(0);
-  const double inverse = 1.0 / extent->unit;
-  const auto fanArea = [&](std::size_t k) {
-    return glm::cross(detail::relativeVertex(vertexAt, k, origin, extent->unit, inverse),
-                      detail::relativeVertex(vertexAt, k + 1, origin, extent->unit, inverse));
-  };
-  glm::dvec3 largest{0.0};
-  for (std::size_t k = 1; k + 1 < count; ++k) {
-    const glm::dvec3 area = fanArea(k);
-    if (glm::dot(area, area) > glm::dot(largest, largest)) largest = area;
-  }
-  glm::dvec3 sum{0.0};
-  for (std::size_t k = 1; k + 1 < count; ++k) {
-    const glm::dvec3 area = fanArea(k);
-    sum += glm::dot(area, largest) < 0.0 ? -area : area;
-  }
-  return detail::unitNormalOf(sum, *extent);
+  return detail::withExtent(count, vertexAt, [count](const auto& at, const auto& extent) {
+    const glm::dvec3 origin = at(0);
+    const double inverse = 1.0 / extent.unit;
+    const auto fanArea = [&](std::size_t k) {
+      return glm::cross(detail::relativeVertex(at, k, origin, extent.unit, inverse),
+                        detail::relativeVertex(at, k + 1, origin, extent.unit, inverse));
+    };
+    glm::dvec3 largest{0.0};
+    for (std::size_t k = 1; k + 1 < count; ++k) {
+      const glm::dvec3 area = fanArea(k);
+      if (glm::dot(area, area) > glm::dot(largest, largest)) largest = area;
+    }
+    glm::dvec3 sum{0.0};
+    for (std::size_t k = 1; k + 1 < count; ++k) {
+      const glm::dvec3 area = fanArea(k);
+      sum += glm::dot(area, largest) < 0.0 ? -area : area;
+    }
+    return detail::unitNormalOf(sum, extent);
+  });
 }
 
 /// The normal Facet lights, orients and culls a polygon by (of more than three vertices:
