@@ -186,18 +186,12 @@ class PolygonSetup {
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
 
-  // In the polygon's plane (Triangulate.h): a fan from corner 0 for convex and
-  // self-intersecting polygons (VTK's rule for the latter), ear clipping for the others.
+  // In the polygon's plane, by Triangulate.h's rules.
   void triangulate(const glm::dvec3& normal, Tally& tally) {
     std::vector<glm::dvec2>& projected = chunk_.triangulation.projected;
     projectToPolygonPlane(chunk_.corners, normal, projected);
-    if (isConvex(projected) || selfIntersects(projected, chunk_.triangulation)) {
-      for (std::uint32_t k = 1; k + 1 < projected.size(); ++k)
-        addTriangle(0, k, k + 1, tally);
-      return;
-    }
     chunk_.localTriangles.clear();
-    earClip(projected, chunk_.triangulation, chunk_.localTriangles);
+    detail::triangulate(projected, chunk_.triangulation, chunk_.localTriangles);
     for (const LocalTriangle& t : chunk_.localTriangles)
       addTriangle(t[0], t[1], t[2], tally);
   }

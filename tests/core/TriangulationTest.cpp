@@ -225,5 +225,88 @@ TEST(SelfIntersecting, BowtieCoversBothLobes) {
   EXPECT_EQ(c.wrongColor, 0u);
 }
 
+// --- Degenerate and extreme polygons: each renders its exact coverage or is counted. ---
+
+// An L-shape (concave) on quarter-pixel coordinates, [10.25, 50.25] × [10.25, 30.25] plus
+// [10.25, 30.25] × [30.25, 60.25], its 6 corners listed counter-clockwise; `subdivide` extra
+// points along every edge (collinear runs), each corner repeated `repeats` times.
+Mesh lShape(int subdivide, int repeats) {
+  const glm::dvec2 corners[6] = {{10.25, 10.25}, {50.25, 10.25}, {50.25, 30.25},
+                                 {30.25, 30.25}, {30.25, 60.25}, {10.25, 60.25}};
+  Mesh mesh;
+  std::vector<std::int64_t> ids;
+  for (int c = 0; c < 6; ++c) {
+    const glm::dvec2 a = corners[c], b = corners[(c + 1) % 6];
+    for (int r = 0; r < repeats; ++r)
+      ids.push_back(mesh.addPoint({a.x, a.y, 0.0}));
+    for (int k = 1; k <= subdivide; ++k) {
+      const glm::dvec2 p = a + (b - a) * (double(k) / (subdivide + 1));
+      ids.push_back(mesh.addPoint({p.x, p.y, 0.0}));
+    }
+  }
+  mesh.addPolygon(ids);
+  return mesh;
+}
+constexpr std::size_t kLShapeArea = 40 * 20 + 20 * 30;
+
+TEST(DegeneratePolygons, CollinearRunsAndRepeatedPointsKeepTheExactCoverage) {
+  for (int subdivide : {0, 1, 7, 50}) {
+    for (int repeats : {1, 2, 5}) {
+      const Mesh mesh = lShape(subdivide, repeats);
+      const Rendered r = renderScene(oneMeshScene(mesh.view()), pixelCamera(64, 64), 64, 64);
+      EXPECT_EQ(r.stats.pixelsCovered, kLShapeArea)
+          << subdivide << " points per edge, corners " << repeats << " times";
+      EXPECT_EQ(r.stats.fragmentsWritten, kLShapeArea) << "no pixel painted twice";
+      EXPECT_EQ(r.framebuffer.polygonIdAt(40, 40), Framebuffer::kBackgroundId) << "the notch";
+    }
+  }
+}
+
+// Zero area (all points on a line, or all the same point) is counted degenerate, not drawn.
+TEST(DegeneratePolygons, ZeroAreaIsCountedNotDrawn) {
+  Mesh mesh;
+  for (int i = 0; i < 8; ++i)
+    mesh.addPoint({10.0 + i, 10.0 + 2 * i, 0.0});
+  mesh.addPolygon({0, 1, 2, 3, 4, 5, 6, 7});  // collinear, going out
+  mesh.addPolygon({0, 3, 7, 5, 2});           // collinear, back and forth
+  mesh.addPolygon({4, 4, 4, 4});              // one point
+  const Rendered r = renderScene(oneMeshScene(mesh.view()), pixelCamera(32, 32), 32, 32);
+  EXPECT_EQ(r.stats.polygonsDegenerate, 3u);
+  EXPECT_EQ(r.stats.pixelsCovered, 0u);
+}
+
+// A sliver of aspect 1e6, 2 pixels wide at its base and 2e6 pixels long, reaching far beyond
+// the guard band: clipped, it covers exactly the one row of pixel centers it spans.
+TEST(DegeneratePolygons, SliverOfAspectOneMillionCoversTheRowItSpans) {
+  Mesh sliver;
+  sliver.addPoint({-1e6, 19.5, 0.0});
+  sliver.addPoint({1e6, 20.5, 0.0});
+  sliver.addPoint({-1e6, 21.5, 0.0});
+  sliver.addPolygon({0, 1, 2});
+  const Rendered r = renderScene(oneMeshScene(sliver.view()), pixelCamera(64, 48), 64, 48);
+  EXPECT_EQ(r.stats.pixelsCovered, 64u);
+  for (int x = 0; x < 64; ++x)
+    ASSERT_EQ(r.framebuffer.polygonIdAt(x, 20), 0) << x;
+  EXPECT_GT(r.stats.trianglesClipped, 0u);
+}
+
+// 10,000-vertex polygons: a convex disk (fanned) and a concave gear of 5,000 teeth (ear
+// clipping) cover their area to within their outline's pixels, all facing the headlight.
+TEST(DegeneratePolygons, TenThousandVertexPolygons) {
+  const int size = 400;
+  const double unit = pixelsPerUnit(size);
+  const Mesh disk = starPolygon(10000, 1);
+  const Mesh gear = starPolygon(10000, 1, 1.0, 0.98);
+  for (const Mesh* mesh : {&disk, &gear}) {
+    const Rendered r =
+        renderScene(oneMeshScene(mesh->view(), {}, headlight()), headOnCamera(), size, size);
+    const double area = mesh == &disk ? M_PI * unit * unit : M_PI * std::pow(0.99 * unit, 2);
+    const Coverage c = coverageOf(r.framebuffer, kWhite);
+    EXPECT_NEAR(double(c.covered), area, 2.0 * M_PI * unit) << (mesh == &disk ? "disk" : "gear");
+    EXPECT_EQ(c.wrongColor, 0u);
+    EXPECT_EQ(r.stats.polygonsDrawn, 1u);
+  }
+}
+
 }  // namespace
 }  // namespace facet::testing
