@@ -92,7 +92,11 @@ inline std::int32_t roundToInteger(double x) {
 // Eye-relative coordinates above this magnitude are scaled down by kShrink (exactly: powers
 // of two) before anything multiplies them, weight h = kShrink: every later product (the
 // rotation, the projection's entries up to 2^400, the guard band's factor, the clipper's
-// differences) then stays far below double's 2^1024, and h stays a normal number.
+// differences) then stays far below double's 2^1024, and h stays a normal number. So every
+// finite point is projected and clipped as it is, out to ±DBL_MAX. Only a camera whose
+// projection scales by more than 2^400 (a view angle below ~1e-118 degrees, or a parallel
+// scale below ~1e-120 of the point's distance) can overflow a point's clip coordinates: its
+// polygons are then skipped and counted as non-finite (RenderStats::polygonsNonFinite).
 inline constexpr double kLargeCoordinate = 0x1p500;
 inline constexpr double kShrink = 0x1p-520;
 
