@@ -126,54 +126,52 @@ class PolygonSetup {
       ++chunk_.counts.culled;
       return;
     }
-    const std::size_t first = chunk_.triangles.size();
-    Tally tally;
-    keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
-         tally);
-    finish(first, tally, area < 0);
+    emit(area < 0, [&](Tally& tally) {
+      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
+           tally);
+    });
   }
 
   void runClippedTriangle(const std::size_t (&ids)[3], std::uint32_t planes) {
     const glm::dvec3 corners[3] = {points_[ids[0]], points_[ids[1]], points_[ids[2]]};
-    const std::optional<glm::dvec3> normal = triangleNormal(corners[0], corners[1], corners[2]);
-    if (!normal) {
-      ++chunk_.counts.degenerate;
-      return;
-    }
-    const bool back = !frame_.transform->facesViewer(*normal, centerOf(corners));
-    if (back && mesh_.skipBackFaces) {
-      ++chunk_.counts.culled;
-      return;
-    }
-    const std::size_t first = chunk_.triangles.size();
-    Tally tally;
-    clip(ids, planes, kAllEdges, tally);
-    finish(first, tally, back);
+    const std::optional<bool> back =
+        sideSeen(triangleNormal(corners[0], corners[1], corners[2]), corners);
+    if (back) emit(*back, [&](Tally& tally) { clip(ids, planes, kAllEdges, tally); });
   }
 
   void runPolygon(std::size_t n) {
     chunk_.corners.resize(n);
     for (std::size_t k = 0; k < n; ++k)
       chunk_.corners[k] = points_[pointId(k)];
-    const std::span<const glm::dvec3> corners(chunk_.corners);
-    const std::optional<glm::dvec3> normal = polygonNormal(corners);
+    const std::optional<glm::dvec3> normal =
+        polygonNormal(std::span<const glm::dvec3>(chunk_.corners));
+    const std::optional<bool> back = sideSeen(normal, chunk_.corners);
+    if (back) emit(*back, [&](Tally& tally) { triangulate(*normal, tally); });
+  }
+
+  // Whether the viewer sees the back of a polygon with this normal; nothing (counted) when
+  // it has no normal, or is a back face the mesh skips.
+  std::optional<bool> sideSeen(const std::optional<glm::dvec3>& normal,
+                               std::span<const glm::dvec3> corners) {
     if (!normal) {
       ++chunk_.counts.degenerate;
-      return;
+      return std::nullopt;
     }
     const bool back = !frame_.transform->facesViewer(*normal, centerOf(corners));
     if (back && mesh_.skipBackFaces) {
       ++chunk_.counts.culled;
-      return;
+      return std::nullopt;
     }
-    const std::size_t first = chunk_.triangles.size();
-    Tally tally;
-    triangulate(*normal, tally);
-    finish(first, tally, back);
+    return back;
   }
 
-  // Counts the polygon, and notes for its shading which side the viewer sees.
-  void finish(std::size_t first, const Tally& tally, bool back) {
+  // Runs addTriangles(tally), then counts the polygon and notes for its shading which side
+  // the viewer sees.
+  template <class AddTriangles>
+  void emit(bool back, const AddTriangles& addTriangles) {
+    const std::size_t first = chunk_.triangles.size();
+    Tally tally;
+    addTriangles(tally);
     if (chunk_.triangles.size() == first) {
       countDropped(tally);
       return;
