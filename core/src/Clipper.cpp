@@ -3,13 +3,30 @@
 #include <algorithm>
 #include <iterator>
 
+#include "Assert.h"
+
 namespace facet::detail {
 namespace {
 
-ClipVertex intersect(const ClipVertex& inside, double insideDistance, const ClipVertex& outside,
-                     double outsideDistance) {
-  const double t = insideDistance / (insideDistance - outsideDistance);
-  return {inside.clip + t * (outside.clip - inside.clip), ClipVertex::kNewVertex};
+ClipPoint lerp(const ClipPoint& from, const ClipPoint& to, double t) {
+  return {from.x + t * (to.x - from.x), from.y + t * (to.y - from.y), from.d + t * (to.d - from.d),
+          from.h + t * (to.h - from.h)};
+}
+
+// The point where the edge from `inside` (distance ≥ 0) to `outside` (distance < 0) crosses
+// the plane. Both fractions are computed directly rather than one as 1 minus the other, and
+// the smaller one is used, so the point is exact near either end.
+ClipVertex intersect(const FrameTransform& transform, int plane, const ClipVertex& inside,
+                     double insideDistance, const ClipVertex& outside, double outsideDistance) {
+  const double span = insideDistance - outsideDistance;  // > 0: no cancellation
+  const double fromInside = insideDistance / span, fromOutside = -outsideDistance / span;
+  FACET_ASSERT(fromInside >= 0.0 && fromInside <= 1.0 && fromOutside >= 0.0);
+  ClipVertex crossing{fromInside <= fromOutside ? lerp(inside.clip, outside.clip, fromInside)
+                                                : lerp(outside.clip, inside.clip, fromOutside),
+                      ClipVertex::kNewVertex,
+                      static_cast<std::uint8_t>(inside.onEdges & outside.onEdges)};
+  transform.placeOnPlane(crossing.clip, plane);
+  return crossing;
 }
 
 int clipAgainstPlane(const FrameTransform& transform, int plane, const ClipVertex* in, int count,
@@ -24,9 +41,9 @@ int clipAgainstPlane(const FrameTransform& transform, int plane, const ClipVerte
     const bool nextInside = nextDistance >= 0.0;
     if (currentInside) out[written++] = current;
     if (currentInside && !nextInside) {
-      out[written++] = intersect(current, currentDistance, next, nextDistance);
+      out[written++] = intersect(transform, plane, current, currentDistance, next, nextDistance);
     } else if (!currentInside && nextInside) {
-      out[written++] = intersect(next, nextDistance, current, currentDistance);
+      out[written++] = intersect(transform, plane, next, nextDistance, current, currentDistance);
     }
   }
   return written;

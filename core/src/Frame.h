@@ -54,6 +54,7 @@ struct PolygonCounts {
 struct Chunk {
   std::size_t begin = 0, end = 0;
   HugePageVector<BinnedTriangle> triangles;
+  HugePageVector<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   std::vector<WindowVertex> clippedVertices;
   std::vector<std::vector<std::uint32_t>> bins;
   PolygonCounts counts;
@@ -107,10 +108,11 @@ struct FrameState {
 void setUpChunk(FrameState& frame, Chunk& chunk);
 
 // Phase 4, colors (Resolve.cpp): shade the shown polygons of one mesh's id range
-// [begin, end), returning how many; then write a tile's colors from its ids.
+// [begin, end), returning how many; then write a tile's colors from its ids and turn its
+// depth keys into window depths.
 std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::size_t begin,
                                  std::size_t end);
-void resolveTileColors(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
-                       Rgba8 background);
+void resolveTile(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
+                 Rgba8 background);
 
 }  // namespace facet::detail

@@ -1,17 +1,36 @@
 #include "FrameTransform.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
 #include "facet/Conventions.h"
 
 namespace facet::detail {
+namespace {
+
+// The perspective near distance the clipper uses: the camera's, but at least 2^-480 (about
+// 1e-144) while the far plane is beyond it. A new vertex on the near plane gets d = n·h, and
+// h goes down to kShrink (2^-520) for points beyond kLargeCoordinate: n·h must stay a normal
+// number for x/d and y/d to be finite. Nothing nearer than 1e-144 can be told from the eye in
+// a float depth key anyway (keys n/d of the scene would underflow).
+double clippingNear(const Camera& camera) {
+  constexpr double kSmallestNear = 0x1p-480;
+  if (camera.parallelProjection || !(camera.farClip > 2.0 * kSmallestNear)) return camera.nearClip;
+  return std::max(camera.nearClip, kSmallestNear);
+}
+
+}  // namespace
 
 FrameTransform::FrameTransform(const Camera& camera, int width, int height)
     : eye_(camera.position),
-      clipFromView_(clipFromView(camera, static_cast<double>(width) / height)),
       parallel_(camera.parallelProjection),
+      near_(clippingNear(camera)),
+      far_(camera.farClip),
+      depthFromKeyOffset_(parallel_ ? 0.0 : 1.0 / (1.0 - near_ / far_)),
+      depthFromKeyScale_(parallel_ ? -1.0 / (far_ - near_) : -depthFromKeyOffset_),
       halfWidth_(0.5 * width),
       halfHeight_(0.5 * height),
       guardX_(1.0 + kGuardBandPixels / (0.5 * width)),
@@ -22,22 +41,49 @@ FrameTransform::FrameTransform(const Camera& camera, int width, int height)
   right_ = {view[0][0], view[1][0], view[2][0]};
   up_ = {view[0][1], view[1][1], view[2][1]};
   back_ = {view[0][2], view[1][2], view[2][2]};
+  // Clip x and y as OpenGL computes them; d and h replace its z and w (see ClipPoint).
+  const glm::dmat4 projection = clipFromView(camera, static_cast<double>(width) / height);
+  clipX_ = {projection[0][0], projection[1][0], projection[2][0], projection[3][0]};
+  clipY_ = {projection[0][1], projection[1][1], projection[2][1], projection[3][1]};
 }
 
-double FrameTransform::planeDistance(const glm::dvec4& c, int plane) const {
+double FrameTransform::planeDistance(const ClipPoint& c, int plane) const {
   switch (plane) {
     case 0:
-      return c.w + c.z;  // near:   z ≥ −w
+      return c.d - near_ * c.h;  // near:   d ≥ n·h
     case 1:
-      return c.w - c.z;  // far:    z ≤ w
+      return far_ * c.h - c.d;  // far:    d ≤ f·h
     case 2:
-      return guardX_ * c.w + c.x;  // left:   x ≥ −g·w
+      return guardX_ * clipW(c) + c.x;  // left:   x ≥ −g·w
     case 3:
-      return guardX_ * c.w - c.x;  // right:  x ≤ g·w
+      return guardX_ * clipW(c) - c.x;  // right:  x ≤ g·w
     case 4:
-      return guardY_ * c.w + c.y;  // bottom: y ≥ −g·w
+      return guardY_ * clipW(c) + c.y;  // bottom: y ≥ −g·w
     default:
-      return guardY_ * c.w - c.y;  // top:    y ≤ g·w
+      return guardY_ * clipW(c) - c.y;  // top:    y ≤ g·w
+  }
+}
+
+void FrameTransform::placeOnPlane(ClipPoint& c, int plane) const {
+  switch (plane) {
+    case 0:
+      c.d = near_ * c.h;
+      break;
+    case 1:
+      c.d = far_ * c.h;
+      break;
+    case 2:
+      c.x = -guardX_ * clipW(c);
+      break;
+    case 3:
+      c.x = guardX_ * clipW(c);
+      break;
+    case 4:
+      c.y = -guardY_ * clipW(c);
+      break;
+    default:
+      c.y = guardY_ * clipW(c);
+      break;
   }
 }
 
@@ -50,6 +96,14 @@ glm::dvec3 FrameTransform::toViewer(const glm::dvec3& world) const {
   const glm::dvec3 offset = eye_ - world;
   const double length = glm::length(offset);
   return length > 0.0 && std::isfinite(length) ? offset / length : back_;
+}
+
+bool FrameTransform::facesViewer(const glm::dvec3& normal, const glm::dvec3& point) const {
+  if (parallel_) return glm::dot(normal, back_) >= 0.0;
+  // An eighth of each coordinate (exact): the offset and the dot product of a unit normal
+  // with it then stay below DBL_MAX for any finite eye and point.
+  const glm::dvec3 offset = eye_ * 0.125 - point * 0.125;
+  return glm::dot(normal, offset) >= 0.0;
 }
 
 }  // namespace facet::detail

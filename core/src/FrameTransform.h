@@ -1,10 +1,13 @@
 #pragma once
 
 // World → clip → window for one frame, in double precision relative to the eye, so that data
-// far from the origin (1e6, 1e9) projects like data at the origin.
+// far from the origin (1e6, 1e9) projects like data at the origin; and the depth key the
+// depth test compares.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -31,14 +34,44 @@ enum Outcode : std::uint32_t {
 };
 inline constexpr int kClipPlaneCount = 6;
 
-// A vertex in window space: x, y in fixed point (kSubpixelBits fraction bits), z the window
-// depth in [0, 1]. x, y and z are meaningful only when outcode is kInside.
+// A point in Facet's clip coordinates: OpenGL's clip x and y, the view distance d (−z in view
+// space; OpenGL's clip w in perspective) and the homogeneous weight h of the view-space point
+// (OpenGL's clip w in parallel projection), all four times one positive scale. The scale does
+// not move the point, so a point of any finite magnitude is represented without overflow
+// (FrameTransform::toClip); every clip plane is linear in (x, y, d, h) and is written with the
+// camera's near and far distances themselves (planeDistance), not with OpenGL's clip z, whose
+// terms (f + n)/(f − n) and 2fn/(f − n) cancel and overflow.
+struct ClipPoint {
+  double x, y, d, h;
+};
+
+// The depth test compares depth keys, larger = nearer, rounded to float once per fragment:
+// - perspective: n/d (1 at the near plane, n/f at the far plane), the reversed float depth
+//   buffer (Reed, "Depth Precision Visualized", 2015). 1/d is affine in window coordinates,
+//   and float keeps its relative precision 2^-24 at every distance, so surfaces whose
+//   distances differ by a few 1e-7 of the distance resolve at any far/near ratio up to 2^126
+//   (OpenGL's window depth, f(d − n)/(d(f − n)), rounds everything beyond ~1e7·n to 1);
+// - parallel: n − d, minus the distance from the near plane. d itself is affine there, so a
+//   float of the distance from the near plane resolves surfaces a few 1e-7 of that distance
+//   apart (never coarser than relative to the eye distance when the near plane is in front
+//   of the eye), and its window depth (d − n)/(f − n) keeps full float precision.
+// The background is below every key.
+inline constexpr float kBackgroundDepthKey = -std::numeric_limits<float>::infinity();
+
+// A vertex in window space: x, y in fixed point (kSubpixelBits fraction bits) and the depth
+// key. x, y, residues and depth are meaningful only when outcode is kInside.
 struct WindowVertex {
   std::int32_t x = 0;
   std::int32_t y = 0;
-  float z = 1.0f;
-  std::uint32_t outcode = kInside;
+  float depth = kBackgroundDepthKey;
+  std::uint16_t outcode = kInside;
+  // What snapping x and y to the grid left out, in 1/kResidueScale of a grid step (rounded):
+  // coverage uses the snapped position, the depth plane the unsnapped one (Rasterizer.cpp).
+  std::int8_t residueX = 0;
+  std::int8_t residueY = 0;
 };
+inline constexpr int kResidueBits = 8;
+inline constexpr int kResidueScale = 1 << kResidueBits;
 
 // Pixels of guard band on each side of the viewport. Window coordinates inside it stay below
 // kMaxImageSide + 2·8192 < 2^15 pixels, i.e. 2^23 in fixed point, so every edge-function
@@ -48,52 +81,82 @@ inline constexpr double kGuardBandPixels = 8192.0;
 // Round to nearest, ties to even, without a libm call (std::nearbyint is one on baseline
 // x86-64): adding 1.5·2^52 pushes the fraction out of the mantissa in the default rounding
 // mode. Exact for |x| < 2^51; window coordinates in the guard band stay below 2^23.
-inline std::int32_t roundToInteger(double x) {
+inline double roundToNearest(double x) {
   constexpr double kShift = 6755399441055744.0;  // 1.5 · 2^52
-  return static_cast<std::int32_t>((x + kShift) - kShift);
+  return (x + kShift) - kShift;
 }
+inline std::int32_t roundToInteger(double x) {
+  return static_cast<std::int32_t>(roundToNearest(x));
+}
+
+// Eye-relative coordinates above this magnitude are scaled down by kShrink (exactly: powers
+// of two) before anything multiplies them, weight h = kShrink: every later product (the
+// rotation, the projection's entries up to 2^400, the guard band's factor, the clipper's
+// differences) then stays far below double's 2^1024, and h stays a normal number. So every
+// finite point is projected and clipped as it is, out to ±DBL_MAX. Only a camera whose
+// projection scales by more than 2^400 (a view angle below ~1e-118 degrees, or a parallel
+// scale below ~1e-120 of the point's distance) can overflow a point's clip coordinates: its
+// polygons are then skipped and counted as non-finite (RenderStats::polygonsNonFinite).
+inline constexpr double kLargeCoordinate = 0x1p500;
+inline constexpr double kShrink = 0x1p-520;
 
 class FrameTransform {
  public:
   FrameTransform(const Camera& camera, int width, int height);
 
   // Inline: these run once per point of every mesh.
-  glm::dvec4 toClip(const glm::dvec3& world) const {
-    const glm::dvec3 relative = world - eye_;
+  ClipPoint toClip(const glm::dvec3& world) const {
+    glm::dvec3 relative = world - eye_;
+    double h = 1.0;
+    // Also taken for NaN and for a difference that overflowed.
+    if (!(largestMagnitude(relative) <= kLargeCoordinate)) [[unlikely]] {
+      relative = world * kShrink - eye_ * kShrink;
+      h = kShrink;
+    }
     const glm::dvec4 view(glm::dot(right_, relative), glm::dot(up_, relative),
-                          glm::dot(back_, relative), 1.0);
-    return clipFromView_ * view;
+                          glm::dot(back_, relative), h);
+    return {glm::dot(clipX_, view), glm::dot(clipY_, view), -view.z, h};
   }
-  std::uint32_t outcode(const glm::dvec4& c) const {
-    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w)) {
+  std::uint32_t outcode(const ClipPoint& c) const {
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.d) || !std::isfinite(c.h)) {
       return kNonFinite;
     }
-    // The planes of planeDistance, unrolled. In perspective, w ≤ 0 (at or behind the eye)
-    // is beyond the near plane (near > 0); parallel projection has w = 1.
-    const double gx = guardX_ * c.w, gy = guardY_ * c.w;
-    return (c.w + c.z < 0.0 ? kBeyondNear : 0u) | (c.w - c.z < 0.0 ? kBeyondFar : 0u) |
-           (gx + c.x < 0.0 ? kBeyondLeft : 0u) | (gx - c.x < 0.0 ? kBeyondRight : 0u) |
-           (gy + c.y < 0.0 ? kBeyondBottom : 0u) | (gy - c.y < 0.0 ? kBeyondTop : 0u);
+    // The planes of planeDistance, unrolled. A point at or behind the eye (w ≤ 0, possible in
+    // perspective only) is beyond the near plane even when n·h underflows.
+    const double w = clipW(c);
+    const double gx = guardX_ * w, gy = guardY_ * w;
+    return (c.d - near_ * c.h < 0.0 || !(w > 0.0) ? kBeyondNear : 0u) |
+           (far_ * c.h - c.d < 0.0 ? kBeyondFar : 0u) | (gx + c.x < 0.0 ? kBeyondLeft : 0u) |
+           (gx - c.x < 0.0 ? kBeyondRight : 0u) | (gy + c.y < 0.0 ? kBeyondBottom : 0u) |
+           (gy - c.y < 0.0 ? kBeyondTop : 0u);
   }
   // Signed distance-like value of the clip point to plane `plane` (≥ 0 inside).
-  double planeDistance(const glm::dvec4& clip, int plane) const;
-  // Window coordinates of a clip point that is inside the guard band and in front of the
-  // eye (w > 0).
-  WindowVertex toWindow(const glm::dvec4& clip) const {
-    const double inverseW = 1.0 / clip.w;
-    const double x = (clip.x * inverseW + 1.0) * halfWidth_;
-    const double y = (clip.y * inverseW + 1.0) * halfHeight_;
-    const double z = (clip.z * inverseW + 1.0) * 0.5;
-    WindowVertex v;
+  double planeDistance(const ClipPoint& c, int plane) const;
+  // Moves a point the clipper computed on plane `plane` exactly onto it, setting the one
+  // coordinate the plane constrains (for the near plane d = n·h) instead of keeping the
+  // interpolated value, which cancellation can leave on either side.
+  void placeOnPlane(ClipPoint& c, int plane) const;
+  // Window coordinates and depth key of a clip point inside the guard band and the near/far
+  // range (w > 0). Clamping to the guard band only absorbs the rounding of points the
+  // clipper put on its planes; it also keeps a point that is not inside from ever reaching
+  // roundToInteger out of range.
+  WindowVertex toWindow(const ClipPoint& c) const {
+    const double inverseW = 1.0 / clipW(c);
+    const double x = (clampToGuard(c.x * inverseW, guardX_) + 1.0) * halfWidth_;
+    const double y = (clampToGuard(c.y * inverseW, guardY_) + 1.0) * halfHeight_;
     // Round onto the 1/256-pixel grid: every later coverage test is exact.
-    v.x = roundToInteger(x * kSubpixelScale);
-    v.y = roundToInteger(y * kSubpixelScale);
-    // Clipped vertices on the near/far planes may round a hair outside [0, 1].
-    v.z = static_cast<float>(z < 0.0 ? 0.0 : (z > 1.0 ? 1.0 : z));
+    const double fixedX = x * kSubpixelScale, fixedY = y * kSubpixelScale;
+    const double snappedX = roundToNearest(fixedX), snappedY = roundToNearest(fixedY);
+    WindowVertex v;
+    v.x = static_cast<std::int32_t>(snappedX);
+    v.y = static_cast<std::int32_t>(snappedY);
+    v.residueX = residue(fixedX - snappedX);
+    v.residueY = residue(fixedY - snappedY);
+    v.depth = depthKey(c, inverseW);
     return v;
   }
   WindowVertex project(const glm::dvec3& world) const {
-    const glm::dvec4 clip = toClip(world);
+    const ClipPoint clip = toClip(world);
     const std::uint32_t code = outcode(clip);
     if (code != kInside) {
       WindowVertex outside;
@@ -103,17 +166,56 @@ class FrameTransform {
     return toWindow(clip);
   }
 
+  // Window depth (Conventions.h, "Depth") of a depth key, computed in double and rounded to
+  // the nearest float: perspective (1 − n/d)/(1 − n/f) = f(d − n)/(d(f − n)), parallel
+  // (d − n)/(f − n). Runs once per pixel.
+  float windowDepth(float key) const {
+    const double depth = depthFromKeyOffset_ + depthFromKeyScale_ * key;
+    return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
+  }
+
   // View-space depth (−Z, so larger is farther) for painter's sort.
   double viewDistance(const glm::dvec3& world) const;
   // Unit vector from a world point toward the viewer (parallel projection: the reverse of
   // the view direction).
   glm::dvec3 toViewer(const glm::dvec3& world) const;
+  // Whether the viewer sees the side of a surface at `point` that `normal` points to
+  // (perspective: the eye is on that side of the surface's plane; parallel: the normal has a
+  // component toward the viewer). Edge-on counts as facing. Exact in sign for any finite
+  // input: no product overflows.
+  bool facesViewer(const glm::dvec3& normal, const glm::dvec3& point) const;
 
  private:
+  static double largestMagnitude(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  }
+  // NaN becomes the upper bound. (Not std::fmin/fmax: those are libm calls.)
+  static double clampToGuard(double ndc, double guard) {
+    return ndc < guard ? (ndc > -guard ? ndc : -guard) : guard;
+  }
+  // A rounding remainder in [−0.5, 0.5] grid steps, times kResidueScale; ±128 (a tie) is
+  // kept as ±127.
+  static std::int8_t residue(double remainder) {
+    const std::int32_t r = roundToInteger(remainder * kResidueScale);
+    return static_cast<std::int8_t>(std::clamp(r, -127, 127));
+  }
+  double clipW(const ClipPoint& c) const { return parallel_ ? c.h : c.d; }
+  // `inverseW` is 1/d in perspective (h/d = 1/distance, so n·h cannot underflow for points
+  // scaled by kShrink) and 1/h in parallel projection. Finite.
+  float depthKey(const ClipPoint& c, double inverseW) const {
+    constexpr double kLargest = std::numeric_limits<float>::max();
+    const double key = parallel_ ? (near_ * c.h - c.d) * inverseW : near_ * (c.h * inverseW);
+    return static_cast<float>(key < kLargest ? (key > -kLargest ? key : -kLargest) : kLargest);
+  }
+
   glm::dvec3 eye_;
   glm::dvec3 right_, up_, back_;  // rows of viewFromWorld's rotation
-  glm::dmat4 clipFromView_;
+  glm::dvec4 clipX_, clipY_;      // rows of clipFromView giving clip x and y
   bool parallel_;
+  double near_, far_;
+  // Window depth = offset + scale·key: perspective 1/(1 − n/f) and −1/(1 − n/f), parallel 0
+  // and −1/(f − n) (0 when f − n overflows, near ±DBL_MAX: every depth then rounds to 0).
+  double depthFromKeyOffset_, depthFromKeyScale_;
   double halfWidth_, halfHeight_;
   double guardX_, guardY_;  // guard band half-extent in NDC units
 };

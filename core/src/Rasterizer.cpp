@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 
 #include "Assert.h"
 #include "facet/Conventions.h"
@@ -37,17 +38,143 @@ struct Edge {
     biased = !(dy < 0 || (dy == 0 && dx < 0));
     value = dx * (sampleY - p.y) - dy * (sampleX - p.x) - (biased ? 1 : 0);
   }
+  std::int64_t unbiased(std::int64_t biasedValue) const { return biasedValue + (biased ? 1 : 0); }
 };
 
-// Writes one fragment if it passes the depth test.
+// Window positions in fine units: 1/kResidueScale of a grid step.
+struct FinePoint {
+  double x, y;
+};
+FinePoint finePoint(const WindowVertex& v, bool unsnapped) {
+  // Exact integers below 2^32: one conversion each.
+  return {static_cast<double>(std::int64_t{v.x} * kResidueScale + (unsnapped ? v.residueX : 0)),
+          static_cast<double>(std::int64_t{v.y} * kResidueScale + (unsnapped ? v.residueY : 0))};
+}
+FinePoint finePoint(std::int64_t gridX, std::int64_t gridY) {
+  return {static_cast<double>(gridX) * kResidueScale, static_cast<double>(gridY) * kResidueScale};
+}
+double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) {
+  return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
+}
+
+// The depth keys of one triangle. Coverage is decided on the snapped vertices (exact, VTK's
+// 1/256 pixel); keys come from the plane through the unsnapped ones (snapped + residue):
+// snapping moves a vertex by up to 1/512 pixel, which on a steep surface moves its key by
+// more than the gap between two surfaces 1e-6 of their distance apart. A sample that only
+// the snapped triangle covers, beyond one of its polygon-boundary edges (within 1/512 pixel
+// of it), takes the snapped plane's key instead: there, the unsnapped planes of a front and
+// a back face meeting at a silhouette have already crossed, while the snapped ones keep the
+// front face in front, as culling would. Beyond a diagonal the unsnapped plane goes on: the
+// triangle on the other side is in the same plane; so it does everywhere for a mesh whose
+// back faces are skipped (Setup.cpp passes no boundary edges then): no fold can form.
+//
+// Keys are barycentric interpolations, key = a + (dk1·λb + dk2·λc)/area, with the λ the
+// edge functions at the sample (snapped or unsnapped), in double.
+class TriangleDepth {
+ public:
+  TriangleDepth(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                std::int64_t snappedArea, EdgeMask boundary)
+      : key0_(a.depth),
+        dk1_(static_cast<double>(b.depth) - a.depth),
+        dk2_(static_cast<double>(c.depth) - a.depth),
+        snappedArea_(static_cast<double>(snappedArea)),
+        boundary_(boundary),
+        fa_(finePoint(a, true)),
+        fb_(finePoint(b, true)),
+        fc_(finePoint(c, true)) {
+    // Turned over by snapping (a sliver): the snapped plane everywhere.
+    const double fineArea = edgeFunction(fa_, fb_, fc_);
+    unsnapped_ = fineArea > 0.0;
+    inverseFineArea_ = unsnapped_ ? 1.0 / fineArea : 0.0;
+  }
+  // The key of one covered sample, given its snapped edge values (unbiased).
+  double keyAt(std::int64_t sampleX, std::int64_t sampleY, const std::int64_t (&snapped)[3]) const {
+    if (unsnapped_) {
+      const FinePoint s = finePoint(sampleX, sampleY);
+      const double fine[3] = {edgeFunction(fb_, fc_, s), edgeFunction(fc_, fa_, s),
+                              edgeFunction(fa_, fb_, s)};
+      if (!beyondBoundary(fine)) return interpolate(fine[1], fine[2], inverseFineArea_);
+    }
+    return interpolate(static_cast<double>(snapped[1]), static_cast<double>(snapped[2]),
+                       1.0 / snappedArea_);
+  }
+
+  // For many samples: the key stepped along a row, keyAt() near boundary edges only.
+  void prepareRows(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+    const FinePoint pa = unsnapped_ ? fa_ : finePoint(a, false);
+    const FinePoint pb = unsnapped_ ? fb_ : finePoint(b, false);
+    const FinePoint pc = unsnapped_ ? fc_ : finePoint(c, false);
+    const double inverse = unsnapped_ ? inverseFineArea_ : 1.0 / (snappedArea_ * kFinePerGrid2);
+    x0_ = pa.x, y0_ = pa.y;
+    perX_ = (dk1_ * (pc.y - pa.y) - dk2_ * (pb.y - pa.y)) * inverse;
+    perY_ = (dk2_ * (pb.x - pa.x) - dk1_ * (pc.x - pa.x)) * inverse;
+    if (unsnapped_) boundSurelyInside(a, b, c);
+  }
+  double at(std::int64_t sampleX, std::int64_t sampleY) const {
+    const FinePoint s = finePoint(sampleX, sampleY);
+    return key0_ + perX_ * (s.x - x0_) + perY_ * (s.y - y0_);
+  }
+  double perPixelX() const { return perX_ * kSubpixelScale * kResidueScale; }
+  // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values. A
+  // snapped edge value of at least sureInside_ (grid units²) means the sample is inside the
+  // unsnapped edge too: residues below 1/2 change (q − p) × (s − p) by at most
+  // ½(|dx| + |dy|) + |s − p|₁ + 1, and s stays in the triangle's bounding box. Far from the
+  // edges (the common case) three comparisons decide.
+  double refine(double key, std::int64_t sampleX, std::int64_t sampleY,
+                const std::int64_t (&snapped)[3]) const {
+    if (snapped[0] >= sureInside_[0] && snapped[1] >= sureInside_[1] &&
+        snapped[2] >= sureInside_[2]) {
+      return key;
+    }
+    return keyAt(sampleX, sampleY, snapped);
+  }
+
+ private:
+  static constexpr double kFinePerGrid2 = double{kResidueScale} * kResidueScale;
+  static constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::min();
+
+  double interpolate(double weightB, double weightC, double inverseArea) const {
+    return key0_ + (dk1_ * weightB + dk2_ * weightC) * inverseArea;
+  }
+  bool isBoundary(int edge) const { return (boundary_ >> edge) & 1u; }
+  bool beyondBoundary(const double (&fine)[3]) const {
+    return (isBoundary(0) && fine[0] < 0.0) || (isBoundary(1) && fine[1] < 0.0) ||
+           (isBoundary(2) && fine[2] < 0.0);
+  }
+  void boundSurelyInside(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+    const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
+                             std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
+    const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
+    for (int i = 0; i < 3; ++i) {
+      if (!isBoundary(i)) continue;
+      const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
+      sureInside_[i] = (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+    }
+  }
+
+  double key0_, dk1_, dk2_;
+  double snappedArea_, inverseFineArea_ = 0.0;
+  EdgeMask boundary_;
+  bool unsnapped_ = false;
+  FinePoint fa_, fb_, fc_;
+  double x0_ = 0.0, y0_ = 0.0, perX_ = 0.0, perY_ = 0.0;
+  std::int64_t sureInside_[3] = {kNever, kNever, kNever};  // diagonals: always
+};
+
+// Rounds an interpolated depth key to float once; finite, so that no key ties with the
+// background (−∞) or becomes NaN.
+float toDepthKey(double key) {
+  constexpr double kLargest = std::numeric_limits<float>::max();
+  return static_cast<float>(std::clamp(key, -kLargest, kLargest));
+}
+
+// Writes one fragment if it passes the depth test: strictly nearer (a larger key), so an
+// exact tie keeps the polygon drawn first.
 template <DepthMode kMode>
 void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
                    PaintCounts& counts) {
-  if (kMode == DepthMode::Overwrite || depth < planes.depth[i]) {
-    // A written pixel's depth is < 1 under the depth test, so depth 1 means background;
-    // painter's order may write depth 1 (the far plane), so it asks the id.
-    counts.covered += kMode == DepthMode::Test ? planes.depth[i] == 1.0f
-                                               : planes.polygonId[i] == kBackgroundPolygon;
+  if (kMode == DepthMode::Overwrite || depth > planes.depth[i]) {
+    counts.covered += planes.polygonId[i] == kBackgroundPolygon;
     planes.depth[i] = depth;
     planes.polygonId[i] = polygonId;
     ++counts.written;
@@ -58,25 +185,21 @@ void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Pla
 }
 
 // Most triangles of a dense mesh have a single sample in their bounding box: test it
-// exactly and interpolate its depth with barycentric weights, skipping the edge walker's
-// set-up. Same coverage decision (the same biased edge functions) and the same plane.
+// exactly, skipping the edge walker's set-up. Same coverage decision (the same biased edge
+// functions) and the same depth plane.
 template <DepthMode kMode>
 void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                       std::int64_t area, int x, int y, std::int32_t polygonId,
+                       std::int64_t area, EdgeMask boundary, int x, int y, std::int32_t polygonId,
                        const Planes& planes, PaintCounts& counts) {
   const std::int64_t sampleX = std::int64_t{x} * kSubpixelScale + kHalfPixel;
   const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
   const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
   if ((e0.value | e1.value | e2.value) < 0) return;
-  // The unbiased edge values are the barycentric weights times the area.
-  const double inverseArea = 1.0 / static_cast<double>(area);
-  const double wb = static_cast<double>(e1.value + (e1.biased ? 1 : 0)) * inverseArea;
-  const double wc = static_cast<double>(e2.value + (e2.biased ? 1 : 0)) * inverseArea;
-  const double z =
-      a.z + wb * (static_cast<double>(b.z) - a.z) + wc * (static_cast<double>(c.z) - a.z);
-  const float depth = std::clamp(static_cast<float>(z), 0.0f, 1.0f);
-  writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, depth, polygonId, planes,
-                       counts);
+  const std::int64_t snapped[3] = {e0.unbiased(e0.value), e1.unbiased(e1.value),
+                                   e2.unbiased(e2.value)};
+  const double key = TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped);
+  writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, toDepthKey(key), polygonId,
+                       planes, counts);
 }
 
 }  // namespace
@@ -112,14 +235,14 @@ bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowV
 
 template <DepthMode kMode>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                   std::int32_t polygonId, const PixelBounds& tile, const Planes& planes,
-                   PaintCounts& counts) {
+                   EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                   const Planes& planes, PaintCounts& counts) {
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
   const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
   if (box.empty()) return;
   if (box.x0 == box.x1 && box.y0 == box.y1) {
-    paintSingleSample<kMode>(a, b, c, area, box.x0, box.y0, polygonId, planes, counts);
+    paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
 
@@ -129,28 +252,29 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   Edge e1(c, a, sampleX, sampleY);  // opposite b
   Edge e2(a, b, sampleX, sampleY);  // opposite c
 
-  // Depth is affine in window x, y: z = a.z + dzdx·(X − a.x) + dzdy·(Y − a.y) (fixed units).
-  const double inverseArea = 1.0 / static_cast<double>(area);
-  const double dz1 = static_cast<double>(b.z) - a.z, dz2 = static_cast<double>(c.z) - a.z;
-  const double dzdx = (dz1 * (c.y - a.y) - dz2 * (b.y - a.y)) * inverseArea;
-  const double dzdy = (dz2 * (b.x - a.x) - dz1 * (c.x - a.x)) * inverseArea;
-  const float dzPerPixel = static_cast<float>(dzdx * kSubpixelScale);
+  // The depth key is affine in window x, y. It is stepped in double and rounded to float
+  // once per fragment: stepping in float would add a rounding per pixel, enough to tie
+  // surfaces 1e-6 apart.
+  TriangleDepth depth(a, b, c, area, boundary);
+  depth.prepareRows(a, b, c);
+  const double keyPerPixel = depth.perPixelX();
 
   for (int y = box.y0; y <= box.y1; ++y) {
     std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
-    const double rowY = static_cast<double>(y - box.y0) * kSubpixelScale + (sampleY - a.y);
-    float z = static_cast<float>(a.z + dzdx * static_cast<double>(sampleX - a.x) + dzdy * rowY);
+    const std::int64_t rowY = sampleY + std::int64_t{y - box.y0} * kSubpixelScale;
+    double key = depth.at(sampleX, rowY);
     const std::size_t row = static_cast<std::size_t>(y) * planes.width;
     for (int x = box.x0; x <= box.x1; ++x) {
       if ((w0 | w1 | w2) >= 0) {
-        const std::size_t i = row + x;
-        const float depth = std::clamp(z, 0.0f, 1.0f);
-        writeFragment<kMode>(i, depth, polygonId, planes, counts);
+        const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
+        const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
+        const double refined = depth.refine(key, columnX, rowY, snapped);
+        writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
       }
       w0 += e0.stepX;
       w1 += e1.stepX;
       w2 += e2.stepX;
-      z += dzPerPixel;
+      key += keyPerPixel;
     }
     e0.value += e0.stepY;
     e1.value += e1.stepY;
@@ -159,10 +283,10 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
 }
 
 template void paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
-                                             const WindowVertex&, std::int32_t, const PixelBounds&,
-                                             const Planes&, PaintCounts&);
+                                             const WindowVertex&, EdgeMask, std::int32_t,
+                                             const PixelBounds&, const Planes&, PaintCounts&);
 template void paintTriangle<DepthMode::Overwrite>(const WindowVertex&, const WindowVertex&,
-                                                  const WindowVertex&, std::int32_t,
+                                                  const WindowVertex&, EdgeMask, std::int32_t,
                                                   const PixelBounds&, const Planes&, PaintCounts&);
 
 }  // namespace facet::detail

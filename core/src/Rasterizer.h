@@ -42,8 +42,9 @@ PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
 bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                      const PixelBounds& bounds);
 
-// Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom), and one
-// flag per polygon, set when the polygon wins a pixel (it will need shading).
+// Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom; depth keys
+// while painting), and one flag per polygon, set when the polygon wins a pixel (it will
+// need shading).
 struct Planes {
   Rgba8* color;
   float* depth;
@@ -54,18 +55,25 @@ struct Planes {
 
 enum class DepthMode { Test, Overwrite };
 
+// Which edges of a triangle lie on its polygon's boundary: bit i for the edge opposite
+// corner i (a, b, c). The others are diagonals the triangulation or the clipper added.
+using EdgeMask = std::uint8_t;
+inline constexpr EdgeMask kAllEdges = 0b111;
+
 struct PaintCounts {
   std::size_t written = 0;  // pixel writes, counting overdraw
   std::size_t covered = 0;  // background pixels that received their first polygon
 };
 
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
-// planes of `tile` (colors come later, from the ids). DepthMode::Test keeps the nearest
-// fragment (strictly less: the earlier polygon wins a tie); DepthMode::Overwrite is
-// painter's order.
+// planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
+// (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
+// says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
+// fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
+// is painter's order.
 template <DepthMode kMode>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                   std::int32_t polygonId, const PixelBounds& tile, const Planes& planes,
-                   PaintCounts& counts);
+                   EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                   const Planes& planes, PaintCounts& counts);
 
 }  // namespace facet::detail

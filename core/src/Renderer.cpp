@@ -346,7 +346,8 @@ bool Renderer::Workspace::paintTiles(const detail::Planes& planes) {
         const PixelBounds tile = tileBounds(t);
         for (int y = tile.y0; y <= tile.y1; ++y) {
           const std::size_t row = static_cast<std::size_t>(y) * planes.width;
-          std::fill(planes.depth + row + tile.x0, planes.depth + row + tile.x1 + 1, 1.0f);
+          std::fill(planes.depth + row + tile.x0, planes.depth + row + tile.x1 + 1,
+                    detail::kBackgroundDepthKey);
           std::fill(planes.polygonId + row + tile.x0, planes.polygonId + row + tile.x1 + 1,
                     Framebuffer::kBackgroundId);
         }
@@ -357,12 +358,13 @@ bool Renderer::Workspace::paintTiles(const detail::Planes& planes) {
             const auto& a = frame.vertex(chunk, tri.vertex[0]);
             const auto& b = frame.vertex(chunk, tri.vertex[1]);
             const auto& c = frame.vertex(chunk, tri.vertex[2]);
+            const detail::EdgeMask boundary = chunk.boundaryEdges[index];
             if (frame.plan.depthTest) {
-              detail::paintTriangle<detail::DepthMode::Test>(a, b, c, tri.polygon, tile, planes,
-                                                             counts);
+              detail::paintTriangle<detail::DepthMode::Test>(a, b, c, boundary, tri.polygon, tile,
+                                                             planes, counts);
             } else {
-              detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, tri.polygon, tile,
-                                                                  planes, counts);
+              detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, boundary, tri.polygon,
+                                                                  tile, planes, counts);
             }
           }
         }
@@ -371,7 +373,8 @@ bool Renderer::Workspace::paintTiles(const detail::Planes& planes) {
       0.65, 0.85);
 }
 
-// Phase 4: light the shown polygons (in id order), then color every tile.
+// Phase 4: light the shown polygons (in id order), then color every tile and write its
+// window depths.
 bool Renderer::Workspace::shadeAndColor(const detail::Planes& planes, Rgba8 background) {
   splitPerMesh(
       *scene, kMaxPolygonsPerChunk / 16, [](const MeshView& m) { return m.polygons.count; },
@@ -384,12 +387,11 @@ bool Renderer::Workspace::shadeAndColor(const detail::Planes& planes, Rgba8 back
         shadedCounts[i] = detail::shadeVisiblePolygons(frame, r.mesh, r.begin, r.end);
       },
       0.85, 0.95);
-  return shaded && runPhase(
-                       tileCount(),
-                       [&](std::size_t t) {
-                         detail::resolveTileColors(frame, tileBounds(t), planes, background);
-                       },
-                       0.95, 1.0);
+  return shaded &&
+         runPhase(
+             tileCount(),
+             [&](std::size_t t) { detail::resolveTile(frame, tileBounds(t), planes, background); },
+             0.95, 1.0);
 }
 
 void Renderer::Workspace::collectStatistics(bool completed) {

@@ -1,8 +1,9 @@
-// Phase 4: colors. Flat shading is a function of the polygon alone, so only polygons that
+// Phase 4: colors and depth. Flat shading is a function of the polygon alone, so only polygons that
 // won a pixel while painting (Planes::shown) are lit — in id order, as sequential reads of
 // the mesh arrays (screen order would scatter them) — and tiles then look their pixels'
 // colors up. Polygons hidden all along — behind others, or the back faces of a closed
-// surface — are never lit; one overdrawn later is lit once for nothing.
+// surface — are never lit; one overdrawn later is lit once for nothing. Each pixel's depth
+// key becomes its window depth in the same pass.
 
 #include <bit>
 
@@ -29,7 +30,7 @@ Rgba8 shadePolygon(const FrameState& frame, const FrameMesh& mesh, PointsT point
     const std::size_t n = polygons.size(polygon);
     const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
     const std::optional<glm::dvec3> normal =
-        n == 3 ? triangleNormal(corner(0), corner(1), corner(2)) : newellNormal(n, corner);
+        n == 3 ? triangleNormal(corner(0), corner(1), corner(2)) : polygonNormal(n, corner);
     if (frame.plan.polygonCenters) {
       glm::dvec3 sum(0.0);
       for (std::size_t k = 0; k < n; ++k)
@@ -65,16 +66,22 @@ std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::
   return shaded;
 }
 
-void resolveTileColors(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
-                       Rgba8 background) {
+void resolveTile(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
+                 Rgba8 background) {
+  // Locals: the color stores (bytes) may alias anything, which would reload these per pixel.
+  const std::uint32_t* colors = frame.polygonColors.data();
+  const FrameTransform transform = *frame.transform;
   for (int y = tile.y0; y <= tile.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * planes.width;
+    const std::int32_t* ids = planes.polygonId + row;
+    Rgba8* color = planes.color + row;
+    float* depth = planes.depth + row;
     for (int x = tile.x0; x <= tile.x1; ++x) {
-      const std::int32_t id = planes.polygonId[row + x];
-      planes.color[row + x] =
-          id < 0 ? background
-                 : std::bit_cast<Rgba8>(frame.polygonColors[static_cast<std::size_t>(id)]);
+      const std::int32_t id = ids[x];
+      color[x] = id < 0 ? background : std::bit_cast<Rgba8>(colors[static_cast<std::size_t>(id)]);
     }
+    for (int x = tile.x0; x <= tile.x1; ++x)
+      depth[x] = ids[x] < 0 ? 1.0f : transform.windowDepth(depth[x]);
   }
 }
 

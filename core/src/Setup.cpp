@@ -14,10 +14,51 @@ namespace {
 
 // Why a polygon's triangles were dropped, to count the polygon once under one reason.
 struct Tally {
-  int zeroArea = 0, culled = 0, outside = 0;
-  int backFacing = 0;  // kept triangles that were clockwise on screen
+  int zeroArea = 0, outside = 0;
 };
 
+// The boundary edges of triangle (c0, c1, c2) of an n-corner polygon, by corner index: an
+// edge is on the boundary when its corners are neighbours in the polygon.
+EdgeMask boundaryEdges(std::uint32_t c0, std::uint32_t c1, std::uint32_t c2, std::size_t n) {
+  const auto neighbours = [n](std::uint32_t i, std::uint32_t j) {
+    return (i + 1) % n == j || (j + 1) % n == i;
+  };
+  return static_cast<EdgeMask>(neighbours(c1, c2) | neighbours(c2, c0) << 1 |
+                               neighbours(c0, c1) << 2);
+}
+
+// Whether side j (vertex j to j + 1) of a clipped triangle lies on its polygon's boundary:
+// on an input edge that is, or on a clip plane (no input edge).
+bool clippedSideOnBoundary(const ClipVertex* clipped, int count, int j, EdgeMask boundary) {
+  const unsigned onEdges = clipped[j].onEdges & clipped[(j + 1) % count].onEdges;
+  return onEdges == 0 || (onEdges & boundary) != 0;
+}
+
+// The boundary edges of fan triangle (0, i, i + 1) of a clipped triangle with `count`
+// vertices: side i always is a side of the clipped polygon, sides (0, i) and (i + 1, 0)
+// only for the first and last triangles.
+EdgeMask clippedFanEdges(const ClipVertex* clipped, int count, int i, EdgeMask boundary) {
+  const bool opposite0 = clippedSideOnBoundary(clipped, count, i, boundary);
+  const bool opposite1 = i + 2 == count && clippedSideOnBoundary(clipped, count, i + 1, boundary);
+  const bool opposite2 = i == 1 && clippedSideOnBoundary(clipped, count, 0, boundary);
+  return static_cast<EdgeMask>(opposite0 | opposite1 << 1 | opposite2 << 2);
+}
+
+// The mean of the corners, each divided first so that no sum overflows.
+glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
+  const double weight = 1.0 / static_cast<double>(corners.size());
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& corner : corners)
+    sum += corner * weight;
+  return sum;
+}
+
+// Facing. A polygon is seen from one side as a whole: its normal (polygonNormal) against the
+// direction to the viewer, never the snapped window area of one of its triangles, which a
+// sliver can flip. It is lit from that side and, when back faces are skipped, dropped as a
+// whole. A triangle the clipper leaves alone is decided by its exact integer window area
+// instead, as OpenGL's gl_FrontFacing (VTK agreement); one the clipper cuts by its plane.
+// The triangles of a kept polygon are painted whatever their own winding.
 template <class PointsT, class PolygonsT>
 class PolygonSetup {
  public:
@@ -57,11 +98,7 @@ class PolygonSetup {
       ++chunk_.counts.outside;
       return;
     }
-
-    const std::size_t first = chunk_.triangles.size();
-    Tally tally;
-    if (!triangulate(n, tally)) return;
-    finish(first, tally);
+    runPolygon(n);
   }
 
  private:
@@ -80,55 +117,81 @@ class PolygonSetup {
       ++chunk_.counts.outside;
       return;
     }
-    const std::size_t first = chunk_.triangles.size();
-    Tally tally;
-    if (any == kInside) {
-      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, tally);
-    } else {
-      clip(ids, any, tally);
+    if (any != kInside) {
+      runClippedTriangle(ids, any);
+      return;
     }
-    finish(first, tally);
+    const std::int64_t area = doubleSignedArea(a, b, c);
+    if (area < 0 && mesh_.skipBackFaces) {
+      ++chunk_.counts.culled;
+      return;
+    }
+    emit(area < 0, [&](Tally& tally) {
+      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
+           tally);
+    });
   }
 
-  // Counts the polygon, and notes for its shading which side the viewer sees: clockwise on
-  // screen by the exact integer area, as OpenGL's gl_FrontFacing.
-  void finish(std::size_t first, const Tally& tally) {
+  void runClippedTriangle(const std::size_t (&ids)[3], std::uint32_t planes) {
+    const glm::dvec3 corners[3] = {points_[ids[0]], points_[ids[1]], points_[ids[2]]};
+    const std::optional<bool> back =
+        sideSeen(triangleNormal(corners[0], corners[1], corners[2]), corners);
+    if (back) emit(*back, [&](Tally& tally) { clip(ids, planes, kAllEdges, tally); });
+  }
+
+  void runPolygon(std::size_t n) {
+    chunk_.corners.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      chunk_.corners[k] = points_[pointId(k)];
+    const std::optional<glm::dvec3> normal =
+        polygonNormal(std::span<const glm::dvec3>(chunk_.corners));
+    const std::optional<bool> back = sideSeen(normal, chunk_.corners);
+    if (back) emit(*back, [&](Tally& tally) { triangulate(*normal, tally); });
+  }
+
+  // Whether the viewer sees the back of a polygon with this normal; nothing (counted) when
+  // it has no normal, or is a back face the mesh skips.
+  std::optional<bool> sideSeen(const std::optional<glm::dvec3>& normal,
+                               std::span<const glm::dvec3> corners) {
+    if (!normal) {
+      ++chunk_.counts.degenerate;
+      return std::nullopt;
+    }
+    const bool back = !frame_.transform->facesViewer(*normal, centerOf(corners));
+    if (back && mesh_.skipBackFaces) {
+      ++chunk_.counts.culled;
+      return std::nullopt;
+    }
+    return back;
+  }
+
+  // Runs addTriangles(tally), then counts the polygon and notes for its shading which side
+  // the viewer sees.
+  template <class AddTriangles>
+  void emit(bool back, const AddTriangles& addTriangles) {
+    const std::size_t first = chunk_.triangles.size();
+    Tally tally;
+    addTriangles(tally);
     if (chunk_.triangles.size() == first) {
       countDropped(tally);
       return;
     }
     frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
-        tally.backFacing > 0 ? kUnshadedBack : kUnshadedFront;
+        back ? kUnshadedBack : kUnshadedFront;
     chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
     ++chunk_.counts.drawn;
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
 
-  // Fan for convex polygons, ear clipping for concave ones, in the polygon's plane. False
-  // (counted degenerate) when the polygon has no normal.
-  bool triangulate(std::size_t n, Tally& tally) {
-    chunk_.corners.resize(n);
-    for (std::size_t k = 0; k < n; ++k)
-      chunk_.corners[k] = points_[pointId(k)];
-    const std::optional<glm::dvec3> normal =
-        newellNormal(std::span<const glm::dvec3>(chunk_.corners));
-    if (!normal) {
-      ++chunk_.counts.degenerate;
-      return false;
-    }
+  // In the polygon's plane, by Triangulate.h's rules.
+  void triangulate(const glm::dvec3& normal, Tally& tally) {
     std::vector<glm::dvec2>& projected = chunk_.triangulation.projected;
-    projectToPolygonPlane(chunk_.corners, *normal, projected);
-    if (isConvex(projected)) {
-      for (std::uint32_t k = 1; k + 1 < projected.size(); ++k)
-        addTriangle(0, k, k + 1, tally);
-      return true;
-    }
+    projectToPolygonPlane(chunk_.corners, normal, projected);
     chunk_.localTriangles.clear();
-    earClip(projected, chunk_.triangulation, chunk_.localTriangles);
+    detail::triangulate(projected, chunk_.triangulation, chunk_.localTriangles);
     for (const LocalTriangle& t : chunk_.localTriangles)
       addTriangle(t[0], t[1], t[2], tally);
-    return true;
   }
 
   // One triangle of the polygon, by corner index: kept whole, clipped, or dropped.
@@ -137,12 +200,13 @@ class PolygonSetup {
     const std::uint32_t codes[3] = {meshVertices_[ids[0]].outcode, meshVertices_[ids[1]].outcode,
                                     meshVertices_[ids[2]].outcode};
     const std::uint32_t any = codes[0] | codes[1] | codes[2];
+    const EdgeMask boundary = boundaryEdges(c0, c1, c2, chunk_.corners.size());
     if (any == kInside) {
-      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), tally);
+      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), boundary, tally);
     } else if ((codes[0] & codes[1] & codes[2]) != kInside) {
       ++tally.outside;
     } else {
-      clip(ids, any, tally);
+      clip(ids, any, boundary, tally);
     }
   }
 
@@ -150,12 +214,13 @@ class PolygonSetup {
     return static_cast<std::uint32_t>(mesh_.firstVertex + pointId);
   }
 
-  void clip(const std::size_t (&ids)[3], std::uint32_t planes, Tally& tally) {
+  void clip(const std::size_t (&ids)[3], std::uint32_t planes, EdgeMask boundary, Tally& tally) {
     ++chunk_.counts.trianglesClipped;
     const FrameTransform& transform = *frame_.transform;
     ClipVertex triangle[3];
     for (int i = 0; i < 3; ++i) {
-      triangle[i] = {transform.toClip(points_[ids[i]]), frameIndex(ids[i])};
+      const auto onEdges = static_cast<std::uint8_t>(kAllEdges & ~(1u << i));  // not opposite
+      triangle[i] = {transform.toClip(points_[ids[i]]), frameIndex(ids[i]), onEdges};
     }
     ClipVertex clipped[kMaxClippedVertices];
     const int count = clipTriangle(transform, triangle, planes, clipped);
@@ -173,34 +238,34 @@ class PolygonSetup {
         chunk_.clippedVertices.push_back(transform.toWindow(clipped[i].clip));
       }
     }
-    for (int i = 1; i + 1 < count; ++i)
-      keep(references[0], references[i], references[i + 1], tally);
+    for (int i = 1; i + 1 < count; ++i) {
+      keep(references[0], references[i], references[i + 1],
+           clippedFanEdges(clipped, count, i, boundary), tally);
+    }
   }
 
-  void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, Tally& tally) {
-    keep(r0, r1, r2, frame_.vertex(chunk_, r0), frame_.vertex(chunk_, r1),
-         frame_.vertex(chunk_, r2), tally);
+  void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, EdgeMask boundary, Tally& tally) {
+    const WindowVertex &a = frame_.vertex(chunk_, r0), &b = frame_.vertex(chunk_, r1),
+                       &c = frame_.vertex(chunk_, r2);
+    keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), boundary, tally);
   }
 
-  // Keeps a triangle whose corners all have window coordinates, unless it has zero area,
-  // is a culled back face, or covers no pixel center.
+  // Keeps a triangle whose corners all have window coordinates, counter-clockwise on screen
+  // (swapped if need be), unless it has zero area or covers no pixel center.
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
-            const WindowVertex& vertex1, const WindowVertex& vertex2, Tally& tally) {
+            const WindowVertex& vertex1, const WindowVertex& vertex2, std::int64_t area,
+            EdgeMask boundary, Tally& tally) {
     const WindowVertex* b = &vertex1;
     const WindowVertex* c = &vertex2;
-    const std::int64_t area = doubleSignedArea(a, *b, *c);
     if (area == 0) {
       ++tally.zeroArea;
       return;
     }
-    if (area < 0) {
-      if (mesh_.skipBackFaces) {
-        ++tally.culled;
-        return;
-      }
+    if (area < 0) {  // corners 1 and 2 trade places, and so do the edges opposite them
       std::swap(r1, r2);
       std::swap(b, c);
-      ++tally.backFacing;
+      boundary =
+          static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
     }
     const PixelBounds bounds = samplesInBoundingBox(a, *b, *c, frame_.viewport);
     if (bounds.empty() || !coversAnySample(a, *b, *c, bounds)) {
@@ -209,6 +274,8 @@ class PolygonSetup {
     }
     bin(static_cast<std::uint32_t>(chunk_.triangles.size()), bounds);
     chunk_.triangles.push_back({{r0, r1, r2}, polygonId_});
+    // Without back faces no silhouette fold can form: the unsnapped plane everywhere.
+    chunk_.boundaryEdges.push_back(mesh_.skipBackFaces ? EdgeMask{0} : boundary);
   }
 
   void bin(std::uint32_t triangle, const PixelBounds& b) {
@@ -221,9 +288,7 @@ class PolygonSetup {
   }
 
   void countDropped(const Tally& tally) {
-    if (tally.culled > 0 && tally.outside == 0) {
-      ++chunk_.counts.culled;
-    } else if (tally.zeroArea > 0 && tally.outside == 0) {
+    if (tally.zeroArea > 0 && tally.outside == 0) {
       ++chunk_.counts.degenerate;
     } else {
       ++chunk_.counts.outside;
@@ -253,6 +318,7 @@ std::size_t FrameState::meshOfPolygon(std::size_t polygonId) const {
 
 void setUpChunk(FrameState& frame, Chunk& chunk) {
   chunk.triangles.clear();
+  chunk.boundaryEdges.clear();
   chunk.clippedVertices.clear();
   for (auto& bin : chunk.bins)
     bin.clear();

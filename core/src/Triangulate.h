@@ -2,6 +2,18 @@
 
 // Triangulation of polygons with more than three vertices, in the polygon's own plane (world
 // space, so the result does not depend on the camera).
+//
+// - Convex polygons: a fan from vertex 0 (kLargestFan corners at most), balanced halving
+//   beyond.
+// - Simple concave polygons (collinear runs, repeated points, touching vertices included):
+//   ear clipping, which covers exactly the polygon.
+// - Self-intersecting polygons (two edges cross): a fan from vertex 0, as VTK's OpenGL mapper
+//   draws every polygon (vtkOpenGLIndexBufferObject::AppendTriangleIndexBuffer, VTK 9.1).
+//   Each fan triangle is painted whatever its own winding, so a bowtie shows both lobes (and,
+//   as in VTK, the region the two fan triangles share); the whole polygon is lit and culled
+//   with one normal (polygonNormal, PolygonNormal.h). A self-intersecting polygon has no
+//   inside that both the even-odd and nonzero rules agree on, and drawing it as VTK does is
+//   what a VTK user sees elsewhere.
 
 #include <array>
 #include <cstdint>
@@ -19,7 +31,9 @@ using LocalTriangle = std::array<std::uint32_t, 3>;  // corner indices within th
 // nothing once warmed up.
 struct TriangulationScratch {
   std::vector<glm::dvec2> projected;
-  std::vector<std::uint32_t> remaining;
+  std::vector<std::uint32_t> next, previous, reflexCorners;  // earClip
+  std::vector<std::uint8_t> reflex;                          // earClip
+  std::vector<std::uint32_t> edgeOrder;                      // selfIntersects
 };
 
 // Projects the vertices onto the coordinate plane most orthogonal to `normal`, oriented so
@@ -28,14 +42,16 @@ struct TriangulationScratch {
 void projectToPolygonPlane(std::span<const glm::dvec3> vertices, const glm::dvec3& normal,
                            std::vector<glm::dvec2>& projected);
 
-// True when no corner of the projected polygon turns clockwise (collinear corners allowed):
-// a fan from corner 0 then covers it exactly.
-bool isConvex(std::span<const glm::dvec2> projected);
+// Appends triangles (corner indices, n − 2 of them) covering the projected polygon by the
+// rules above: fan, balanced halving of a large convex polygon (kLargestFan), VTK's fan for
+// a self-intersecting one, ear clipping for a concave one.
+void triangulate(std::span<const glm::dvec2> projected, TriangulationScratch& scratch,
+                 std::vector<LocalTriangle>& triangles);
 
-// Ear clipping (O(n²)): appends n − 2 triangles covering a simple polygon, counter-clockwise
-// in the projected plane. For a self-intersecting polygon, which has no exact
-// triangulation, it still terminates with n − 2 triangles.
-void earClip(std::span<const glm::dvec2> projected, TriangulationScratch& scratch,
-             std::vector<LocalTriangle>& triangles);
+// Convex polygons of more corners than this are split into triangles of balanced shape,
+// whose bounding boxes sum to O(area · log n), where a fan's slivers would each span the
+// polygon (a 10,000-gon would be painted as 9,998 slivers across it). Up to it, VTK's fan:
+// the same triangles as VTK's for the quads and small polygons meshes are made of.
+inline constexpr std::size_t kLargestFan = 16;
 
 }  // namespace facet::detail

@@ -1,5 +1,6 @@
 // Newell normals: all vertices count, degenerate polygons report "no normal".
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -85,6 +86,33 @@ TEST(NewellNormal, TinyAndHugeScalesAgree) {
     ASSERT_TRUE(n.has_value()) << "scale " << scale;
     expectVectorNear(*n, {0, 1, 0}, 1e-12);
   }
+}
+
+// Differences of coordinates near ±DBL_MAX overflow; the normal does not depend on scale,
+// so such polygons (and triangles) still get theirs.
+TEST(NewellNormal, CoordinatesSpanningTheWholeDoubleRange) {
+  const double big = std::numeric_limits<double>::max();
+  const std::vector<glm::dvec3> triangle = {{-big, -1, big}, {big, -1, big}, {0, -1, -big}};
+  const auto n = newellNormal(triangle);
+  ASSERT_TRUE(n.has_value());
+  expectVectorNear(*n, {0, 1, 0}, 1e-12);
+  const auto t = triangleNormal(triangle[0], triangle[1], triangle[2]);
+  ASSERT_TRUE(t.has_value());
+  expectVectorNear(*t, {0, 1, 0}, 1e-12);
+}
+
+// A bowtie's lobes cancel: Newell's vector area is zero, polygonNormal still finds its plane
+// (oriented as its larger fan triangle); a polygon with no plane has no normal at all.
+TEST(PolygonNormal, BowtieGetsThePlaneOfItsFanTriangles) {
+  const std::vector<glm::dvec3> bowtie = {{-1, -1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, 1, 0}};
+  EXPECT_FALSE(newellNormal(bowtie).has_value());
+  const auto n = polygonNormal(bowtie);
+  ASSERT_TRUE(n.has_value());
+  EXPECT_NEAR(std::abs(n->z), 1.0, 1e-15);
+  const std::vector<glm::dvec3> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  expectVectorNear(*polygonNormal(square), {0, 0, 1}, 1e-15);
+  const std::vector<glm::dvec3> collinear = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+  EXPECT_FALSE(polygonNormal(collinear).has_value());
 }
 
 }  // namespace

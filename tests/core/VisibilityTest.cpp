@@ -94,6 +94,25 @@ void expectSameImage(const Framebuffer& a, const Framebuffer& b) {
   EXPECT_EQ(differences, 0u);
 }
 
+// Skipping a closed mesh's back faces leaves the same picture: every color and polygon id.
+// Depths too but at the few samples only snapping covers (within 1/512 pixel beyond a
+// polygon's edge): drawn with its back faces, a mesh takes the snapped plane's key there
+// so that silhouettes fold as culling would; without them, the unsnapped plane's
+// (Rasterizer.cpp, TriangleDepth).
+void expectSamePicture(const Framebuffer& culled, const Framebuffer& all) {
+  ASSERT_EQ(culled.pixelCount(), all.pixelCount());
+  std::size_t differentPixels = 0, differentDepths = 0, covered = 0;
+  for (std::size_t i = 0; i < culled.pixelCount(); ++i) {
+    differentPixels +=
+        culled.color()[i] != all.color()[i] || culled.polygonId()[i] != all.polygonId()[i];
+    covered += all.polygonId()[i] != Framebuffer::kBackgroundId;
+    differentDepths += culled.depth()[i] != all.depth()[i];
+    EXPECT_NEAR(culled.depth()[i], all.depth()[i], 1e-3) << "pixel " << i;
+  }
+  EXPECT_EQ(differentPixels, 0u);
+  EXPECT_LE(differentDepths, covered / 1000) << "of " << covered << " covered pixels";
+}
+
 TEST(Culling, ClosedMeshLooksTheSameWithAndWithoutCulling) {
   const Mesh spot = readObj(sharedMeshPath("spot.obj"));
   LightSet lights;
@@ -109,7 +128,7 @@ TEST(Culling, ClosedMeshLooksTheSameWithAndWithoutCulling) {
     EXPECT_GT(with.stats.polygonsCulled, spot.polygonCount() / 3);
     EXPECT_EQ(without.stats.polygonsCulled, 0u);
     EXPECT_GT(with.stats.pixelsCovered, 10000u);
-    expectSameImage(with.framebuffer, without.framebuffer);
+    expectSamePicture(with.framebuffer, without.framebuffer);
   }
 }
 
@@ -168,7 +187,7 @@ TEST(ClosedSurface, SkippingHiddenBackFacesChangesNoPixel) {
     EXPECT_EQ(hinted.stats.closedMeshesSkippingBackFaces, 1u);
     EXPECT_GT(hinted.stats.polygonsCulled, spot.polygonCount() / 3);
     EXPECT_LT(hinted.stats.trianglesBinned, plain.stats.trianglesBinned);
-    expectSameImage(hinted.framebuffer, plain.framebuffer);
+    expectSamePicture(hinted.framebuffer, plain.framebuffer);
   }
 }
 

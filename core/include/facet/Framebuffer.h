@@ -16,7 +16,9 @@
 namespace facet {
 
 /// The planes a render writes, owned by the caller: color, depth and polygon id for
-/// width × height pixels each, with the layout of Framebuffer (row 0 at the bottom). A
+/// width × height pixels each, with the layout of Framebuffer (row 0 at the bottom). While
+/// a render runs, the depth plane holds depth keys; when it returns, window depths (as
+/// Framebuffer::depth()). A
 /// caller that keeps its image in its own arrays (the VTK filter renders straight into the
 /// output's RGBA and Depth arrays) renders into a view of them; nothing is copied.
 struct FramebufferView {
@@ -52,7 +54,9 @@ class Framebuffer {
   /// RGBA8 colors.
   std::span<Rgba8> color() { return {color_.data(), pixelCount()}; }
   std::span<const Rgba8> color() const { return {color_.data(), pixelCount()}; }
-  /// Window depth in [0, 1], 1 = background (Conventions.h, "Depth").
+  /// Window depth in [0, 1], 1 = background, computed in double and rounded to the nearest
+  /// float (Conventions.h, "Depth"). A polygon may show at depth 1.0 exactly: with a tiny
+  /// near plane, every depth rounds to 1; polygonId() says what is covered.
   std::span<float> depth() { return {depth_.data(), pixelCount()}; }
   std::span<const float> depth() const { return {depth_.data(), pixelCount()}; }
   /// Index of the polygon that produced the pixel (in scene order: the polygons of mesh 0,

@@ -22,7 +22,7 @@ struct RenderPlan {
   bool directLighting = false;
   bool positionalLights = false;  ///< point or spot lights: per-polygon distance and angle
   bool specular = false;          ///< some material has Ks > 0 under a direct light
-  /// Polygons seen from their back (clockwise on screen) are lit with the normal flipped.
+  /// Polygons seen from their back (Conventions.h, "Facing") are lit with the normal flipped.
   bool twoSidedLighting = true;
   /// The direction to the viewer is needed (specular).
   bool viewerDirection = false;

@@ -6,14 +6,17 @@
 /// Pipeline (Sixth 3D's phases, made robust; see ../shared/DESIGN.md):
 ///  1. transform every point in double precision relative to the eye, to clip space and, if
 ///     inside the guard band and the near/far range, to 8-bit sub-pixel window coordinates;
-///  2. per polygon: triangulate (fan if convex, ear clipping if concave), clip what crosses
-///     the near/far planes or the guard band in homogeneous space, cull back faces, drop
-///     zero-area triangles by their exact integer area, bin its triangles into screen tiles;
+///  2. per polygon: decide which side the viewer sees (Conventions.h, "Facing") and cull it
+///     whole if back faces are skipped; triangulate (fan, ear clipping, VTK's fan for
+///     self-intersecting polygons: Triangulate.h); clip what crosses the near/far planes or
+///     the guard band in homogeneous space (any finite coordinates, up to ±DBL_MAX); drop
+///     zero-area triangles by their exact integer area; bin into screen tiles;
 ///  3. per tile, one thread each: clear, then paint the tile's triangles in polygon order with
-///     integer edge functions, a top-left fill rule and pixel centers at +0.5 (depth and
-///     polygon id);
+///     integer edge functions, a top-left fill rule and pixel centers at +0.5 (depth key and
+///     polygon id; the nearer key wins, an exact tie keeps the earlier polygon);
 ///  4. light each polygon that won a pixel, once (flat shading is a function of the polygon,
-///     so hidden polygons are never lit), then color every pixel from its polygon id.
+///     so hidden polygons are never lit), then color every pixel from its polygon id and
+///     turn its depth key into window depth.
 /// The result is bit-identical for every thread count, and re-rendering the same scene at
 /// the same size allocates nothing.
 

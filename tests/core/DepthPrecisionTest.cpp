@@ -1,0 +1,211 @@
+// Depth that resolves what double precision can (issue 7): two parallel surfaces a small
+// fraction of their eye distance apart resolve at every far/near ratio, whichever is drawn
+// first; a tiny near plane still draws; exact ties keep the polygon drawn first; the Depth
+// output keeps VTK's window-depth convention.
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+
+namespace facet::testing {
+namespace {
+
+constexpr double kEyeDistance = 3.0;
+constexpr int kWidth = 320, kHeight = 240;
+
+// A square of side 40 in the plane through `center` with unit normal `normal` (counter-
+// clockwise about it), shifted by `shift` within the plane, appended to `mesh` as one
+// polygon.
+void addSquare(Mesh& mesh, const glm::dvec3& center, const glm::dvec3& normal,
+               glm::dvec2 shift = {0.0, 0.0}) {
+  const glm::dvec3 u = glm::normalize(glm::cross(normal, glm::dvec3(1, 0, 0)));
+  const glm::dvec3 v = glm::cross(normal, u);
+  const std::int64_t base = static_cast<std::int64_t>(mesh.points.size());
+  for (const auto& [s, t] : {std::pair{-20.0, -20.0}, {20.0, -20.0}, {20.0, 20.0}, {-20.0, 20.0}})
+    mesh.addPoint(center + (s + shift.x) * u + (t + shift.y) * v);
+  mesh.addPolygon({base, base + 1, base + 2, base + 3});
+}
+
+// Camera at the origin looking down −z; the clipping range has far/near = `ratio` and either
+// a tiny near plane (far = 10·D) or a huge far plane (near = D/10).
+Camera cameraWithRatio(double ratio, bool tinyNear, bool parallel) {
+  Camera camera;
+  camera.position = {0, 0, 0};
+  camera.focalPoint = {0, 0, -1};
+  camera.parallelProjection = parallel;
+  camera.parallelScale = 1.0;
+  camera.farClip = tinyNear ? 10.0 * kEyeDistance : 0.1 * kEyeDistance * ratio;
+  camera.nearClip = camera.farClip / ratio;
+  return camera;
+}
+
+std::string describe(double separation, double ratio, bool tinyNear, bool parallel) {
+  return "separation " + std::to_string(separation) + " of the eye distance, far/near " +
+         std::to_string(ratio) + (tinyNear ? ", tiny near" : ", huge far") +
+         (parallel ? ", parallel" : ", perspective");
+}
+
+// Renders the scene of two meshes (0 drawn first; closed: marked MeshView::closedSurface)
+// and counts the covered pixels that do not show the polygons of mesh `nearer`.
+std::size_t pixelsNotShowing(const Mesh& first, const Mesh& second, int nearer,
+                             const Camera& camera, std::size_t& covered, bool closed = false) {
+  Scene scene;
+  for (const Mesh* mesh : {&first, &second}) {
+    MeshView view = mesh->view();
+    view.closedSurface = closed;
+    scene.meshes.push_back({view, Material{}});
+  }
+  const Rendered r = renderScene(scene, camera, kWidth, kHeight);
+  const std::int32_t firstOfSecond = static_cast<std::int32_t>(first.polygonCount());
+  std::size_t wrong = 0;
+  covered = r.stats.pixelsCovered;
+  for (std::int32_t id : r.framebuffer.polygonId()) {
+    if (id == Framebuffer::kBackgroundId) continue;
+    wrong += (id >= firstOfSecond) != (nearer == 1);
+  }
+  return wrong;
+}
+
+// Two planes tilted 30° and 75° about x, the nearer `separation`·D closer along their normal
+// and shifted within it (so their vertices snap differently); each drawn first in turn. At
+// 75° snapping a vertex to 1/256 pixel (as coverage must) moves its key by more than 1e-6 of
+// itself, so the depth plane is set up from the unsnapped positions.
+TEST(DepthPrecision, NearerOfTwoTiltedPlanesWinsAtEveryFarNearRatio) {
+  const glm::dvec3 center(0.0, 0.0, -kEyeDistance);
+  for (double tiltDegrees : {30.0, 75.0}) {
+    const double tilt = tiltDegrees * M_PI / 180.0;
+    const glm::dvec3 normal(0.0, std::sin(tilt), std::cos(tilt));
+    for (double separation : {1e-4, 1e-5, 1e-6}) {
+      Mesh far, near;
+      addSquare(far, center, normal);
+      addSquare(near, center + separation * kEyeDistance * normal, normal, {0.1234, 0.0567});
+      for (double ratio : {1e4, 1e6, 1e8, 1e10, 1e12}) {
+        for (bool tinyNear : {true, false}) {
+          for (bool parallel : {false, true}) {
+            SCOPED_TRACE(describe(separation, ratio, tinyNear, parallel) + ", tilt " +
+                         std::to_string(tiltDegrees));
+            const Camera camera = cameraWithRatio(ratio, tinyNear, parallel);
+            std::size_t covered = 0;
+            EXPECT_EQ(pixelsNotShowing(far, near, 1, camera, covered), 0u) << "farther drawn first";
+            EXPECT_GT(covered, std::size_t(kWidth * kHeight) / 2);
+            EXPECT_EQ(pixelsNotShowing(near, far, 0, camera, covered), 0u) << "nearer drawn first";
+          }
+        }
+      }
+    }
+  }
+}
+
+// Concentric spheres (radius 1 at distance D, and 1 + separation·D): the outer one's facets
+// are parallel to the inner one's and snap to other sub-pixel positions. Marked closed, their
+// back faces are skipped and keys come from the unsnapped planes everywhere. Drawn with their
+// back faces, samples only snapping covers (within 1/512 pixel beyond a triangle's edge) take
+// the snapped plane's key, so that silhouettes fold as culling would: there a gap of 1e-6
+// can be below the snapping error on steep facets, and a handful of such samples may go to
+// the inner sphere.
+TEST(DepthPrecision, OuterOfTwoConcentricSpheresWinsAtEveryFarNearRatio) {
+  const glm::dvec3 center(0.0, 0.0, -kEyeDistance);
+  for (bool closed : {true, false}) {
+    for (double separation : {1e-4, 1e-5, 1e-6}) {
+      Mesh inner = makeUvSphere(48, 32, 1.0, center);
+      Mesh outer = makeUvSphere(48, 32, 1.0 + separation * kEyeDistance, center);
+      const std::size_t allowed = closed || separation > 1e-6 ? 0 : kWidth * kHeight / 5000;
+      for (double ratio : {1e4, 1e6, 1e8, 1e10, 1e12}) {
+        for (bool tinyNear : {true, false}) {
+          SCOPED_TRACE(describe(separation, ratio, tinyNear, false) +
+                       (closed ? ", closed" : ", back faces drawn"));
+          const Camera camera = cameraWithRatio(ratio, tinyNear, false);
+          std::size_t covered = 0;
+          EXPECT_LE(pixelsNotShowing(inner, outer, 1, camera, covered, closed), allowed)
+              << "inner drawn first";
+          EXPECT_GT(covered, 2000u);
+          EXPECT_LE(pixelsNotShowing(outer, inner, 0, camera, covered, closed), allowed)
+              << "outer drawn first";
+        }
+      }
+    }
+  }
+}
+
+// Issue 7, defect 5: with clipping range (1e-8, 10) a sphere 3 units away used to round to
+// window depth 1, the background's, and vanish. VTK draws it; so do we, like with a usual
+// near plane — and at every far/near ratio up to 1e12, by a tiny near or a huge far plane.
+TEST(DepthPrecision, TinyNearPlaneStillDrawsTheSphere) {
+  const Mesh sphere = makeUvSphere(40, 30, 1.0);
+  Camera usual;
+  usual.position = {0, 0, 3};
+  usual.nearClip = 1.0;
+  usual.farClip = 10.0;
+  const Rendered reference = renderScene(oneMeshScene(sphere.view()), usual, 200, 200);
+  EXPECT_GT(reference.stats.pixelsCovered, 5000u);
+  for (int exponent = 2; exponent <= 12; ++exponent) {
+    for (bool tinyNear : {true, false}) {
+      Camera camera = usual;
+      if (tinyNear)
+        camera.nearClip = camera.farClip / std::pow(10.0, exponent);
+      else
+        camera.farClip = camera.nearClip * std::pow(10.0, exponent);
+      SCOPED_TRACE("far/near 1e" + std::to_string(exponent) +
+                   (tinyNear ? ", tiny near" : ", huge far"));
+      const Rendered r = renderScene(oneMeshScene(sphere.view()), camera, 200, 200);
+      std::size_t differentIds = 0;
+      for (std::size_t i = 0; i < r.framebuffer.pixelCount(); ++i)
+        differentIds += r.framebuffer.polygonId()[i] != reference.framebuffer.polygonId()[i];
+      EXPECT_EQ(differentIds, 0u);
+      for (float depth : r.framebuffer.depth())
+        ASSERT_TRUE(depth >= 0.0f && depth <= 1.0f) << depth;
+    }
+  }
+}
+
+// Exact ties (the same polygon twice) keep the polygon drawn first in the z-buffer: the test
+// is strictly "nearer". Painter's order paints equal depths in id order, so the last wins.
+TEST(DepthPrecision, ExactTiesKeepThePolygonDrawnFirst) {
+  Mesh twice;
+  for (int copy = 0; copy < 2; ++copy)
+    addSquare(twice, {0.0, 0.0, -kEyeDistance}, glm::normalize(glm::dvec3(0.2, 0.3, 1.0)));
+  const Camera camera = cameraWithRatio(1e3, false, false);
+  const Rendered z = renderScene(oneMeshScene(twice.view()), camera, kWidth, kHeight);
+  RenderOptions painter;
+  painter.visibility = Visibility::PainterSort;
+  const Rendered p = renderScene(oneMeshScene(twice.view()), camera, kWidth, kHeight, painter);
+  for (std::size_t i = 0; i < z.framebuffer.pixelCount(); ++i) {
+    ASSERT_EQ(z.framebuffer.polygonId()[i], 0) << "pixel " << i;
+    ASSERT_EQ(p.framebuffer.polygonId()[i], 1) << "pixel " << i;
+    ASSERT_EQ(z.framebuffer.depth()[i], p.framebuffer.depth()[i]) << "pixel " << i;
+  }
+}
+
+// The Depth plane holds VTK's window depth: perspective f(d − n)/(d(f − n)), parallel
+// (d − n)/(f − n), computed in double and rounded to the nearest float. A square facing the
+// camera at distance d has one depth everywhere: the rounding of that closed form, within
+// the key's own rounding (a float of n/d, resp. of d − n).
+TEST(DepthPrecision, DepthOutputIsTheWindowDepthOfTheClosedForm) {
+  for (bool parallel : {false, true}) {
+    for (double distance : {0.5, 1.0, 2.9, 7.0, 99.0}) {
+      Camera camera = cameraWithRatio(1000.0, false, parallel);  // near 0.3, far 300
+      camera.nearClip = 0.3;
+      Mesh square;
+      addSquare(square, {0.0, 0.0, -distance}, {0.0, 0.0, 1.0});
+      const Rendered r = renderScene(oneMeshScene(square.view()), camera, 8, 6);
+      const double n = camera.nearClip, f = camera.farClip, d = distance;
+      const double expected = parallel ? (d - n) / (f - n) : f * (d - n) / (d * (f - n));
+      // The key's rounding: 2^-24 relative in n/d (perspective) or in d − n (parallel).
+      const double tolerance = 1e-7 * (parallel ? expected : n / d / (1.0 - n / f)) + 6e-8;
+      SCOPED_TRACE((parallel ? "parallel, d = " : "perspective, d = ") + std::to_string(d));
+      ASSERT_EQ(r.framebuffer.polygonIdAt(4, 3), 0);
+      for (std::size_t i = 0; i < r.framebuffer.pixelCount(); ++i) {
+        const bool covered = r.framebuffer.polygonId()[i] == 0;
+        ASSERT_NEAR(r.framebuffer.depth()[i], covered ? expected : 1.0, tolerance);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace facet::testing
