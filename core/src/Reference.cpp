@@ -1,0 +1,151 @@
+#include "facet/Reference.h"
+
+#include <chrono>
+#include <thread>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "ThreadPool.h"
+#include "Validate.h"
+#include "facet/Conventions.h"
+
+namespace facet {
+namespace {
+
+// Chris Wellons' "lowbias32" integer hash (hash-prospector): full avalanche, cheap.
+std::uint32_t hash32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+std::uint32_t reverseBits(std::uint32_t x) {
+  x = (x << 16) | (x >> 16);
+  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+  return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+}
+
+// Sobol's second dimension, XOR-scrambled (Kollig & Keller 2002, Fig. 2's Sobol2).
+std::uint32_t sobolSecond(std::uint32_t index, std::uint32_t scramble) {
+  for (std::uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1) {
+    if (index & 1u) scramble ^= v;
+  }
+  return scramble;
+}
+
+double toUnitInterval(std::uint32_t bits) {
+  return bits * 0x1p-32;
+}
+
+int resolveThreads(int threads) {
+  if (threads > 0) return threads;
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware == 0 ? 1 : static_cast<int>(hardware);
+}
+
+}  // namespace
+
+CameraRays::CameraRays(const Camera& camera, int width, int height)
+    : eye_(camera.position),
+      parallel_(camera.parallelProjection),
+      nearClip_(camera.nearClip),
+      farClip_(camera.farClip),
+      width_(width),
+      height_(height) {
+  validate(camera);
+  detail::requireInRange(width, 1, kMaxImageSide, "CameraRays width");
+  detail::requireInRange(height, 1, kMaxImageSide, "CameraRays height");
+  viewFromClip_ = glm::inverse(clipFromView(camera, width_ / height_));
+  const glm::dmat4 view = viewFromWorld(camera);
+  right_ = {view[0][0], view[1][0], view[2][0]};
+  up_ = {view[0][1], view[1][1], view[2][1]};
+  back_ = {view[0][2], view[1][2], view[2][2]};
+}
+
+Ray CameraRays::through(const glm::dvec2& window) const {
+  // The window point on the near plane, in view space (OpenGL NDC depth −1 is near).
+  const glm::dvec4 ndc(2.0 * window.x / width_ - 1.0, 2.0 * window.y / height_ - 1.0, -1.0, 1.0);
+  const glm::dvec4 homogeneous = viewFromClip_ * ndc;
+  const glm::dvec3 onNear = glm::dvec3(homogeneous) / homogeneous.w;
+  const auto toWorld = [&](const glm::dvec3& v) { return right_ * v.x + up_ * v.y + back_ * v.z; };
+  Ray ray;
+  if (parallel_) {
+    ray.origin = eye_ + toWorld({onNear.x, onNear.y, 0.0});
+    ray.direction = -back_;
+    ray.tNear = nearClip_;
+    ray.tFar = farClip_;
+    return ray;
+  }
+  const glm::dvec3 direction = glm::normalize(onNear);
+  ray.origin = eye_;
+  ray.direction = toWorld(direction);
+  // View depth along the ray grows as t·(−direction.z).
+  ray.tNear = nearClip_ / -direction.z;
+  ray.tFar = farClip_ / -direction.z;
+  return ray;
+}
+
+glm::dvec2 referenceSampleOffset(int x, int y, std::uint32_t index) {
+  const std::uint32_t pixel = hash32(static_cast<std::uint32_t>(x) ^
+                                     hash32(static_cast<std::uint32_t>(y) + 0x9e3779b9u));
+  const std::uint32_t scrambleX = hash32(pixel ^ 0x68bc21ebu);
+  const std::uint32_t scrambleY = hash32(pixel ^ 0x02e5be93u);
+  return {toUnitInterval(reverseBits(index) ^ scrambleX),
+          toUnitInterval(sobolSecond(index, scrambleY))};
+}
+
+void validate(const ReferenceOptions& options) {
+  detail::requireInRange(options.samplesPerPixel, 1, 1 << 20, "ReferenceOptions.samplesPerPixel");
+  detail::requireInRange(options.threads, 0, 1024, "ReferenceOptions.threads");
+  detail::requireColor(options.background, "ReferenceOptions.background");
+}
+
+namespace {
+
+// One pixel: its samples summed in index order, in double.
+void tracePixel(const CameraRays& rays, const ReferenceOptions& options,
+                const SampleTracer& trace, int x, int y, FloatImage& image) {
+  const glm::dvec3 background(options.background);
+  glm::dvec3 sum(0.0);
+  std::uint32_t hits = 0;
+  const auto samples = static_cast<std::uint32_t>(options.samplesPerPixel);
+  for (std::uint32_t s = 0; s < samples; ++s) {
+    const glm::dvec2 offset = referenceSampleOffset(x, y, s);
+    const std::optional<Color> seen = trace(rays.through({x + offset.x, y + offset.y}));
+    sum += seen ? glm::dvec3(*seen) : background;
+    hits += seen.has_value();
+  }
+  const std::size_t i = image.indexOf(x, y);
+  image.color[i] = Color(sum / static_cast<double>(samples));
+  image.coverage[i] = static_cast<float>(static_cast<double>(hits) / samples);
+}
+
+}  // namespace
+
+ReferenceRender renderReference(const Camera& camera, int width, int height,
+                                const ReferenceOptions& options, const SampleTracer& trace) {
+  const auto start = std::chrono::steady_clock::now();
+  validate(options);
+  const CameraRays rays(camera, width, height);
+  ReferenceRender result;
+  result.image = FloatImage(width, height);
+  detail::ThreadPool pool(resolveThreads(options.threads));
+  auto row = [&](std::size_t y) {
+    for (int x = 0; x < width; ++x)
+      tracePixel(rays, options, trace, x, static_cast<int>(y), result.image);
+  };
+  auto report = [&](std::size_t rowsDone) {
+    return !options.progress || options.progress(static_cast<double>(rowsDone) / height);
+  };
+  result.aborted = !pool.run(static_cast<std::size_t>(height), row, report);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace facet
