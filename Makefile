@@ -14,9 +14,11 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
 # Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the
-# tests that compare with VTK's own OpenGL renderer.
+# tests that compare with VTK's own OpenGL renderer; Embree for the mesh reference
+# (reference/); scikit-image and Pillow to cross-check the image metrics.
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
-            libvtk9-dev python3-vtk9 python3-dev xvfb xauth
+            libvtk9-dev python3-vtk9 python3-dev xvfb xauth libembree-dev \
+            python3-skimage python3-pil
 DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
