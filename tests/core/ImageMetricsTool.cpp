@@ -17,8 +17,8 @@
 
 #include "facet/AnalyticReference.h"
 #include "facet/ImageMetrics.h"
-#include "support/TestMeshes.h"
-#include "support/TestRender.h"
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
 
 namespace {
 
