@@ -55,13 +55,21 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
     : eye_(camera.position),
       parallel_(camera.parallelProjection),
       nearClip_(camera.nearClip),
-      farClip_(camera.farClip),
-      width_(width),
-      height_(height) {
+      farClip_(camera.farClip) {
   validate(camera);
   detail::requireInRange(width, 1, kMaxImageSide, "CameraRays width");
   detail::requireInRange(height, 1, kMaxImageSide, "CameraRays height");
-  viewFromClip_ = glm::inverse(clipFromView(camera, width_ / height_));
+  const glm::dmat4 viewFromClip =
+      glm::inverse(clipFromView(camera, static_cast<double>(width) / height));
+  // A window point on the near plane (OpenGL NDC depth −1), in view space.
+  const auto onNear = [&](double x, double y) {
+    const glm::dvec4 ndc(2.0 * x / width - 1.0, 2.0 * y / height - 1.0, -1.0, 1.0);
+    const glm::dvec4 view = viewFromClip * ndc;
+    return glm::dvec3(view) / view.w;
+  };
+  nearOrigin_ = onNear(0.0, 0.0);
+  nearPerX_ = onNear(1.0, 0.0) - nearOrigin_;
+  nearPerY_ = onNear(0.0, 1.0) - nearOrigin_;
   const glm::dmat4 view = viewFromWorld(camera);
   right_ = {view[0][0], view[1][0], view[2][0]};
   up_ = {view[0][1], view[1][1], view[2][1]};
@@ -69,10 +77,7 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
 }
 
 Ray CameraRays::through(const glm::dvec2& window) const {
-  // The window point on the near plane, in view space (OpenGL NDC depth −1 is near).
-  const glm::dvec4 ndc(2.0 * window.x / width_ - 1.0, 2.0 * window.y / height_ - 1.0, -1.0, 1.0);
-  const glm::dvec4 homogeneous = viewFromClip_ * ndc;
-  const glm::dvec3 onNear = glm::dvec3(homogeneous) / homogeneous.w;
+  const glm::dvec3 onNear = nearOrigin_ + window.x * nearPerX_ + window.y * nearPerY_;
   const auto toWorld = [&](const glm::dvec3& v) { return right_ * v.x + up_ * v.y + back_ * v.z; };
   Ray ray;
   if (parallel_) {
@@ -82,22 +87,29 @@ Ray CameraRays::through(const glm::dvec2& window) const {
     ray.tFar = farClip_;
     return ray;
   }
-  const glm::dvec3 direction = glm::normalize(onNear);
+  const double length = glm::length(onNear);
   ray.origin = eye_;
-  ray.direction = toWorld(direction);
-  // View depth along the ray grows as t·(−direction.z).
-  ray.tNear = nearClip_ / -direction.z;
-  ray.tFar = farClip_ / -direction.z;
+  ray.direction = toWorld(onNear / length);
+  // onNear lies at view depth nearClip, at distance `length` from the eye.
+  ray.tNear = length;
+  ray.tFar = length * (farClip_ / nearClip_);
   return ray;
 }
 
-glm::dvec2 referenceSampleOffset(int x, int y, std::uint32_t index) {
+PixelSamplePattern::PixelSamplePattern(int x, int y) {
   const std::uint32_t pixel = hash32(static_cast<std::uint32_t>(x) ^
                                      hash32(static_cast<std::uint32_t>(y) + 0x9e3779b9u));
-  const std::uint32_t scrambleX = hash32(pixel ^ 0x68bc21ebu);
-  const std::uint32_t scrambleY = hash32(pixel ^ 0x02e5be93u);
-  return {toUnitInterval(reverseBits(index) ^ scrambleX),
-          toUnitInterval(sobolSecond(index, scrambleY))};
+  scrambleX_ = hash32(pixel ^ 0x68bc21ebu);
+  scrambleY_ = hash32(pixel ^ 0x02e5be93u);
+}
+
+glm::dvec2 PixelSamplePattern::offset(std::uint32_t index) const {
+  return {toUnitInterval(reverseBits(index) ^ scrambleX_),
+          toUnitInterval(sobolSecond(index, scrambleY_))};
+}
+
+glm::dvec2 referenceSampleOffset(int x, int y, std::uint32_t index) {
+  return PixelSamplePattern(x, y).offset(index);
 }
 
 void validate(const ReferenceOptions& options) {
@@ -115,8 +127,9 @@ void tracePixel(const CameraRays& rays, const ReferenceOptions& options,
   glm::dvec3 sum(0.0);
   std::uint32_t hits = 0;
   const auto samples = static_cast<std::uint32_t>(options.samplesPerPixel);
+  const PixelSamplePattern pattern(x, y);
   for (std::uint32_t s = 0; s < samples; ++s) {
-    const glm::dvec2 offset = referenceSampleOffset(x, y, s);
+    const glm::dvec2 offset = pattern.offset(s);
     const std::optional<Color> seen = trace(rays.through({x + offset.x, y + offset.y}));
     sum += seen ? glm::dvec3(*seen) : background;
     hits += seen.has_value();

@@ -17,6 +17,7 @@
 #include <functional>
 #include <optional>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -57,10 +58,11 @@ class CameraRays {
  private:
   glm::dvec3 eye_;
   glm::dvec3 right_, up_, back_;  // the camera's frame, world coordinates
-  glm::dmat4 viewFromClip_;
+  // The window point's image on the near plane, in view space, is affine in the window
+  // coordinates (the inverse projection's w is constant there): origin + x·perX + y·perY.
+  glm::dvec3 nearOrigin_, nearPerX_, nearPerY_;
   bool parallel_;
   double nearClip_, farClip_;
-  double width_, height_;
 };
 
 /// Sample `index` of pixel (x, y), as an offset in [0, 1)² from the pixel's bottom-left
@@ -73,6 +75,17 @@ class CameraRays {
 /// neighbouring pixels, so the remaining error looks like noise, not a pattern.
 /// Deterministic: the same (x, y, index) gives the same offset everywhere.
 glm::dvec2 referenceSampleOffset(int x, int y, std::uint32_t index);
+
+/// The same pattern for one pixel, with its scramble hashed once: offset(i) equals
+/// referenceSampleOffset(x, y, i).
+class PixelSamplePattern {
+ public:
+  PixelSamplePattern(int x, int y);
+  glm::dvec2 offset(std::uint32_t index) const;
+
+ private:
+  std::uint32_t scrambleX_, scrambleY_;
+};
 
 /// Reports progress in [0, 1] on the calling thread; return false to stop early.
 using ReferenceProgress = std::function<bool(double fraction)>;
@@ -88,7 +101,7 @@ struct ReferenceOptions {
   bool twoSidedLighting = true;
   /// Color of pixels (and parts of pixels) the surface does not cover. (default: black)
   Color background{0.0f};
-  ReferenceProgress progress;  ///< (default: none)
+  ReferenceProgress progress{};  ///< (default: none)
 };
 
 /// Throws facet::Error naming the first invalid option (samples outside [1, 2^20], threads

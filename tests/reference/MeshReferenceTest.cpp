@@ -1,0 +1,222 @@
+// The mesh reference: exact where the mesh is the surface (a quad), converging to the
+// analytic sphere as its tessellation grows, deterministic, orientation-proof, far-data-proof,
+// and converged as its samples double.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "../support/TestMeshes.h"
+#include "facet/AnalyticReference.h"
+#include "facet/Error.h"
+#include "facet/ImageMetrics.h"
+#include "facet/MeshReference.h"
+
+namespace facet {
+namespace {
+
+using testing::fitCamera;
+using testing::makeUvSphere;
+using testing::pixelCamera;
+using testing::readObj;
+using testing::sharedMeshPath;
+
+LightSet someLights() {
+  LightSet lights;
+  lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
+  lights.lights.push_back(PointLight{{2, 1, 3}, Color(0.6f, 0.6f, 0.9f)});
+  return lights;
+}
+
+Material shiny() {
+  Material material;
+  material.color = {0.9f, 0.7f, 0.5f};
+  material.specular = 0.4;
+  material.specularPower = 20.0;
+  return material;
+}
+
+Scene sceneOf(const Mesh& mesh, const Material& material = shiny(),
+              const LightSet& lights = someLights()) {
+  Scene scene;
+  scene.meshes.push_back({mesh.view(), material});
+  scene.lights = lights;
+  return scene;
+}
+
+void reverse(Mesh& mesh, std::size_t polygon) {
+  std::reverse(mesh.connectivity.begin() + mesh.offsets[polygon],
+               mesh.connectivity.begin() + mesh.offsets[polygon + 1]);
+}
+
+ImageError printed(const char* what, const ImageError& error) {
+  std::printf("%s: RMSE %.4f, max %.3f, silhouette pixels %zu of %zu\n", what, error.rmse,
+              error.maxError, error.silhouettePixels, error.coveredPixels);
+  return error;
+}
+
+// A quad is its own exact surface: the mesh reference must equal the analytic plane.
+TEST(MeshReference, QuadIsTheAnalyticPlane) {
+  Mesh quad;
+  quad.addPolygon({quad.addPoint({3.2, 4.1, 0}), quad.addPoint({40.7, 6.3, 0}),
+                   quad.addPoint({36.1, 29.8, 0}), quad.addPoint({8.4, 25.2, 0})});
+  const Camera camera = pixelCamera(48, 32);
+  const ReferenceOptions options{.samplesPerPixel = 16};
+  const auto mesh = renderMeshReference(sceneOf(quad), camera, 48, 32, options);
+  AnalyticScene analytic;  // the quad as two parallelograms would not do: compare per triangle
+  AnalyticPlane plane;
+  plane.origin = quad.points[0];
+  plane.edgeU = quad.points[1] - quad.points[0];
+  plane.edgeV = quad.points[3] - quad.points[0];
+  plane.material = shiny();
+  analytic.planes.push_back(plane);
+  analytic.lights = someLights();
+  const auto exact = renderAnalyticReference(analytic, camera, 48, 32, options);
+  // Compare where both parallelogram and quad agree: the quad is not a parallelogram, so
+  // compare the pixels fully inside both.
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < mesh.image.pixelCount(); ++i) {
+    if (mesh.image.coverage[i] == 1.0f && exact.image.coverage[i] == 1.0f) {
+      ++compared;
+      EXPECT_LT(glm::length(glm::dvec3(mesh.image.color[i] - exact.image.color[i])), 1e-6) << i;
+    }
+  }
+  EXPECT_GT(compared, 400u);
+}
+
+TEST(MeshReference, FineSphereConvergesToTheAnalyticSphere) {
+  AnalyticScene analytic;
+  analytic.spheres.push_back({{0, 0, 0}, 1.0, shiny()});
+  analytic.lights = someLights();
+  const Camera camera = fitCamera(makeUvSphere(8, 5), {0.2, -0.3, -1});
+  const ReferenceOptions options{.samplesPerPixel = 16};
+  const FloatImage exact = renderAnalyticReference(analytic, camera, 160, 120, options).image;
+  double previous = INFINITY;
+  for (const int segments : {32, 128, 512}) {
+    const Mesh sphere = makeUvSphere(segments, segments / 2 + 1);
+    const FloatImage phong = renderMeshReference(sceneOf(sphere), camera, 160, 120, options).image;
+    const ImageError error = compareImages(exact, phong);
+    std::printf("%3d segments, Phong reference vs exact sphere: RMSE %.4f (interior %.4f), max %.3f\n",
+                segments, error.rmse, error.interiorRmse, error.maxError);
+    EXPECT_LT(error.interiorRmse, previous);
+    previous = error.interiorRmse;
+  }
+  // Inside the silhouette the shading matches; on it, a sample can still fall in the sliver
+  // between the polygon and the circle.
+  EXPECT_LT(previous, 0.02);
+}
+
+TEST(MeshReference, SameBytesForAnyThreadCount) {
+  const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
+  const Scene scene = sceneOf(bunny);
+  const Camera camera = fitCamera(bunny, {0.3, -0.2, -1});
+  const auto one = renderMeshReference(scene, camera, 96, 72, {.samplesPerPixel = 8, .threads = 1});
+  for (const int threads : {2, 5}) {
+    const auto many =
+        renderMeshReference(scene, camera, 96, 72, {.samplesPerPixel = 8, .threads = threads});
+    EXPECT_EQ(one.image.color, many.image.color) << threads << " threads";
+    EXPECT_EQ(one.image.coverage, many.image.coverage) << threads << " threads";
+  }
+}
+
+TEST(MeshReference, FlippedPolygonsLookTheSame) {
+  const Mesh sphere = makeUvSphere(48, 25);
+  Mesh flipped = sphere;
+  for (std::size_t p = 0; p < flipped.polygonCount(); p += 3)
+    reverse(flipped, p);
+  const Camera camera = fitCamera(sphere, {0.2, -0.3, -1});
+  const ReferenceOptions options{.samplesPerPixel = 8};
+  const auto a = renderMeshReference(sceneOf(sphere), camera, 96, 72, options);
+  const auto b = renderMeshReference(sceneOf(flipped), camera, 96, 72, options);
+  const ImageError error = printed("flipped vs consistent", compareImages(a.image, b.image));
+  EXPECT_LT(error.maxError, 1e-3);
+}
+
+TEST(MeshReference, GivenNormalsAreUsed) {
+  // Every normal +z, the light straight down −z, no ambient: Lambert is 1 everywhere, so the
+  // whole sphere shows its plain color (computed normals would shade it round).
+  const Mesh sphere = makeUvSphere(16, 9);
+  const std::vector<glm::dvec3> up(sphere.points.size(), glm::dvec3(0, 0, 1));
+  const VertexNormals given = fromPointNormals(sphere.view(), PointArray::of(up));
+  LightSet light;
+  light.ambient.intensity = 0.0;
+  light.lights.push_back(DirectionalLight{{0, 0, -1}});
+  const Scene scene = sceneOf(sphere, Material{}, light);
+  const Camera camera = fitCamera(sphere);  // looks down −z
+  const auto render = renderMeshReference(scene, camera, 64, 64, {.samplesPerPixel = 4},
+                                          std::span(&given, 1));
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < render.image.pixelCount(); ++i) {
+    if (render.image.coverage[i] < 1.0f) continue;
+    ++covered;
+    EXPECT_EQ(render.image.color[i], Color(1.0f)) << i;
+  }
+  EXPECT_GT(covered, 500u);
+}
+
+TEST(MeshReference, BackFacesCulledWhenTheMaterialSaysSo) {
+  Mesh quad;
+  quad.addPolygon({quad.addPoint({0, 0, 0}), quad.addPoint({0, 32, 0}), quad.addPoint({32, 32, 0}),
+                   quad.addPoint({32, 0, 0})});  // clockwise seen from +z: a back face
+  Material culling;
+  culling.backfaceCulling = true;
+  const auto shown = renderMeshReference(sceneOf(quad), pixelCamera(16, 16), 16, 16, {.samplesPerPixel = 4});
+  const auto culled =
+      renderMeshReference(sceneOf(quad, culling), pixelCamera(16, 16), 16, 16, {.samplesPerPixel = 4});
+  EXPECT_EQ(shown.image.coverage[shown.image.indexOf(8, 8)], 1.0f);
+  EXPECT_EQ(culled.image.coverage[culled.image.indexOf(8, 8)], 0.0f);
+}
+
+TEST(MeshReference, DataFarFromTheOriginRendersAsAtTheOrigin) {
+  const glm::dvec3 far(1e6, -2e6, 3e6);
+  const Mesh sphere = makeUvSphere(32, 17);
+  const Mesh moved = makeUvSphere(32, 17, 1.0, far);
+  Camera camera = fitCamera(sphere, {0.2, -0.3, -1});
+  LightSet lights;
+  lights.lights.push_back(DirectionalLight{{-1, -1, -2}});
+  const ReferenceOptions options{.samplesPerPixel = 8};
+  const auto here = renderMeshReference(sceneOf(sphere, shiny(), lights), camera, 96, 72, options);
+  camera.position += far;
+  camera.focalPoint += far;
+  const auto there = renderMeshReference(sceneOf(moved, shiny(), lights), camera, 96, 72, options);
+  const ImageError error = printed("at 1e6 vs at 0", compareImages(here.image, there.image));
+  EXPECT_LT(error.rmse, 0.05);
+}
+
+// Converged: doubling the samples changes the bunny by less than 0.25/255 RMSE.
+TEST(MeshReference, BunnyConvergesAsSamplesDouble) {
+  const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
+  const Scene scene = sceneOf(bunny);
+  const Camera camera = fitCamera(bunny, {0.3, -0.2, -1});
+  const MeshTracer tracer(scene, camera.position, true);
+  const auto render = [&](int samples) {
+    return renderReference(camera, 480, 270, {.samplesPerPixel = samples},
+                           [&](const Ray& ray) { return tracer(ray); })
+        .image;
+  };
+  const ImageError error =
+      printed("bunny 480x270, 128 vs 256 samples", compareImages(render(256), render(128)));
+  EXPECT_LT(error.rmse, 0.25);
+}
+
+TEST(MeshReference, BadInputIsNamed) {
+  const Mesh sphere = makeUvSphere(8, 5);
+  const Scene scene = sceneOf(sphere);
+  const Camera camera = fitCamera(sphere);
+  const VertexNormals wrong = computeVertexNormals(makeUvSphere(6, 4).view());
+  EXPECT_THROW(MeshTracer(scene, camera.position, true, std::span(&wrong, 1)), Error);
+  const VertexNormals right = computeVertexNormals(sphere.view());
+  const VertexNormals two[2] = {right, right};
+  EXPECT_THROW(MeshTracer(scene, camera.position, true, two), Error);
+  Mesh broken = sphere;
+  broken.connectivity[4] = -3;
+  EXPECT_THROW(MeshTracer(sceneOf(broken), camera.position, true), Error);
+  Scene badMaterial = scene;
+  badMaterial.meshes[0].material.diffuse = -1.0;
+  EXPECT_THROW(MeshTracer(badMaterial, camera.position, true), Error);
+}
+
+}  // namespace
+}  // namespace facet
