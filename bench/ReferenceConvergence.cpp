@@ -6,31 +6,18 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <optional>
 
 #include "facet/AnalyticReference.h"
 #include "facet/ImageMetrics.h"
 #include "facet/MeshReference.h"
+#include "support/ReferenceScenes.h"
 #include "support/TestMeshes.h"
 
 namespace {
 
 using namespace facet;
-
-LightSet benchLights() {
-  LightSet lights;
-  lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
-  lights.lights.push_back(PointLight{{2, 1, 3}, Color(0.6f, 0.6f, 0.9f)});
-  return lights;
-}
-
-Material benchMaterial() {
-  Material material;
-  material.color = {0.9f, 0.7f, 0.5f};
-  material.specular = 0.4;
-  material.specularPower = 20.0;
-  return material;
-}
 
 // Renders with 8, 16, ... samples and prints each doubling's change.
 void sweep(const char* name, int maxSamples, const std::function<ReferenceRender(int)>& render) {
@@ -60,8 +47,8 @@ int main(int argc, char** argv) {
   std::printf("%d x %d, samples doubled from 8 to %d\n", width, height, maxSamples);
 
   AnalyticScene sphere;
-  sphere.spheres.push_back({{0, 0, 0}, 1.0, benchMaterial()});
-  sphere.lights = benchLights();
+  sphere.spheres.push_back({{0, 0, 0}, 1.0, testing::shinyMaterial()});
+  sphere.lights = testing::twoLights();
   const Camera sphereCamera = testing::fitCamera(testing::makeUvSphere(8, 5), {0.2, -0.3, -1});
   sweep("sphere", maxSamples, [&](int samples) {
     return renderAnalyticReference(sphere, sphereCamera, width, height, {.samplesPerPixel = samples});
@@ -69,8 +56,8 @@ int main(int argc, char** argv) {
 
   const Mesh bunny = testing::readObj(testing::sharedMeshPath("stanford-bunny.obj"));
   Scene scene;
-  scene.meshes.push_back({bunny.view(), benchMaterial()});
-  scene.lights = benchLights();
+  scene.meshes.push_back({bunny.view(), testing::shinyMaterial()});
+  scene.lights = testing::twoLights();
   const Camera bunnyCamera = testing::fitCamera(bunny, {0.3, -0.2, -1});
   sweep("bunny", maxSamples, [&](int samples) {
     return renderMeshReference(scene, bunnyCamera, width, height, {.samplesPerPixel = samples});

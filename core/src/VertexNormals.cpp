@@ -158,10 +158,12 @@ class NormalBuilder {
     }
   }
 
+  // The point after (or before) a corner in its polygon. No modulo: it is this loop's cost.
   std::uint32_t neighbourPoint(const Corner& corner, bool next) const {
-    const std::size_t begin = polygons_.begin(corner.polygon), n = polygons_.size(corner.polygon);
-    const std::size_t k = corner.index - begin;
-    return static_cast<std::uint32_t>(polygons_.pointId(corner.polygon, (k + (next ? 1 : n - 1)) % n));
+    const std::size_t k = corner.index - polygons_.begin(corner.polygon);
+    const std::size_t last = polygons_.size(corner.polygon) - 1;
+    const std::size_t neighbour = next ? (k == last ? 0 : k + 1) : (k == 0 ? last : k - 1);
+    return static_cast<std::uint32_t>(polygons_.pointId(corner.polygon, neighbour));
   }
 
   void buildPoint(std::uint32_t v) {

@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <gtest/gtest.h>
 
+#include "../support/ReferenceScenes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "facet/AnalyticReference.h"
@@ -196,13 +197,8 @@ TEST(AnalyticReference, NearPlaneCutsTheSphereOpen) {
 
 AnalyticScene litSphereScene() {
   AnalyticScene scene;
-  Material material;
-  material.color = {0.9f, 0.7f, 0.5f};
-  material.specular = 0.4;
-  material.specularPower = 20.0;
-  scene.spheres.push_back({{0, 0, 0}, 1.0, material});
-  scene.lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
-  scene.lights.lights.push_back(PointLight{{2, 1, 3}, Color(0.6f, 0.6f, 0.9f)});
+  scene.spheres.push_back({{0, 0, 0}, 1.0, testing::shinyMaterial()});
+  scene.lights = testing::twoLights();
   return scene;
 }
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/ReferenceScenes.h"
 #include "../support/TestMeshes.h"
 #include "facet/AnalyticReference.h"
 #include "facet/Error.h"
@@ -22,24 +23,11 @@ using testing::makeUvSphere;
 using testing::pixelCamera;
 using testing::readObj;
 using testing::sharedMeshPath;
+using testing::shinyMaterial;
+using testing::twoLights;
 
-LightSet someLights() {
-  LightSet lights;
-  lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
-  lights.lights.push_back(PointLight{{2, 1, 3}, Color(0.6f, 0.6f, 0.9f)});
-  return lights;
-}
-
-Material shiny() {
-  Material material;
-  material.color = {0.9f, 0.7f, 0.5f};
-  material.specular = 0.4;
-  material.specularPower = 20.0;
-  return material;
-}
-
-Scene sceneOf(const Mesh& mesh, const Material& material = shiny(),
-              const LightSet& lights = someLights()) {
+Scene sceneOf(const Mesh& mesh, const Material& material = shinyMaterial(),
+              const LightSet& lights = twoLights()) {
   Scene scene;
   scene.meshes.push_back({mesh.view(), material});
   scene.lights = lights;
@@ -70,9 +58,9 @@ TEST(MeshReference, QuadIsTheAnalyticPlane) {
   plane.origin = quad.points[0];
   plane.edgeU = quad.points[1] - quad.points[0];
   plane.edgeV = quad.points[3] - quad.points[0];
-  plane.material = shiny();
+  plane.material = shinyMaterial();
   analytic.planes.push_back(plane);
-  analytic.lights = someLights();
+  analytic.lights = twoLights();
   const auto exact = renderAnalyticReference(analytic, camera, 48, 32, options);
   // Compare where both parallelogram and quad agree: the quad is not a parallelogram, so
   // compare the pixels fully inside both.
@@ -88,8 +76,8 @@ TEST(MeshReference, QuadIsTheAnalyticPlane) {
 
 TEST(MeshReference, FineSphereConvergesToTheAnalyticSphere) {
   AnalyticScene analytic;
-  analytic.spheres.push_back({{0, 0, 0}, 1.0, shiny()});
-  analytic.lights = someLights();
+  analytic.spheres.push_back({{0, 0, 0}, 1.0, shinyMaterial()});
+  analytic.lights = twoLights();
   const Camera camera = fitCamera(makeUvSphere(8, 5), {0.2, -0.3, -1});
   const ReferenceOptions options{.samplesPerPixel = 16};
   const FloatImage exact = renderAnalyticReference(analytic, camera, 160, 120, options).image;
@@ -177,10 +165,10 @@ TEST(MeshReference, DataFarFromTheOriginRendersAsAtTheOrigin) {
   LightSet lights;
   lights.lights.push_back(DirectionalLight{{-1, -1, -2}});
   const ReferenceOptions options{.samplesPerPixel = 8};
-  const auto here = renderMeshReference(sceneOf(sphere, shiny(), lights), camera, 96, 72, options);
+  const auto here = renderMeshReference(sceneOf(sphere, shinyMaterial(), lights), camera, 96, 72, options);
   camera.position += far;
   camera.focalPoint += far;
-  const auto there = renderMeshReference(sceneOf(moved, shiny(), lights), camera, 96, 72, options);
+  const auto there = renderMeshReference(sceneOf(moved, shinyMaterial(), lights), camera, 96, 72, options);
   const ImageError error = printed("at 1e6 vs at 0", compareImages(here.image, there.image));
   EXPECT_LT(error.rmse, 0.05);
 }
