@@ -124,8 +124,8 @@ std::optional<Color> AnalyticTracer::operator()(const Ray& ray) const {
   return shader_.shade(sample, *hit->material);
 }
 
-ReferenceRender renderAnalyticReference(const AnalyticScene& scene, const Camera& camera,
-                                        int width, int height, const ReferenceOptions& options) {
+ReferenceRender renderAnalyticReference(const AnalyticScene& scene, const Camera& camera, int width,
+                                        int height, const ReferenceOptions& options) {
   const AnalyticTracer tracer(scene, options.twoSidedLighting);
   return renderReference(camera, width, height, options,
                          [&](const Ray& ray) { return tracer(ray); });

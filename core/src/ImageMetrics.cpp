@@ -90,12 +90,11 @@ void requireSameSize(const FloatImage& reference, const FloatImage& test) {
     detail::fail("compareImages", "got a reference of " + size(reference) +
                                       " pixels and a test image of " + size(test));
   }
-  if (reference.color.size() != reference.pixelCount() ||
-      test.color.size() != test.pixelCount() ||
+  if (reference.color.size() != reference.pixelCount() || test.color.size() != test.pixelCount() ||
       reference.coverage.size() != reference.pixelCount() ||
       test.coverage.size() != test.pixelCount()) {
-    detail::fail("compareImages", "got an image whose color or coverage size is not " +
-                                      size(reference));
+    detail::fail("compareImages",
+                 "got an image whose color or coverage size is not " + size(reference));
   }
 }
 
@@ -153,8 +152,8 @@ std::vector<double> luminance(const FloatImage& image) {
   std::vector<double> y(image.color.size());
   for (std::size_t i = 0; i < y.size(); ++i) {
     const Color& c = image.color[i];
-    y[i] = 255.0 * (kLuminanceWeights[0] * c.r + kLuminanceWeights[1] * c.g +
-                    kLuminanceWeights[2] * c.b);
+    y[i] = 255.0 *
+           (kLuminanceWeights[0] * c.r + kLuminanceWeights[1] * c.g + kLuminanceWeights[2] * c.b);
   }
   return y;
 }
@@ -165,14 +164,13 @@ std::optional<double> structuralSimilarity(std::span<const double> a, std::span<
   if (a.size() != pixels || b.size() != pixels) {
     detail::fail("structuralSimilarity", "got " + std::to_string(a.size()) + " and " +
                                              std::to_string(b.size()) + " values for " +
-                                             std::to_string(width) + "x" +
-                                             std::to_string(height) + " pixels");
+                                             std::to_string(width) + "x" + std::to_string(height) +
+                                             " pixels");
   }
   if (width < kSsimTaps || height < kSsimTaps) return std::nullopt;
   const SsimKernel kernel = ssimKernel();
   // The horizontal pass of the last kSsimTaps rows, reused as the window slides down.
-  std::vector<std::vector<Moments>> ring(kSsimTaps,
-                                         std::vector<Moments>(width - kSsimTaps + 1));
+  std::vector<std::vector<Moments>> ring(kSsimTaps, std::vector<Moments>(width - kSsimTaps + 1));
   const auto filterInto = [&](int row) {
     filterRow(&a[static_cast<std::size_t>(row) * width], &b[static_cast<std::size_t>(row) * width],
               width, kernel, ring[row % kSsimTaps].data());
@@ -201,8 +199,8 @@ ImageError compareImages(const FloatImage& reference, const FloatImage& test) {
   error.interiorRmse = rootMeanSquare(sums.interiorSquared, sums.interior);
   error.maxError = sums.max;
   error.psnr = psnrFromRmse(error.rmse);
-  error.ssim =
-      structuralSimilarity(luminance(reference), luminance(test), reference.width, reference.height);
+  error.ssim = structuralSimilarity(luminance(reference), luminance(test), reference.width,
+                                    reference.height);
   error.comparedPixels = sums.compared;
   error.interiorPixels = sums.interior;
   error.coveredPixels = sums.covered;

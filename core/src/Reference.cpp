@@ -9,6 +9,7 @@
 #include "ThreadPool.h"
 #include "Validate.h"
 #include "facet/Conventions.h"
+#include "facet/ImageMetrics.h"
 
 namespace facet {
 namespace {
@@ -97,8 +98,8 @@ Ray CameraRays::through(const glm::dvec2& window) const {
 }
 
 PixelSamplePattern::PixelSamplePattern(int x, int y) {
-  const std::uint32_t pixel = hash32(static_cast<std::uint32_t>(x) ^
-                                     hash32(static_cast<std::uint32_t>(y) + 0x9e3779b9u));
+  const std::uint32_t pixel =
+      hash32(static_cast<std::uint32_t>(x) ^ hash32(static_cast<std::uint32_t>(y) + 0x9e3779b9u));
   scrambleX_ = hash32(pixel ^ 0x68bc21ebu);
   scrambleY_ = hash32(pixel ^ 0x02e5be93u);
 }
@@ -120,23 +121,35 @@ void validate(const ReferenceOptions& options) {
 
 namespace {
 
-// One pixel: its samples summed in index order, in double.
-void tracePixel(const CameraRays& rays, const ReferenceOptions& options,
-                const SampleTracer& trace, int x, int y, FloatImage& image) {
-  const glm::dvec3 background(options.background);
-  glm::dvec3 sum(0.0);
+// A pixel's running sums.
+struct PixelSum {
+  glm::dvec3 color{0.0};
   std::uint32_t hits = 0;
+
+  void store(FloatImage& image, std::size_t i, std::uint32_t samples) const {
+    image.color[i] = Color(color / static_cast<double>(samples));
+    image.coverage[i] = static_cast<float>(static_cast<double>(hits) / samples);
+  }
+};
+
+// One pixel: its samples summed in index order, in double; the first half stored apart.
+void tracePixel(const CameraRays& rays, const ReferenceOptions& options, const SampleTracer& trace,
+                int x, int y, FloatImage& image, FloatImage& half) {
+  // Saturated as the rasterizer's output is, so the image stays in [0, 1] (and NaN-free)
+  // whatever a tracer returns.
+  const glm::dvec3 background(saturate(options.background));
   const auto samples = static_cast<std::uint32_t>(options.samplesPerPixel);
+  const std::size_t i = image.indexOf(x, y);
   const PixelSamplePattern pattern(x, y);
+  PixelSum sum;
   for (std::uint32_t s = 0; s < samples; ++s) {
+    if (s == samples / 2 && s > 0) sum.store(half, i, s);
     const glm::dvec2 offset = pattern.offset(s);
     const std::optional<Color> seen = trace(rays.through({x + offset.x, y + offset.y}));
-    sum += seen ? glm::dvec3(*seen) : background;
-    hits += seen.has_value();
+    sum.color += seen ? glm::dvec3(saturate(*seen)) : background;
+    sum.hits += seen.has_value();
   }
-  const std::size_t i = image.indexOf(x, y);
-  image.color[i] = Color(sum / static_cast<double>(samples));
-  image.coverage[i] = static_cast<float>(static_cast<double>(hits) / samples);
+  sum.store(image, i, samples);
 }
 
 }  // namespace
@@ -148,15 +161,19 @@ ReferenceRender renderReference(const Camera& camera, int width, int height,
   const CameraRays rays(camera, width, height);
   ReferenceRender result;
   result.image = FloatImage(width, height);
+  FloatImage half(width, height);
   detail::ThreadPool pool(resolveThreads(options.threads));
   auto row = [&](std::size_t y) {
     for (int x = 0; x < width; ++x)
-      tracePixel(rays, options, trace, x, static_cast<int>(y), result.image);
+      tracePixel(rays, options, trace, x, static_cast<int>(y), result.image, half);
   };
   auto report = [&](std::size_t rowsDone) {
     return !options.progress || options.progress(static_cast<double>(rowsDone) / height);
   };
   result.aborted = !pool.run(static_cast<std::size_t>(height), row, report);
+  if (!result.aborted && options.samplesPerPixel > 1) {
+    result.convergence = compareImages(result.image, half).rmse;
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

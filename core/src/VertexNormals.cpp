@@ -26,10 +26,8 @@ constexpr std::uint32_t kNoEntry = std::numeric_limits<std::uint32_t>::max();
 
 std::size_t cornerCount(const MeshView& mesh) {
   if (mesh.polygons.count == 0) return 0;
-  const std::size_t last = mesh.polygons.count;
-  return mesh.polygons.type == PolygonArray::Type::Int32
-             ? static_cast<std::size_t>(static_cast<const std::int32_t*>(mesh.polygons.offsets)[last])
-             : static_cast<std::size_t>(static_cast<const std::int64_t*>(mesh.polygons.offsets)[last]);
+  return detail::withTypedMesh(
+      mesh, [&](auto, auto polygons) { return polygons.begin(mesh.polygons.count); });
 }
 
 // Validates the mesh and checks that every corner and normal can be numbered in 32 bits.
@@ -117,8 +115,7 @@ class NormalBuilder {
  public:
   NormalBuilder(PointsT points, PolygonsT polygons, const MeshView& mesh, std::size_t corners,
                 double featureAngleDegrees)
-      : points_(points),
-        polygons_(polygons),
+      : polygons_(polygons),
         pointCount_(mesh.points.count),
         polygonCount_(mesh.polygons.count),
         cosFeatureAngle_(std::cos(glm::radians(featureAngleDegrees))) {
@@ -167,7 +164,7 @@ class NormalBuilder {
   }
 
   void buildPoint(std::uint32_t v) {
-    const std::span<const Corner> corners(&pointCorners_[pointStart_[v]],
+    const std::span<const Corner> corners(pointCorners_.data() + pointStart_[v],
                                           pointStart_[v + 1] - pointStart_[v]);
     groups_.reset(corners.size());
     collectEdgeEnds(v, corners);
@@ -241,7 +238,6 @@ class NormalBuilder {
     return static_cast<std::uint32_t>(result_.normals.size() - 1);
   }
 
-  PointsT points_;
   PolygonsT polygons_;
   std::size_t pointCount_, polygonCount_;
   double cosFeatureAngle_;
@@ -277,9 +273,8 @@ VertexNormals computeVertexNormals(const MeshView& mesh, const VertexNormalOptio
 VertexNormals fromPointNormals(const MeshView& mesh, const PointArray& pointNormals) {
   const std::size_t corners = validatedCornerCount(mesh);
   if (pointNormals.count != mesh.points.count || (pointNormals.count > 0 && !pointNormals.data)) {
-    detail::fail("fromPointNormals", "got " + std::to_string(pointNormals.count) +
-                                         " normals for " + std::to_string(mesh.points.count) +
-                                         " points");
+    detail::fail("fromPointNormals", "got " + std::to_string(pointNormals.count) + " normals for " +
+                                         std::to_string(mesh.points.count) + " points");
   }
   VertexNormals result;
   result.cornerNormal.assign(corners, 0);

@@ -45,8 +45,8 @@ void requireFits(const VertexNormals& normals, std::size_t cornerCount, std::siz
   for (std::size_t k = 0; fits && k < cornerCount; ++k)
     fits = normals.cornerNormal[k] < normals.normals.size();
   if (!fits) {
-    throw Error("MeshTracer normals[" + std::to_string(i) + "] do not fit " + meshName(i) +
-                ": " + std::to_string(normals.cornerNormal.size()) + " corner entries for " +
+    throw Error("MeshTracer normals[" + std::to_string(i) + "] do not fit " + meshName(i) + ": " +
+                std::to_string(normals.cornerNormal.size()) + " corner entries for " +
                 std::to_string(cornerCount) + " corners, or an index past its " +
                 std::to_string(normals.normals.size()) + " normals");
   }
@@ -109,8 +109,8 @@ glm::dvec2 refine(const std::array<glm::dvec3, 3>& corner, const glm::dvec3& ori
   const double determinant = glm::dot(e1, p);
   if (determinant == 0.0) return {hit.u, hit.v};  // seen exactly edge-on
   const glm::dvec3 s = origin - corner[0], q = glm::cross(s, e1);
-  const glm::dvec2 uv = glm::max(glm::dvec2(glm::dot(s, p), glm::dot(direction, q)) / determinant,
-                                 glm::dvec2(0.0));
+  const glm::dvec2 uv =
+      glm::max(glm::dvec2(glm::dot(s, p), glm::dot(direction, q)) / determinant, glm::dvec2(0.0));
   return uv.x + uv.y > 1.0 ? uv / (uv.x + uv.y) : uv;
 }
 
@@ -135,10 +135,12 @@ struct MeshTracer::Impl {
 void MeshTracer::Impl::attach(TracedMesh& mesh, unsigned id) {
   if (mesh.triangles.empty()) return;  // Embree refuses empty buffers; nothing to hit anyway
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.points.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               mesh.points.size()));
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), mesh.triangles.size()));
   throwIfFailed();
   for (std::size_t p = 0; p < mesh.points.size(); ++p) {
     for (int axis = 0; axis < 3; ++axis)
@@ -165,7 +167,9 @@ std::optional<Color> MeshTracer::Impl::shade(const Ray& ray, const glm::dvec3& o
   const std::array<glm::dvec3, 3> corner = mesh.corners(hit.hit.primID);
   const glm::dvec2 r = refine(corner, origin, ray.direction, hit.hit);
   const double w = 1.0 - r.x - r.y;
-  const auto normalAt = [&](int k) { return mesh.normals.normals[mesh.normals.cornerNormal[triangle.corner[k]]]; };
+  const auto normalAt = [&](int k) {
+    return mesh.normals.normals[mesh.normals.cornerNormal[triangle.corner[k]]];
+  };
   const glm::dvec3 face = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
   glm::dvec3 normal = w * normalAt(0) + r.x * normalAt(1) + r.y * normalAt(2);
   const double length = glm::length(normal);
@@ -199,11 +203,12 @@ MeshTracer::MeshTracer(const Scene& scene, const glm::dvec3& eye, bool twoSidedL
   impl.eye = eye;
   impl.twoSidedLighting = twoSidedLighting;
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    impl.meshes.push_back(prepare(scene.meshes[i], eye, normals.empty() ? nullptr : &normals[i],
-                                  normalOptions, i));
+    impl.meshes.push_back(
+        prepare(scene.meshes[i], eye, normals.empty() ? nullptr : &normals[i], normalOptions, i));
   }
   impl.device.reset(rtcNewDevice(nullptr));
-  if (!impl.device) throw Error("MeshTracer: Embree device: " + std::to_string(rtcGetDeviceError(nullptr)));
+  if (!impl.device)
+    throw Error("MeshTracer: Embree device: " + std::to_string(rtcGetDeviceError(nullptr)));
   rtcSetDeviceErrorFunction(impl.device.get(), recordError, &impl.embreeError);
   impl.scene.reset(rtcNewScene(impl.device.get()));
   // Robust: no optimization that trades accuracy (rays must not slip between triangles).
@@ -241,13 +246,12 @@ std::optional<Color> MeshTracer::operator()(const Ray& ray) const {
   return impl_->shade(ray, origin, hit);
 }
 
-ReferenceRender renderMeshReference(const Scene& scene, const Camera& camera, int width,
-                                    int height, const ReferenceOptions& options,
+ReferenceRender renderMeshReference(const Scene& scene, const Camera& camera, int width, int height,
+                                    const ReferenceOptions& options,
                                     std::span<const VertexNormals> normals,
                                     const VertexNormalOptions& normalOptions) {
   validate(camera);
-  const MeshTracer tracer(scene, camera.position, options.twoSidedLighting, normals,
-                          normalOptions);
+  const MeshTracer tracer(scene, camera.position, options.twoSidedLighting, normals, normalOptions);
   return renderReference(camera, width, height, options,
                          [&](const Ray& ray) { return tracer(ray); });
 }

@@ -33,8 +33,7 @@
 #include <string>
 #include <vector>
 
-namespace
-{
+namespace {
 
 struct Corners
 {
@@ -119,9 +118,13 @@ void CompareWithVtk(const std::string& name)
   // for them.
   std::printf("%s: %lld points in, %lld out of VTK (%zu used by polygons), %zu facet normals "
               "(%zu split points); largest normal difference %.3g\n",
-    name.c_str(), static_cast<long long>(input->GetNumberOfPoints()),
-    static_cast<long long>(output->GetNumberOfPoints()), oursOfVtk.size(), ours.normals.size(),
-    ours.splitPoints, worst);
+    name.c_str(),
+    static_cast<long long>(input->GetNumberOfPoints()),
+    static_cast<long long>(output->GetNumberOfPoints()),
+    oursOfVtk.size(),
+    ours.normals.size(),
+    ours.splitPoints,
+    worst);
   EXPECT_EQ(splitMismatches, 0u) << name << ": corners grouped differently";
   EXPECT_EQ(ours.normals.size(), oursOfVtk.size()) << name;
   EXPECT_GT(ours.splitPoints, 0u) << name << " has edges sharper than 30 degrees";

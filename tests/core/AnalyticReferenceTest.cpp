@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <set>
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
-#include <gtest/gtest.h>
 
 #include "../support/ReferenceScenes.h"
 #include "../support/TestMeshes.h"
@@ -108,8 +108,8 @@ TEST(AnalyticReference, SphereCoversItsDisk) {
   const double radius = 20.0;
   AnalyticScene scene;
   scene.spheres.push_back({{32.3, 31.7, 0.0}, radius, Material{}});
-  const ReferenceRender render = renderAnalyticReference(scene, pixelCamera(size, size), size, size,
-                                                         {.samplesPerPixel = 256});
+  const ReferenceRender render =
+      renderAnalyticReference(scene, pixelCamera(size, size), size, size, {.samplesPerPixel = 256});
   double area = 0.0;
   for (const float c : render.image.coverage)
     area += c;
@@ -129,8 +129,8 @@ TEST(AnalyticReference, SphereIsLitByLambertsLaw) {
   scene.spheres.push_back({{32.0, 32.0, 0.0}, radius, Material{}});
   scene.lights.ambient.intensity = 0.0;
   scene.lights.lights.push_back(DirectionalLight{{0, 0, -1}});
-  const ReferenceRender render = renderAnalyticReference(scene, pixelCamera(size, size), size, size,
-                                                         {.samplesPerPixel = 64});
+  const ReferenceRender render =
+      renderAnalyticReference(scene, pixelCamera(size, size), size, size, {.samplesPerPixel = 64});
   for (const int x : {32, 40, 44, 50}) {
     // The pixel's mean of √(1 − r²/R²): the center value, plus the curvature's share.
     const double r = x + 0.5 - 32.0;
@@ -169,14 +169,15 @@ TEST(AnalyticReference, BackFacesAreTurnedToTheViewerOrCulled) {
   scene.lights.ambient.intensity = 0.0;
   scene.lights.lights.push_back(DirectionalLight{{0, 0, -1}});
   const auto colorAt = [&](bool twoSided) {
-    const auto render = renderAnalyticReference(scene, pixelCamera(8, 8), 8, 8,
-                                                {.samplesPerPixel = 4, .twoSidedLighting = twoSided});
+    const auto render = renderAnalyticReference(
+        scene, pixelCamera(8, 8), 8, 8, {.samplesPerPixel = 4, .twoSidedLighting = twoSided});
     return render.image.color[render.image.indexOf(4, 4)];
   };
   EXPECT_EQ(colorAt(true), Color(1.0f));
   EXPECT_EQ(colorAt(false), Color(0.0f));
   scene.planes[0].material.backfaceCulling = true;
-  const auto culled = renderAnalyticReference(scene, pixelCamera(8, 8), 8, 8, {.samplesPerPixel = 4});
+  const auto culled =
+      renderAnalyticReference(scene, pixelCamera(8, 8), 8, 8, {.samplesPerPixel = 4});
   EXPECT_EQ(culled.image.coverage[culled.image.indexOf(4, 4)], 0.0f);
 }
 
@@ -205,10 +206,11 @@ AnalyticScene litSphereScene() {
 TEST(AnalyticReference, SameBytesForAnyThreadCount) {
   const AnalyticScene scene = litSphereScene();
   const Camera camera = fitCamera(makeUvSphere(8, 5), {0.2, -0.3, -1});
-  const auto one = renderAnalyticReference(scene, camera, 96, 64, {.samplesPerPixel = 16, .threads = 1});
+  const auto one =
+      renderAnalyticReference(scene, camera, 96, 64, {.samplesPerPixel = 16, .threads = 1});
   for (const int threads : {2, 3, 8}) {
-    const auto many = renderAnalyticReference(scene, camera, 96, 64,
-                                              {.samplesPerPixel = 16, .threads = threads});
+    const auto many =
+        renderAnalyticReference(scene, camera, 96, 64, {.samplesPerPixel = 16, .threads = threads});
     EXPECT_EQ(one.image.color, many.image.color) << threads << " threads";
     EXPECT_EQ(one.image.coverage, many.image.coverage) << threads << " threads";
   }
@@ -241,21 +243,30 @@ TEST(AnalyticReference, BadInputIsNamed) {
   EXPECT_THROW(renderAnalyticReference(scene, camera, 8, 8, {.background = Color(-1.0f)}), Error);
 }
 
-// Converged: doubling the samples changes the image by less than 0.25/255 RMSE. The change
-// is the silhouette's (interior shading converges much faster), so the count needed falls as
-// the image grows: 128 here at a quarter of 1080p; 1080p itself needs 64 (README).
-TEST(AnalyticReference, ConvergesAsSamplesDouble) {
+// A render says how much its last doubling of samples changed it: exactly the RMSE between it
+// and the render with half the samples (the first half of the pattern is that render).
+TEST(AnalyticReference, ConvergenceIsTheChangeFromHalfTheSamples) {
   const AnalyticScene scene = litSphereScene();
   const Camera camera = fitCamera(makeUvSphere(8, 5), {0.2, -0.3, -1});
-  const int width = 480, height = 270;
   const auto render = [&](int samples) {
-    return renderAnalyticReference(scene, camera, width, height, {.samplesPerPixel = samples}).image;
+    return renderAnalyticReference(scene, camera, 64, 48, {.samplesPerPixel = samples});
   };
-  const ImageError change = compareImages(render(256), render(128));
-  std::printf("128 -> 256 samples: RMSE change %.4f / 255 (interior %.5f), max %.2f\n",
-              change.rmse, change.interiorRmse, change.maxError);
-  EXPECT_LT(change.rmse, 0.25);
-  EXPECT_LT(change.interiorRmse, 0.05);
+  const ReferenceRender full = render(16);
+  ASSERT_TRUE(full.convergence.has_value());
+  EXPECT_EQ(*full.convergence, compareImages(full.image, render(8).image).rmse);
+  EXPECT_GT(*full.convergence, 0.0);
+  EXPECT_FALSE(render(1).convergence.has_value());
+}
+
+// Converged: doubling the samples changes the image by less than 0.25/255 RMSE. The change
+// is the silhouette's (interior shading converges much faster), so the count needed falls as
+// the image grows: 256 here at a quarter of 1080p; 1080p itself needs 64 (README).
+TEST(AnalyticReference, ConvergesAsSamplesDouble) {
+  const Camera camera = fitCamera(makeUvSphere(8, 5), {0.2, -0.3, -1});
+  const ReferenceRender render =
+      renderAnalyticReference(litSphereScene(), camera, 480, 270, {.samplesPerPixel = 256});
+  std::printf("128 -> 256 samples at 480x270: RMSE change %.4f / 255\n", *render.convergence);
+  EXPECT_LT(*render.convergence, 0.25);
 }
 
 // The first real measurement of error against tessellation: a UV sphere flat-shaded by the
@@ -272,10 +283,11 @@ TEST(AnalyticReference, FlatSphereErrorFallsWithTessellation) {
     Scene flat = testing::oneMeshScene(sphere.view(), scene.spheres[0].material, scene.lights);
     const auto rendered = testing::renderScene(flat, camera, width, height);
     const ImageError error = compareImages(reference, toFloatImage(rendered.framebuffer));
-    std::printf("%4d segments: RMSE %6.3f, interior %6.3f, max %5.1f, PSNR %5.2f dB, SSIM %.4f, "
-                "silhouette %.2f %%\n",
-                segments, error.rmse, error.interiorRmse, error.maxError, error.psnr, *error.ssim,
-                100.0 * error.silhouetteFraction);
+    std::printf(
+        "%4d segments: RMSE %6.3f, interior %6.3f, max %5.1f, PSNR %5.2f dB, SSIM %.4f, "
+        "silhouette %.2f %%\n",
+        segments, error.rmse, error.interiorRmse, error.maxError, error.psnr, *error.ssim,
+        100.0 * error.silhouetteFraction);
     EXPECT_LT(error.rmse, previousRmse) << segments << " segments";
     EXPECT_LT(error.interiorRmse, previousInterior) << segments << " segments";
     previousRmse = error.rmse;

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "facet/AnalyticReference.h"
-#include "facet/ImageMetrics.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "facet/AnalyticReference.h"
+#include "facet/ImageMetrics.h"
 
 namespace {
 
@@ -39,7 +39,8 @@ FloatImage readPng(const std::string& path) {
   FloatImage image(static_cast<int>(png.width), static_cast<int>(png.height));
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
-      const png_byte* p = &bytes[3 * (static_cast<std::size_t>(image.height - 1 - y) * image.width + x)];
+      const png_byte* p =
+          &bytes[3 * (static_cast<std::size_t>(image.height - 1 - y) * image.width + x)];
       image.color[image.indexOf(x, y)] = facet::Color(p[0], p[1], p[2]) / 255.0f;
       image.coverage[image.indexOf(x, y)] = 1.0f;
     }

@@ -8,14 +8,14 @@
 #include <set>
 #include <utility>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
+#include "../support/TestMeshes.h"
 #include "facet/Error.h"
 #include "facet/Lighting.h"
 #include "facet/PolygonNormal.h"
 #include "facet/VertexNormals.h"
-#include "../support/TestMeshes.h"
 
 namespace facet {
 namespace {
@@ -94,7 +94,8 @@ TEST(VertexNormals, FineSphereNormalsAreRadial) {
 }
 
 // The manifold edges of a mesh: (low point, high point) → the polygons using it.
-std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> edgesOf(const Mesh& mesh) {
+std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> edgesOf(
+    const Mesh& mesh) {
   std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> edges;
   for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
     const auto n = mesh.offsets[p + 1] - mesh.offsets[p];
@@ -125,7 +126,8 @@ TEST(VertexNormals, FandiskKeepsItsCreases) {
   std::map<std::int64_t, int> sharpEdgesAt;
   for (const auto& [edge, polygons] : edges) {
     ASSERT_EQ(polygons.size(), 2u) << "fandisk is a closed manifold";
-    if (angleBetweenDegrees(faceNormal(fandisk, polygons[0]), faceNormal(fandisk, polygons[1])) >= 30.0) {
+    if (angleBetweenDegrees(faceNormal(fandisk, polygons[0]), faceNormal(fandisk, polygons[1])) >=
+        30.0) {
       ++sharpEdgesAt[edge.first];
       ++sharpEdgesAt[edge.second];
     }
@@ -138,7 +140,8 @@ TEST(VertexNormals, FandiskKeepsItsCreases) {
       const bool shared = normals.cornerNormal[cornerOf(fandisk, polygons[0], point)] ==
                           normals.cornerNormal[cornerOf(fandisk, polygons[1], point)];
       if (angle < 30.0) {
-        EXPECT_TRUE(shared) << "smooth edge " << edge.first << "-" << edge.second << " at " << angle;
+        EXPECT_TRUE(shared) << "smooth edge " << edge.first << "-" << edge.second << " at "
+                            << angle;
         ++smooth;
       } else if (sharpEdgesAt[point] >= 2) {
         EXPECT_FALSE(shared) << "crease " << edge.first << "-" << edge.second << " at " << angle;
@@ -168,7 +171,8 @@ TEST(VertexNormals, FlippedPolygonsStillGetSmoothNormals) {
       // In the polygon's own orientation: inward for the flipped ones.
       const glm::dvec3 radial = sphere.points[sphere.connectivity[sphere.offsets[p] + k]];
       const double sign = flipped.count(p) ? -1.0 : 1.0;
-      worst = std::max(worst, angleBetweenDegrees(cornerNormal(normals, sphere, p, k), sign * radial));
+      worst =
+          std::max(worst, angleBetweenDegrees(cornerNormal(normals, sphere, p, k), sign * radial));
     }
   }
   EXPECT_LT(worst, 2.0);
@@ -200,8 +204,8 @@ TEST(VertexNormals, InputPointNormalsAreUsedNormalized) {
   const Mesh sphere = makeUvSphere(16, 9);
   std::vector<glm::vec3> given(sphere.points.begin(), sphere.points.end());
   for (glm::vec3& n : given)
-    n *= 3.0f;                    // not unit: normalized on the way
-  given[5] = glm::vec3(0.0f);     // unusable: replaced by the face normals around point 5
+    n *= 3.0f;                 // not unit: normalized on the way
+  given[5] = glm::vec3(0.0f);  // unusable: replaced by the face normals around point 5
   const VertexNormals normals = fromPointNormals(sphere.view(), PointArray::of(given));
   expectAllFinite(normals);
   std::size_t replaced = 0;

@@ -62,8 +62,7 @@ class AnalyticTracer {
 /// renderReference with an AnalyticTracer). Throws facet::Error for an invalid scene
 /// (radius ≤ 0, parallel plane edges, non-finite numbers, bad materials or lights), camera,
 /// options or size.
-ReferenceRender renderAnalyticReference(const AnalyticScene& scene, const Camera& camera,
-                                        int width, int height,
-                                        const ReferenceOptions& options = {});
+ReferenceRender renderAnalyticReference(const AnalyticScene& scene, const Camera& camera, int width,
+                                        int height, const ReferenceOptions& options = {});
 
 }  // namespace facet

@@ -59,10 +59,10 @@ struct ImageError {
   double interiorRmse = 0.0;  ///< 8-bit units, over pixels fully covered in both
   /// Mean SSIM of the luminance, in [−1, 1]; empty when a side is below 2·kSsimRadius + 1.
   std::optional<double> ssim;
-  double silhouetteFraction = 0.0;  ///< silhouettePixels / coveredPixels (0 if none)
-  std::size_t comparedPixels = 0;   ///< covered (coverage > 0) in either image
-  std::size_t interiorPixels = 0;   ///< fully covered in both
-  std::size_t coveredPixels = 0;    ///< covered (≥ kCoveredFraction) in either image
+  double silhouetteFraction = 0.0;   ///< silhouettePixels / coveredPixels (0 if none)
+  std::size_t comparedPixels = 0;    ///< covered (coverage > 0) in either image
+  std::size_t interiorPixels = 0;    ///< fully covered in both
+  std::size_t coveredPixels = 0;     ///< covered (≥ kCoveredFraction) in either image
   std::size_t silhouettePixels = 0;  ///< covered in one image but not the other
   /// Per pixel, the largest absolute channel difference in 8-bit units (row 0 at the bottom).
   std::vector<float> errorImage;

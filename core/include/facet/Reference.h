@@ -99,7 +99,8 @@ struct ReferenceOptions {
   /// Light back faces with their normal turned toward the viewer, as the Renderer does by
   /// default. (default: on)
   bool twoSidedLighting = true;
-  /// Color of pixels (and parts of pixels) the surface does not cover. (default: black)
+  /// Color of pixels (and parts of pixels) the surface does not cover, saturated to [0, 1]
+  /// as the rasterizer's output is. (default: black)
   Color background{0.0f};
   ReferenceProgress progress{};  ///< (default: none)
 };
@@ -108,20 +109,26 @@ struct ReferenceOptions {
 /// outside [0, 1024], a background channel that is negative or not finite).
 void validate(const ReferenceOptions& options);
 
-/// What one sample sees: the surface's saturated color, or nothing (background).
+/// What one sample sees: the surface's color (saturated on the way, so NaN counts as 0), or
+/// nothing (background). Called from several threads at once; must not throw.
 using SampleTracer = std::function<std::optional<Color>(const Ray& ray)>;
 
 struct ReferenceRender {
   FloatImage image;
+  /// How much the last doubling of the samples changed the image, for free: the RMSE (8-bit
+  /// units, ImageMetrics.h) between `image` and the image of its first half of samples —
+  /// which is, to the bit, the image of samplesPerPixel / 2. Converged when below 0.25.
+  /// Empty for one sample per pixel, or when aborted.
+  std::optional<double> convergence;
   bool aborted = false;  ///< the progress callback stopped it: the rows not done are empty
   double seconds = 0.0;  ///< wall-clock time of the whole render
 };
 
 /// Traces options.samplesPerPixel rays through every pixel of a width × height image
 /// (referenceSampleOffset, CameraRays) and averages what they see (the background where
-/// they see nothing) into color and coverage. Rows are spread over the threads; each
-/// pixel's samples are summed in index order in double, so the result does not depend on
-/// the thread count. `trace` is called from several threads at once. Throws facet::Error
+/// they see nothing) into color and coverage; the first half's average gives
+/// `convergence`. Rows are spread over the threads; each pixel's samples are summed in index
+/// order in double, so the result does not depend on the thread count. Throws facet::Error
 /// for invalid options, camera or size.
 ReferenceRender renderReference(const Camera& camera, int width, int height,
                                 const ReferenceOptions& options, const SampleTracer& trace);

@@ -49,7 +49,7 @@ namespace facet {
 /// that share a point and a smooth group share one entry, so lighting per entry is lighting
 /// per vertex (Gouraud), and every entry belongs to one point (`point`).
 struct VertexNormals {
-  std::vector<glm::dvec3> normals;         ///< unit, or zero for degenerate polygons
+  std::vector<glm::dvec3> normals;          ///< unit, or zero for degenerate polygons
   std::vector<std::uint32_t> cornerNormal;  ///< one per corner: an index into `normals`
   std::vector<std::uint32_t> point;         ///< per entry of `normals`: its point id
 

@@ -52,8 +52,8 @@ class MeshTracer {
 /// The converged Phong-shaded image of a scene through the camera (renderReference with a
 /// MeshTracer). Same bytes for any options.threads. Throws facet::Error as MeshTracer and
 /// renderReference do.
-ReferenceRender renderMeshReference(const Scene& scene, const Camera& camera, int width,
-                                    int height, const ReferenceOptions& options = {},
+ReferenceRender renderMeshReference(const Scene& scene, const Camera& camera, int width, int height,
+                                    const ReferenceOptions& options = {},
                                     std::span<const VertexNormals> normals = {},
                                     const VertexNormalOptions& normalOptions = {});
 
