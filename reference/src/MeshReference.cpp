@@ -33,6 +33,27 @@ struct TracedMesh {
     const MeshTriangle& t = triangles[triangle];
     return {points[t.point[0]], points[t.point[1]], points[t.point[2]]};
   }
+
+  // Phong's normal: the corner normals interpolated at the barycentric weights. Where they
+  // cancel (or a degenerate polygon's are zero), the triangle's own `face` normal.
+  glm::dvec3 normalAt(std::uint32_t triangle, const glm::dvec3& weights,
+                      const glm::dvec3& face) const {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 3; ++k)
+      sum += weights[k] * normals.normals[normals.cornerNormal[triangles[triangle].corner[k]]];
+    const double length = glm::length(sum);
+    if (length > 0.0 && std::isfinite(length)) return sum / length;
+    const double faceLength = glm::length(face);
+    return faceLength > 0.0 ? face / faceLength : glm::dvec3(0.0, 0.0, 1.0);
+  }
+
+  // The surface color, as the rasterizer takes it: the polygon's, else the material's.
+  Color colorOf(std::uint32_t polygon) const {
+    const auto& colors = source->mesh.polygonColors;
+    if (colors.empty()) return source->material.color;
+    const Rgba8 c = colors[polygon];
+    return Color(c.r, c.g, c.b) / 255.0f;
+  }
 };
 
 std::string meshName(std::size_t i) {
@@ -99,19 +120,22 @@ void recordError(void* userPtr, RTCError code, const char* message) {
   if (error->empty()) error->assign("Embree error " + std::to_string(code) + ": " + message);
 }
 
-// The hit recomputed in double on the triangle Embree found: the barycentric coordinates of
-// corners 1 and 2 (Möller & Trumbore 1997), clamped onto the triangle (Embree's float test
-// may accept a ray a rounding outside it).
-glm::dvec2 refine(const std::array<glm::dvec3, 3>& corner, const glm::dvec3& origin,
-                  const glm::dvec3& direction, const RTCHit& hit) {
+// The hit recomputed in double on the triangle Embree found: its barycentric coordinates
+// (weights of corners 0, 1, 2; Möller & Trumbore 1997), clamped onto the triangle (Embree's
+// float test may accept a ray a rounding outside it).
+glm::dvec3 barycentric(const std::array<glm::dvec3, 3>& corner, const glm::dvec3& origin,
+                       const glm::dvec3& direction, const RTCHit& hit) {
   const glm::dvec3 e1 = corner[1] - corner[0], e2 = corner[2] - corner[0];
   const glm::dvec3 p = glm::cross(direction, e2);
   const double determinant = glm::dot(e1, p);
-  if (determinant == 0.0) return {hit.u, hit.v};  // seen exactly edge-on
-  const glm::dvec3 s = origin - corner[0], q = glm::cross(s, e1);
-  const glm::dvec2 uv =
-      glm::max(glm::dvec2(glm::dot(s, p), glm::dot(direction, q)) / determinant, glm::dvec2(0.0));
-  return uv.x + uv.y > 1.0 ? uv / (uv.x + uv.y) : uv;
+  glm::dvec2 uv(hit.u, hit.v);  // seen exactly edge-on: Embree's
+  if (determinant != 0.0) {
+    const glm::dvec3 s = origin - corner[0], q = glm::cross(s, e1);
+    uv =
+        glm::max(glm::dvec2(glm::dot(s, p), glm::dot(direction, q)) / determinant, glm::dvec2(0.0));
+  }
+  if (uv.x + uv.y > 1.0) uv /= uv.x + uv.y;
+  return {1.0 - uv.x - uv.y, uv.x, uv.y};
 }
 
 }  // namespace
@@ -163,30 +187,16 @@ void MeshTracer::Impl::attach(TracedMesh& mesh, unsigned id) {
 std::optional<Color> MeshTracer::Impl::shade(const Ray& ray, const glm::dvec3& origin,
                                              const RTCRayHit& hit) const {
   const TracedMesh& mesh = meshes[hit.hit.geomID];
-  const MeshTriangle& triangle = mesh.triangles[hit.hit.primID];
   const std::array<glm::dvec3, 3> corner = mesh.corners(hit.hit.primID);
-  const glm::dvec2 r = refine(corner, origin, ray.direction, hit.hit);
-  const double w = 1.0 - r.x - r.y;
-  const auto normalAt = [&](int k) {
-    return mesh.normals.normals[mesh.normals.cornerNormal[triangle.corner[k]]];
-  };
+  const glm::dvec3 weights = barycentric(corner, origin, ray.direction, hit.hit);
   const glm::dvec3 face = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
-  glm::dvec3 normal = w * normalAt(0) + r.x * normalAt(1) + r.y * normalAt(2);
-  const double length = glm::length(normal);
-  // Corner normals that cancel (or a degenerate polygon's zero ones): the face's own.
-  normal = length > 0.0 && std::isfinite(length) ? normal / length : glm::normalize(face);
-  const bool seenFromBack = glm::dot(face, ray.direction) > 0.0;
+  const glm::dvec3 normal = mesh.normalAt(hit.hit.primID, weights, face);
   SurfaceSample sample;
-  sample.position = eye + w * corner[0] + r.x * corner[1] + r.y * corner[2];
+  sample.position = eye + weights.x * corner[0] + weights.y * corner[1] + weights.z * corner[2];
+  const bool seenFromBack = glm::dot(face, ray.direction) > 0.0;
   sample.normal = seenFromBack && twoSidedLighting ? -normal : normal;
   sample.toViewer = CameraRays::toViewer(ray);
-  const auto& colors = mesh.source->mesh.polygonColors;
-  if (colors.empty()) {
-    sample.color = mesh.source->material.color;
-  } else {
-    const Rgba8 c = colors[triangle.polygon];
-    sample.color = Color(c.r, c.g, c.b) / 255.0f;
-  }
+  sample.color = mesh.colorOf(mesh.triangles[hit.hit.primID].polygon);
   return shader.shade(sample, mesh.material);
 }
 
