@@ -20,15 +20,16 @@
 /// normal is then given in its own polygon's orientation (it points to the side that
 /// polygon's counter-clockwise winding faces), so a renderer that turns back faces' normals
 /// toward the viewer lights a flipped polygon like its neighbours. vtkPolyDataNormals with
-/// Consistency on gets the same numbers for the polygons it reorders, but it does so by
-/// reordering them; with Consistency off it splits every edge between polygons of opposite
-/// winding. The two agree exactly on consistently oriented meshes (tested against VTK).
+/// Consistency on reaches the same groups by reordering the flipped polygons in its output
+/// (its normal at a reordered polygon's corner is then ours reversed, as that polygon's
+/// winding is); with Consistency off it splits every edge between polygons of opposite
+/// winding. On consistently oriented meshes all three agree (tested against VTK).
 /// Around one point the relative orientations must agree (a disk around a point always
 /// does); an edge whose orientation contradicts the group's is treated as sharp.
 ///
 /// Degenerate polygons (no Newell normal: zero area or non-finite points) join no group, as
-/// in VTK (their zero normal is never within the feature angle), and their corners get the
-/// zero vector: they have no area to shade. No NaN ever comes out.
+/// in VTK up to a feature angle of 90° (their zero normal fails the test), and their corners
+/// get the zero vector: they have no area to shade. No NaN ever comes out.
 ///
 /// Not VTK's: vtkPolyData::GetCellEdgeNeighbors also calls a polygon of four or more corners
 /// a neighbour across the line between two of its non-adjacent corners; only real edges
