@@ -15,9 +15,11 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
 # Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the
-# tests that compare with VTK's own OpenGL renderer.
+# tests that compare with VTK's own OpenGL renderer; Embree for the mesh reference
+# (reference/); scikit-image and Pillow to cross-check the image metrics.
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
-            libvtk9-dev python3-vtk9 python3-dev xvfb xauth
+            libvtk9-dev python3-vtk9 python3-dev xvfb xauth libembree-dev \
+            python3-skimage python3-pil
 # The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev
 # without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
@@ -26,7 +28,7 @@ PLUGIN_BUILD_DIR ?= build-plugin
 PLUGIN_PACKAGES := paraview-dev python3-numpy
 PARAVIEW_PYTHON_ROOT := $(PLUGIN_BUILD_DIR)/python3-paraview
 # The peers of `make bench-peers` (optional: the build skips a peer whose library is missing).
-PEER_PACKAGES := libosmesa6-dev libembree-dev
+PEER_PACKAGES := libosmesa6-dev
 DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
