@@ -19,8 +19,8 @@ bool allFinite(std::span<const glm::dvec3> corners) {
   return true;
 }
 
-// The same choice as the rasterizer's set-up (Setup.cpp): a triangle as it is; a larger
-// polygon, if it has a normal, as a fan when convex and by ear clipping otherwise.
+// The rasterizer's set-up (Setup.cpp) cuts polygons the same way: a triangle as it is; a
+// larger polygon, if it has a normal, by Triangulate.h's rules.
 void triangulate(std::span<const glm::dvec3> corners, detail::TriangulationScratch& scratch,
                  std::vector<detail::LocalTriangle>& triangles) {
   triangles.clear();
@@ -29,15 +29,9 @@ void triangulate(std::span<const glm::dvec3> corners, detail::TriangulationScrat
     triangles.push_back({0, 1, 2});
     return;
   }
-  const std::optional<glm::dvec3> normal = newellNormal(corners);
+  const std::optional<glm::dvec3> normal = polygonNormal(corners);
   if (!normal) return;
-  detail::projectToPolygonPlane(corners, *normal, scratch.projected);
-  if (!detail::isConvex(scratch.projected)) {
-    detail::earClip(scratch.projected, scratch, triangles);
-    return;
-  }
-  for (std::uint32_t k = 1; k + 1 < corners.size(); ++k)
-    triangles.push_back({0, k, k + 1});
+  detail::triangulatePolygon(corners, *normal, scratch, triangles);
 }
 
 }  // namespace

@@ -186,10 +186,8 @@ class PolygonSetup {
 
   // In the polygon's plane, by Triangulate.h's rules.
   void triangulate(const glm::dvec3& normal, Tally& tally) {
-    std::vector<glm::dvec2>& projected = chunk_.triangulation.projected;
-    projectToPolygonPlane(chunk_.corners, normal, projected);
     chunk_.localTriangles.clear();
-    detail::triangulate(projected, chunk_.triangulation, chunk_.localTriangles);
+    triangulatePolygon(chunk_.corners, normal, chunk_.triangulation, chunk_.localTriangles);
     for (const LocalTriangle& t : chunk_.localTriangles)
       addTriangle(t[0], t[1], t[2], tally);
   }

@@ -246,4 +246,10 @@ void projectToPolygonPlane(std::span<const glm::dvec3> vertices, const glm::dvec
   }
 }
 
+void triangulatePolygon(std::span<const glm::dvec3> corners, const glm::dvec3& normal,
+                        TriangulationScratch& scratch, std::vector<LocalTriangle>& triangles) {
+  projectToPolygonPlane(corners, normal, scratch.projected);
+  triangulate(scratch.projected, scratch, triangles);
+}
+
 }  // namespace facet::detail

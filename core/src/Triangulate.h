@@ -48,6 +48,12 @@ void projectToPolygonPlane(std::span<const glm::dvec3> vertices, const glm::dvec
 void triangulate(std::span<const glm::dvec2> projected, TriangulationScratch& scratch,
                  std::vector<LocalTriangle>& triangles);
 
+// The polygon's corners (world space) triangulated in the plane of its `normal`
+// (polygonNormal): projectToPolygonPlane, then triangulate. Set-up and the mesh reference
+// both call this, so they cut every polygon the same way.
+void triangulatePolygon(std::span<const glm::dvec3> corners, const glm::dvec3& normal,
+                        TriangulationScratch& scratch, std::vector<LocalTriangle>& triangles);
+
 // Convex polygons of more corners than this are split into triangles of balanced shape,
 // whose bounding boxes sum to O(area · log n), where a fan's slivers would each span the
 // polygon (a 10,000-gon would be painted as 9,998 slivers across it). Up to it, VTK's fan:
