@@ -25,34 +25,10 @@
 namespace facet::fuzz {
 namespace {
 
-// Where the scene lives: points, lights and camera are center + scale · (ordinary values),
-// so the same shapes appear tiny, huge and far from the origin.
-struct Placement {
-  glm::dvec3 center{0.0};
-  double scale = 1.0;
-
-  glm::dvec3 place(const glm::dvec3& local) const { return center + scale * local; }
-};
-
-glm::dvec3 anyVector(FuzzedDataProvider& in, double low, double high) {
-  const double x = anyDouble(in, low, high);
-  const double y = anyDouble(in, low, high);
-  return {x, y, anyDouble(in, low, high)};
-}
-
 Color anyColor(FuzzedDataProvider& in) {
   const float r = toFloat(anyDouble(in, 0.0, 1.0));
   const float g = toFloat(anyDouble(in, 0.0, 1.0));
   return {r, g, toFloat(anyDouble(in, 0.0, 1.0))};
-}
-
-Placement anyPlacement(FuzzedDataProvider& in) {
-  Placement placement;
-  if (in.ConsumeBool()) return placement;  // the unit scene at the origin
-  placement.center = anyVector(in, -1e12, 1e12);
-  placement.scale = std::pow(10.0, in.ConsumeIntegralInRange(-12, 12));
-  if (in.ConsumeIntegralInRange(0, 7) == 0) placement.scale = anyDouble(in, -1.0, 1.0);
-  return placement;
 }
 
 // A mesh whose arrays it owns, in the types the input chose, and the view over them.
@@ -64,17 +40,6 @@ struct FuzzMesh {
   std::vector<Rgba8> colors;
   MeshView view;
 };
-
-std::int64_t anyPointId(FuzzedDataProvider& in, std::int64_t pointCount,
-                        const std::vector<std::int64_t>& ids) {
-  const auto kind = in.ConsumeIntegral<std::uint8_t>();
-  if (kind < 4) {  // out of range
-    const std::int64_t bad[] = {-1, pointCount, pointCount + 1, INT32_MAX, INT32_MIN, INT64_MIN};
-    return in.PickValueInArray(bad);
-  }
-  if (kind < 40 && !ids.empty()) return ids[in.ConsumeIntegralInRange<std::size_t>(0, ids.size() - 1)];
-  return pointCount == 0 ? 0 : in.ConsumeIntegralInRange<std::int64_t>(0, pointCount - 1);
-}
 
 std::size_t anyVertexCount(FuzzedDataProvider& in) {
   const auto kind = in.ConsumeIntegral<std::uint8_t>();
@@ -91,7 +56,8 @@ void makePoints(FuzzedDataProvider& in, const Placement& placement, FuzzMesh& me
                       {pointCoordinate(p.x), pointCoordinate(p.y), pointCoordinate(p.z)});
   }
   if (in.ConsumeBool()) {
-    for (double x : mesh.xyz64) mesh.xyz32.push_back(toFloat(x));
+    for (double x : mesh.xyz64)
+      mesh.xyz32.push_back(toFloat(x));
     mesh.view.points = PointArray::ofXyz(std::span<const float>(mesh.xyz32));
   } else {
     mesh.view.points = PointArray::ofXyz(std::span<const double>(mesh.xyz64));
@@ -107,13 +73,15 @@ void makePolygons(FuzzedDataProvider& in, FuzzMesh& mesh) {
   for (std::size_t p = 0; p < count; ++p) {
     const std::size_t n = anyVertexCount(in);
     std::vector<std::int64_t> ids;
-    for (std::size_t k = 0; k < n; ++k) ids.push_back(anyPointId(in, pointCount, ids));
+    for (std::size_t k = 0; k < n; ++k)
+      ids.push_back(anyPointId(in, pointCount, ids));
     mesh.ids64.insert(mesh.ids64.end(), ids.begin(), ids.end());
     mesh.offsets64.push_back(static_cast<std::int64_t>(mesh.ids64.size()));
   }
   if (count > 0 && in.ConsumeIntegralInRange(0, 31) == 0) {
     mesh.offsets64[in.ConsumeIntegralInRange<std::size_t>(0, count)] =
-        in.ConsumeIntegralInRange<std::int64_t>(-2, static_cast<std::int64_t>(mesh.ids64.size()) + 2);
+        in.ConsumeIntegralInRange<std::int64_t>(-2,
+                                                static_cast<std::int64_t>(mesh.ids64.size()) + 2);
   }
   const auto colorKind = in.ConsumeIntegralInRange(0, 15);
   if (colorKind < 6) {
@@ -128,8 +96,10 @@ void makePolygons(FuzzedDataProvider& in, FuzzMesh& mesh) {
     mesh.view.polygons = PolygonArray::of(mesh.offsets64, mesh.ids64);
   } else {
     // Out-of-range 64-bit values wrap: still out of range, or another id (fine too).
-    for (auto o : mesh.offsets64) mesh.offsets32.push_back(static_cast<std::int32_t>(o));
-    for (auto id : mesh.ids64) mesh.ids32.push_back(static_cast<std::int32_t>(id));
+    for (auto o : mesh.offsets64)
+      mesh.offsets32.push_back(static_cast<std::int32_t>(o));
+    for (auto id : mesh.ids64)
+      mesh.ids32.push_back(static_cast<std::int32_t>(id));
     mesh.view.polygons = PolygonArray::of(mesh.offsets32, mesh.ids32);
   }
   mesh.view.polygonColors = mesh.colors;
@@ -208,7 +178,8 @@ LightSet anyLights(FuzzedDataProvider& in, const Placement& placement) {
   LightSet lights;
   if (in.ConsumeBool()) lights.ambient = {anyColor(in), anyDouble(in, 0.0, 2.0)};
   const int count = in.ConsumeIntegralInRange(0, 4);
-  for (int i = 0; i < count; ++i) lights.lights.push_back(anyLight(in, placement));
+  for (int i = 0; i < count; ++i)
+    lights.lights.push_back(anyLight(in, placement));
   return lights;
 }
 
@@ -242,20 +213,9 @@ Camera anyCamera(FuzzedDataProvider& in, const Placement& placement) {
   camera.parallelScale = parallelScale(placement.scale * anyDouble(in, 0.0, 3.0), placement.scale);
   camera.nearClip = placement.scale * anyDouble(in, 0.0, 2.0);
   camera.farClip = camera.nearClip + placement.scale * anyDouble(in, 0.0, 10.0);
-  if (in.ConsumeIntegralInRange(0, 3) == 0) camera.windowCenter = {anyDouble(in, -1.0, 1.0),
-                                                                   anyDouble(in, -1.0, 1.0)};
+  if (in.ConsumeIntegralInRange(0, 3) == 0)
+    camera.windowCenter = {anyDouble(in, -1.0, 1.0), anyDouble(in, -1.0, 1.0)};
   return camera;
-}
-
-// Mostly small images (speed), sometimes a few hundred pixels, sometimes invalid.
-int anySide(FuzzedDataProvider& in) {
-  const auto kind = in.ConsumeIntegral<std::uint8_t>();
-  if (kind < 6) {
-    const int bad[] = {0, -1, INT32_MIN, kMaxImageSide + 1, INT32_MAX};
-    return in.PickValueInArray(bad);
-  }
-  if (kind < 40) return in.ConsumeIntegralInRange(1, 400);
-  return in.ConsumeIntegralInRange(1, 48);
 }
 
 // The planes of one render, pre-filled with values no render writes, so that a render that
@@ -273,7 +233,8 @@ struct Target {
   // A view of width × height; an invalid size gets one-pixel planes (it must be refused
   // before anything is written), and sometimes a plane is null.
   Target(int width, int height, int nullPlane) {
-    const bool valid = width >= 1 && height >= 1 && width <= kMaxImageSide && height <= kMaxImageSide;
+    const bool valid =
+        width >= 1 && height >= 1 && width <= kMaxImageSide && height <= kMaxImageSide;
     const std::size_t pixels = valid ? static_cast<std::size_t>(width) * height : 1;
     color.assign(pixels, kUnwrittenColor);
     depth.assign(pixels, kUnwrittenDepth);
@@ -329,11 +290,9 @@ void checkImage(const Target& target, const Outcome& outcome, std::size_t polygo
       FUZZ_CHECK(c == background && d == 1.0f,
                  "pixel %zu: background shows RGBA (%d %d %d %d) depth %.9g, expected (%d %d %d "
                  "%d) depth 1",
-                 i, c.r, c.g, c.b, c.a, d, background.r, background.g, background.b,
-                 background.a);
+                 i, c.r, c.g, c.b, c.a, d, background.r, background.g, background.b, background.a);
     } else {
-      FUZZ_CHECK(c.a == 255, "pixel %zu: polygon %d has alpha %d, polygons are opaque", i, id,
-                 c.a);
+      FUZZ_CHECK(c.a == 255, "pixel %zu: polygon %d has alpha %d, polygons are opaque", i, id, c.a);
       ++covered;
     }
   }
@@ -425,13 +384,13 @@ void printMesh(const SceneMesh& sceneMesh, std::size_t m) {
   for (std::size_t i = 0; mesh.points.data && i < mesh.points.count; ++i) {
     const glm::dvec3 p = floats ? glm::dvec3(static_cast<const glm::vec3*>(mesh.points.data)[i])
                                 : static_cast<const glm::dvec3*>(mesh.points.data)[i];
-    std::fprintf(stderr, "mesh%zu.addPoint({%.17g, %.17g, %.17g});  // %zu\n", m, p.x, p.y, p.z,
-                 i);
+    std::fprintf(stderr, "mesh%zu.addPoint({%.17g, %.17g, %.17g});  // %zu\n", m, p.x, p.y, p.z, i);
   }
   if (!polygons.offsets) return;
   std::fprintf(stderr, "mesh%zu.offsets = {", m);
   for (std::size_t i = 0; i <= polygons.count; ++i)
-    std::fprintf(stderr, "%s%lld", i ? ", " : "", static_cast<long long>(entry(polygons, polygons.offsets, i)));
+    std::fprintf(stderr, "%s%lld", i ? ", " : "",
+                 static_cast<long long>(entry(polygons, polygons.offsets, i)));
   std::fprintf(stderr, "};\nmesh%zu.connectivity = {", m);
   for (std::size_t k = 0; polygons.connectivity && k < polygons.connectivitySize; ++k)
     std::fprintf(stderr, "%s%lld", k ? ", " : "",
@@ -480,8 +439,10 @@ void printLight(const Light& light) {
 }
 
 void print(const Scene& scene) {
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) printMesh(scene.meshes[m], m);
-  for (const Light& light : scene.lights.lights) printLight(light);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    printMesh(scene.meshes[m], m);
+  for (const Light& light : scene.lights.lights)
+    printLight(light);
 }
 
 void print(const Camera& camera, int width, int height) {
@@ -534,7 +495,8 @@ void fuzzOne(FuzzedDataProvider& in) {
     const Camera camera = anyCamera(in, placement);
     const int width = anySide(in), height = anySide(in);
     if (printing()) print(camera, width, height);
-    const int nullPlane = in.ConsumeIntegralInRange(0, 63) < 3 ? in.ConsumeIntegralInRange(1, 3) : 0;
+    const int nullPlane =
+        in.ConsumeIntegralInRange(0, 63) < 3 ? in.ConsumeIntegralInRange(1, 3) : 0;
     const int stopAfter =
         in.ConsumeIntegralInRange(0, 7) == 0 ? in.ConsumeIntegralInRange(1, 8) : 0;
     one.setProgressCallback(stopper(stopAfter));

@@ -45,42 +45,8 @@
 namespace facet::fuzz {
 namespace {
 
-// As in the core fuzzer: shapes around center + scale · (ordinary values).
-struct Placement {
-  double center[3] = {0.0, 0.0, 0.0};
-  double scale = 1.0;
-
-  void place(const double local[3], double out[3]) const {
-    for (int i = 0; i < 3; ++i) out[i] = center[i] + scale * local[i];
-  }
-};
-
-void anyVector(FuzzedDataProvider& in, double low, double high, double out[3]) {
-  for (int i = 0; i < 3; ++i) out[i] = anyDouble(in, low, high);
-}
-
-Placement anyPlacement(FuzzedDataProvider& in) {
-  Placement placement;
-  if (in.ConsumeBool()) return placement;
-  anyVector(in, -1e12, 1e12, placement.center);
-  placement.scale = std::pow(10.0, in.ConsumeIntegralInRange(-12, 12));
-  return placement;
-}
-
 // Set when some cell got an out-of-range point id.
 bool badIds = false;
-
-vtkIdType anyPointId(FuzzedDataProvider& in, vtkIdType pointCount,
-                     const std::vector<vtkIdType>& ids) {
-  const auto kind = in.ConsumeIntegral<std::uint8_t>();
-  if (kind < 4) {
-    badIds = true;
-    const vtkIdType bad[] = {-1, pointCount, pointCount + 1, INT32_MAX, INT32_MIN};
-    return in.PickValueInArray(bad);
-  }
-  if (kind < 40 && !ids.empty()) return ids[in.ConsumeIntegralInRange<std::size_t>(0, ids.size() - 1)];
-  return pointCount == 0 ? 0 : in.ConsumeIntegralInRange<vtkIdType>(0, pointCount - 1);
-}
 
 // `count` cells of minSize..maxSize points each (sometimes empty ones).
 vtkSmartPointer<vtkCellArray> anyCells(FuzzedDataProvider& in, vtkIdType pointCount, int count,
@@ -92,11 +58,16 @@ vtkSmartPointer<vtkCellArray> anyCells(FuzzedDataProvider& in, vtkIdType pointCo
     cells->Use32BitStorage();
   }
   for (int c = 0; c < count; ++c) {
-    const int size = in.ConsumeIntegralInRange(0, 15) == 0 ? in.ConsumeIntegralInRange(0, 40)
-                                                           : in.ConsumeIntegralInRange(minSize, maxSize);
-    std::vector<vtkIdType> ids;
-    for (int k = 0; k < size; ++k) ids.push_back(anyPointId(in, pointCount, ids));
-    cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    const int size = in.ConsumeIntegralInRange(0, 15) == 0
+                         ? in.ConsumeIntegralInRange(0, 40)
+                         : in.ConsumeIntegralInRange(minSize, maxSize);
+    std::vector<std::int64_t> ids;
+    for (int k = 0; k < size; ++k) {
+      ids.push_back(anyPointId(in, pointCount, ids));
+      badIds |= ids.back() < 0 || ids.back() >= pointCount;
+    }
+    const std::vector<vtkIdType> cell(ids.begin(), ids.end());
+    cells->InsertNextCell(static_cast<vtkIdType>(cell.size()), cell.data());
   }
   return cells;
 }
@@ -159,15 +130,13 @@ vtkSmartPointer<vtkPolyData> anyPolyData(FuzzedDataProvider& in, const Placement
   points->SetDataType(in.ConsumeBool() ? VTK_FLOAT : VTK_DOUBLE);
   const int pointCount = in.ConsumeIntegralInRange(0, 40);
   for (int i = 0; i < pointCount; ++i) {
-    double local[3], p[3];
-    anyVector(in, -1.0, 1.0, local);
-    placement.place(local, p);
-    for (double& x : p) x = pointCoordinate(x);
+    const glm::dvec3 p = placement.place(anyVector(in, -1.0, 1.0));
+    const double xyz[3] = {pointCoordinate(p.x), pointCoordinate(p.y), pointCoordinate(p.z)};
     if (points->GetDataType() == VTK_FLOAT) {
-      const float f[3] = {toFloat(p[0]), toFloat(p[1]), toFloat(p[2])};
+      const float f[3] = {toFloat(xyz[0]), toFloat(xyz[1]), toFloat(xyz[2])};
       points->InsertNextPoint(f);
     } else {
-      points->InsertNextPoint(p);
+      points->InsertNextPoint(xyz);
     }
   }
   auto poly = vtkSmartPointer<vtkPolyData>::New();
@@ -180,27 +149,24 @@ vtkSmartPointer<vtkPolyData> anyPolyData(FuzzedDataProvider& in, const Placement
   poly->SetPolys(anyCells(in, pointCount, in.ConsumeIntegralInRange(0, 16), 3, 6, storage64));
   poly->SetStrips(anyCells(in, pointCount, in.ConsumeIntegralInRange(0, 6), 3, 8, storage64));
   addScalars(in, poly->GetPointData(), pointCount);
-  if (badIds && avoiding("bad-ids-with-point-colors")) poly->GetPointData()->Initialize();
+  if (dropPointData(badIds)) poly->GetPointData()->Initialize();
   addScalars(in, poly->GetCellData(), poly->GetNumberOfCells());
   return poly;
 }
 
 vtkSmartPointer<vtkCamera> anyCamera(FuzzedDataProvider& in, const Placement& placement) {
   auto camera = vtkSmartPointer<vtkCamera>::New();
-  double local[3], p[3];
-  anyVector(in, -3.0, 3.0, local);
-  local[2] += 3.0;
-  placement.place(local, p);
-  camera->SetPosition(p);
-  anyVector(in, -0.5, 0.5, local);
-  placement.place(local, p);
-  camera->SetFocalPoint(p);
-  anyVector(in, -1.0, 1.0, p);
-  camera->SetViewUp(p);
+  const glm::dvec3 position = placement.place(glm::dvec3(0.0, 0.0, 3.0) + anyVector(in, -3.0, 3.0));
+  camera->SetPosition(position.x, position.y, position.z);
+  const glm::dvec3 focal = placement.place(anyVector(in, -0.5, 0.5));
+  camera->SetFocalPoint(focal.x, focal.y, focal.z);
+  const glm::dvec3 up = anyVector(in, -1.0, 1.0);
+  camera->SetViewUp(up.x, up.y, up.z);
   camera->SetViewAngle(viewAngle(anyDouble(in, 1.0, 179.0)));
   camera->SetUseHorizontalViewAngle(in.ConsumeIntegralInRange(0, 7) == 0);
   camera->SetParallelProjection(in.ConsumeBool());
-  camera->SetParallelScale(parallelScale(placement.scale * anyDouble(in, 0.0, 3.0), placement.scale));
+  camera->SetParallelScale(
+      parallelScale(placement.scale * anyDouble(in, 0.0, 3.0), placement.scale));
   const double nearClip = placement.scale * anyDouble(in, 0.0, 2.0);
   camera->SetClippingRange(nearClip, nearClip + placement.scale * anyDouble(in, 0.0, 10.0));
   if (in.ConsumeIntegralInRange(0, 7) == 0) {
@@ -215,7 +181,8 @@ vtkSmartPointer<vtkCamera> anyCamera(FuzzedDataProvider& in, const Placement& pl
 }
 
 void anyColor(FuzzedDataProvider& in, double out[3]) {
-  anyVector(in, 0.0, 1.0, out);
+  const glm::dvec3 c = anyVector(in, 0.0, 1.0);
+  out[0] = c.r, out[1] = c.g, out[2] = c.b;
 }
 
 vtkSmartPointer<vtkLight> anyLight(FuzzedDataProvider& in, const Placement& placement) {
@@ -232,21 +199,19 @@ vtkSmartPointer<vtkLight> anyLight(FuzzedDataProvider& in, const Placement& plac
     light = vtkSmartPointer<vtkLight>::New();
   }
   light->SetLightType(in.ConsumeIntegralInRange(1, 3));  // headlight, camera, scene light
-  double local[3], p[3];
-  anyVector(in, -3.0, 3.0, local);
-  placement.place(local, p);
-  light->SetPosition(p);
-  anyVector(in, -1.0, 1.0, local);
-  placement.place(local, p);
-  light->SetFocalPoint(p);
+  const glm::dvec3 position = placement.place(anyVector(in, -3.0, 3.0));
+  light->SetPosition(position.x, position.y, position.z);
+  const glm::dvec3 focal = placement.place(anyVector(in, -1.0, 1.0));
+  light->SetFocalPoint(focal.x, focal.y, focal.z);
   light->SetPositional(in.ConsumeBool());
   light->SetConeAngle(anyDouble(in, 0.0, 180.0));
   light->SetExponent(anyDouble(in, 0.0, 16.0));
   light->SetAttenuationValues(anyDouble(in, 0.0, 2.0), anyDouble(in, 0.0, 1.0),
                               anyDouble(in, 0.0, 1e-2));
   light->SetIntensity(anyDouble(in, 0.0, 2.0));
-  anyColor(in, p);
-  light->SetDiffuseColor(p);
+  double color[3];
+  anyColor(in, color);
+  light->SetDiffuseColor(color);
   light->SetSwitch(in.ConsumeIntegralInRange(0, 7) != 0);
   return light;
 }
@@ -315,22 +280,12 @@ void setColoring(FuzzedDataProvider& in, vtkFacetRenderFilter* filter) {
   filter->SetUseLookupTableScalarRange(in.ConsumeBool());
 }
 
-// Mostly small images, sometimes a few hundred pixels, sometimes invalid.
-int anySide(FuzzedDataProvider& in) {
-  const auto kind = in.ConsumeIntegral<std::uint8_t>();
-  if (kind < 6) {
-    const int bad[] = {0, -1, INT32_MIN, 16385, INT32_MAX};
-    return in.PickValueInArray(bad);
-  }
-  if (kind < 40) return in.ConsumeIntegralInRange(1, 300);
-  return in.ConsumeIntegralInRange(1, 48);
-}
-
 void setScene(FuzzedDataProvider& in, const Placement& placement, vtkFacetRenderFilter* filter) {
   filter->SetSize(anySide(in), anySide(in));
   if (in.ConsumeBool()) filter->SetCamera(anyCamera(in, placement));
   const int lights = in.ConsumeIntegralInRange(0, 3);
-  for (int i = 0; i < lights; ++i) filter->AddLight(anyLight(in, placement));
+  for (int i = 0; i < lights; ++i)
+    filter->AddLight(anyLight(in, placement));
   filter->SetAutomaticLightCreation(in.ConsumeBool());
   double c[3];
   anyColor(in, c);
@@ -417,9 +372,8 @@ Result execute(vtkFacetRenderFilter* filter, vtkPolyData* input) {
   FUZZ_CHECK(output->GetPointData()->GetScalars() == rgba, "RGBA is not the active scalars");
 
   const double* bg = filter->GetBackground();
-  const Rgba8 background =
-      toRgba8(Color(toFloat(bg[0]), toFloat(bg[1]), toFloat(bg[2])),
-              toFloat(filter->GetBackgroundAlpha()));
+  const Rgba8 background = toRgba8(Color(toFloat(bg[0]), toFloat(bg[1]), toFloat(bg[2])),
+                                   toFloat(filter->GetBackgroundAlpha()));
   const vtkIdType firstSurface = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const vtkIdType cells = input->GetNumberOfCells();
   const vtkIdType pixels = output->GetNumberOfPoints();
@@ -438,8 +392,8 @@ Result execute(vtkFacetRenderFilter* filter, vtkPolyData* input) {
                      c[2] == background.b && c[3] == background.a,
                  "pixel %lld: background RGBA (%d %d %d %d) depth %.9g, expected (%d %d %d %d) "
                  "depth 1",
-                 static_cast<long long>(i), c[0], c[1], c[2], c[3], d, background.r,
-                 background.g, background.b, background.a);
+                 static_cast<long long>(i), c[0], c[1], c[2], c[3], d, background.r, background.g,
+                 background.b, background.a);
     } else {
       FUZZ_CHECK(c[3] == 255, "pixel %lld: cell %lld has alpha %d, surfaces are opaque",
                  static_cast<long long>(i), static_cast<long long>(id), c[3]);
