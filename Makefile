@@ -40,7 +40,7 @@ ASAN_RUNTIME = $(shell clang -print-file-name=libclang_rt.asan-x86_64.so)
 # make fuzz: seconds per target, and the libFuzzer options of every run.
 FUZZ_SECONDS ?= 120
 FUZZ_TARGETS := facet_fuzz_core facet_fuzz_filter
-FUZZ_FLAGS ?= -max_len=4096 -timeout=60 -rss_limit_mb=4096 -print_final_stats=1
+FUZZ_FLAGS ?= -max_len=4096 -len_control=0 -timeout=60 -rss_limit_mb=4096 -print_final_stats=1
 
 .PHONY: all deps build test test-main test-sanitized test-thread-sanitized fuzz fuzz-build \
         demo bench clean

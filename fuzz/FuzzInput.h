@@ -97,8 +97,8 @@ inline int anySide(FuzzedDataProvider& in) {
   return in.ConsumeIntegralInRange(1, 48);
 }
 
-// The float nearest to x, saturating to ±Inf instead of the undefined behaviour of
-// converting a double beyond FLT_MAX ([conv.double]).
+// The float nearest to x, ±Inf beyond FLT_MAX: what IEEE conversion gives, said explicitly
+// (C++ leaves converting an out-of-range double undefined, [conv.double]).
 inline float toFloat(double x) {
   if (x > FLT_MAX) return std::numeric_limits<float>::infinity();
   if (x < -FLT_MAX) return -std::numeric_limits<float>::infinity();
