@@ -93,12 +93,12 @@ test: test-main test-sanitized test-thread-sanitized
 	@echo "All test suites passed."
 
 # Each target fuzzes for FUZZ_SECONDS from its seed corpus (fuzz/corpus/, read only) and what
-# earlier runs found ($(SANITIZE_BUILD_DIR)/fuzz/corpus/). A crash, hang or failed check
-# leaves its input in $(SANITIZE_BUILD_DIR)/fuzz/crashes/ and fails the target.
+# earlier runs found ($(SANITIZE_BUILD_DIR)/fuzzing/corpus/). A crash, hang or failed check
+# leaves its input in $(SANITIZE_BUILD_DIR)/fuzzing/crashes/ and fails the target.
 fuzz: fuzz-build
 	@failed=""; \
 	for target in $(FUZZ_TARGETS); do \
-	  work=$(SANITIZE_BUILD_DIR)/fuzz; mkdir -p $$work/corpus/$$target $$work/crashes; \
+	  work=$(SANITIZE_BUILD_DIR)/fuzzing; mkdir -p $$work/corpus/$$target $$work/crashes; \
 	  echo "== $$target: fuzzing for $(FUZZ_SECONDS) s (log: $$work/$$target.log)"; \
 	  if $(SANITIZER_ENV) $(SANITIZE_BUILD_DIR)/bin/$$target $(FUZZ_FLAGS) \
 	       -max_total_time=$(FUZZ_SECONDS) -artifact_prefix=$$work/crashes/$$target- \

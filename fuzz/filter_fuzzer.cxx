@@ -300,20 +300,33 @@ void setScene(FuzzedDataProvider& in, const Placement& placement, vtkFacetRender
   filter->SetDetectClosedSurfaces(in.ConsumeBool());
 }
 
-// Counts the filter's error and warning events (and keeps VTK from printing them).
-struct Messages {
-  explicit Messages(vtkObject* object) {
-    callback->SetClientData(this);
-    callback->SetCallback([](vtkObject*, unsigned long event, void* self, void*) {
+// Counts the filter's error and warning events while it lives (and keeps VTK from printing
+// them).
+class Messages {
+ public:
+  explicit Messages(vtkObject* object) : object_(object) {
+    callback_->SetClientData(this);
+    callback_->SetCallback([](vtkObject*, unsigned long event, void* self, void*) {
       auto* messages = static_cast<Messages*>(self);
       ++(event == vtkCommand::ErrorEvent ? messages->errors : messages->warnings);
     });
-    object->AddObserver(vtkCommand::ErrorEvent, callback);
-    object->AddObserver(vtkCommand::WarningEvent, callback);
+    errorTag_ = object->AddObserver(vtkCommand::ErrorEvent, callback_);
+    warningTag_ = object->AddObserver(vtkCommand::WarningEvent, callback_);
   }
+  ~Messages() {
+    object_->RemoveObserver(errorTag_);
+    object_->RemoveObserver(warningTag_);
+  }
+  Messages(const Messages&) = delete;
+  Messages& operator=(const Messages&) = delete;
+
   int errors = 0;
   int warnings = 0;
-  vtkNew<vtkCallbackCommand> callback;
+
+ private:
+  vtkObject* object_;
+  vtkNew<vtkCallbackCommand> callback_;
+  unsigned long errorTag_ = 0, warningTag_ = 0;
 };
 
 // The output of one execution, kept (the filter reuses its arrays on the next one).

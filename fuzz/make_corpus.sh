@@ -6,7 +6,7 @@
 # crashes, so that every seed passes the regression run in make test.
 #
 # Usage: fuzz/make_corpus.sh FUZZER [RUNS [CORPUS_DIR...]]
-#   e.g. fuzz/make_corpus.sh build-sanitize/bin/facet_fuzz_core 5000 build-sanitize/fuzz/corpus/facet_fuzz_core
+#   e.g. fuzz/make_corpus.sh build-sanitize/bin/facet_fuzz_core 5000 build-sanitize/fuzzing/corpus/facet_fuzz_core
 set -euo pipefail
 fuzzer="$1"
 runs="${2:-5000}"
