@@ -19,6 +19,7 @@ printf '' > "$scratch/seed/empty"
 # Step around the open defects while exploring, so that a crash does not end the run early.
 FACET_FUZZ_AVOID="${FACET_FUZZ_AVOID:-huge-coordinates,extreme-zoom,bad-ids-with-point-colors}" \
   "$fuzzer" -seed=1 -runs="$runs" -max_len=4096 -len_control=0 -timeout=60 \
+  -artifact_prefix="$scratch/" \
   "$scratch/found" "$scratch/seed" "$@" > "$scratch/fuzz.log" 2>&1 || {
   tail -n 40 "$scratch/fuzz.log"
   exit 1
@@ -26,7 +27,7 @@ FACET_FUZZ_AVOID="${FACET_FUZZ_AVOID:-huge-coordinates,extreme-zoom,bad-ids-with
 rm -rf "$corpus"
 mkdir -p "$corpus"
 env -u FACET_FUZZ_AVOID "$fuzzer" -set_cover_merge=1 -use_counters=0 -use_value_profile=0 \
-  -timeout=60 "$corpus" "$scratch/found" "$@" > "$scratch/merge.log" 2>&1 || {
+  -timeout=60 -artifact_prefix="$scratch/" "$corpus" "$scratch/found" "$@" > "$scratch/merge.log" 2>&1 || {
   tail -n 40 "$scratch/merge.log"
   exit 1
 }
