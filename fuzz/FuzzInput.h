@@ -121,28 +121,6 @@ inline bool avoiding(std::string_view defect) {
   return false;
 }
 
-// FACET_FUZZ_AVOID=huge-coordinates: finite point coordinates beyond ±1e15 become ±Inf (those
-// polygons are skipped). Known defect (issue 7, defect 3): the clipper makes NaN or
-// far-off vertices from them (UBSan: float→int in roundToInteger).
-inline double pointCoordinate(double x) {
-  if (std::isfinite(x) && std::fabs(x) > 1e15 && avoiding("huge-coordinates")) {
-    return std::copysign(std::numeric_limits<double>::infinity(), x);
-  }
-  return x;
-}
-
-// FACET_FUZZ_AVOID=extreme-zoom: view angles below 1e-6 degrees, and parallel scales below
-// 1e-9 of the scene's size, are raised to those. Found by this fuzzer: when the projection
-// magnifies that much, guard-band clipping loses the new vertex to rounding (it lands up to
-// ulp(clip x) away from the plane, far outside the int32 window range).
-inline double viewAngle(double degrees) {
-  return degrees < 1e-6 && avoiding("extreme-zoom") ? 1e-6 : degrees;
-}
-inline double parallelScale(double scale, double sceneScale) {
-  const double least = 1e-9 * std::fabs(sceneScale);
-  return scale < least && avoiding("extreme-zoom") ? least : scale;
-}
-
 // FACET_FUZZ_AVOID=bad-ids-with-point-colors (filter): an input with an out-of-range point id
 // gets no point data. Found by this fuzzer: point scalars are averaged per polygon before
 // the ids are validated (vtkFacetScalarColors, out-of-bounds read).

@@ -53,7 +53,7 @@ void makePoints(FuzzedDataProvider& in, const Placement& placement, FuzzMesh& me
   for (std::size_t i = 0; i < count; ++i) {
     const glm::dvec3 p = placement.place(anyVector(in, -1.0, 1.0));
     mesh.xyz64.insert(mesh.xyz64.end(),
-                      {pointCoordinate(p.x), pointCoordinate(p.y), pointCoordinate(p.z)});
+                      {p.x, p.y, p.z});
   }
   if (in.ConsumeBool()) {
     for (double x : mesh.xyz64)
@@ -208,9 +208,9 @@ Camera anyCamera(FuzzedDataProvider& in, const Placement& placement) {
   camera.position = placement.place(glm::dvec3(0.0, 0.0, 3.0) + anyVector(in, -3.0, 3.0));
   camera.focalPoint = placement.place(anyVector(in, -0.5, 0.5));
   camera.viewUp = anyVector(in, -1.0, 1.0);
-  camera.viewAngleDegrees = viewAngle(anyDouble(in, 1.0, 179.0));
+  camera.viewAngleDegrees = anyDouble(in, 1.0, 179.0);
   camera.parallelProjection = in.ConsumeBool();
-  camera.parallelScale = parallelScale(placement.scale * anyDouble(in, 0.0, 3.0), placement.scale);
+  camera.parallelScale = placement.scale * anyDouble(in, 0.0, 3.0);
   camera.nearClip = placement.scale * anyDouble(in, 0.0, 2.0);
   camera.farClip = camera.nearClip + placement.scale * anyDouble(in, 0.0, 10.0);
   if (in.ConsumeIntegralInRange(0, 3) == 0)

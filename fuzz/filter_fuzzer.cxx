@@ -131,7 +131,7 @@ vtkSmartPointer<vtkPolyData> anyPolyData(FuzzedDataProvider& in, const Placement
   const int pointCount = in.ConsumeIntegralInRange(0, 40);
   for (int i = 0; i < pointCount; ++i) {
     const glm::dvec3 p = placement.place(anyVector(in, -1.0, 1.0));
-    const double xyz[3] = {pointCoordinate(p.x), pointCoordinate(p.y), pointCoordinate(p.z)};
+    const double xyz[3] = {p.x, p.y, p.z};
     if (points->GetDataType() == VTK_FLOAT) {
       const float f[3] = {toFloat(xyz[0]), toFloat(xyz[1]), toFloat(xyz[2])};
       points->InsertNextPoint(f);
@@ -162,11 +162,11 @@ vtkSmartPointer<vtkCamera> anyCamera(FuzzedDataProvider& in, const Placement& pl
   camera->SetFocalPoint(focal.x, focal.y, focal.z);
   const glm::dvec3 up = anyVector(in, -1.0, 1.0);
   camera->SetViewUp(up.x, up.y, up.z);
-  camera->SetViewAngle(viewAngle(anyDouble(in, 1.0, 179.0)));
+  camera->SetViewAngle(anyDouble(in, 1.0, 179.0));
   camera->SetUseHorizontalViewAngle(in.ConsumeIntegralInRange(0, 7) == 0);
   camera->SetParallelProjection(in.ConsumeBool());
   camera->SetParallelScale(
-      parallelScale(placement.scale * anyDouble(in, 0.0, 3.0), placement.scale));
+      placement.scale * anyDouble(in, 0.0, 3.0));
   const double nearClip = placement.scale * anyDouble(in, 0.0, 2.0);
   camera->SetClippingRange(nearClip, nearClip + placement.scale * anyDouble(in, 0.0, 10.0));
   if (in.ConsumeIntegralInRange(0, 7) == 0) {

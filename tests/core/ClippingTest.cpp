@@ -267,5 +267,37 @@ TEST(ClippingRenders, WindowCoordinatesFarBeyondTheFixedPointRange) {
   }
 }
 
+// The fuzzer's "extreme zoom" (fuzz/crashes/README.md, now fixed): a view angle of 1e-100°
+// or a parallel scale of 1e-100 (both valid) puts clip coordinates near 1e100, where a new
+// vertex interpolated toward the guard band used to land ulp(1e100) off its plane and reach
+// roundToInteger outside int32 (undefined; the sanitized build checks). Random triangles hit
+// it within a few dozen tries: render a few hundred, in both projections.
+TEST(ClippingRenders, ExtremeZoomGivesAValidImage) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  for (const bool parallel : {false, true}) {
+    Camera camera;
+    camera.position = {0, 0, 4};
+    camera.viewAngleDegrees = 1e-100;
+    camera.parallelProjection = parallel;
+    camera.parallelScale = 1e-100;
+    camera.nearClip = 1;
+    camera.farClip = 10;
+    std::size_t covered = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+      Mesh mesh;
+      for (int k = 0; k < 3; ++k)
+        mesh.addPoint({coordinate(random), coordinate(random), coordinate(random)});
+      mesh.addPolygon({0, 1, 2});
+      const Rendered r = renderScene(oneMeshScene(mesh.view()), camera, 8, 8);
+      covered += r.stats.pixelsCovered;
+      for (float depth : r.framebuffer.depth())
+        ASSERT_TRUE(depth >= 0.0f && depth <= 1.0f) << depth << (parallel ? " parallel" : "");
+    }
+    // A triangle around the view axis fills the whole (tiny) view: some must.
+    EXPECT_GT(covered, 0u) << (parallel ? "parallel" : "perspective");
+  }
+}
+
 }  // namespace
 }  // namespace facet::testing
