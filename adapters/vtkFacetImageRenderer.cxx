@@ -8,12 +8,15 @@
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "facet/Conventions.h"
 #include "facet/Error.h"
 
 #if defined(__linux__)
@@ -97,6 +100,42 @@ void AddNamedComponents(vtkFieldData* fieldData,
   }
   fieldData->AddArray(array);
 }
+}
+
+//------------------------------------------------------------------------------
+int vtkFacetImageRenderer::RequestInformation(vtkAlgorithm* algorithm,
+  vtkInformation* outInfo,
+  int width,
+  int height)
+{
+  if (width < 1 || height < 1 || width > facet::kMaxImageSide || height > facet::kMaxImageSide)
+  {
+    vtkErrorWithObjectMacro(algorithm,
+      "Size is " << width << " x " << height << "; each side must be in [1, "
+                 << facet::kMaxImageSide << "] pixels");
+    vtkDataObject::GetData(outInfo)->Initialize();
+    return 0;
+  }
+  int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetImageRenderer::CheckThreadCount(vtkObject* object, int threads, int current)
+{
+  if (threads < 0 || threads > 1024)
+  {
+    vtkErrorWithObjectMacro(object,
+      "SetNumberOfThreads(" << threads << "): the thread count must be in [0, 1024] "
+                            << "(0: one per hardware thread); keeping " << current);
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

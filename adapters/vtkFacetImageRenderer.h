@@ -37,7 +37,9 @@ class vtkFacetMessages;
 class vtkFloatArray;
 class vtkIdTypeArray;
 class vtkImageData;
+class vtkInformation;
 class vtkIntArray;
+class vtkObject;
 class vtkUnsignedCharArray;
 
 class vtkFacetImageRenderer
@@ -56,6 +58,22 @@ public:
   /// Turns the polygon ids of pixels [begin, end) into the front end's id arrays.
   using IdMap = std::function<void(const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end)>;
 
+  /**
+   * RequestInformation of a front end that renders width × height: the whole extent,
+   * spacing, origin and RGBA scalars; for a size outside [1, kMaxImageSide] an error on
+   * `algorithm`, the output emptied and 0.
+   */
+  static int RequestInformation(vtkAlgorithm* algorithm,
+    vtkInformation* outInfo,
+    int width,
+    int height);
+
+  /**
+   * Whether `threads` is a thread count a front end takes (0 to 1024); if not, an error on
+   * `object` that says `current` is kept.
+   */
+  static bool CheckThreadCount(vtkObject* object, int threads, int current);
+
   /// An execution of `algorithm` starts: the clock, progress 0.
   void Start(vtkAlgorithm* algorithm);
   /// The scene is converted: progress 0.05.
@@ -73,6 +91,11 @@ public:
   vtkUnsignedCharArray* GetRgba() const { return this->Rgba; }
   vtkIdTypeArray* GetCellIds() const { return this->CellIds; }
   vtkIntArray* GetActorIds() const { return this->ActorIds; }
+  void GetSize(int size[2]) const
+  {
+    size[0] = this->Width;
+    size[1] = this->Height;
+  }
 
   /**
    * Renders into the allocated `output`, maps the ids and adds the field data

@@ -19,9 +19,6 @@
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
-
-#include "facet/Conventions.h"
 
 #include <algorithm>
 #include <string>
@@ -164,14 +161,8 @@ void vtkFacetRenderFilter::ResetCamera(vtkCamera* camera, vtkPolyData* input, in
 //------------------------------------------------------------------------------
 void vtkFacetRenderFilter::SetNumberOfThreads(int threads)
 {
-  if (threads < 0 || threads > 1024)
-  {
-    vtkErrorMacro("SetNumberOfThreads(" << threads << "): the thread count must be in [0, 1024] "
-                                        << "(0: one per hardware thread); keeping "
-                                        << this->NumberOfThreads);
-    return;
-  }
-  if (threads != this->NumberOfThreads)
+  if (vtkFacetImageRenderer::CheckThreadCount(this, threads, this->NumberOfThreads) &&
+    threads != this->NumberOfThreads)
   {
     this->NumberOfThreads = threads;
     this->Modified();
@@ -320,22 +311,8 @@ int vtkFacetRenderFilter::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int width = this->Size[0], height = this->Size[1];
-  if (width < 1 || height < 1 || width > facet::kMaxImageSide || height > facet::kMaxImageSide)
-  {
-    vtkErrorMacro("Size is " << width << " x " << height << "; each side must be in [1, "
-                             << facet::kMaxImageSide << "] pixels");
-    vtkDataObject::GetData(outInfo)->Initialize();
-    return 0;
-  }
-  int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
-  return 1;
+  return vtkFacetImageRenderer::RequestInformation(
+    this, outputVector->GetInformationObject(0), this->Size[0], this->Size[1]);
 }
 
 //------------------------------------------------------------------------------

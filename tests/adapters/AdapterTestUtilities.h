@@ -3,11 +3,13 @@
 // Helpers shared by the adapter tests.
 
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFacetRenderFilter.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -31,6 +33,12 @@ inline vtkIdType CellIdAt(vtkImageData* image, int x, int y)
     ->GetValue(PixelIndex(image, x, y));
 }
 
+inline int ActorIdAt(vtkImageData* image, int x, int y)
+{
+  return vtkIntArray::SafeDownCast(image->GetPointData()->GetArray("ActorId"))
+    ->GetValue(PixelIndex(image, x, y));
+}
+
 inline std::array<int, 4> RgbaAt(vtkImageData* image, int x, int y)
 {
   auto* rgba = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetArray("RGBA"));
@@ -50,6 +58,34 @@ inline double FieldValue(vtkImageData* image, const char* array, const char* com
   }
   return -1.0;
 }
+
+// A parallel camera for which world x, y are window pixels of a width × height image.
+inline vtkSmartPointer<vtkCamera> PixelCamera(int width, int height)
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(0.5 * height);
+  camera->SetFocalPoint(0.5 * width, 0.5 * height, 0.0);
+  camera->SetPosition(0.5 * width, 0.5 * height, 100.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetClippingRange(1.0, 300.0);
+  return camera;
+}
+
+// Counts the executions of an algorithm (its StartEvents).
+struct ExecutionCounter
+{
+  explicit ExecutionCounter(vtkObject* algorithm)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      ++static_cast<ExecutionCounter*>(self)->Count;
+    });
+    algorithm->AddObserver(vtkCommand::StartEvent, this->Callback);
+  }
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Callback;
+};
 
 // A square in the z = 0 plane, [x0, x1] × [y0, y1], counter-clockwise seen from +z.
 inline vtkIdType AddSquare(vtkPoints* points,

@@ -33,17 +33,9 @@ using namespace facet_test;
 namespace {
 constexpr int Width = 160, Height = 120;
 
-// A parallel camera for which world x, y are window pixels.
-vtkSmartPointer<vtkCamera> PixelCamera(int width = Width, int height = Height)
+vtkSmartPointer<vtkCamera> PixelCamera()
 {
-  auto camera = vtkSmartPointer<vtkCamera>::New();
-  camera->ParallelProjectionOn();
-  camera->SetParallelScale(0.5 * height);
-  camera->SetFocalPoint(0.5 * width, 0.5 * height, 0.0);
-  camera->SetPosition(0.5 * width, 0.5 * height, 100.0);
-  camera->SetViewUp(0.0, 1.0, 0.0);
-  camera->SetClippingRange(1.0, 300.0);
-  return camera;
+  return facet_test::PixelCamera(Width, Height);
 }
 
 // A filter showing exactly the surface colors: Ka = 1 with the ambient color being the
