@@ -297,7 +297,7 @@ struct Figures
   long Covered = 0; // by VTK
   long SilhouetteDifferences = 0;
   long ActorDifferences = 0;                   // among pixels both cover
-  long BackgroundDifferences = 0;              // by more than 1/255, among pixels neither covers
+  long BackgroundDifferences = 0;              // among pixels neither covers
   int Median = 0, Percentile95 = 0, Worst = 0; // color, max over RGB, pixels both cover
 };
 
