@@ -154,12 +154,12 @@ void vtkFacetImageRenderer::ConversionDone()
 }
 
 //------------------------------------------------------------------------------
-bool vtkFacetImageRenderer::Allocate(vtkImageData* output,
-  int width,
-  int height,
-  bool actorIds,
+bool vtkFacetImageRenderer::Allocate(const Settings& settings,
+  vtkImageData* output,
   vtkFacetMessages& messages)
 {
+  const int width = settings.Width, height = settings.Height;
+  const bool actorIds = settings.ActorIds;
   const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
   output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
@@ -193,6 +193,10 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
   int conversions,
   vtkFacetMessages& messages)
 {
+  if (messages.HasErrors() || !this->Allocate(settings, output, messages))
+  {
+    return false;
+  }
   const facet::FramebufferView target{ this->Width,
     this->Height,
     reinterpret_cast<facet::Rgba8*>(this->Rgba->GetPointer(0)),

@@ -3,15 +3,14 @@
  * @brief   Private: renders a Facet scene into a vtkImageData: the part of an execution that
  *          both front ends share.
  *
- * Allocate makes the output a width × height image (extent (0, W-1, 0, H-1, 0, 0), spacing
+ * Render makes the output a width × height image (extent (0, W-1, 0, H-1, 0, 0), spacing
  * 1, origin 0, row 0 at the bottom) with point data `RGBA` (the scalars), `Depth`, `CellId`
  * and, for vtkFacetRendererToImageFilter, `ActorId`. The arrays of the last execution are
  * reused when nobody else holds them (re-rendering then allocates and page-faults nothing;
  * the pipeline empties the output before every execution, so this class keeps its own
  * references), and large ones are 2 MiB-aligned with transparent huge pages advised (tile
- * traversal otherwise misses the TLB, see facet/HugePageAllocator.h).
- *
- * Render renders straight into RGBA and Depth, reporting progress (0.05 to 0.95) and
+ * traversal otherwise misses the TLB, see facet/HugePageAllocator.h). It renders straight
+ * into RGBA and Depth, reporting progress (0.05 to 0.95) and
  * stopping when the algorithm's AbortExecute is set; then the front end's IdMap turns the
  * renderer's polygon ids into CellId (and ActorId), on the renderer's threads; then the field
  * data says what the render did and cost: `FacetRenderSeconds`, `FacetPhaseSeconds`,
@@ -45,10 +44,13 @@ class vtkUnsignedCharArray;
 class vtkFacetImageRenderer
 {
 public:
-  /// The renderer's settings that are not the scene's.
+  /// The image and the renderer's settings that are not the scene's.
   struct Settings
   {
-    int Threads = 0; ///< 0: one per hardware thread
+    int Width = 640;
+    int Height = 480;
+    bool ActorIds = false; ///< add the ActorId array
+    int Threads = 0;       ///< 0: one per hardware thread
     facet::Visibility Visibility = facet::Visibility::ZBuffer;
     bool TwoSidedLighting = true;
     double Background[3] = { 0.0, 0.0, 0.0 };
@@ -79,15 +81,6 @@ public:
   /// The scene is converted: progress 0.05.
   void ConversionDone();
 
-  /**
-   * Makes `output` the image described above, with `ActorId` when `actorIds`. Returns
-   * false, with an error in `messages`, when the memory cannot be had.
-   */
-  bool Allocate(vtkImageData* output,
-    int width,
-    int height,
-    bool actorIds,
-    vtkFacetMessages& messages);
   vtkUnsignedCharArray* GetRgba() const { return this->Rgba; }
   vtkIdTypeArray* GetCellIds() const { return this->CellIds; }
   vtkIntArray* GetActorIds() const { return this->ActorIds; }
@@ -98,9 +91,10 @@ public:
   }
 
   /**
-   * Renders into the allocated `output`, maps the ids and adds the field data
-   * (`conversions`: the polydata this execution converted). Returns false, with an error
-   * in `messages`, for a scene the core refuses.
+   * Unless `messages` already holds an error: makes `output` the image described above,
+   * renders into it, maps the ids and adds the field data (`conversions`: the polydata this
+   * execution converted). Returns false, with an error in `messages`, when the memory
+   * cannot be had or the core refuses the scene.
    */
   bool Render(const facet::Scene& scene,
     const facet::Camera& camera,
@@ -118,6 +112,7 @@ public:
 
 private:
   using Clock = std::chrono::steady_clock;
+  bool Allocate(const Settings& settings, vtkImageData* output, vtkFacetMessages& messages);
   void AddFieldData(vtkImageData* output, const facet::RenderStats& stats, int conversions);
 
   facet::Renderer Renderer;

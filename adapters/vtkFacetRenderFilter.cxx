@@ -349,6 +349,8 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   std::copy_n(this->AmbientLightColor, 3, lights.AmbientColor);
   scene.lights = vtkFacetSceneConverter::ConvertLights(this->Lights, camera, lights, messages);
   vtkFacetImageRenderer::Settings settings;
+  settings.Width = width;
+  settings.Height = height;
   settings.Threads = this->NumberOfThreads;
   settings.Visibility = this->VisibilityMode == PainterSort ? facet::Visibility::PainterSort
                                                             : facet::Visibility::ZBuffer;
@@ -357,20 +359,17 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   settings.BackgroundAlpha = this->BackgroundAlpha;
 
   // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids.
-  if (!messages.HasErrors() && internals.Image.Allocate(output, width, height, false, messages))
-  {
-    vtkIdType* cellIds = internals.Image.GetCellIds()->GetPointer(0);
-    internals.Image.Render(
-      scene,
-      facetCamera,
-      settings,
-      output,
-      [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
-        internals.Actor.CellIdsOf(polygonIds, cellIds, begin, end);
-      },
-      internals.Actor.GetNumberOfConversions(),
-      messages);
-  }
+  internals.Image.Render(
+    scene,
+    facetCamera,
+    settings,
+    output,
+    [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
+      internals.Actor.CellIdsOf(
+        polygonIds, internals.Image.GetCellIds()->GetPointer(0), begin, end);
+    },
+    internals.Actor.GetNumberOfConversions(),
+    messages);
   return messages.Report(this, output);
 }
 

@@ -483,6 +483,9 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
     vtkFacetSceneConverter::ConvertLights(renderer->GetLights(), camera, lights, messages);
   WarnAboutUnrendered(renderer, messages);
   vtkFacetImageRenderer::Settings settings;
+  settings.Width = size[0];
+  settings.Height = size[1];
+  settings.ActorIds = true;
   settings.Threads = this->NumberOfThreads;
   settings.TwoSidedLighting = renderer->GetTwoSidedLighting() != 0;
   renderer->GetBackground(settings.Background);
@@ -492,19 +495,16 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
     window && window->GetAlphaBitPlanes() ? renderer->GetBackgroundAlpha() : 1.0;
 
   // Render straight into the output's arrays; polygon ids become actor and cell ids.
-  if (!messages.HasErrors() && internals.Image.Allocate(output, size[0], size[1], true, messages))
-  {
-    internals.Image.Render(
-      scene,
-      facetCamera,
-      settings,
-      output,
-      [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
-        internals.MapIds(renderer, polygonIds, begin, end);
-      },
-      internals.NumberOfConversions(),
-      messages);
-  }
+  internals.Image.Render(
+    scene,
+    facetCamera,
+    settings,
+    output,
+    [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
+      internals.MapIds(renderer, polygonIds, begin, end);
+    },
+    internals.NumberOfConversions(),
+    messages);
   internals.RememberScene(renderer);
   return messages.Report(this, output);
 }

@@ -8,6 +8,7 @@
 #include "vtkFacetRenderFilter.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -18,6 +19,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <array>
+#include <gtest/gtest.h>
 #include <string>
 
 namespace facet_test {
@@ -131,5 +133,41 @@ struct MessageCounter
   std::string Last;
   vtkNew<vtkCallbackCommand> Callback;
 };
+
+// An algorithm that renders a width × height image of something covering over 1000 pixels
+// reports progress, and when aborted past 10 % stops early with a valid background image.
+inline void ExpectProgressReportedAndAbortable(vtkImageAlgorithm* algorithm, int width, int height)
+{
+  struct Progress
+  {
+    int Calls = 0;
+    bool Abort = false;
+  } progress;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&progress);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
+    auto* p = static_cast<Progress*>(data);
+    ++p->Calls;
+    if (p->Abort && *static_cast<double*>(fraction) > 0.1)
+    {
+      vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
+    }
+  });
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ProgressEvent, observer);
+  algorithm->Update();
+  EXPECT_GT(progress.Calls, 3);
+  vtkImageData* image = vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0));
+  EXPECT_GT(FieldValue(image, "FacetCounts", "PixelsCovered"), 1000.0);
+
+  progress.Abort = true;
+  algorithm->Modified();
+  algorithm->Update();
+  algorithm->SetAbortExecute(0);
+  algorithm->RemoveObserver(tag);
+  image = vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0));
+  EXPECT_EQ(FieldValue(image, "FacetCounts", "PixelsCovered"), 0.0)
+    << "stopped early: a valid background image";
+  EXPECT_EQ(image->GetNumberOfPoints(), static_cast<vtkIdType>(width) * height);
+}
 
 } // namespace facet_test

@@ -721,31 +721,5 @@ TEST(Progress, ReportedAndAbortable)
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputConnection(sphere->GetOutputPort());
   filter->SetSize(400, 300);
-  struct Progress
-  {
-    int Calls = 0;
-    bool Abort = false;
-  } progress;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetClientData(&progress);
-  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
-    auto* p = static_cast<Progress*>(data);
-    ++p->Calls;
-    if (p->Abort && *static_cast<double*>(fraction) > 0.1)
-    {
-      vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
-    }
-  });
-  filter->AddObserver(vtkCommand::ProgressEvent, observer);
-  filter->Update();
-  EXPECT_GT(progress.Calls, 3);
-  EXPECT_GT(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 1000.0);
-
-  progress.Abort = true;
-  filter->Modified();
-  filter->Update();
-  filter->SetAbortExecute(0);
-  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 0.0)
-    << "stopped early: a valid background image";
-  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 400 * 300);
+  ExpectProgressReportedAndAbortable(filter, 400, 300);
 }

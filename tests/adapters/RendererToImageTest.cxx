@@ -599,29 +599,5 @@ TEST(Progress, ReportedAndAbortable)
   renderer->AddActor(ActorOf(Sphere(1.0, 300)));
   vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(renderer);
   grab->SetSize(400, 300);
-  struct Progress
-  {
-    int Calls = 0;
-    bool Abort = false;
-  } progress;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetClientData(&progress);
-  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
-    auto* p = static_cast<Progress*>(data);
-    ++p->Calls;
-    if (p->Abort && *static_cast<double*>(fraction) > 0.1)
-    {
-      vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
-    }
-  });
-  grab->AddObserver(vtkCommand::ProgressEvent, observer);
-  grab->Update();
-  EXPECT_GT(progress.Calls, 3);
-  EXPECT_GT(FieldValue(grab->GetOutput(), "FacetCounts", "PixelsCovered"), 1000.0);
-  progress.Abort = true;
-  grab->Modified();
-  grab->Update();
-  grab->SetAbortExecute(0);
-  EXPECT_EQ(FieldValue(grab->GetOutput(), "FacetCounts", "PixelsCovered"), 0.0);
-  EXPECT_EQ(grab->GetOutput()->GetNumberOfPoints(), 400 * 300);
+  ExpectProgressReportedAndAbortable(grab, 400, 300);
 }

@@ -3,11 +3,9 @@ VTK user builds one, rendered without a window; the README's snippet and
 examples/render_existing_scene.py run as a user runs them.
 """
 import os
-import re
 import subprocess
 import sys
 import tempfile
-import textwrap
 import unittest
 
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  the mappers' factory; no window opens
@@ -17,20 +15,11 @@ from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer, vtkVolume
 
 from facet import vtkFacetRendererToImageFilter
+from readme_blocks import readme_python_block
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..", "..")
 EXAMPLE = os.path.join(ROOT, "examples", "render_existing_scene.py")
-README = os.path.join(ROOT, "README.md")
-
-
-def readme_python_block(containing):
-    """The README's ```python block that contains `containing`, dedented."""
-    with open(README, encoding="utf-8") as readme:
-        blocks = re.findall(r"^( *)```python\n(.*?)^\1```", readme.read(), re.M | re.S)
-    matches = [textwrap.dedent(body) for _, body in blocks if containing in body]
-    assert len(matches) == 1, "README.md has %d python blocks with %r" % (len(matches), containing)
-    return matches[0]
 
 
 def actor_of(source, position):
