@@ -43,10 +43,6 @@ constexpr const char* PointMappers[] = { "vtkPointGaussianMapper",
 // Whether Facet renders what this mapper draws: the polygons of its polydata.
 bool DrawsPolygons(vtkMapper* mapper)
 {
-  if (!mapper || mapper->GetNumberOfInputConnections(0) == 0)
-  {
-    return false;
-  }
   if (vtkCompositePolyDataMapper::SafeDownCast(mapper) || vtkDataSetMapper::SafeDownCast(mapper))
   {
     return true;
@@ -55,6 +51,26 @@ bool DrawsPolygons(vtkMapper* mapper)
     std::none_of(std::begin(PointMappers), std::end(PointMappers), [&](const char* name) {
       return mapper->IsA(name);
     });
+}
+
+// What keeps a visible actor from being rendered, for the warning; empty when nothing.
+std::string WhyNotRendered(vtkActor* actor)
+{
+  vtkMapper* mapper = actor->GetMapper();
+  const std::string name = actor->GetClassName();
+  if (!mapper)
+  {
+    return name + " without a mapper";
+  }
+  if (!DrawsPolygons(mapper))
+  {
+    return name + " with " + mapper->GetClassName();
+  }
+  if (mapper->GetNumberOfInputConnections(0) == 0)
+  {
+    return name + " whose " + mapper->GetClassName() + " has no input";
+  }
+  return {};
 }
 
 // The mapper's input, brought up to date as rendering would bring it (unless Static).
@@ -178,22 +194,23 @@ void vtkFacetRendererToImageFilter::vtkInternals::ForEachActor(vtkRenderer* rend
     {
       vtkAssemblyNode* node = path->GetLastNode();
       auto* actor = vtkActor::SafeDownCast(node->GetViewProp());
-      if (actor && actor->GetVisibility() && DrawsPolygons(actor->GetMapper()))
-      {
-        // A part of an assembly carries its full matrix in its path; an actor alone, none.
-        visit(index, actor, node->GetMatrix() ? node->GetMatrix() : actor->GetMatrix());
-      }
-      else if (!actor)
+      if (!actor)
       {
         skipped.insert(node->GetViewProp()->GetClassName());
+        continue;
       }
-      else if (actor->GetVisibility())
+      if (!actor->GetVisibility())
       {
-        const vtkMapper* mapper = actor->GetMapper();
-        skipped.insert(std::string(actor->GetClassName()) + " with " +
-          (mapper ? std::string(actor->GetMapper()->GetClassName()) + " (or no input)"
-                  : std::string("no mapper")));
+        continue;
       }
+      const std::string why = WhyNotRendered(actor);
+      if (!why.empty())
+      {
+        skipped.insert(why);
+        continue;
+      }
+      // A part of an assembly carries its full matrix in its path; an actor alone, none.
+      visit(index, actor, node->GetMatrix() ? node->GetMatrix() : actor->GetMatrix());
     }
   }
 }
@@ -227,7 +244,6 @@ void vtkFacetRendererToImageFilter::vtkInternals::ForEachSceneObject(vtkRenderer
     renderer,
     [&](int, vtkActor* actor, vtkMatrix4x4*) {
       see(actor); // its matrix is its own and its assembly's (the top prop's) MTime
-
       see(actor->GetMapper());
       see(InputOf(actor->GetMapper()));
     },
@@ -467,10 +483,11 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
   internals.Image.Start(this);
 
   // The renderer's lights: with none on, the headlight vtkRenderer would create, or none.
+  const bool lightOn = AnyLightOn(renderer);
   vtkFacetSceneConverter::LightOptions lights;
-  lights.AddHeadlight = renderer->GetAutomaticLightCreation() && !AnyLightOn(renderer);
+  lights.AddHeadlight = !lightOn && renderer->GetAutomaticLightCreation();
   lights.FollowCamera = renderer->GetLightFollowCamera() || lights.AddHeadlight;
-  const bool sceneHasLights = lights.AddHeadlight || AnyLightOn(renderer);
+  const bool sceneHasLights = lightOn || lights.AddHeadlight;
 
   // The actors, then the camera (fitted to them if the renderer has none) and the lights.
   facet::Scene scene;

@@ -489,6 +489,7 @@ TEST(Warnings, UnrenderablePropsAndFeaturesAreNamedOnce)
   actor->GetProperty()->SetInterpolationToGouraud();
   actor->GetProperty()->SetOpacity(0.5);
   renderer->AddActor(actor);
+  renderer->AddActor(vtkSmartPointer<vtkActor>::New()); // no mapper
   renderer->UseShadowsOn();
   renderer->GetActiveCamera()->SetViewShear(0.2, 0.0, 1.0);
   vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(renderer);
@@ -501,6 +502,7 @@ TEST(Warnings, UnrenderablePropsAndFeaturesAreNamedOnce)
          "shadows",
          "view shear",
          "actor 3",
+         "without a mapper",
          "Gouraud interpolation and opacity 0.5" })
   {
     EXPECT_NE(warnings.Last.find(named), std::string::npos) << named << " in " << warnings.Last;
