@@ -271,14 +271,15 @@ const char* vtkFacetRenderFilter::GetRenderPlan()
 vtkMTimeType vtkFacetRenderFilter::GetMTime()
 {
   vtkFacetColoringMapper* coloring = this->Internals->Coloring;
-  vtkMTimeType time = std::max(this->Superclass::GetMTime(), this->Lights->GetMTime());
-  for (vtkObject* object : { static_cast<vtkObject*>(this->Camera),
-         static_cast<vtkObject*>(this->Property),
-         static_cast<vtkObject*>(coloring) })
+  // The coloring mapper's own settings; its lookup table is looked at below.
+  vtkMTimeType time = std::max(
+    { this->Superclass::GetMTime(), this->Lights->GetMTime(), coloring->vtkObject::GetMTime() });
+  for (vtkObject* object :
+    { static_cast<vtkObject*>(this->Camera), static_cast<vtkObject*>(this->Property) })
   {
     if (object)
     {
-      time = std::max(time, object->vtkObject::GetMTime());
+      time = std::max(time, object->GetMTime());
     }
   }
   // The lookup table, unless its last change was the execution's own preparation (built,

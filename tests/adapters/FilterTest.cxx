@@ -713,6 +713,32 @@ TEST(Caching, ANewCameraReusesTheConvertedMesh)
 }
 
 //------------------------------------------------------------------------------
+// The execution builds the lookup table and gives it the scalar range: that is not a change
+// that renders again; the user's change to the table is.
+TEST(Caching, PreparingTheLookupTableIsNoChangeButChangingItIs)
+{
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkElevationFilter> elevation;
+  elevation->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkLookupTable> table; // not built; its range (0, 1) becomes (-1, 2)
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputConnection(elevation->GetOutputPort());
+  filter->SetSize(Width, Height);
+  filter->SetLookupTable(table);
+  filter->SetScalarRange(-1.0, 2.0);
+  ExecutionCounter executions(filter);
+  filter->Update();
+  filter->Update();
+  EXPECT_EQ(executions.Count, 1);
+  EXPECT_EQ(table->GetRange()[0], -1.0);
+  table->SetHueRange(0.2, 0.3);
+  filter->Update();
+  EXPECT_EQ(executions.Count, 2);
+  filter->Update();
+  EXPECT_EQ(executions.Count, 2);
+}
+
+//------------------------------------------------------------------------------
 TEST(Progress, ReportedAndAbortable)
 {
   vtkNew<vtkSphereSource> sphere;
