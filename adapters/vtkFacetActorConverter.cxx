@@ -98,8 +98,8 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
   part.Colors.Update(data, part.Geometry, actor.Coloring, messages);
   const facet::PointArray world = part.Transform.Update(
     part.Geometry.Polygons().points, part.Geometry.ConvertedLastUpdate(), actor.Matrix);
-  const facet::Material material = vtkFacetPropertyConverter::Convert(
-    actor.Property, part.Colors.HasColors(), actor.SceneHasLights && actor.Property->GetLighting());
+  const facet::Material material =
+    vtkFacetPropertyConverter::Convert(actor.Property, part.Colors.HasColors(), actor.Lighting);
   const auto place =
     [&](facet::SceneMesh& placed, facet::MeshView mesh, std::span<const facet::Rgba8> colors) {
       mesh.points = world;

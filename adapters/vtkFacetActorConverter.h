@@ -22,6 +22,7 @@
 #include "vtkFacetActorTransform.h"
 #include "vtkFacetPolyDataConverter.h"
 #include "vtkFacetScalarColors.h"
+#include "vtkFacetSceneConverter.h"
 
 #include "facet/Scene.h"
 
@@ -44,9 +45,9 @@ public:
     vtkFacetScalarColors::Settings Coloring;
     vtkProperty* Property = nullptr;
     vtkMatrix4x4* Matrix = nullptr; ///< model to world; null: the identity
-    /// False when no light shines (a vtkRenderer with none switched on): VTK then shows
-    /// every surface unlit, as with the property's Lighting off.
-    bool SceneHasLights = true;
+    /// What lights the scene (vtkFacetSceneConverter::LightingOf): without a light VTK
+    /// shows every surface unlit, as with the property's Lighting off.
+    vtkFacetSceneConverter::Lighting Lighting = vtkFacetSceneConverter::Lighting::Lights;
   };
 
   /**

@@ -36,7 +36,7 @@ void MakeUnlit(facet::Material& m, vtkProperty* property, bool scalarColoring)
 //------------------------------------------------------------------------------
 facet::Material vtkFacetPropertyConverter::Convert(vtkProperty* property,
   bool scalarColoring,
-  bool lit)
+  vtkFacetSceneConverter::Lighting lighting)
 {
   facet::Material m;
   m.color = ToColor(property->GetDiffuseColor());
@@ -50,7 +50,11 @@ facet::Material vtkFacetPropertyConverter::Convert(vtkProperty* property,
   m.specular = property->GetSpecular();
   m.specularPower = property->GetSpecularPower();
   m.backfaceCulling = property->GetBackfaceCulling() != 0;
-  if (!lit)
+  if (lighting == vtkFacetSceneConverter::Lighting::Headlight)
+  {
+    m.specularModel = facet::SpecularModel::BlinnPhong;
+  }
+  if (lighting == vtkFacetSceneConverter::Lighting::Unlit || !property->GetLighting())
   {
     MakeUnlit(m, property, scalarColoring);
   }

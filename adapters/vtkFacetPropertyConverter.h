@@ -8,7 +8,10 @@
  * and diffuse colors, as in VTK. Unlit surfaces (the property's Lighting off, or, in a
  * vtkRenderer, no light switched on) show what VTK's shaders show without lights,
  * Ka·Ca + Kd·Cd: the material's ambient term carries that color, its diffuse and specular
- * terms are 0 (a scene ambient light, which VTK does not have, still adds to it).
+ * terms are 0 (a scene ambient light, which VTK does not have, still adds to it). Under a
+ * headlight alone VTK's shader takes the highlight as (N·V)^power, with N·V in view space:
+ * Blinn-Phong's (N·H)^power, H being V when the light is at the eye; the material then asks
+ * for Blinn-Phong (under other lights VTK's, and the material's, is Phong's).
  *
  * Not rendered yet, and named by Unrendered: Gouraud, Phong and PBR interpolation (rendered
  * flat), opacity below 1 (opaque), the wireframe and points representations and edge
@@ -17,6 +20,8 @@
 
 #ifndef vtkFacetPropertyConverter_h
 #define vtkFacetPropertyConverter_h
+
+#include "vtkFacetSceneConverter.h"
 
 #include "facet/Material.h"
 
@@ -27,7 +32,9 @@ class vtkProperty;
 class vtkFacetPropertyConverter
 {
 public:
-  static facet::Material Convert(vtkProperty* property, bool scalarColoring, bool lit);
+  static facet::Material Convert(vtkProperty* property,
+    bool scalarColoring,
+    vtkFacetSceneConverter::Lighting lighting);
 
   /**
    * What the property asks for that Facet does not render yet, as a phrase ("Gouraud

@@ -329,11 +329,21 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   internals.Image.Start(this);
 
   // The actor: the input's polygons, colored as the mapper colors them, with the property's
-  // material (each kept from the last execution while unchanged).
+  // material (each kept from the last execution while unchanged). Without a light the
+  // filter's surfaces are lit by nothing but the ambient light, as they always have been,
+  // not shown unlit.
+  vtkFacetSceneConverter::LightOptions lights;
+  lights.AddHeadlight = this->AutomaticLightCreation && this->Lights->GetNumberOfItems() == 0;
+  std::copy_n(this->AmbientLightColor, 3, lights.AmbientColor);
   vtkFacetActorConverter::Actor actor;
   actor.Data = input;
   actor.Coloring = internals.ColoringOf(this);
   actor.Property = this->GetProperty();
+  actor.Lighting = vtkFacetSceneConverter::LightingOf(this->Lights, lights);
+  if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)
+  {
+    actor.Lighting = vtkFacetSceneConverter::Lighting::Lights;
+  }
   facet::Scene scene;
   if (internals.Actor.Update(actor, this->DetectClosedSurfaces != 0, messages))
   {
@@ -345,9 +355,6 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   vtkCamera* camera = internals.CameraFor(this->Camera, this->FitCameraToInput != 0, width, height);
   const facet::Camera facetCamera =
     vtkFacetSceneConverter::ConvertCamera(camera, width, height, messages);
-  vtkFacetSceneConverter::LightOptions lights;
-  lights.AddHeadlight = this->AutomaticLightCreation && this->Lights->GetNumberOfItems() == 0;
-  std::copy_n(this->AmbientLightColor, 3, lights.AmbientColor);
   scene.lights = vtkFacetSceneConverter::ConvertLights(this->Lights, camera, lights, messages);
   vtkFacetImageRenderer::Settings settings;
   settings.Width = width;

@@ -124,6 +124,25 @@ void WarnAboutUnrendered(vtkRenderer* renderer, vtkFacetMessages& messages)
   }
 }
 
+// What the actor asks for that Facet does not render yet (its property: the actor converter).
+void WarnAboutUnrendered(vtkActor* actor, vtkFacetMessages& messages)
+{
+  std::vector<std::string> asks;
+  if (actor->GetTexture())
+  {
+    asks.push_back("a texture");
+  }
+  if (actor->GetBackfaceProperty())
+  {
+    asks.push_back("a backface property");
+  }
+  if (!asks.empty())
+  {
+    messages.AddWarningOnce("the actor has " + vtkFacetMessages::List(asks) +
+      ", which Facet does not render yet (said once)");
+  }
+}
+
 // The byte VTK's gradient background quad gives row y of `height`: its corner colors are
 // truncated to bytes, interpolated at the pixel center and rounded to the framebuffer's.
 unsigned char GradientByte(double bottom, double top, int y, int height)
@@ -162,7 +181,7 @@ public:
   static void ForEachSceneObject(vtkRenderer* renderer, const See& see);
   vtkCamera* CameraOf(vtkRenderer* renderer, int width, int height);
   void AddActors(vtkRenderer* renderer,
-    bool sceneHasLights,
+    vtkFacetSceneConverter::Lighting lighting,
     bool detectClosedSurfaces,
     facet::Scene& scene);
   int NumberOfConversions() const;
@@ -269,7 +288,7 @@ vtkCamera* vtkFacetRendererToImageFilter::vtkInternals::CameraOf(vtkRenderer* re
 
 //------------------------------------------------------------------------------
 void vtkFacetRendererToImageFilter::vtkInternals::AddActors(vtkRenderer* renderer,
-  bool sceneHasLights,
+  vtkFacetSceneConverter::Lighting lighting,
   bool detectClosedSurfaces,
   facet::Scene& scene)
 {
@@ -290,9 +309,10 @@ void vtkFacetRendererToImageFilter::vtkInternals::AddActors(vtkRenderer* rendere
       actor.Coloring = vtkFacetScalarColors::Settings::Of(mapper);
       actor.Property = prop->GetProperty();
       actor.Matrix = matrix;
-      actor.SceneHasLights = sceneHasLights;
+      actor.Lighting = lighting;
       this->Messages.SetContext(
         "actor " + std::to_string(propIndex) + " (" + prop->GetClassName() + "): ");
+      WarnAboutUnrendered(prop, this->Messages);
       leaf.PropIndex = propIndex;
       leaf.FirstPolygon = polygons;
       if (leaf.Converter.Update(actor, detectClosedSurfaces, this->Messages))
@@ -483,15 +503,15 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
   internals.Image.Start(this);
 
   // The renderer's lights: with none on, the headlight vtkRenderer would create, or none.
-  const bool lightOn = AnyLightOn(renderer);
   vtkFacetSceneConverter::LightOptions lights;
-  lights.AddHeadlight = !lightOn && renderer->GetAutomaticLightCreation();
+  lights.AddHeadlight = !AnyLightOn(renderer) && renderer->GetAutomaticLightCreation();
   lights.FollowCamera = renderer->GetLightFollowCamera() || lights.AddHeadlight;
-  const bool sceneHasLights = lightOn || lights.AddHeadlight;
+  const vtkFacetSceneConverter::Lighting lighting =
+    vtkFacetSceneConverter::LightingOf(renderer->GetLights(), lights);
 
   // The actors, then the camera (fitted to them if the renderer has none) and the lights.
   facet::Scene scene;
-  internals.AddActors(renderer, sceneHasLights, this->DetectClosedSurfaces != 0, scene);
+  internals.AddActors(renderer, lighting, this->DetectClosedSurfaces != 0, scene);
   internals.Image.ConversionDone();
   vtkCamera* camera = internals.CameraOf(renderer, size[0], size[1]);
   const facet::Camera facetCamera =

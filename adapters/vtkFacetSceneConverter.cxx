@@ -193,6 +193,26 @@ facet::Camera vtkFacetSceneConverter::ConvertCamera(vtkCamera* camera,
 }
 
 //------------------------------------------------------------------------------
+vtkFacetSceneConverter::Lighting vtkFacetSceneConverter::LightingOf(vtkLightCollection* lights,
+  const LightOptions& options)
+{
+  // vtkOpenGLRenderer::UpdateLights: a positional light or a second light makes it "lights".
+  int on = options.AddHeadlight ? 1 : 0;
+  bool headlight = options.AddHeadlight;
+  vtkCollectionSimpleIterator iterator;
+  lights->InitTraversal(iterator);
+  while (vtkLight* light = lights->GetNextLight(iterator))
+  {
+    if (light->GetSwitch())
+    {
+      ++on;
+      headlight = light->LightTypeIsHeadlight() && !light->GetPositional();
+    }
+  }
+  return on == 0 ? Lighting::Unlit : on == 1 && headlight ? Lighting::Headlight : Lighting::Lights;
+}
+
+//------------------------------------------------------------------------------
 facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights,
   vtkCamera* camera,
   const LightOptions& options,

@@ -52,6 +52,19 @@ public:
   };
 
   /**
+   * What lights a scene, as VTK's OpenGL renderer tells its cases apart ("lighting
+   * complexity"): no light switched on (surfaces show unlit), one headlight alone (whose
+   * highlight VTK's shader computes its own way), or any other lights.
+   */
+  enum class Lighting
+  {
+    Unlit,
+    Headlight,
+    Lights
+  };
+  static Lighting LightingOf(vtkLightCollection* lights, const LightOptions& options);
+
+  /**
    * The switched-on lights, plus the scene ambient light. Lights that cannot shine (a
    * direction of zero length) are skipped with a warning in `messages`.
    */

@@ -2,11 +2,11 @@
 // several actors under different matrices (position, orientation, scale, origin, user
 // matrix, user transform, a mirror), properties and lookup tables, a vtkLightKit, scene
 // lights, both composite mappers, parallel and perspective cameras with window centers, a
-// gradient background, unlit surfaces. The same renderer is rendered by both; the images
-// agree within the filter's agreement tolerances (silhouettes within 0.5 % of the covered
-// pixels, median color difference at most 2/255), ActorId names the prop VTK drew there (an
-// id pass: every actor unlit in its own color), and the background is VTK's to the byte.
-// The figures are printed for README.md.
+// gradient background, unlit surfaces, specular highlights under VTK's automatic headlight. The
+// same renderer is rendered by both; the images agree within the filter's agreement tolerances
+// (silhouettes within 0.5 % of the covered pixels, median color difference at most 2/255), ActorId
+// names the prop VTK drew there (an id pass: every actor unlit in its own color), and the
+// background is VTK's to the byte. The figures are printed for README.md.
 //
 // Needs an X server: make test runs it under tests/plugin/xvfb_run.sh.
 
@@ -269,6 +269,36 @@ vtkSmartPointer<vtkRenderer> UnlitSceneWithoutACamera()
   return renderer;
 }
 
+// VTK's own headlight (none added) on shiny surfaces: with a headlight alone VTK's shader
+// takes the highlight as (N·V)^power, which is Blinn-Phong's with the light at the eye.
+vtkSmartPointer<vtkRenderer> ShinySurfacesUnderTheAutomaticHeadlight()
+{
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  vtkNew<vtkSphereSource> sphereSource;
+  sphereSource->SetThetaResolution(48);
+  sphereSource->SetPhiResolution(36);
+  sphereSource->Update();
+  vtkSmartPointer<vtkActor> sphere = FlatActor(sphereSource->GetOutput());
+  sphere->GetProperty()->SetColor(0.8, 0.3, 0.2);
+  sphere->GetProperty()->SetSpecular(0.6);
+  sphere->GetProperty()->SetSpecularPower(15.0);
+  renderer->AddActor(sphere);
+  vtkNew<vtkCubeSource> cubeSource;
+  cubeSource->SetCenter(1.2, 0.3, -0.4);
+  cubeSource->Update();
+  vtkSmartPointer<vtkActor> cube = FlatActor(cubeSource->GetOutput());
+  cube->SetOrientation(20.0, 30.0, 0.0);
+  cube->GetProperty()->SetColor(0.3, 0.5, 0.9);
+  cube->GetProperty()->SetSpecular(0.3);
+  cube->GetProperty()->SetSpecularPower(40.0);
+  renderer->AddActor(cube);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0.5, 0.8, 5.0);
+  camera->SetFocalPoint(0.4, 0.1, 0.0);
+  renderer->ResetCameraClippingRange();
+  return renderer;
+}
+
 // Every actor unlit in its own color, red = its prop index + 1, on black: VTK's ActorId.
 void PaintPropIndices(vtkRenderer* renderer)
 {
@@ -408,6 +438,12 @@ TEST(RendererAgreement, UnlitSceneWithoutACamera)
 {
   vtkSmartPointer<vtkRenderer> renderer = UnlitSceneWithoutACamera();
   ExpectAgreement("unlit, camera made by the first render", Compare(renderer));
+}
+
+TEST(RendererAgreement, ShinySurfacesUnderTheAutomaticHeadlight)
+{
+  vtkSmartPointer<vtkRenderer> renderer = ShinySurfacesUnderTheAutomaticHeadlight();
+  ExpectAgreement("specular under VTK's automatic headlight", Compare(renderer));
 }
 
 // The camera the adapter makes for a renderer without one is the camera vtkRenderer::Render

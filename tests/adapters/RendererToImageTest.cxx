@@ -488,6 +488,7 @@ TEST(Warnings, UnrenderablePropsAndFeaturesAreNamedOnce)
   vtkSmartPointer<vtkActor> actor = ActorOf(Squares({ { 10, 10, 50, 50, 0 } }));
   actor->GetProperty()->SetInterpolationToGouraud();
   actor->GetProperty()->SetOpacity(0.5);
+  actor->SetBackfaceProperty(vtkSmartPointer<vtkProperty>::New());
   renderer->AddActor(actor);
   renderer->AddActor(vtkSmartPointer<vtkActor>::New()); // no mapper
   renderer->UseShadowsOn();
@@ -502,6 +503,7 @@ TEST(Warnings, UnrenderablePropsAndFeaturesAreNamedOnce)
          "shadows",
          "view shear",
          "actor 3",
+         "a backface property",
          "without a mapper",
          "Gouraud interpolation and opacity 0.5" })
   {
