@@ -40,7 +40,7 @@
  *
  * Shading is flat, everything is opaque, as with vtkFacetRenderFilter: a warning, said once
  * per actor, names what an actor's property asks for beyond that (the default Gouraud
- * interpolation among them). Errors and warnings of an execution are reported at its end,
+ * interpolation among them), and an actor's texture or backface property. Errors and warnings of an execution are reported at its end,
  * one vtkErrorMacro and one vtkWarningMacro. Long renders report progress and stop when
  * AbortExecute is set.
  *
