@@ -4,6 +4,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkDoubleArray.h"
+#include "vtkFacetMessages.h"
 #include "vtkFloatArray.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -13,6 +14,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace {
 constexpr vtkIdType MaxFacetIds = std::numeric_limits<std::int32_t>::max();
@@ -27,14 +29,29 @@ void vtkFacetPolyDataConverter::Reset()
 //------------------------------------------------------------------------------
 bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
   bool detectClosedSurfaces,
-  std::string& error)
+  vtkFacetMessages& messages)
 {
   this->Converted = false;
-  if (input == this->Input && input->GetMTime() == this->InputTime &&
-    detectClosedSurfaces == this->DetectedClosedSurfaces)
+  if (!(input == this->Input && input->GetMTime() == this->InputTime &&
+        detectClosedSurfaces == this->DetectedClosedSurfaces) &&
+    !this->Convert(input, detectClosedSurfaces, messages))
   {
-    return true;
+    return false;
   }
+  if (this->NumberOfVerts + this->NumberOfLines > 0)
+  {
+    messages.AddWarning("skipped " + std::to_string(this->NumberOfVerts) + " vertex and " +
+      std::to_string(this->NumberOfLines) +
+      " line cells: Facet renders polygons and triangle strips");
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetPolyDataConverter::Convert(vtkPolyData* input,
+  bool detectClosedSurfaces,
+  vtkFacetMessages& messages)
+{
   this->Reset();
   this->NumberOfVerts = input->GetNumberOfVerts();
   this->NumberOfLines = input->GetNumberOfLines();
@@ -42,8 +59,8 @@ bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
   this->NumberOfStrips = input->GetNumberOfStrips();
   if (input->GetNumberOfPoints() > MaxFacetIds)
   {
-    error = "the input has " + std::to_string(input->GetNumberOfPoints()) +
-      " points; Facet renders at most 2^31 - 1";
+    messages.AddError("cannot render: the input has " + std::to_string(input->GetNumberOfPoints()) +
+      " points; Facet renders at most 2^31 - 1");
     return false;
   }
   this->Points = PointsOf(input->GetPoints(), this->PointCopy);
@@ -51,8 +68,9 @@ bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
   this->ConvertStrips(input);
   if (this->NumberOfPolys + static_cast<vtkIdType>(this->StripOf.size()) > MaxFacetIds)
   {
-    error = "the input has " + std::to_string(this->NumberOfPolys) + " polygons and " +
-      std::to_string(this->StripOf.size()) + " strip triangles; Facet renders at most 2^31 - 1";
+    messages.AddError("cannot render: the input has " + std::to_string(this->NumberOfPolys) +
+      " polygons and " + std::to_string(this->StripOf.size()) +
+      " strip triangles; Facet renders at most 2^31 - 1");
     this->Reset();
     return false;
   }

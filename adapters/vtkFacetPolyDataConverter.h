@@ -6,7 +6,8 @@
  * float or double points are handed to the core without a copy; other point types are
  * copied to double. Triangle strips are decoded into triangles with the alternating winding
  * VTK uses (vtkTriangleStrip::DecomposeStrip). The result is kept while the input's MTime
- * is unchanged, so a new camera or new lights re-render without converting again.
+ * is unchanged, so a new camera or new lights re-render without converting again. Verts
+ * and lines are not rendered: every Update counts them in a warning.
  *
  * Polygon ids in the Facet scene: the polygons of mesh 0 (the input's polys), then the
  * triangles of mesh 1 (its strips). CellIdOf maps them back to vtkPolyData cell ids
@@ -21,9 +22,9 @@
 #include "facet/Mesh.h"
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
+class vtkFacetMessages;
 class vtkPoints;
 class vtkPolyData;
 
@@ -32,10 +33,10 @@ class vtkFacetPolyDataConverter
 public:
   /**
    * Converts the input unless it is the one converted last and unchanged since. Returns
-   * false and sets `error` for input the renderer cannot take (more than 2^31 - 1 polygons
-   * or points); point ids are checked by the renderer.
+   * false, with an error in `messages`, for input the renderer cannot take (more than
+   * 2^31 - 1 polygons or points); point ids are checked by the renderer.
    */
-  bool Update(vtkPolyData* input, bool detectClosedSurfaces, std::string& error);
+  bool Update(vtkPolyData* input, bool detectClosedSurfaces, vtkFacetMessages& messages);
 
   /// Whether the last Update converted (false: the cached conversion was reused).
   bool ConvertedLastUpdate() const { return this->Converted; }
@@ -83,6 +84,7 @@ public:
   static void ComputeFiniteBounds(const facet::PointArray& points, double bounds[6]);
 
 private:
+  bool Convert(vtkPolyData* input, bool detectClosedSurfaces, vtkFacetMessages& messages);
   void ConvertPolys(vtkPolyData* input);
   void ConvertStrips(vtkPolyData* input);
 

@@ -22,8 +22,16 @@
  * GetActiveCamera returns after the execution), vtkLights (none: a
  * headlight, unless AutomaticLightCreation is off), a vtkProperty and vtkMapper's coloring by
  * data. vtkFacetLight adds the light models vtkLight lacks. Shading is flat (per polygon);
- * the property's Interpolation, Opacity and Representation are not used yet: everything
- * renders as opaque, flat-shaded surfaces (a warning says so when they ask otherwise).
+ * the property's Interpolation, Opacity, Representation, edge visibility and textures are not
+ * used yet: everything renders as opaque, flat-shaded surfaces (a warning, said once, names
+ * what the property asks for). Its Lighting off shows the unlit colors, Ka·Ca + Kd·Cd, as VTK.
+ * Problems found during an execution are reported at its end, errors in one vtkErrorMacro,
+ * warnings in one vtkWarningMacro.
+ *
+ * The pieces that make the scene are the ones vtkFacetRendererToImageFilter uses for each
+ * actor of a vtkRenderer: the input is converted as an actor's mapper input is, colored as
+ * its mapper colors it (the coloring settings here are a vtkMapper's), with the property's
+ * material, under an identity matrix.
  *
  * Re-rendering is cheap: the converted mesh is kept while the input is unchanged (points
  * and cells are read in place when their types allow), so a new camera or new lights only
@@ -42,7 +50,7 @@
  * image = render.GetOutput()   # RGBA, Depth, CellId
  * @endcode
  *
- * @sa vtkFacetLight vtkWindowToImageFilter
+ * @sa vtkFacetLight vtkFacetRendererToImageFilter vtkWindowToImageFilter
  */
 
 #ifndef vtkFacetRenderFilter_h
@@ -96,8 +104,8 @@ public:
   /**
    * The camera to render with, as vtkRenderer::GetActiveCamera: the one set with SetCamera
    * (unless FitCameraToInput is on), else the automatic camera as the last execution fitted
-   * it (before the first: a default vtkCamera). Never null. The automatic camera is fitted again at every execution, so
-   * changing it changes nothing; to orbit from it, copy it and set the copy:
+   * it (before the first: a default vtkCamera). Never null. The automatic camera is fitted again at
+   * every execution, so changing it changes nothing; to orbit from it, copy it and set the copy:
    * @code{.cpp}
    * vtkNew<vtkCamera> camera;
    * camera->DeepCopy(filter->GetActiveCamera());
@@ -193,9 +201,10 @@ public:
   /**
    * Color by data with the scalars, as vtkMapper does (default: on).
    */
-  vtkSetMacro(ScalarVisibility, vtkTypeBool);
-  vtkGetMacro(ScalarVisibility, vtkTypeBool);
-  vtkBooleanMacro(ScalarVisibility, vtkTypeBool);
+  void SetScalarVisibility(vtkTypeBool visibility);
+  vtkTypeBool GetScalarVisibility();
+  void ScalarVisibilityOn() { this->SetScalarVisibility(1); }
+  void ScalarVisibilityOff() { this->SetScalarVisibility(0); }
   ///@}
 
   ///@{
@@ -203,8 +212,8 @@ public:
    * Which scalars color the surface, with vtkMapper's meaning and constants (default:
    * VTK_SCALAR_MODE_DEFAULT: point scalars, else cell scalars).
    */
-  vtkSetMacro(ScalarMode, int);
-  vtkGetMacro(ScalarMode, int);
+  void SetScalarMode(int mode);
+  int GetScalarMode();
   void SetScalarModeToDefault();
   void SetScalarModeToUsePointData();
   void SetScalarModeToUseCellData();
@@ -217,8 +226,8 @@ public:
    * How scalars become colors, vtkMapper's meaning (default: VTK_COLOR_MODE_DEFAULT:
    * unsigned char scalars are colors, others go through the lookup table).
    */
-  vtkSetMacro(ColorMode, int);
-  vtkGetMacro(ColorMode, int);
+  void SetColorMode(int mode);
+  int GetColorMode();
   void SetColorModeToDefault();
   void SetColorModeToMapScalars();
   void SetColorModeToDirectScalars();
@@ -227,7 +236,8 @@ public:
   ///@{
   /**
    * The array to color by with the field-data scalar modes (or any mode, by name), as
-   * vtkMapper::SelectColorArray (default: none, the active scalars).
+   * vtkMapper::SelectColorArray, but keeping ArrayComponent (default: none, the active
+   * scalars).
    *
    * The array can also be named as VTK filters name their input arrays, which is how
    * ParaView's array selection names it: SetInputArrayToProcess(0, 0, 0, association, name)
@@ -237,17 +247,17 @@ public:
    */
   void SelectColorArray(int arrayId);
   void SelectColorArray(const char* arrayName);
-  vtkGetStringMacro(ArrayName);
-  vtkGetMacro(ArrayId, int);
-  vtkGetMacro(ArrayAccessMode, int);
+  const char* GetArrayName();
+  int GetArrayId();
+  int GetArrayAccessMode();
   ///@}
 
   ///@{
   /**
    * The component of a multi-component array to map; -1 maps the magnitude (default: 0).
    */
-  vtkSetMacro(ArrayComponent, int);
-  vtkGetMacro(ArrayComponent, int);
+  void SetArrayComponent(int component);
+  int GetArrayComponent();
   ///@}
 
   ///@{
@@ -264,11 +274,24 @@ public:
    * The scalar range mapped onto the lookup table, unless UseLookupTableScalarRange
    * (default: 0 to 1, off), as vtkMapper.
    */
-  vtkSetVector2Macro(ScalarRange, double);
-  vtkGetVector2Macro(ScalarRange, double);
-  vtkSetMacro(UseLookupTableScalarRange, vtkTypeBool);
-  vtkGetMacro(UseLookupTableScalarRange, vtkTypeBool);
-  vtkBooleanMacro(UseLookupTableScalarRange, vtkTypeBool);
+  void SetScalarRange(double minimum, double maximum);
+  void SetScalarRange(const double range[2]);
+  double* GetScalarRange() VTK_SIZEHINT(2);
+  void SetUseLookupTableScalarRange(vtkTypeBool use);
+  vtkTypeBool GetUseLookupTableScalarRange();
+  void UseLookupTableScalarRangeOn() { this->SetUseLookupTableScalarRange(1); }
+  void UseLookupTableScalarRangeOff() { this->SetUseLookupTableScalarRange(0); }
+  ///@}
+
+  ///@{
+  /**
+   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Flat shading shows one
+   * color per polygon either way (point colors are averaged); kept for the shading modes.
+   */
+  void SetInterpolateScalarsBeforeMapping(vtkTypeBool interpolate);
+  vtkTypeBool GetInterpolateScalarsBeforeMapping();
+  void InterpolateScalarsBeforeMappingOn() { this->SetInterpolateScalarsBeforeMapping(1); }
+  void InterpolateScalarsBeforeMappingOff() { this->SetInterpolateScalarsBeforeMapping(0); }
   ///@}
 
   ///@{
@@ -342,16 +365,6 @@ protected:
   double AmbientLightColor[3] = { 50.0 / 255.0, 50.0 / 255.0, 50.0 / 255.0 };
   vtkTypeBool TwoSidedLighting = 1;
   vtkProperty* Property = nullptr;
-  vtkTypeBool ScalarVisibility = 1;
-  int ScalarMode = 0;
-  int ColorMode = 0;
-  int ArrayAccessMode = 0;
-  int ArrayId = -1;
-  char* ArrayName = nullptr;
-  int ArrayComponent = 0;
-  vtkScalarsToColors* LookupTable = nullptr;
-  double ScalarRange[2] = { 0.0, 1.0 };
-  vtkTypeBool UseLookupTableScalarRange = 0;
   int NumberOfThreads = 0;
   int VisibilityMode = ZBuffer;
   vtkTypeBool DetectClosedSurfaces = 1;
@@ -359,8 +372,6 @@ protected:
 private:
   vtkFacetRenderFilter(const vtkFacetRenderFilter&) = delete;
   void operator=(const vtkFacetRenderFilter&) = delete;
-
-  vtkSetStringMacro(ArrayName);
 
   class vtkInternals;
   vtkInternals* Internals;

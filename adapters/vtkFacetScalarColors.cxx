@@ -2,9 +2,12 @@
 
 #include "vtkAbstractMapper.h"
 #include "vtkDataArray.h"
+#include "vtkFacetMessages.h"
 #include "vtkFacetPolyDataConverter.h"
 #include "vtkLookupTable.h"
+#include "vtkMapper.h"
 #include "vtkPolyData.h"
+#include "vtkScalarsToColors.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
@@ -69,30 +72,28 @@ void AveragePerPolygon(const facet::PolygonArray& polygons,
 }
 
 //------------------------------------------------------------------------------
-bool vtkFacetScalarColors::Settings::operator==(const Settings& o) const
+vtkFacetScalarColors::Settings vtkFacetScalarColors::Settings::Of(vtkMapper* mapper)
 {
-  return ScalarVisibility == o.ScalarVisibility && ScalarMode == o.ScalarMode &&
-    ColorMode == o.ColorMode && ArrayAccessMode == o.ArrayAccessMode && ArrayId == o.ArrayId &&
-    ArrayName == o.ArrayName && ArrayComponent == o.ArrayComponent &&
-    LookupTable == o.LookupTable && ScalarRange[0] == o.ScalarRange[0] &&
-    ScalarRange[1] == o.ScalarRange[1] && UseLookupTableScalarRange == o.UseLookupTableScalarRange;
+  Settings s;
+  s.ScalarVisibility = mapper->GetScalarVisibility() != 0;
+  s.ScalarMode = mapper->GetScalarMode();
+  s.ColorMode = mapper->GetColorMode();
+  s.ArrayAccessMode = mapper->GetArrayAccessMode();
+  s.ArrayId = mapper->GetArrayId();
+  s.ArrayName = mapper->GetArrayName() ? mapper->GetArrayName() : "";
+  s.ArrayComponent = mapper->GetArrayComponent();
+  s.LookupTable = mapper->GetLookupTable();
+  mapper->GetScalarRange(s.ScalarRange);
+  s.UseLookupTableScalarRange = mapper->GetUseLookupTableScalarRange() != 0;
+  s.InterpolateScalarsBeforeMapping = mapper->GetInterpolateScalarsBeforeMapping() != 0;
+  return s;
 }
 
 //------------------------------------------------------------------------------
-vtkScalarsToColors* vtkFacetScalarColors::GetDefaultLookupTable()
-{
-  if (!this->DefaultLookupTable)
-  {
-    this->DefaultLookupTable = vtkSmartPointer<vtkLookupTable>::New();
-  }
-  return this->DefaultLookupTable;
-}
-
-//------------------------------------------------------------------------------
-std::string vtkFacetScalarColors::Update(vtkPolyData* input,
+void vtkFacetScalarColors::Update(vtkPolyData* input,
   const vtkFacetPolyDataConverter& mesh,
-  bool meshConverted,
-  const Settings& settings)
+  const Settings& settings,
+  vtkFacetMessages& messages)
 {
   int cellFlag = 0;
   vtkDataArray* scalars = settings.ScalarVisibility ? vtkAbstractMapper::GetScalars(input,
@@ -103,38 +104,45 @@ std::string vtkFacetScalarColors::Update(vtkPolyData* input,
                                                         cellFlag)
                                                     : nullptr;
   // Prepared before the comparison: setting the range may modify the table.
-  vtkScalarsToColors* table = scalars ? this->PrepareLookupTable(scalars, settings) : nullptr;
+  vtkScalarsToColors* table = scalars ? PrepareLookupTable(scalars, settings) : nullptr;
   const vtkMTimeType tableTime = table ? table->GetMTime() : 0;
-  if (this->Valid && !meshConverted && settings == this->Last && table == this->LastTable &&
-    tableTime == this->LastTableTime)
+  if (!(this->Valid && !mesh.ConvertedLastUpdate() && settings == this->Last &&
+        table == this->LastTable && tableTime == this->LastTableTime))
   {
-    return {};
+    this->Polygon.clear();
+    this->Strip.clear();
+    this->Last = settings;
+    this->LastTable = table;
+    this->LastTableTime = tableTime;
+    this->Valid = true;
+    if (scalars)
+    {
+      this->Warning = this->Compute(scalars, cellFlag != 0, table, input, mesh, settings);
+    }
+    else
+    {
+      this->Warning =
+        !settings.ScalarVisibility || (settings.ArrayName.empty() && settings.ArrayId < 0)
+        ? std::string()
+        : "no array '" + settings.ArrayName + "' to color by; using the property's color";
+    }
   }
-  this->Polygon.clear();
-  this->Strip.clear();
-  this->Last = settings;
-  this->LastTable = table;
-  this->LastTableTime = tableTime;
-  this->Valid = true;
-  if (!scalars)
+  if (!this->Warning.empty())
   {
-    return !settings.ScalarVisibility || (settings.ArrayName.empty() && settings.ArrayId < 0)
-      ? std::string()
-      : "no array '" + settings.ArrayName + "' to color by; using the property's color";
+    messages.AddWarning(this->Warning);
   }
-  return this->Compute(scalars, cellFlag != 0, table, input, mesh, settings);
 }
 
 //------------------------------------------------------------------------------
 vtkScalarsToColors* vtkFacetScalarColors::PrepareLookupTable(vtkDataArray* scalars,
   const Settings& settings)
 {
-  // vtkMapper::MapScalars, except that an array's own table is built too: an unbuilt
-  // vtkLookupTable holds uninitialized colors.
+  // vtkMapper::MapScalars, except that an array's own table is built too (an unbuilt
+  // vtkLookupTable holds uninitialized colors) and the mapper is left as it is.
   vtkScalarsToColors* table = scalars->GetLookupTable();
   if (!table)
   {
-    table = settings.LookupTable ? settings.LookupTable : this->GetDefaultLookupTable();
+    table = settings.LookupTable;
   }
   table->Build();
   if (!settings.UseLookupTableScalarRange)

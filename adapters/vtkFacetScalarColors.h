@@ -1,18 +1,21 @@
 /**
  * @class   vtkFacetScalarColors
- * @brief   Private: per-polygon colors from a vtkPolyData's scalars, the way vtkMapper
+ * @brief   Private: per-polygon colors from a vtkPolyData's scalars, the way a vtkMapper
  *          colors by data.
  *
- * The scalars are found with vtkAbstractMapper::GetScalars (scalar mode, array access mode,
- * array name or id) and mapped with vtkScalarsToColors::MapScalars (color mode, component),
- * so colors are the exact bytes VTK's own mappers use; unsigned char RGB(A) arrays are used
- * directly under the default color mode. The lookup table is prepared as
- * vtkMapper::MapScalars prepares it: the array's own table if it has one, else the given one
- * or a default vtkLookupTable; built (vtkScalarsToColors::Build, which leaves alone a table
- * whose values the user inserted); given the scalar range unless UseLookupTableScalarRange.
- * Cell scalars color each polygon (and every triangle of a strip); point scalars are averaged
- * per polygon, as flat shading shows one color per polygon. The result is kept while the
- * input, the settings and the table are unchanged.
+ * The settings are a vtkMapper's (Settings::Of), whether the mapper is an actor's or the
+ * one holding vtkFacetRenderFilter's coloring. The scalars are found with
+ * vtkAbstractMapper::GetScalars (scalar mode, array access mode, array name or id) and mapped
+ * with vtkScalarsToColors::MapScalars (color mode, component), so colors are the exact bytes
+ * VTK's own mappers use; unsigned char RGB(A) arrays are used directly under the default
+ * color mode. The lookup table is prepared as vtkMapper::MapScalars prepares it: the array's
+ * own table if it has one, else the mapper's; built (vtkScalarsToColors::Build, which leaves
+ * alone a table whose values the user inserted); given the scalar range unless
+ * UseLookupTableScalarRange. Cell scalars color each polygon (and every triangle of a strip);
+ * point scalars are averaged per polygon, as flat shading shows one color per polygon
+ * (VTK's OpenGL mapper interpolates them across the polygon even when flat shading; the
+ * shading modes will). The result is kept while the input, the settings and the table are
+ * unchanged.
  */
 
 #ifndef vtkFacetScalarColors_h
@@ -28,7 +31,9 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkFacetMessages;
 class vtkFacetPolyDataConverter;
+class vtkMapper;
 class vtkPolyData;
 class vtkScalarsToColors;
 
@@ -45,30 +50,39 @@ public:
     int ArrayId = -1;
     std::string ArrayName;
     int ArrayComponent = 0;
-    vtkScalarsToColors* LookupTable = nullptr; // null: a default vtkLookupTable
+    vtkScalarsToColors* LookupTable = nullptr; // never null from Of
     double ScalarRange[2] = { 0.0, 1.0 };
     bool UseLookupTableScalarRange = false;
-    bool operator==(const Settings& other) const;
+    /// Kept for the shading modes: flat shading shows one color per polygon either way.
+    bool InterpolateScalarsBeforeMapping = false;
+
+    /// The mapper's settings; creates its default lookup table if it has none, as
+    /// vtkMapper::GetLookupTable does.
+    static Settings Of(vtkMapper* mapper);
+    bool operator==(const Settings& other) const = default;
   };
 
   /**
-   * Recomputes the colors when the mesh was converted again or the settings changed.
-   * Returns a warning for the caller to report (empty if none).
+   * Recomputes the colors when the mesh was converted again or the settings or the table
+   * changed. A color array that cannot be used is a warning in `messages`; the polygons
+   * then take the property's color.
    */
-  std::string Update(vtkPolyData* input,
+  void Update(vtkPolyData* input,
     const vtkFacetPolyDataConverter& mesh,
-    bool meshConverted,
-    const Settings& settings);
+    const Settings& settings,
+    vtkFacetMessages& messages);
 
   /// One color per polygon and per strip triangle; empty without scalar coloring.
   std::span<const facet::Rgba8> PolygonColors() const { return this->Polygon; }
   std::span<const facet::Rgba8> StripColors() const { return this->Strip; }
+  bool HasColors() const { return !this->Polygon.empty() || !this->Strip.empty(); }
 
-  /// The lookup table used when Settings::LookupTable is null, as vtkMapper creates one.
-  vtkScalarsToColors* GetDefaultLookupTable();
+  /// The table the last Update prepared (null: none) and its MTime once prepared.
+  vtkScalarsToColors* GetPreparedTable() const { return this->LastTable; }
+  vtkMTimeType GetPreparedTableTime() const { return this->LastTableTime; }
 
 private:
-  vtkScalarsToColors* PrepareLookupTable(vtkDataArray* scalars, const Settings& settings);
+  static vtkScalarsToColors* PrepareLookupTable(vtkDataArray* scalars, const Settings& settings);
   std::string Compute(vtkDataArray* scalars,
     bool cellScalars,
     vtkScalarsToColors* table,
@@ -81,10 +95,9 @@ private:
   vtkScalarsToColors* LastTable = nullptr; // identity only
   vtkMTimeType LastTableTime = 0;
   bool Valid = false;
+  std::string Warning; // said again at every execution that keeps these colors
   std::vector<facet::Rgba8> Polygon;
   std::vector<facet::Rgba8> Strip;
-  vtkSmartPointer<vtkScalarsToColors> DefaultLookupTable;
 };
 
 #endif
-// VTK-HeaderTest-Exclude: vtkFacetScalarColors.h

@@ -2,17 +2,19 @@
 
 #include "vtkCamera.h"
 #include "vtkFacetLight.h"
+#include "vtkFacetMessages.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
-#include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace {
 glm::dvec3 ToVec(const double v[3])
@@ -56,6 +58,55 @@ void WidenToResolve(double bounds[6])
     bounds[i] = center - half;
     bounds[i + 1] = center + half;
   }
+}
+
+// What vtkCamera does beyond Facet's camera, named, joined with commas and "and".
+std::string UnrenderedCameraFeatures(vtkCamera* camera)
+{
+  std::vector<std::string> uses;
+  if (camera->GetUseOffAxisProjection())
+  {
+    uses.push_back("an off-axis projection");
+  }
+  const double* shear = camera->GetViewShear();
+  if (shear[0] != 0.0 || shear[1] != 0.0)
+  {
+    uses.push_back("view shear");
+  }
+  if (!camera->GetModelTransformMatrix()->IsIdentity())
+  {
+    uses.push_back("a model transform matrix");
+  }
+  if (camera->GetUserTransform())
+  {
+    uses.push_back("a user transform");
+  }
+  if (camera->GetUserViewTransform())
+  {
+    uses.push_back("a user view transform");
+  }
+  if (camera->GetUseExplicitProjectionTransformMatrix())
+  {
+    uses.push_back("an explicit projection matrix");
+  }
+  return vtkFacetMessages::List(uses);
+}
+
+// Whether Facet's camera projects as vtkCamera's composite projection for this aspect.
+bool SameProjection(const facet::Camera& c, vtkCamera* camera, double aspect)
+{
+  const glm::dmat4 ours = facet::clipFromView(c, aspect) * facet::viewFromWorld(c);
+  vtkMatrix4x4* theirs = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  double difference = 0.0, scale = 0.0;
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      difference = std::max(difference, std::abs(ours[j][i] - theirs->GetElement(i, j)));
+      scale = std::max(scale, std::abs(theirs->GetElement(i, j)));
+    }
+  }
+  return difference <= 1e-9 * scale;
 }
 
 facet::Attenuation AttenuationOf(vtkLight* light)
@@ -105,7 +156,7 @@ facet::Light ConvertLight(vtkLight* light, const glm::dvec3& position, const glm
 facet::Camera vtkFacetSceneConverter::ConvertCamera(vtkCamera* camera,
   int width,
   int height,
-  std::string& warning)
+  vtkFacetMessages& messages)
 {
   const double aspect = static_cast<double>(width) / height;
   facet::Camera c;
@@ -127,41 +178,60 @@ facet::Camera vtkFacetSceneConverter::ConvertCamera(vtkCamera* camera,
   const double* center = camera->GetWindowCenter();
   c.windowCenter = { center[0], center[1] };
 
-  // What this camera does that Facet's does not: compare the whole projection with VTK's.
-  const glm::dmat4 ours = facet::clipFromView(c, aspect) * facet::viewFromWorld(c);
-  vtkMatrix4x4* theirs = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  double difference = 0.0, scale = 0.0;
-  for (int i = 0; i < 4; ++i)
+  std::string unrendered = UnrenderedCameraFeatures(camera);
+  if (unrendered.empty() && !SameProjection(c, camera, aspect))
   {
-    for (int j = 0; j < 4; ++j)
-    {
-      difference = std::max(difference, std::abs(ours[j][i] - theirs->GetElement(i, j)));
-      scale = std::max(scale, std::abs(theirs->GetElement(i, j)));
-    }
+    unrendered = "a projection that Facet's camera does not reproduce";
   }
-  if (!(difference <= 1e-9 * scale))
+  if (!unrendered.empty())
   {
-    warning = "the camera uses an off-axis projection, view shear or a model/user transform, "
-              "which Facet does not render; rendering its plain perspective/parallel view";
+    messages.AddWarningOnce("the camera uses " + unrendered +
+      ", which Facet does not render yet; rendering its plain " +
+      (c.parallelProjection ? "parallel" : "perspective") + " view (said once)");
   }
   return c;
 }
 
 //------------------------------------------------------------------------------
+vtkFacetSceneConverter::Lighting vtkFacetSceneConverter::LightingOf(vtkLightCollection* lights,
+  const LightOptions& options)
+{
+  // vtkOpenGLRenderer::UpdateLights: a positional light or a second light makes it "lights".
+  int on = options.AddHeadlight ? 1 : 0;
+  bool headlight = options.AddHeadlight;
+  vtkCollectionSimpleIterator iterator;
+  lights->InitTraversal(iterator);
+  while (vtkLight* light = lights->GetNextLight(iterator))
+  {
+    if (light->GetSwitch())
+    {
+      ++on;
+      headlight = light->LightTypeIsHeadlight() && !light->GetPositional();
+    }
+  }
+  return on == 0 ? Lighting::Unlit : on == 1 && headlight ? Lighting::Headlight : Lighting::Lights;
+}
+
+//------------------------------------------------------------------------------
 facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights,
   vtkCamera* camera,
-  bool automaticLightCreation,
-  const double ambientColor[3],
-  std::string& warning)
+  const LightOptions& options,
+  vtkFacetMessages& messages)
 {
   facet::LightSet set;
-  set.ambient.color = ToColor(ambientColor);
+  set.ambient.color = ToColor(options.AmbientColor);
   set.ambient.intensity = 1.0;
 
   vtkSmartPointer<vtkLightCollection> effective = lights;
-  if (automaticLightCreation && lights->GetNumberOfItems() == 0)
+  if (options.AddHeadlight)
   {
     effective = vtkSmartPointer<vtkLightCollection>::New();
+    vtkCollectionSimpleIterator kept;
+    lights->InitTraversal(kept);
+    while (vtkLight* light = lights->GetNextLight(kept))
+    {
+      effective->AddItem(light);
+    }
     vtkNew<vtkLight> headlight; // vtkRenderer::CreateLight's light
     headlight->SetLightTypeToHeadlight();
     effective->AddItem(headlight);
@@ -178,7 +248,12 @@ facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights
       continue;
     }
     glm::dvec3 position, focal;
-    if (light->LightTypeIsHeadlight())
+    if (!options.FollowCamera)
+    {
+      position = ToVec(light->GetTransformedPosition());
+      focal = ToVec(light->GetTransformedFocalPoint());
+    }
+    else if (light->LightTypeIsHeadlight())
     {
       position = ToVec(camera->GetPosition());
       focal = ToVec(camera->GetFocalPoint());
@@ -197,31 +272,13 @@ facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights
     const facet::Light converted = ConvertLight(light, position, focal);
     if (position == focal && !std::holds_alternative<facet::PointLight>(converted))
     {
-      warning += "light " + std::to_string(number) +
-        " has its focal point at its position, so no direction; skipped. ";
+      messages.AddWarning("light " + std::to_string(number) +
+        " has its focal point at its position, so no direction; skipped");
       continue;
     }
     set.lights.push_back(converted);
   }
   return set;
-}
-
-//------------------------------------------------------------------------------
-facet::Material vtkFacetSceneConverter::ConvertProperty(vtkProperty* property, bool scalarColoring)
-{
-  facet::Material m;
-  m.color = ToColor(property->GetDiffuseColor());
-  if (!scalarColoring)
-  {
-    m.ambientColor = ToColor(property->GetAmbientColor());
-  }
-  m.specularColor = ToColor(property->GetSpecularColor());
-  m.ambient = property->GetAmbient();
-  m.diffuse = property->GetDiffuse();
-  m.specular = property->GetSpecular();
-  m.specularPower = property->GetSpecularPower();
-  m.backfaceCulling = property->GetBackfaceCulling() != 0;
-  return m;
 }
 
 //------------------------------------------------------------------------------

@@ -1,11 +1,13 @@
 /**
  * @class   vtkFacetSceneConverter
- * @brief   Private: vtkCamera, vtkLight and vtkProperty as Facet's camera, lights and
- *          material, meaning exactly what VTK's renderer makes of them.
+ * @brief   Private: vtkCamera and vtkLights as Facet's camera and lights, meaning exactly
+ *          what VTK's renderer makes of them: the part of a scene that is the renderer's,
+ *          not an actor's (vtkFacetActorConverter).
  *
  * Camera: view angle (vertical, or horizontal converted with the image aspect), parallel
- * scale, window center and the clipping range as given. Off-axis projection, view shear and
- * model/user transforms are not rendered: a warning says so.
+ * scale, window center and the clipping range as given, for the image's aspect. Off-axis
+ * projection, view shear, the model transform matrix, user (view) transforms and an explicit
+ * projection matrix are not rendered yet: a warning, said once, names those the camera uses.
  *
  * Lights: headlights sit at the camera looking at its focal point; camera lights are placed
  * with vtkCamera::GetCameraLightTransformMatrix; scene lights use their transformed position
@@ -13,12 +15,9 @@
  * lights are point lights with vtkLight's AttenuationValues, spot lights when the cone angle is
  * at most 90 degrees (cos^Exponent cone, as VTK's shaders). vtkFacetLight adds the linear
  * angular falloff and the falloff-distance attenuation. A light's color is its diffuse color
- * times its intensity. Switched-off lights are skipped.
- *
- * Material: vtkProperty's Ambient, Diffuse, Specular, SpecularPower, AmbientColor,
- * DiffuseColor, SpecularColor and BackfaceCulling. With scalar coloring the scalars replace
- * the ambient and diffuse colors, as in VTK. Opacity is ignored for now: everything renders
- * opaque.
+ * times its intensity. Switched-off lights are skipped. When the lights do not follow the
+ * camera (vtkRenderer::LightFollowCamera off), every light is where its transformed
+ * position and focal point put it, as VTK leaves them.
  */
 
 #ifndef vtkFacetSceneConverter_h
@@ -26,35 +25,53 @@
 
 #include "facet/Camera.h"
 #include "facet/Light.h"
-#include "facet/Material.h"
-
-#include <string>
 
 class vtkCamera;
+class vtkFacetMessages;
 class vtkLightCollection;
-class vtkProperty;
 
 class vtkFacetSceneConverter
 {
 public:
-  /// The camera for a width × height image; `warning` names what is not rendered.
+  /// The camera for a width × height image; what it does that is not rendered goes to
+  /// `messages`.
   static facet::Camera ConvertCamera(vtkCamera* camera,
     int width,
     int height,
-    std::string& warning);
+    vtkFacetMessages& messages);
+
+  /// How the lights of a collection are placed.
+  struct LightOptions
+  {
+    /// Add the headlight vtkRenderer::CreateLight creates (default: no).
+    bool AddHeadlight = false;
+    /// Place headlights and camera lights from the camera (default: yes).
+    bool FollowCamera = true;
+    /// The scene ambient light's color, RGB (default: none, as VTK's OpenGL renderer).
+    double AmbientColor[3] = { 0.0, 0.0, 0.0 };
+  };
 
   /**
-   * The lights, plus the scene ambient light. With no light at all and
-   * `automaticLightCreation`, one headlight, as vtkRenderer creates. `warning` names lights
-   * that were skipped.
+   * What lights a scene, as VTK's OpenGL renderer tells its cases apart ("lighting
+   * complexity"): no light switched on (surfaces show unlit), one headlight alone (whose
+   * highlight VTK's shader computes its own way), or any other lights.
+   */
+  enum class Lighting
+  {
+    Unlit,
+    Headlight,
+    Lights
+  };
+  static Lighting LightingOf(vtkLightCollection* lights, const LightOptions& options);
+
+  /**
+   * The switched-on lights, plus the scene ambient light. Lights that cannot shine (a
+   * direction of zero length) are skipped with a warning in `messages`.
    */
   static facet::LightSet ConvertLights(vtkLightCollection* lights,
     vtkCamera* camera,
-    bool automaticLightCreation,
-    const double ambientColor[3],
-    std::string& warning);
-
-  static facet::Material ConvertProperty(vtkProperty* property, bool scalarColoring);
+    const LightOptions& options,
+    vtkFacetMessages& messages);
 
   /**
    * Fits `camera` to `bounds` for a width × height image as vtkRenderer::ResetCamera does,

@@ -3,11 +3,14 @@
 // Helpers shared by the adapter tests.
 
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFacetRenderFilter.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -16,6 +19,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <array>
+#include <gtest/gtest.h>
 #include <string>
 
 namespace facet_test {
@@ -28,6 +32,12 @@ inline vtkIdType PixelIndex(vtkImageData* image, int x, int y)
 inline vtkIdType CellIdAt(vtkImageData* image, int x, int y)
 {
   return vtkIdTypeArray::SafeDownCast(image->GetPointData()->GetArray("CellId"))
+    ->GetValue(PixelIndex(image, x, y));
+}
+
+inline int ActorIdAt(vtkImageData* image, int x, int y)
+{
+  return vtkIntArray::SafeDownCast(image->GetPointData()->GetArray("ActorId"))
     ->GetValue(PixelIndex(image, x, y));
 }
 
@@ -50,6 +60,34 @@ inline double FieldValue(vtkImageData* image, const char* array, const char* com
   }
   return -1.0;
 }
+
+// A parallel camera for which world x, y are window pixels of a width × height image.
+inline vtkSmartPointer<vtkCamera> PixelCamera(int width, int height)
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(0.5 * height);
+  camera->SetFocalPoint(0.5 * width, 0.5 * height, 0.0);
+  camera->SetPosition(0.5 * width, 0.5 * height, 100.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetClippingRange(1.0, 300.0);
+  return camera;
+}
+
+// Counts the executions of an algorithm (its StartEvents).
+struct ExecutionCounter
+{
+  explicit ExecutionCounter(vtkObject* algorithm)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      ++static_cast<ExecutionCounter*>(self)->Count;
+    });
+    algorithm->AddObserver(vtkCommand::StartEvent, this->Callback);
+  }
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Callback;
+};
 
 // A square in the z = 0 plane, [x0, x1] × [y0, y1], counter-clockwise seen from +z.
 inline vtkIdType AddSquare(vtkPoints* points,
@@ -95,5 +133,41 @@ struct MessageCounter
   std::string Last;
   vtkNew<vtkCallbackCommand> Callback;
 };
+
+// An algorithm that renders a width × height image of something covering over 1000 pixels
+// reports progress, and when aborted past 10 % stops early with a valid background image.
+inline void ExpectProgressReportedAndAbortable(vtkImageAlgorithm* algorithm, int width, int height)
+{
+  struct Progress
+  {
+    int Calls = 0;
+    bool Abort = false;
+  } progress;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&progress);
+  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
+    auto* p = static_cast<Progress*>(data);
+    ++p->Calls;
+    if (p->Abort && *static_cast<double*>(fraction) > 0.1)
+    {
+      vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
+    }
+  });
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ProgressEvent, observer);
+  algorithm->Update();
+  EXPECT_GT(progress.Calls, 3);
+  vtkImageData* image = vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0));
+  EXPECT_GT(FieldValue(image, "FacetCounts", "PixelsCovered"), 1000.0);
+
+  progress.Abort = true;
+  algorithm->Modified();
+  algorithm->Update();
+  algorithm->SetAbortExecute(0);
+  algorithm->RemoveObserver(tag);
+  image = vtkImageData::SafeDownCast(algorithm->GetOutputDataObject(0));
+  EXPECT_EQ(FieldValue(image, "FacetCounts", "PixelsCovered"), 0.0)
+    << "stopped early: a valid background image";
+  EXPECT_EQ(image->GetNumberOfPoints(), static_cast<vtkIdType>(width) * height);
+}
 
 } // namespace facet_test

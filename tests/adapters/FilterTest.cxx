@@ -33,17 +33,9 @@ using namespace facet_test;
 namespace {
 constexpr int Width = 160, Height = 120;
 
-// A parallel camera for which world x, y are window pixels.
-vtkSmartPointer<vtkCamera> PixelCamera(int width = Width, int height = Height)
+vtkSmartPointer<vtkCamera> PixelCamera()
 {
-  auto camera = vtkSmartPointer<vtkCamera>::New();
-  camera->ParallelProjectionOn();
-  camera->SetParallelScale(0.5 * height);
-  camera->SetFocalPoint(0.5 * width, 0.5 * height, 0.0);
-  camera->SetPosition(0.5 * width, 0.5 * height, 100.0);
-  camera->SetViewUp(0.0, 1.0, 0.0);
-  camera->SetClippingRange(1.0, 300.0);
-  return camera;
+  return facet_test::PixelCamera(Width, Height);
 }
 
 // A filter showing exactly the surface colors: Ka = 1 with the ambient color being the
@@ -721,6 +713,32 @@ TEST(Caching, ANewCameraReusesTheConvertedMesh)
 }
 
 //------------------------------------------------------------------------------
+// The execution builds the lookup table and gives it the scalar range: that is not a change
+// that renders again; the user's change to the table is.
+TEST(Caching, PreparingTheLookupTableIsNoChangeButChangingItIs)
+{
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkElevationFilter> elevation;
+  elevation->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkLookupTable> table; // not built; its range (0, 1) becomes (-1, 2)
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputConnection(elevation->GetOutputPort());
+  filter->SetSize(Width, Height);
+  filter->SetLookupTable(table);
+  filter->SetScalarRange(-1.0, 2.0);
+  ExecutionCounter executions(filter);
+  filter->Update();
+  filter->Update();
+  EXPECT_EQ(executions.Count, 1);
+  EXPECT_EQ(table->GetRange()[0], -1.0);
+  table->SetHueRange(0.2, 0.3);
+  filter->Update();
+  EXPECT_EQ(executions.Count, 2);
+  filter->Update();
+  EXPECT_EQ(executions.Count, 2);
+}
+
+//------------------------------------------------------------------------------
 TEST(Progress, ReportedAndAbortable)
 {
   vtkNew<vtkSphereSource> sphere;
@@ -729,31 +747,5 @@ TEST(Progress, ReportedAndAbortable)
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputConnection(sphere->GetOutputPort());
   filter->SetSize(400, 300);
-  struct Progress
-  {
-    int Calls = 0;
-    bool Abort = false;
-  } progress;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetClientData(&progress);
-  observer->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
-    auto* p = static_cast<Progress*>(data);
-    ++p->Calls;
-    if (p->Abort && *static_cast<double*>(fraction) > 0.1)
-    {
-      vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
-    }
-  });
-  filter->AddObserver(vtkCommand::ProgressEvent, observer);
-  filter->Update();
-  EXPECT_GT(progress.Calls, 3);
-  EXPECT_GT(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 1000.0);
-
-  progress.Abort = true;
-  filter->Modified();
-  filter->Update();
-  filter->SetAbortExecute(0);
-  EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 0.0)
-    << "stopped early: a valid background image";
-  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 400 * 300);
+  ExpectProgressReportedAndAbortable(filter, 400, 300);
 }

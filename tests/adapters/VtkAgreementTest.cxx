@@ -8,6 +8,7 @@
 // Needs an X server: make test runs it under xvfb-run (Debian's VTK has no OSMesa/EGL).
 
 #include "AdapterTestUtilities.h"
+#include "VtkOpenGLReference.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -20,7 +21,6 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -66,30 +66,9 @@ Scene LoadScene(const std::string& mesh, double azimuth, double elevation)
   return scene;
 }
 
-// Renders off screen, without multisampling, at the test's size.
 vtkSmartPointer<vtkRenderWindow> RenderOffScreen(vtkRenderer* renderer)
 {
-  auto window = vtkSmartPointer<vtkRenderWindow>::New();
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Width, Height);
-  window->AddRenderer(renderer);
-  window->Render();
-  return window;
-}
-
-// The window's color (RGB) or depth buffer.
-vtkSmartPointer<vtkImageData> ReadBack(vtkRenderWindow* window, bool depth)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  if (depth)
-  {
-    grab->SetInputBufferTypeToZBuffer();
-  }
-  grab->Update();
-  return grab->GetOutput();
+  return facet_test::RenderOffScreen(renderer, Width, Height);
 }
 
 // VTK's OpenGL pipeline: flat interpolation, no multisampling, RGB and depth read back.

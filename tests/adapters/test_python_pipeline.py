@@ -5,10 +5,8 @@ written reads back as the same image.
 """
 import math
 import os
-import re
 import sys
 import tempfile
-import textwrap
 import unittest
 
 from vtkmodules.vtkCommonCore import VTK_FLOAT, VTK_ID_TYPE, VTK_UNSIGNED_CHAR
@@ -17,18 +15,9 @@ from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import vtkCamera
 
 from facet import vtkFacetLight, vtkFacetRenderFilter
+from readme_blocks import readme_python_block
 
 MESHES = os.environ["FACET_SHARED_DATA_DIR"] + "/meshes"
-README = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
-
-
-def readme_python_block(containing):
-    """The README's ```python block that contains `containing`, dedented."""
-    with open(README, encoding="utf-8") as readme:
-        blocks = re.findall(r"^( *)```python\n(.*?)^\1```", readme.read(), re.M | re.S)
-    matches = [textwrap.dedent(body) for _, body in blocks if containing in body]
-    assert len(matches) == 1, "README.md has %d python blocks with %r" % (len(matches), containing)
-    return matches[0]
 
 
 class PythonPipeline(unittest.TestCase):

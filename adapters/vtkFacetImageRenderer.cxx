@@ -1,0 +1,292 @@
+// VTK-HeaderTest-Exclude: vtkFacetImageRenderer.h
+#include "vtkFacetImageRenderer.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDoubleArray.h"
+#include "vtkFacetMessages.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "facet/Conventions.h"
+#include "facet/Error.h"
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace {
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Memory for an image plane that the renderer writes directly: 2 MiB-aligned and advised
+// to use transparent huge pages when large. Released with free(), which VTK calls.
+void* AllocatePlane(std::size_t bytes)
+{
+  constexpr std::size_t hugePage = facet::HugePageAllocator<char>::kHugePage;
+  if (bytes < hugePage)
+  {
+    return std::malloc(std::max<std::size_t>(bytes, 1));
+  }
+  const std::size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
+  void* plane = std::aligned_alloc(hugePage, rounded);
+#if defined(__linux__)
+  if (plane)
+  {
+    madvise(plane, rounded, MADV_HUGEPAGE);
+  }
+#endif
+  return plane;
+}
+
+// An output plane: the one kept from the last execution when nobody else holds it any more
+// and it has the right shape, else a new one. Never an array somebody may still be reading.
+template<class ArrayType>
+ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept,
+  const char* name,
+  int components,
+  vtkIdType tuples)
+{
+  if (kept && kept->GetReferenceCount() == 1 && kept->GetNumberOfComponents() == components &&
+    kept->GetNumberOfTuples() == tuples)
+  {
+    kept->Modified();
+    return kept;
+  }
+  const vtkIdType values = tuples * components;
+  using Value = typename ArrayType::ValueType;
+  auto* memory =
+    static_cast<Value*>(AllocatePlane(static_cast<std::size_t>(values) * sizeof(Value)));
+  if (!memory)
+  {
+    kept = nullptr;
+    return nullptr;
+  }
+  kept = vtkSmartPointer<ArrayType>::New();
+  kept->SetName(name);
+  kept->SetNumberOfComponents(components);
+  kept->SetArray(memory, values, /*save=*/0, ArrayType::VTK_DATA_ARRAY_USER_DEFINED);
+  kept->SetArrayFreeFunction(std::free);
+  return kept;
+}
+
+template<class ArrayType>
+void AddNamedComponents(vtkFieldData* fieldData,
+  const char* name,
+  std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
+{
+  vtkNew<ArrayType> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(static_cast<int>(values.size()));
+  array->SetNumberOfTuples(1);
+  int component = 0;
+  for (const auto& [componentName, value] : values)
+  {
+    array->SetComponentName(component, componentName);
+    array->SetTypedComponent(0, component++, value);
+  }
+  fieldData->AddArray(array);
+}
+}
+
+//------------------------------------------------------------------------------
+int vtkFacetImageRenderer::RequestInformation(vtkAlgorithm* algorithm,
+  vtkInformation* outInfo,
+  int width,
+  int height)
+{
+  if (width < 1 || height < 1 || width > facet::kMaxImageSide || height > facet::kMaxImageSide)
+  {
+    vtkErrorWithObjectMacro(algorithm,
+      "Size is " << width << " x " << height << "; each side must be in [1, "
+                 << facet::kMaxImageSide << "] pixels");
+    vtkDataObject::GetData(outInfo)->Initialize();
+    return 0;
+  }
+  int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  double spacing[3] = { 1.0, 1.0, 1.0 }, origin[3] = { 0.0, 0.0, 0.0 };
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetImageRenderer::CheckThreadCount(vtkObject* object, int threads, int current)
+{
+  if (threads < 0 || threads > 1024)
+  {
+    vtkErrorWithObjectMacro(object,
+      "SetNumberOfThreads(" << threads << "): the thread count must be in [0, 1024] "
+                            << "(0: one per hardware thread); keeping " << current);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetImageRenderer::Start(vtkAlgorithm* algorithm)
+{
+  this->Algorithm = algorithm;
+  this->StartTime = Clock::now();
+  this->ConversionSeconds = 0.0;
+  algorithm->UpdateProgress(0.0);
+}
+
+void vtkFacetImageRenderer::ConversionDone()
+{
+  this->ConversionSeconds = SecondsSince(this->StartTime);
+  this->Algorithm->UpdateProgress(0.05);
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetImageRenderer::Allocate(const Settings& settings,
+  vtkImageData* output,
+  vtkFacetMessages& messages)
+{
+  const int width = settings.Width, height = settings.Height;
+  const bool actorIds = settings.ActorIds;
+  const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
+  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+  output->SetSpacing(1.0, 1.0, 1.0);
+  output->SetOrigin(0.0, 0.0, 0.0);
+  vtkPointData* pointData = output->GetPointData();
+  pointData->SetScalars(OutputArray(this->Rgba, "RGBA", 4, pixels));
+  pointData->AddArray(OutputArray(this->Depth, "Depth", 1, pixels));
+  pointData->AddArray(OutputArray(this->CellIds, "CellId", 1, pixels));
+  if (actorIds)
+  {
+    pointData->AddArray(OutputArray(this->ActorIds, "ActorId", 1, pixels));
+  }
+  if (!this->Rgba || !this->Depth || !this->CellIds || (actorIds && !this->ActorIds))
+  {
+    messages.AddError("cannot allocate the " + std::to_string(width) + " x " +
+      std::to_string(height) + " output image");
+    return false;
+  }
+  this->PolygonIds.resize(static_cast<std::size_t>(pixels));
+  this->Width = width;
+  this->Height = height;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
+  const facet::Camera& camera,
+  const Settings& settings,
+  vtkImageData* output,
+  const IdMap& mapIds,
+  int conversions,
+  vtkFacetMessages& messages)
+{
+  if (messages.HasErrors() || !this->Allocate(settings, output, messages))
+  {
+    return false;
+  }
+  const facet::FramebufferView target{ this->Width,
+    this->Height,
+    reinterpret_cast<facet::Rgba8*>(this->Rgba->GetPointer(0)),
+    this->Depth->GetPointer(0),
+    this->PolygonIds.data() };
+  facet::RenderStats stats;
+  try
+  {
+    this->Renderer.setThreadCount(settings.Threads);
+    this->Renderer.setVisibility(settings.Visibility);
+    this->Renderer.setTwoSidedLighting(settings.TwoSidedLighting);
+    const double* b = settings.Background;
+    this->Renderer.setBackground(
+      facet::Color(static_cast<float>(b[0]), static_cast<float>(b[1]), static_cast<float>(b[2])),
+      static_cast<float>(settings.BackgroundAlpha));
+    vtkAlgorithm* algorithm = this->Algorithm;
+    this->Renderer.setProgressCallback([algorithm](double fraction) {
+      algorithm->UpdateProgress(0.05 + 0.9 * fraction);
+      return !algorithm->GetAbortExecute();
+    });
+    stats = this->Renderer.render(scene, camera, target);
+  }
+  catch (const facet::Error& e)
+  {
+    messages.AddError(std::string("cannot render: ") + e.what());
+    return false;
+  }
+  if (stats.polygonsNonFinite > 0)
+  {
+    messages.AddWarning("skipped " + std::to_string(stats.polygonsNonFinite) +
+      " cells that use points with NaN or infinite coordinates");
+  }
+  const Clock::time_point outputStart = Clock::now();
+  const std::int32_t* polygonIds = this->PolygonIds.data();
+  this->ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) { mapIds(polygonIds, begin, end); });
+  this->OutputSeconds = SecondsSince(outputStart);
+  this->AddFieldData(output, stats, conversions);
+  this->Algorithm->UpdateProgress(1.0);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetImageRenderer::ForEachPixelBlock(
+  const std::function<void(vtkIdType begin, vtkIdType end)>& work)
+{
+  // Memory-bound and elementwise: on the renderer's threads.
+  this->Renderer.parallelFor(static_cast<std::size_t>(this->Width) * this->Height,
+    std::size_t{ 1 } << 16,
+    [&](std::size_t begin, std::size_t end) {
+      work(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end));
+    });
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
+  const facet::RenderStats& stats,
+  int conversions)
+{
+  vtkFieldData* fieldData = output->GetFieldData();
+  fieldData->Initialize();
+  AddNamedComponents<vtkDoubleArray>(
+    fieldData, "FacetRenderSeconds", { { "Total", SecondsSince(this->StartTime) } });
+  AddNamedComponents<vtkDoubleArray>(fieldData,
+    "FacetPhaseSeconds",
+    { { "Conversion", this->ConversionSeconds },
+      { "Validate", stats.validateSeconds },
+      { "Transform", stats.transformSeconds },
+      { "Setup", stats.setupSeconds },
+      { "Raster", stats.rasterSeconds },
+      { "Shade", stats.shadeSeconds },
+      { "Output", this->OutputSeconds } });
+  const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
+  AddNamedComponents<vtkIdTypeArray>(fieldData,
+    "FacetCounts",
+    { { "Polygons", count(stats.plan.polygons) },
+      { "PolygonsDrawn", count(stats.polygonsDrawn) },
+      { "PolygonsShaded", count(stats.polygonsShaded) },
+      { "PolygonsCulled", count(stats.polygonsCulled) },
+      { "PolygonsOutside", count(stats.polygonsOutside) },
+      { "PolygonsDegenerate", count(stats.polygonsDegenerate) },
+      { "PolygonsNonFinite", count(stats.polygonsNonFinite) },
+      { "TrianglesBinned", count(stats.trianglesBinned) },
+      { "TrianglesClipped", count(stats.trianglesClipped) },
+      { "FragmentsWritten", count(stats.fragmentsWritten) },
+      { "PixelsCovered", count(stats.pixelsCovered) } });
+  AddNamedComponents<vtkIdTypeArray>(
+    fieldData, "FacetMeshConverted", { { "Converted", conversions } });
+  this->Plan = stats.plan.describe();
+  vtkNew<vtkStringArray> plan;
+  plan->SetName("FacetRenderPlan");
+  plan->InsertNextValue(this->Plan);
+  fieldData->AddArray(plan);
+}

@@ -1,0 +1,133 @@
+/**
+ * @class   vtkFacetImageRenderer
+ * @brief   Private: renders a Facet scene into a vtkImageData: the part of an execution that
+ *          both front ends share.
+ *
+ * Render makes the output a width × height image (extent (0, W-1, 0, H-1, 0, 0), spacing
+ * 1, origin 0, row 0 at the bottom) with point data `RGBA` (the scalars), `Depth`, `CellId`
+ * and, for vtkFacetRendererToImageFilter, `ActorId`. The arrays of the last execution are
+ * reused when nobody else holds them (re-rendering then allocates and page-faults nothing;
+ * the pipeline empties the output before every execution, so this class keeps its own
+ * references), and large ones are 2 MiB-aligned with transparent huge pages advised (tile
+ * traversal otherwise misses the TLB, see facet/HugePageAllocator.h). It renders straight
+ * into RGBA and Depth, reporting progress (0.05 to 0.95) and
+ * stopping when the algorithm's AbortExecute is set; then the front end's IdMap turns the
+ * renderer's polygon ids into CellId (and ActorId), on the renderer's threads; then the field
+ * data says what the render did and cost: `FacetRenderSeconds`, `FacetPhaseSeconds`,
+ * `FacetCounts`, `FacetMeshConverted` and `FacetRenderPlan`.
+ */
+
+#ifndef vtkFacetImageRenderer_h
+#define vtkFacetImageRenderer_h
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include "facet/HugePageAllocator.h"
+#include "facet/Renderer.h"
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+class vtkAlgorithm;
+class vtkFacetMessages;
+class vtkFloatArray;
+class vtkIdTypeArray;
+class vtkImageData;
+class vtkInformation;
+class vtkIntArray;
+class vtkObject;
+class vtkUnsignedCharArray;
+
+class vtkFacetImageRenderer
+{
+public:
+  /// The image and the renderer's settings that are not the scene's.
+  struct Settings
+  {
+    int Width = 640;
+    int Height = 480;
+    bool ActorIds = false; ///< add the ActorId array
+    int Threads = 0;       ///< 0: one per hardware thread
+    facet::Visibility Visibility = facet::Visibility::ZBuffer;
+    bool TwoSidedLighting = true;
+    double Background[3] = { 0.0, 0.0, 0.0 };
+    double BackgroundAlpha = 1.0;
+  };
+
+  /// Turns the polygon ids of pixels [begin, end) into the front end's id arrays.
+  using IdMap = std::function<void(const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end)>;
+
+  /**
+   * RequestInformation of a front end that renders width × height: the whole extent,
+   * spacing, origin and RGBA scalars; for a size outside [1, kMaxImageSide] an error on
+   * `algorithm`, the output emptied and 0.
+   */
+  static int RequestInformation(vtkAlgorithm* algorithm,
+    vtkInformation* outInfo,
+    int width,
+    int height);
+
+  /**
+   * Whether `threads` is a thread count a front end takes (0 to 1024); if not, an error on
+   * `object` that says `current` is kept.
+   */
+  static bool CheckThreadCount(vtkObject* object, int threads, int current);
+
+  /// An execution of `algorithm` starts: the clock, progress 0.
+  void Start(vtkAlgorithm* algorithm);
+  /// The scene is converted: progress 0.05.
+  void ConversionDone();
+
+  vtkUnsignedCharArray* GetRgba() const { return this->Rgba; }
+  vtkIdTypeArray* GetCellIds() const { return this->CellIds; }
+  vtkIntArray* GetActorIds() const { return this->ActorIds; }
+  void GetSize(int size[2]) const
+  {
+    size[0] = this->Width;
+    size[1] = this->Height;
+  }
+
+  /**
+   * Unless `messages` already holds an error: makes `output` the image described above,
+   * renders into it, maps the ids and adds the field data (`conversions`: the polydata this
+   * execution converted). Returns false, with an error in `messages`, when the memory
+   * cannot be had or the core refuses the scene.
+   */
+  bool Render(const facet::Scene& scene,
+    const facet::Camera& camera,
+    const Settings& settings,
+    vtkImageData* output,
+    const IdMap& mapIds,
+    int conversions,
+    vtkFacetMessages& messages);
+
+  /// Runs work(begin, end) over the pixels on the renderer's threads.
+  void ForEachPixelBlock(const std::function<void(vtkIdType begin, vtkIdType end)>& work);
+
+  /// What the last render did and left out (empty before the first).
+  const std::string& GetPlan() const { return this->Plan; }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  bool Allocate(const Settings& settings, vtkImageData* output, vtkFacetMessages& messages);
+  void AddFieldData(vtkImageData* output, const facet::RenderStats& stats, int conversions);
+
+  facet::Renderer Renderer;
+  facet::HugePageVector<std::int32_t> PolygonIds; // the renderer's id plane, before mapping
+  vtkSmartPointer<vtkUnsignedCharArray> Rgba;     // the output planes, kept for reuse
+  vtkSmartPointer<vtkFloatArray> Depth;
+  vtkSmartPointer<vtkIdTypeArray> CellIds;
+  vtkSmartPointer<vtkIntArray> ActorIds;
+  vtkAlgorithm* Algorithm = nullptr;
+  int Width = 0;
+  int Height = 0;
+  Clock::time_point StartTime;
+  double ConversionSeconds = 0.0;
+  double OutputSeconds = 0.0;
+  std::string Plan;
+};
+
+#endif
