@@ -74,20 +74,25 @@ bool vtkFacetPolyDataConverter::Convert(vtkPolyData* input,
     this->Reset();
     return false;
   }
+  // Once per conversion, before anything (coloring, the closed-surface check, the render)
+  // reads points through the ids.
+  try
+  {
+    facet::validate(this->PolygonView);
+    facet::validate(this->StripView);
+  }
+  catch (const facet::Error& e)
+  {
+    messages.AddError(std::string("cannot render: ") + e.what());
+    this->Reset();
+    return false;
+  }
   if (detectClosedSurfaces)
   {
-    // Bad ids make isClosedSurface throw; the renderer reports them properly later.
-    try
-    {
-      this->PolygonView.closedSurface =
-        this->NumberOfStrips == 0 && facet::isClosedSurface(this->PolygonView);
-      this->StripView.closedSurface =
-        this->NumberOfPolys == 0 && facet::isClosedSurface(this->StripView);
-    }
-    catch (const facet::Error&)
-    {
-      this->PolygonView.closedSurface = this->StripView.closedSurface = false;
-    }
+    this->PolygonView.closedSurface =
+      this->NumberOfStrips == 0 && facet::isClosedSurface(this->PolygonView);
+    this->StripView.closedSurface =
+      this->NumberOfPolys == 0 && facet::isClosedSurface(this->StripView);
   }
   this->Input = input;
   this->InputTime = input->GetMTime();

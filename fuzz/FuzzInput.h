@@ -105,29 +105,6 @@ inline float toFloat(double x) {
   return static_cast<float>(x);
 }
 
-// Known defects the fuzzer can be told to step around, so that it looks past them while they
-// are being fixed: FACET_FUZZ_AVOID=name[,name...] in the environment (default: none). A
-// crash found with a switch on reproduces only with the same switch.
-inline bool avoiding(std::string_view defect) {
-  static const char* const list = std::getenv("FACET_FUZZ_AVOID");
-  if (!list) return false;
-  std::string_view rest(list);
-  while (!rest.empty()) {
-    const std::size_t comma = rest.find(',');
-    if (rest.substr(0, comma) == defect) return true;
-    if (comma == std::string_view::npos) break;
-    rest.remove_prefix(comma + 1);
-  }
-  return false;
-}
-
-// FACET_FUZZ_AVOID=bad-ids-with-point-colors (filter): an input with an out-of-range point id
-// gets no point data. Found by this fuzzer: point scalars are averaged per polygon before
-// the ids are validated (vtkFacetScalarColors, out-of-bounds read).
-inline bool dropPointData(bool badIds) {
-  return badIds && avoiding("bad-ids-with-point-colors");
-}
-
 // A broken invariant: say which, and abort so that libFuzzer saves the input.
 #define FUZZ_CHECK(condition, ...)                                                                 \
   do {                                                                                             \

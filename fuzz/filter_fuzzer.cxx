@@ -45,9 +45,6 @@
 namespace facet::fuzz {
 namespace {
 
-// Set when some cell got an out-of-range point id.
-bool badIds = false;
-
 // `count` cells of minSize..maxSize points each (sometimes empty ones).
 vtkSmartPointer<vtkCellArray> anyCells(FuzzedDataProvider& in, vtkIdType pointCount, int count,
                                        int minSize, int maxSize, bool storage64) {
@@ -64,7 +61,6 @@ vtkSmartPointer<vtkCellArray> anyCells(FuzzedDataProvider& in, vtkIdType pointCo
     std::vector<std::int64_t> ids;
     for (int k = 0; k < size; ++k) {
       ids.push_back(anyPointId(in, pointCount, ids));
-      badIds |= ids.back() < 0 || ids.back() >= pointCount;
     }
     const std::vector<vtkIdType> cell(ids.begin(), ids.end());
     cells->InsertNextCell(static_cast<vtkIdType>(cell.size()), cell.data());
@@ -149,7 +145,6 @@ vtkSmartPointer<vtkPolyData> anyPolyData(FuzzedDataProvider& in, const Placement
   poly->SetPolys(anyCells(in, pointCount, in.ConsumeIntegralInRange(0, 16), 3, 6, storage64));
   poly->SetStrips(anyCells(in, pointCount, in.ConsumeIntegralInRange(0, 6), 3, 8, storage64));
   addScalars(in, poly->GetPointData(), pointCount);
-  if (dropPointData(badIds)) poly->GetPointData()->Initialize();
   addScalars(in, poly->GetCellData(), poly->GetNumberOfCells());
   return poly;
 }
@@ -430,7 +425,6 @@ void checkSame(const Result& one, const Result& two) {
 
 void fuzzOne(FuzzedDataProvider& in) {
   const Placement placement = anyPlacement(in);
-  badIds = false;
   vtkSmartPointer<vtkPolyData> input = anyPolyData(in, placement);
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputData(input);

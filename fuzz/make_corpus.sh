@@ -2,8 +2,8 @@
 # Regenerates the seed corpus of a fuzz target (fuzz/corpus/<target>/): fuzz from nothing
 # (and from any corpus directories given) for RUNS executions with a fixed seed, then keep a
 # small set of inputs that covers the same code edges (libFuzzer's greedy set-cover merge on
-# edge coverage alone). The merge runs without FACET_FUZZ_AVOID and leaves out any input that
-# crashes, so that every seed passes the regression run in make test.
+# edge coverage alone). The merge leaves out any input that crashes, so that every seed
+# passes the regression run in make test.
 #
 # Usage: fuzz/make_corpus.sh FUZZER [RUNS [CORPUS_DIR...]]
 #   e.g. fuzz/make_corpus.sh build-sanitize/bin/facet_fuzz_core 5000 build-sanitize/fuzzing/corpus/facet_fuzz_core
@@ -16,9 +16,7 @@ scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 mkdir -p "$scratch/found" "$scratch/seed"
 printf '' > "$scratch/seed/empty"
-# Step around the open defects while exploring, so that a crash does not end the run early.
-FACET_FUZZ_AVOID="${FACET_FUZZ_AVOID:-bad-ids-with-point-colors}" \
-  "$fuzzer" -seed=1 -runs="$runs" -max_len=4096 -len_control=0 -timeout=60 \
+"$fuzzer" -seed=1 -runs="$runs" -max_len=4096 -len_control=0 -timeout=60 \
   -artifact_prefix="$scratch/" \
   "$scratch/found" "$scratch/seed" "$@" > "$scratch/fuzz.log" 2>&1 || {
   tail -n 40 "$scratch/fuzz.log"
@@ -26,7 +24,7 @@ FACET_FUZZ_AVOID="${FACET_FUZZ_AVOID:-bad-ids-with-point-colors}" \
 }
 rm -rf "$corpus"
 mkdir -p "$corpus"
-env -u FACET_FUZZ_AVOID "$fuzzer" -set_cover_merge=1 -use_counters=0 -use_value_profile=0 \
+"$fuzzer" -set_cover_merge=1 -use_counters=0 -use_value_profile=0 \
   -timeout=60 -artifact_prefix="$scratch/" "$corpus" "$scratch/found" "$@" > "$scratch/merge.log" 2>&1 || {
   tail -n 40 "$scratch/merge.log"
   exit 1

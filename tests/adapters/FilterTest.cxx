@@ -589,6 +589,47 @@ TEST(Errors, PointIdsOutOfRangeGiveAnErrorAndAnEmptyOutput)
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 }
 
+// Found by the filter fuzzer: point colors were averaged per polygon (and per strip
+// triangle) through the ids before anything checked them, reading out of bounds. Ids are now
+// validated once per conversion, before coloring reads through them.
+TEST(Errors, PointIdsOutOfRangeWithPointColorsGiveAnErrorAndAnEmptyOutput)
+{
+  for (const bool strip : { false, true })
+  {
+    vtkNew<vtkPoints> points;
+    points->InsertNextPoint(0, 0, 0);
+    points->InsertNextPoint(1, 0, 0);
+    points->InsertNextPoint(0, 1, 0);
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType bad[3] = { 0, 1, 1000000 };
+    cells->InsertNextCell(3, bad);
+    vtkNew<vtkUnsignedCharArray> colors;
+    colors->SetNumberOfComponents(4);
+    colors->SetNumberOfTuples(3);
+    colors->Fill(255);
+    vtkNew<vtkPolyData> input;
+    input->SetPoints(points);
+    if (strip)
+    {
+      input->SetStrips(cells);
+    }
+    else
+    {
+      input->SetPolys(cells);
+    }
+    input->GetPointData()->SetScalars(colors);
+    vtkNew<vtkFacetRenderFilter> filter;
+    filter->SetInputData(input);
+    filter->SetSize(8, 8);
+    MessageCounter errors(filter, vtkCommand::ErrorEvent);
+    filter->Update();
+    EXPECT_EQ(errors.Count, 1) << (strip ? "strip" : "polygon");
+    EXPECT_NE(errors.Last.find("is 1000000, outside [0, points.count)"), std::string::npos)
+      << errors.Last;
+    EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  }
+}
+
 TEST(Errors, BadSizeGivesAnError)
 {
   vtkNew<vtkPolyData> input;
