@@ -2,7 +2,7 @@
 #   make demo   installs what is missing, builds, renders the demo scene, prints the image path
 #   make test   installs what is missing, builds, runs every test suite
 # Other targets: deps, build, plugin (the ParaView plugin), test-plugin, bench, bench-peers,
-#                clean.
+#                stability-report, clean.
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -33,7 +33,7 @@ DEMO_MESH ?= ../shared/data/meshes/stanford-bunny.obj
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
 .PHONY: all deps deps-plugin build plugin test test-main test-core-sanitized test-plugin demo \
-        bench bench-peers clean
+        bench bench-peers stability-report clean
 
 all: build
 
@@ -114,6 +114,16 @@ bench-peers: deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 	xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/peers.py --build-dir $(BUILD_DIR)
+
+# The stability catalogue (tests/stability/) through Facet and through VTK's OpenGL pipeline
+# (a subprocess per case, under Xvfb), in one run: prints the table and writes it to
+# $(STABILITY_REPORT), which the README links.
+STABILITY_REPORT ?= docs/stability-report.md
+stability-report: build
+	version=$$(/usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])') && \
+	PYTHONPATH=$(CURDIR)/$(BUILD_DIR)/lib/python$$version/dist-packages \
+	  tests/plugin/xvfb_run.sh /usr/bin/python3 tests/stability/report.py \
+	  --output $(STABILITY_REPORT)
 
 clean:
 	rm -rf $(BUILD_DIR) $(CORE_BUILD_DIR) $(PLUGIN_BUILD_DIR)
