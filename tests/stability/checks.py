@@ -7,7 +7,8 @@ the case's statement and from the checks every render must pass (empty: as state
   its "returned failure" error after a filter error, nothing else may speak);
 - with an error: the output is empty;
 - without: Depth finite and in [0, 1], CellId in [-1, number of cells), background pixels
-  (CellId -1) at depth 1 in the background color, and the case's own measure holds.
+  (CellId -1) at depth 1 in the background color, the FacetCounts the case states, and the
+  case's own measure holds.
 """
 import re
 from dataclasses import dataclass
@@ -30,15 +31,21 @@ class FacetOutcome:
         """What Facet did, in a few words (for the report)."""
         errors = self.render.errors(FILTER)
         if errors:
-            return "error: " + _short(errors[0].replace("cannot render: ", ""))
-        text = "draws %d px" % np.count_nonzero(self.render.covered)
+            return "error: " + short(errors[0].replace("cannot render: ", ""))
+        text = drawn(self.render)
         warnings = self.render.warnings(FILTER)
         if warnings:
-            text += "; warns: " + "; ".join(_short(w) for w in warnings)
+            text += "; warns: " + "; ".join(short(w) for w in warnings)
         return text
 
 
-def _short(text, limit=90):
+def drawn(render):
+    count = int(np.count_nonzero(render.covered))
+    return "draws %d px" % count if count else "draws nothing"
+
+
+def short(text, limit=90):
+    """The text on one line, cut to `limit` characters."""
     text = " ".join(text.split())
     return text if len(text) <= limit else text[:limit - 1] + "…"
 
@@ -62,6 +69,9 @@ def problems(case, outcome):
     if not render.ok:
         return found + ["no image"]
     found += universal_problems(render, case.scene())
+    for name, count in case.counts.items():
+        if render.counts.get(name) != count:
+            found.append("FacetCounts %s is %s, not %d" % (name, render.counts.get(name), count))
     if outcome.reference is not None and outcome.reference.messages:
         found.append("the reference scene's render spoke: %s" % outcome.reference.messages)
     if outcome.verdict is not None and not outcome.verdict.ok:

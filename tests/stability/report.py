@@ -13,11 +13,9 @@ import subprocess
 import sys
 import time
 
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cases import CASES  # noqa: E402
-from checks import FILTER, problems, run_facet  # noqa: E402
+from checks import drawn, problems, run_facet, short  # noqa: E402
 from scene import difference  # noqa: E402
 from vtk_side import run_vtk  # noqa: E402
 
@@ -28,22 +26,15 @@ def cell(text):
     return text.replace("|", "\\|").replace("\n", " ")
 
 
-def short(text, limit=70):
-    text = " ".join(text.split())
-    return text if len(text) <= limit else text[:limit - 1] + "…"
-
-
-def pixels(render):
-    count = int(np.count_nonzero(render.covered))
-    return "draws %d px" % count if count else "draws nothing"
-
-
 def vtk_summary(case, outcome):
     if outcome.render is None:
-        last = [line for line in outcome.log.splitlines() if line.strip()][-1:]
-        return outcome.status + (": " + short(last[0], 60) if last else "")
+        lines = [line for line in outcome.log.splitlines() if line.strip()]
+        said = [line for line in lines if "rror" in line][:1] or lines[-1:]
+        return outcome.status + (": " + short(said[0], 60) if said else "")
     render = outcome.render
-    text = pixels(render)
+    text = drawn(render)
+    if outcome.status != "rendered":
+        text += " (%s)" % outcome.status.replace("rendered (", "")[:-1]
     if tuple(reversed(render.rgba.shape[:2])) != tuple(case.scene().size):
         text += " in a %d × %d window" % render.rgba.shape[1::-1]
     said = render.errors() or render.warnings()
@@ -98,6 +89,81 @@ def vtk_about():
         return "VTK: no OpenGL context (timed out)"
 
 
+EXPLANATION = (
+    "Each case is built as a VTK user builds it (vtkPolyData, vtkCamera, vtkLight, "
+    "vtkProperty) and rendered by vtkFacetRenderFilter and by VTK's OpenGL pipeline "
+    "(vtkPolyDataMapper, flat interpolation, multisampling off, the same camera and lights; a "
+    "subprocess per case). ✓/✗: the outcome is/is not what Facet states; the same measure is "
+    "applied to VTK's image. *Silhouette px*: pixels covered in one image and not the other; "
+    "*color Δ*: the largest channel difference where both cover (a pixel on an interior edge "
+    "showing the neighbouring polygon counts). Against the unit scene, each renderer is "
+    "compared with its own rendering of it. VTK's flat interpolation makes the normal flat but "
+    "still lights each fragment (positional lights, spots, specular), while Facet lights a "
+    "polygon once, at the mean of its vertices: where such a light varies across a polygon, "
+    "the two differ by design. The cases are in tests/stability/cases.py; `make test` asserts "
+    "Facet's side.")
+TABLE_HEAD = ["| Case | Facet states | Facet does | VTK does | Measured |", "|---|---|---|---|---|"]
+
+
+def stated(case):
+    """The case's statement: kind, behaviour, and the messages and counts it must give."""
+    text = "**%s**: %s" % (case.kind, case.behaviour)
+    if case.error:
+        text += " — error “%s”" % case.error.replace("\\", "")
+    if case.warnings:
+        text += " — warning “%s”" % "”, “".join(
+            pattern.replace("\\", "") for pattern in case.warnings)
+    if case.counts:
+        text += " — FacetCounts " + ", ".join("%s %d" % item for item in case.counts.items())
+    return text
+
+
+class Report:
+    """The table rows and the tallies, one case at a time."""
+
+    def __init__(self, with_vtk):
+        self.with_vtk = with_vtk
+        self.lines, self.defects = [], {}  # defect: the cases it shows in
+        self.not_as_stated, self.vtk_statuses = 0, []
+        self.group = None
+
+    def add(self, case):
+        if case.group != self.group:
+            self.group = case.group
+            self.lines += ["", "## " + case.group[0].upper() + case.group[1:], ""] + TABLE_HEAD
+        facet = run_facet(case)
+        found = problems(case, facet)
+        self.not_as_stated += bool(found)
+        vtk = run_vtk(case) if self.with_vtk else None
+        if vtk is not None:
+            self.vtk_statuses.append(vtk.status)
+        if case.defect:
+            self.defects.setdefault(case.defect, []).append(case.name)
+        name = case.name + (" **(known defect)**" if case.defect else "")
+        self.lines.append("| %s |" % " | ".join(cell(text) for text in (
+            name, stated(case), facet_cell(case, facet, found),
+            "—" if vtk is None else vtk_summary(case, vtk), measured(case, facet, vtk))))
+        print("%-55s %s" % (case.name, "NOT AS STATED" if found else "as stated"),
+              file=sys.stderr, flush=True)
+
+    def summary(self, count, seconds):
+        defective = sum(map(len, self.defects.values()))
+        text = ("%d cases in %.0f s: Facet as stated in %d (%d of them known defects), not as "
+                "stated in %d" % (count, seconds, count - self.not_as_stated, defective,
+                                  self.not_as_stated))
+        if self.with_vtk:
+            text += "; VTK crashed in %d (twice each), timed out in %d" % tuple(
+                sum(s.startswith(what) for s in self.vtk_statuses)
+                for what in ("crashed", "timed out"))
+        lines = ["", text + "."]
+        if self.defects:
+            lines += ["", "Known defects (the statement is today's behaviour, to flip when "
+                          "fixed):", ""]
+            lines += ["- %s: %s" % (", ".join("**%s**" % name for name in names), defect)
+                      for defect, names in self.defects.items()]
+        return lines
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--facet-only", action="store_true", help="leave VTK out")
@@ -111,61 +177,17 @@ def main():
     header = ["# Stability catalogue: Facet against VTK", "",
               "`%s`, %s; %s; %s." % (COMMAND, datetime.date.today().isoformat(), machine(),
                                      "VTK left out" if args.facet_only else vtk_about()),
-              "", "Each case is built as a VTK user builds it (vtkPolyData, vtkCamera, vtkLight, "
-              "vtkProperty) and rendered by vtkFacetRenderFilter and by VTK's OpenGL pipeline "
-              "(vtkPolyDataMapper, flat interpolation, multisampling off, the same camera and "
-              "lights; a subprocess per case). ✓/✗: the outcome is/is not what Facet states; "
-              "the same measure is applied to VTK's image. *Silhouette px*: pixels covered in "
-              "one image and not the other; *color Δ*: the largest channel difference where "
-              "both cover (a pixel on an interior edge showing the neighbouring polygon "
-              "counts). Against the unit scene, each renderer is compared with its own "
-              "rendering of it. The cases are in tests/stability/cases.py; `make test` "
-              "asserts Facet's side."]
-    lines, defects = [], []
-    tally = {"as stated": 0, "not as stated": 0, "VTK crashed": 0, "VTK timed out": 0}
-    group = None
+              "", EXPLANATION]
+    report = Report(with_vtk=not args.facet_only)
     for case in cases:
-        if case.group != group:
-            group = case.group
-            lines += ["", "## " + group[0].upper() + group[1:], "",
-                      "| Case | Facet states | Facet does | VTK does | Measured |",
-                      "|---|---|---|---|---|"]
-        facet = run_facet(case)
-        found = problems(case, facet)
-        tally["as stated" if not found else "not as stated"] += 1
-        vtk = None if args.facet_only else run_vtk(case)
-        if vtk is not None and vtk.status.startswith("crashed"):
-            tally["VTK crashed"] += 1
-        if vtk is not None and vtk.status.startswith("timed out"):
-            tally["VTK timed out"] += 1
-        name = case.name + (" **(known defect)**" if case.defect else "")
-        if case.defect:
-            defects.append("- **%s**: %s" % (case.name, case.defect))
-        stated = "**%s**: %s" % (case.kind, case.behaviour)
-        if case.error:
-            stated += " — error “%s”" % case.error.replace("\\", "")
-        if case.warnings:
-            stated += " — warning “%s”" % "”, “".join(w.replace("\\", "") for w in case.warnings)
-        lines.append("| %s |" % " | ".join(cell(text) for text in (
-            name, stated, facet_cell(case, facet, found),
-            "—" if vtk is None else vtk_summary(case, vtk), measured(case, facet, vtk))))
-        print("%-55s %s" % (case.name, "as stated" if not found else "NOT AS STATED"),
-              file=sys.stderr, flush=True)
-    summary = ["", "%d cases in %.0f s: Facet as stated in %d (%d of them known defects), not "
-               "as stated in %d%s." % (len(cases), time.time() - start, tally["as stated"],
-                                       len(defects), tally["not as stated"],
-                                       "" if args.facet_only else
-                                       "; VTK crashed in %d, timed out in %d"
-                                       % (tally["VTK crashed"], tally["VTK timed out"]))]
-    if defects:
-        summary += ["", "Known defects (the statement is today's behaviour, to flip when "
-                        "fixed):", ""] + defects
-    report = "\n".join(header + summary + lines) + "\n"
-    print(report)
+        report.add(case)
+    text = "\n".join(header + report.summary(len(cases), time.time() - start) +
+                     report.lines) + "\n"
+    print(text)
     if args.output:
         with open(args.output, "w", encoding="utf-8") as out:
-            out.write(report)
-    return 0 if tally["not as stated"] == 0 else 1
+            out.write(text)
+    return 1 if report.not_as_stated else 0
 
 
 if __name__ == "__main__":
