@@ -14,7 +14,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cases import CASES  # noqa: E402
+from cases import CASES, Verdict  # noqa: E402
 from checks import drawn, problems, run_facet, short  # noqa: E402
 from scene import difference  # noqa: E402
 from vtk_side import run_vtk  # noqa: E402
@@ -48,23 +48,31 @@ def facet_cell(case, facet, found):
     return "%s %s" % (mark, facet.summary())
 
 
-def measured(case, facet, vtk):
+def vtk_verdict(case, vtk):
+    """The case's measure on VTK's image; None where the case states an error or has no
+    measure, a failed Verdict where VTK drew no image."""
+    if case.measure is None or case.error or vtk is None:
+        return None
+    if vtk.render is None:
+        return Verdict(False, vtk.status)
+    if case.reference is not None and vtk.reference is None:
+        return Verdict(False, "no reference image")
+    try:
+        return case.measure(vtk.render, vtk.reference, case.scene())
+    except Exception as error:  # a measure meant for an image of the stated size
+        return Verdict(False, "not measurable (%s)" % short(str(error), 50))
+
+
+def measured(case, facet, vtk, verdict):
     """The case's measure on each renderer, and Facet against VTK where both drew."""
     parts = []
-    if case.measure is not None and not case.error and facet.verdict is not None:
+    if facet.verdict is not None:
         parts.append("Facet: " + facet.verdict.text)
-    vtk_render = vtk.render if vtk is not None else None
-    same_shape = (vtk_render is not None and facet.render.ok and
-                  vtk_render.rgba.shape == facet.render.rgba.shape)
-    if vtk_render is not None and case.measure is not None and (
-            vtk.reference is not None or case.reference is None):
-        try:
-            verdict = case.measure(vtk_render, vtk.reference, case.scene())
-            parts.append("VTK: %s %s" % ("✓" if verdict.ok else "✗", verdict.text))
-        except Exception as error:  # a measure meant for a rendered image of the stated size
-            parts.append("VTK: not measurable (%s)" % short(str(error), 50))
-    if same_shape and not case.error:
-        parts.append("Facet vs VTK: %s" % difference(facet.render, vtk_render))
+    if verdict is not None and vtk.render is not None:
+        parts.append("VTK: %s %s" % ("✓" if verdict.ok else "✗", verdict.text))
+    if (vtk is not None and vtk.render is not None and facet.render.ok and not case.error and
+            vtk.render.rgba.shape == facet.render.rgba.shape):
+        parts.append("Facet vs VTK: %s" % difference(facet.render, vtk.render))
     return " · ".join(parts) or "—"
 
 
@@ -105,6 +113,10 @@ EXPLANATION = (
 TABLE_HEAD = ["| Case | Facet states | Facet does | VTK does | Measured |", "|---|---|---|---|---|"]
 
 
+def title(group):
+    return group[0].upper() + group[1:]
+
+
 def stated(case):
     """The case's statement: kind, behaviour, and the messages and counts it must give."""
     text = "**%s**: %s" % (case.kind, case.behaviour)
@@ -124,38 +136,56 @@ class Report:
     def __init__(self, with_vtk):
         self.with_vtk = with_vtk
         self.lines, self.defects = [], {}  # defect: the cases it shows in
-        self.not_as_stated, self.vtk_statuses = 0, []
-        self.group = None
+        self.groups = {}  # group: [cases, Facet as stated, VTK measured, VTK as stated, no image]
+        self.vtk_statuses = []
 
     def add(self, case):
-        if case.group != self.group:
-            self.group = case.group
-            self.lines += ["", "## " + case.group[0].upper() + case.group[1:], ""] + TABLE_HEAD
+        if case.group not in self.groups:
+            self.groups[case.group] = [0] * 5
+            self.lines += ["", "## " + title(case.group), ""] + TABLE_HEAD
         facet = run_facet(case)
         found = problems(case, facet)
-        self.not_as_stated += bool(found)
         vtk = run_vtk(case) if self.with_vtk else None
+        verdict = vtk_verdict(case, vtk)
+        tally = self.groups[case.group]
+        tally[0] += 1
+        tally[1] += not found
         if vtk is not None:
             self.vtk_statuses.append(vtk.status)
+            tally[2] += verdict is not None
+            tally[3] += verdict is not None and verdict.ok
+            tally[4] += vtk.render is None
         if case.defect:
             self.defects.setdefault(case.defect, []).append(case.name)
         name = case.name + (" **(known defect)**" if case.defect else "")
         self.lines.append("| %s |" % " | ".join(cell(text) for text in (
             name, stated(case), facet_cell(case, facet, found),
-            "—" if vtk is None else vtk_summary(case, vtk), measured(case, facet, vtk))))
+            "—" if vtk is None else vtk_summary(case, vtk), measured(case, facet, vtk, verdict))))
         print("%-55s %s" % (case.name, "NOT AS STATED" if found else "as stated"),
               file=sys.stderr, flush=True)
 
-    def summary(self, count, seconds):
+    @property
+    def not_as_stated(self):
+        return sum(cases - as_stated for cases, as_stated, *_ in self.groups.values())
+
+    def summary(self, seconds):
+        count = sum(tally[0] for tally in self.groups.values())
         defective = sum(map(len, self.defects.values()))
-        text = ("%d cases in %.0f s: Facet as stated in %d (%d of them known defects), not as "
-                "stated in %d" % (count, seconds, count - self.not_as_stated, defective,
-                                  self.not_as_stated))
+        text = ("%d cases in %.0f s. Facet: as stated in %d (%d of the statements describe a "
+                "known defect), not as stated in %d."
+                % (count, seconds, count - self.not_as_stated, defective, self.not_as_stated))
         if self.with_vtk:
-            text += "; VTK crashed in %d (twice each), timed out in %d" % tuple(
-                sum(s.startswith(what) for s in self.vtk_statuses)
-                for what in ("crashed", "timed out"))
-        lines = ["", text + "."]
+            statuses = [sum(s.startswith(what) for s in self.vtk_statuses)
+                        for what in ("crashed", "failed", "timed out")]
+            text += (" VTK: crashed in %d (each crash tried twice), failed in %d, timed out in "
+                     "%d." % tuple(statuses))
+        lines = ["", text, ""]
+        lines += ["| Group | Cases | Facet as stated | VTK meets Facet's statement | "
+                  "VTK drew no image |", "|---|--:|--:|--:|--:|"]
+        for group, (cases, facet, measured_, vtk, no_image) in self.groups.items():
+            meets = "%d of %d" % (vtk, measured_) if measured_ else "—"
+            lines.append("| %s | %d | %d | %s | %s |" % (
+                title(group), cases, facet, meets, no_image if self.with_vtk else "—"))
         if self.defects:
             lines += ["", "Known defects (the statement is today's behaviour, to flip when "
                           "fixed):", ""]
@@ -181,7 +211,7 @@ def main():
     report = Report(with_vtk=not args.facet_only)
     for case in cases:
         report.add(case)
-    text = "\n".join(header + report.summary(len(cases), time.time() - start) +
+    text = "\n".join(header + report.summary(time.time() - start) +
                      report.lines) + "\n"
     print(text)
     if args.output:
