@@ -179,8 +179,8 @@ def plane_camera():
     return camera((0.0, 0.0, 4.0), (0.0, 0.0, 0.0), clipping_range=(1.0, 10.0))
 
 
-def plane_scene(points, polys, lights=(), prop=None, cam=None, size=SMALL, colors=None):
-    return Scene(polydata(points, polys, colors), cam or plane_camera(), list(lights),
+def plane_scene(points, polys, lights=(), prop=None, cam=None, size=SMALL):
+    return Scene(polydata(points, polys), cam or plane_camera(), list(lights),
                  prop or flat_property(), size)
 
 
@@ -218,7 +218,6 @@ def fan_scene(corners):
 # ---------------------------------------------------------------------------------------------
 # The catalogue
 # ---------------------------------------------------------------------------------------------
-
 
 EQUAL_TO_UNIT = "equal to the unit scene: ≤ 1/255, 0 silhouette px"
 
@@ -283,7 +282,7 @@ def _polygons():
     sliver = [(-0.5e6 * height, 0.0123, 0.0), (0.5e6 * height, 0.0123, 0.0),
               (0.0, 0.0123 + height, 0.0)]
     yield Case("sliver 1e6:1 across the image", "polygons", "clip",
-               "2 px tall, 36,000 units long: clipped to the guard band, covers exactly the "
+               "2 px tall, 35,714 units long: clipped to the guard band, covers exactly the "
                "pixel centers inside it, lit",
                lambda: plane_scene(sliver, [[0, 1, 2]]), exact_polygon(lambda: sliver, WHITE))
     tiny = [(-0.5, 0.1, 0.0), (0.5, 0.1, 0.0), (0.0, 0.1 + 1e-6, 0.0)]
@@ -324,11 +323,11 @@ def _lights():
                     lambda: quad_scene(*lights(), prop=prop() if prop else None),
                     uniform_color(color), reference=quad_scene)
 
-    degrees = math.radians
+    radians = math.radians
     yield case("grazing directional light (90°)", "draw", "N·L = 0: black where covered", BLACK,
                lambda: [_light(position=(1, 0, 0))])
     yield case("directional light at 89° from the normal", "draw", "255·cos 89° = 4", (4, 4, 4),
-               lambda: [_light(position=(math.sin(degrees(89)), 0, math.cos(degrees(89))))])
+               lambda: [_light(position=(math.sin(radians(89)), 0, math.cos(radians(89))))])
     yield case("point light at the polygon's center", "draw",
                "lit head-on (L = N, flat shading at the vertex mean), attenuation at d = 0: "
                "white", WHITE,
@@ -366,11 +365,11 @@ def _lights():
                                                        cone_angle=a, exponent=e)])
 
     # Specular only (Kd 0, Ks 0.4) from a directional light 1° off the view: R·V = cos 1°.
-    tilted = (math.sin(degrees(1)), 0, math.cos(degrees(1)))
+    tilted = (math.sin(radians(1)), 0, math.cos(radians(1)))
     for power, kind, why in ((0.0, "draw", "(R·V)^0 = 1: 0.4·255 = 102"),
                              (1e6, "clamp", "vtkProperty clamps the power to 128: "
                                             "0.4·255·cos(1°)^128 = 100")):
-        value = round(0.4 * 255 * math.cos(degrees(1)) ** min(power, 128.0))
+        value = round(0.4 * 255 * math.cos(radians(1)) ** min(power, 128.0))
         yield case("specular power %g" % power, kind, why, (value,) * 3,
                    lambda: [_light(position=tilted)],
                    prop=lambda p=power: flat_property(diffuse=0.0, specular=0.4,
@@ -444,7 +443,7 @@ def _cameras():
                    lambda c=corners: plane_scene(c, [[0, 1, 2]], cam=_eye_camera((0.1, 100))),
                    exact_polygon(lambda c=corners: c))
     huge = [(-1e15, -1e15, -5.0), (1e15, -1e15, -5.0), (0.0, 1e15, -5.0)]
-    yield Case("window coordinates ±1e14 px (fixed point: ±2^23)", "camera", "clip",
+    yield Case("vertices 4.5e16 px off screen (fixed point: ±2^23)", "camera", "clip",
                "clipped to the guard band: every pixel covered, depth exact (to the float)",
                lambda: plane_scene(huge, [[0, 1, 2]], cam=_eye_camera((1.0, 10.0))),
                _whole_image_at_depth(5.0))

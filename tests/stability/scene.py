@@ -112,6 +112,7 @@ class Render:
     messages: list = field(default_factory=list)
     counts: dict = field(default_factory=dict)  # Facet's FacetCounts
     camera: tuple = None            # (position, focal point) rendered with
+    image: object = None            # Facet's output vtkImageData: the arrays view its memory
 
     @property
     def ok(self):
@@ -202,7 +203,7 @@ def render_facet(scene):
         result.rgba = _image(points.GetArray("RGBA"), width, height, 4)
         result.depth = _image(points.GetArray("Depth"), width, height)
         result.cell_id = _image(points.GetArray("CellId"), width, height)
-        result.keep_alive = image  # the arrays above are views of its memory
+        result.image = image
     active = render.GetActiveCamera()
     result.camera = (active.GetPosition(), active.GetFocalPoint())
     return result
@@ -312,7 +313,8 @@ def convex_polygon_coverage(cam, size, corners, tolerance=1.0 / 64.0):
 
     Each boundary is a linear function of the pixel coordinates (the side of the plane
     through the eye and an edge that a pixel's ray passes on), so the distance to it in
-    pixels is |f| / |grad f|."""
+    pixels is |f| / |grad f|. (Outside the polygon, the band uses a lower bound of the
+    distance, the largest by which a ray misses one edge: it may hold a few pixels more.)"""
     width, height = size
     eye = np.array(cam.GetPosition())
     forward = _unit(np.array(cam.GetFocalPoint()) - eye)
@@ -332,17 +334,22 @@ def convex_polygon_coverage(cam, size, corners, tolerance=1.0 / 64.0):
         return np.hypot(sx * (normals @ right) * 2.0 / width, sy * (normals @ up) * 2.0 / height)
 
     corners = np.asarray(corners, dtype=float)
-    toward = _unit(corners - eye)
-    edge_normals = _unit(np.cross(toward, np.roll(toward, -1, axis=0)))
-    edge_normals /= gradient(edge_normals)[:, np.newaxis]  # d · normal: distance in pixels
-    all_positive = np.ones(x.size, bool)
-    all_negative = np.ones(x.size, bool)
-    distance = np.full(x.size, np.inf)
-    for chunk in range(0, len(edge_normals), 1024):  # a matrix product per chunk of edges
-        values = edge_normals[chunk:chunk + 1024] @ rays
-        all_positive &= (values > 0).all(axis=0)
-        all_negative &= (values < 0).all(axis=0)
-        distance = np.minimum(distance, np.abs(values).min(axis=0))
+    inner_point = _unit(corners.mean(axis=0) - eye)  # the polygon's centroid, from the eye
+
+    def edge_normals(corners):
+        """For each edge, the normal of the plane through the eye and the edge, oriented
+        toward the polygon and scaled so that d · normal is the signed distance in pixels
+        from the edge's projection, positive inside."""
+        toward = _unit(corners - eye)
+        normals = _unit(np.cross(toward, np.roll(toward, -1, axis=0)))
+        normals *= np.sign(normals @ inner_point)[:, np.newaxis]
+        return normals / gradient(normals)[:, np.newaxis]
+
+    if len(corners) > 256:
+        nearest = _many_edges(edge_normals(corners), edge_normals(corners[::64]), rays, tolerance)
+    else:
+        nearest = _nearest_edge(edge_normals(corners), rays)
+    in_cone, distance = nearest > 0, np.abs(nearest)
 
     # Where the ray meets the plane: view depth t = ((P0 - E)·n) / (d·n). It is `plane`
     # (near, far) on the line offset − plane·(d·n) = 0, unless the plane faces the view.
@@ -352,13 +359,36 @@ def convex_polygon_coverage(cam, size, corners, tolerance=1.0 / 64.0):
     with np.errstate(divide="ignore", invalid="ignore"):
         t = offset / facing
     near, far = cam.GetClippingRange()
-    inside = (all_positive | all_negative) & (t >= near) & (t <= far)
+    inside = in_cone & (t >= near) & (t <= far)
     slope = gradient(plane_normal[np.newaxis])[0]
     if slope > 0:
         for plane in (near, far):
             distance = np.minimum(distance, np.abs(offset / plane - facing) / slope)
     inside, distance = inside.reshape(height, width), distance.reshape(height, width)
     return Coverage(inside=inside, band=distance < tolerance)
+
+
+def _nearest_edge(normals, rays):
+    """Per ray (column of `rays`), the smallest signed distance in pixels to an edge: > 0
+    inside the polygon's cone (the distance to its boundary), < 0 outside (at most minus the
+    distance to the polygon)."""
+    nearest = np.full(rays.shape[1], np.inf)
+    for chunk in range(0, len(normals), 1024):  # a matrix product per chunk of edges
+        nearest = np.minimum(nearest, (normals[chunk:chunk + 1024] @ rays).min(axis=0))
+    return nearest
+
+
+def _many_edges(normals, coarse_normals, rays, tolerance):
+    """_nearest_edge for a convex polygon of many corners, in far fewer operations: the
+    polygon of every 64th corner lies inside it, and it lies inside the half-space of each
+    of its edges, so the rays deep inside the first or far outside one of the second are
+    decided; only those near the boundary meet every edge."""
+    nearest = _nearest_edge(coarse_normals, rays)  # deep inside where >= tolerance
+    outside = _nearest_edge(normals[::64], rays)
+    nearest[outside <= -tolerance] = outside[outside <= -tolerance]
+    undecided = (nearest < tolerance) & (nearest > -tolerance)
+    nearest[undecided] = _nearest_edge(normals, rays[:, undecided])
+    return nearest
 
 
 def window_depth(cam, view_depth):
