@@ -16,10 +16,11 @@ CMAKE_FLAGS ?=
 
 # Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the
 # tests that compare with VTK's own OpenGL renderer; Embree for the mesh reference
-# (reference/); scikit-image and Pillow to cross-check the image metrics.
+# (reference/); scikit-image and Pillow to cross-check the image metrics; NumPy for the
+# stability catalogue (tests/stability/).
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth libembree-dev \
-            python3-skimage python3-pil
+            python3-skimage python3-pil python3-numpy
 # The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev
 # without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
