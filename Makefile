@@ -3,7 +3,7 @@
 #   make test   installs what is missing, builds, runs every test suite
 #   make fuzz   builds the libFuzzer targets and fuzzes each for FUZZ_SECONDS (not in make test)
 # Other targets: deps, build, plugin (the ParaView plugin), test-plugin, bench, bench-peers,
-#                clean.
+#                stability-report, clean.
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -22,10 +22,11 @@ CMAKE_FLAGS ?=
 # Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the
 # tests that compare with VTK's own OpenGL renderer; clang with its sanitizer and libFuzzer
 # runtimes for the sanitized builds and the fuzz targets; Embree for the mesh reference
-# (reference/); scikit-image and Pillow to cross-check the image metrics.
+# (reference/); scikit-image and Pillow to cross-check the image metrics; NumPy for the
+# stability catalogue (tests/stability/).
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth clang libclang-rt-14-dev \
-            libembree-dev python3-skimage python3-pil
+            libembree-dev python3-skimage python3-pil python3-numpy
 # The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev
 # without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
@@ -54,7 +55,7 @@ FUZZ_TARGETS := facet_fuzz_core facet_fuzz_filter
 FUZZ_FLAGS ?= -max_len=4096 -len_control=0 -timeout=60 -rss_limit_mb=4096 -print_final_stats=1
 
 .PHONY: all deps deps-plugin build plugin test test-main test-sanitized test-thread-sanitized \
-        test-plugin fuzz fuzz-build demo bench bench-peers clean
+        test-plugin fuzz fuzz-build demo bench bench-peers stability-report clean
 
 all: build
 
@@ -170,6 +171,16 @@ bench-peers: deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 	xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/peers.py --build-dir $(BUILD_DIR)
+
+# The stability catalogue (tests/stability/) through Facet and through VTK's OpenGL pipeline
+# (a subprocess per case, under Xvfb), in one run: prints the table and writes it to
+# $(STABILITY_REPORT), which the README links.
+STABILITY_REPORT ?= docs/stability-report.md
+stability-report: build
+	version=$$(/usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])') && \
+	PYTHONPATH=$(CURDIR)/$(BUILD_DIR)/lib/python$$version/dist-packages \
+	  tests/plugin/xvfb_run.sh /usr/bin/python3 tests/stability/report.py \
+	  --output $(STABILITY_REPORT)
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_BUILD_DIR) $(TSAN_BUILD_DIR) $(PLUGIN_BUILD_DIR)
