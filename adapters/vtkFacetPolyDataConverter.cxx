@@ -27,6 +27,31 @@ void vtkFacetPolyDataConverter::Reset()
 }
 
 //------------------------------------------------------------------------------
+namespace {
+// The core's structure check (offsets and point ids), reported in the input's terms: "the
+// input's polys: polygons.connectivity[5] is 7, outside [0, points.count) (polygon 1)".
+bool ValidateIds(const facet::MeshView& mesh, const char* cells, vtkFacetMessages& messages)
+{
+  try
+  {
+    facet::validate(mesh);
+    return true;
+  }
+  catch (const facet::Error& e)
+  {
+    std::string problem = e.what();
+    const std::string prefix = "MeshView.";
+    if (problem.compare(0, prefix.size(), prefix) == 0)
+    {
+      problem.erase(0, prefix.size());
+    }
+    messages.AddError(std::string("cannot render: the input's ") + cells + ": " + problem);
+    return false;
+  }
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
   bool detectClosedSurfaces,
   vtkFacetMessages& messages)
@@ -76,14 +101,9 @@ bool vtkFacetPolyDataConverter::Convert(vtkPolyData* input,
   }
   // Once per conversion, before anything (coloring, the closed-surface check, the render)
   // reads points through the ids.
-  try
+  if (!ValidateIds(this->PolygonView, "polys", messages) ||
+    !ValidateIds(this->StripView, "strips (as triangles)", messages))
   {
-    facet::validate(this->PolygonView);
-    facet::validate(this->StripView);
-  }
-  catch (const facet::Error& e)
-  {
-    messages.AddError(std::string("cannot render: ") + e.what());
     this->Reset();
     return false;
   }

@@ -178,6 +178,17 @@ facet::Camera vtkFacetSceneConverter::ConvertCamera(vtkCamera* camera,
   const double* center = camera->GetWindowCenter();
   c.windowCenter = { center[0], center[1] };
 
+  const double* direction = camera->GetDirectionOfProjection();
+  if (c.position != c.focalPoint && direction[0] == 0.0 && direction[1] == 0.0 &&
+    direction[2] == 0.0)
+  {
+    // vtkCamera::SetPosition onto its focal point (or the reverse) leaves it degenerate: a
+    // zero direction of projection and a focal point 1e-20 away. VTK draws nothing with it.
+    messages.AddWarningOnce("the camera is degenerate: its position was set onto its focal "
+                            "point, so vtkCamera has no direction of projection; rendering "
+                            "from its position toward its focal point (said once)");
+    return c;
+  }
   std::string unrendered = UnrenderedCameraFeatures(camera);
   if (unrendered.empty() && !SameProjection(c, camera, aspect))
   {
@@ -270,6 +281,10 @@ facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights
       focal = ToVec(light->GetTransformedFocalPoint());
     }
     const facet::Light converted = ConvertLight(light, position, focal);
+    if (position == focal && options.FollowCamera && light->LightTypeIsHeadlight())
+    {
+      continue; // the camera itself has no direction: its own error says so
+    }
     if (position == focal && !std::holds_alternative<facet::PointLight>(converted))
     {
       messages.AddWarning("light " + std::to_string(number) +
