@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -113,6 +115,47 @@ TEST(PolygonNormal, BowtieGetsThePlaneOfItsFanTriangles) {
   expectVectorNear(*polygonNormal(square), {0, 0, 1}, 1e-15);
   const std::vector<glm::dvec3> collinear = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
   EXPECT_FALSE(polygonNormal(collinear).has_value());
+}
+
+// A triangle is degenerate by its angles, not its size: 1 unit wide and 1e15 or 1e300 long
+// (a strip across the whole image) keeps its normal, whichever corner comes first.
+TEST(TriangleNormal, LongThinTrianglesKeepTheirNormal) {
+  for (const double length : {1e6, 1e15, 1e300}) {
+    const glm::dvec3 a{-0.5, -0.5, 0.0}, b{0.5, -0.5, 0.0}, c{0.0, length, 0.0};
+    for (const auto& [p, q, r] : {std::tuple{a, b, c}, std::tuple{c, a, b}, std::tuple{b, c, a}}) {
+      const std::optional<glm::dvec3> n = triangleNormal(p, q, r);
+      ASSERT_TRUE(n) << "length " << length;
+      expectVectorNear(*n, {0, 0, 1}, 1e-15);
+      const std::vector<glm::dvec3> corners{p, q, r};
+      EXPECT_EQ(polygonNormal(corners), n) << "polygonNormal of a triangle is triangleNormal";
+    }
+  }
+}
+
+TEST(TriangleNormal, TinyTrianglesKeepTheirNormal) {
+  const double s = 1e-300;
+  const auto n = triangleNormal({0, 0, 0}, {0, s, 0}, {0, 0, s});
+  ASSERT_TRUE(n);
+  expectVectorNear(*n, {1, 0, 0}, 1e-15);
+}
+
+// Collinear to within rounding: the sine of the largest angle is below kDegenerateSine.
+TEST(TriangleNormal, NearlyCollinearCornersHaveNoNormal) {
+  EXPECT_FALSE(triangleNormal({0, 0, 0}, {1, 0, 0}, {2, 0, 0}));
+  EXPECT_FALSE(triangleNormal({0, 0, 0}, {2, 1e-13, 0}, {1, 0, 0}));
+  EXPECT_FALSE(triangleNormal({1e15, 0, 0}, {-1e15, 1e-300, 0}, {0, 0, 0}));
+  EXPECT_TRUE(triangleNormal({0, 0, 0}, {2, 1e-9, 0}, {1, 0, 0}));
+}
+
+TEST(TriangleNormal, NonFiniteOrCoincidentCornersHaveNoNormal) {
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(triangleNormal({0, 0, 0}, {1, 0, 0}, {0, inf, 0}));
+  EXPECT_FALSE(triangleNormal({0, 0, 0}, {1, 0, 0}, {0, std::nan(""), 0}));
+  EXPECT_FALSE(triangleNormal({1, 2, 3}, {1, 2, 3}, {0, 1, 0}));
+  const double huge = std::numeric_limits<double>::max();
+  const auto n = triangleNormal({-huge, -huge, 0}, {huge, -huge, 0}, {0, huge, 0});
+  ASSERT_TRUE(n);
+  expectVectorNear(*n, {0, 0, 1}, 1e-15);
 }
 
 }  // namespace

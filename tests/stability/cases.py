@@ -477,14 +477,6 @@ def _whole_image_at_depth(view_depth):
 
 
 SKIPPED_NON_FINITE = r"skipped 1 cells that use points with NaN or infinite coordinates"
-TALL_TRIANGLE_DEFECT = (
-    "a triangle that is huge on screen is dropped: PolygonNormal's relative threshold "
-    "(kDegenerateAreaRatio = 1e-12 of the bounding box's squared diagonal) rejects a triangle "
-    "about 3e11 or more times longer than wide, even when clipping leaves a wide visible part "
-    "(here a strip 1 unit wide, 4928 px). It should be clipped and drawn like the "
-    "1e6:1 sliver")
-
-
 def _inputs():
     triangle = [(-0.5, -0.5, 0.0), (0.5, -0.5, 0.0), (0.0, 0.5, 0.0)]
     for label, value in (("NaN", float("nan")), ("+Inf", float("inf"))):
@@ -502,13 +494,12 @@ def _inputs():
                    warnings=[SKIPPED_NON_FINITE], counts={"PolygonsNonFinite": 1})
     for exponent in (15, 300):
         tall = triangle[:2] + [(0.0, 10.0 ** exponent, 0.0)]
-        yield Case("1e%d coordinate" % exponent, "input", "skip",
-                   "a 1 × 1e%d triangle, 1 unit wide on screen: its normal is rejected as "
-                   "degenerate (area / diagonal² = 5e-%d < 1e-12), so it is counted "
-                   "degenerate and not drawn" % (exponent, exponent + 1),
+        yield Case("1e%d coordinate" % exponent, "input", "clip",
+                   "a 1 × 1e%d triangle, 1 unit wide on screen: its normal comes from its "
+                   "largest angle (not its size), so it is clipped to the guard band and "
+                   "covers exactly the pixel centers inside it, lit" % exponent,
                    lambda t=tall: plane_scene(t, [[0, 1, 2]]),
-                   _dropped_as_degenerate(lambda t=tall: t), counts={"PolygonsDegenerate": 1},
-                   defect=TALL_TRIANGLE_DEFECT)
+                   exact_polygon(lambda t=tall: t, WHITE))
     yield Case("1e300 coordinate, automatic camera", "input", "draw",
                "the camera fits the bounds clamped to ±1e100 and stays finite; from there "
                "the data is far below a pixel: nothing drawn, no message",

@@ -19,6 +19,12 @@ namespace facet {
 /// has no normal: it is degenerate (collinear or coincident vertices) to within rounding.
 inline constexpr double kDegenerateAreaRatio = 1e-12;
 
+/// A triangle whose largest angle has a sine at most this is degenerate (its corners are
+/// collinear to within rounding: the cross product of two unit edge directions is good to
+/// about 1e-16). Relative to its own angles, not its size, so a triangle 1 unit wide and
+/// 1e15 long keeps its normal.
+inline constexpr double kDegenerateSine = 1e-12;
+
 namespace detail {
 
 /// Vertex i relative to vertex 0, in units of `unit`. Multiplying by the inverse is exact
@@ -145,37 +151,87 @@ std::optional<glm::dvec3> alignedFanNormal(std::size_t count, const VertexAt& ve
   });
 }
 
-/// The normal Facet lights, orients and culls a polygon by (of more than three vertices:
-/// triangles use triangleNormal): newellNormal, or for a polygon whose Newell vector area
-/// cancels out (a bowtie), alignedFanNormal.
-template <class VertexAt>
-std::optional<glm::dvec3> polygonNormal(std::size_t count, const VertexAt& vertexAt) {
-  if (std::optional<glm::dvec3> normal = newellNormal(count, vertexAt)) return normal;
-  return alignedFanNormal(count, vertexAt);
+namespace detail {
+
+inline double largestMagnitude(const glm::dvec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }
 
+inline bool isFinite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// `v` scaled to unit length without overflow or underflow of its squares (any finite,
+/// nonzero components: 1e-300 and 1e300 alike).
+inline glm::dvec3 direction(const glm::dvec3& v) {
+  const glm::dvec3 scaled = v / largestMagnitude(v);
+  return scaled / glm::length(scaled);
+}
+
+/// triangleNormal for any finite corners, however long and thin the triangle: the cross
+/// product of the unit directions of the two edges at the vertex opposite the longest edge.
+/// That vertex has the largest angle and so (law of sines) the largest sine, and its edges
+/// are the two shortest, so the rounding error of the cross product, about 1e-16 of
+/// |u| |w|, is the smallest of the three vertices' (Shewchuk 1997, "Adaptive precision
+/// floating-point arithmetic and fast robust geometric predicates", on choosing the
+/// shortest edges).
+inline std::optional<glm::dvec3> sliverNormal(const glm::dvec3& a, const glm::dvec3& b,
+                                              const glm::dvec3& c) {
+  // Differences of finite coordinates beyond ±DBL_MAX/2 overflow; dividing every corner by
+  // 256 (exact) does not change the normal.
+  const double largest = std::max({largestMagnitude(a), largestMagnitude(b), largestMagnitude(c)});
+  const double scale = largest > 0x1p1020 ? 0x1p-8 : 1.0;
+  const glm::dvec3 corners[3] = {a * scale, b * scale, c * scale};
+  // Edge k runs from corner k+1 to corner k+2 (opposite corner k).
+  double longest = -1.0;
+  int apex = 0;
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 edge = corners[(k + 2) % 3] - corners[(k + 1) % 3];
+    const double size = largestMagnitude(edge);
+    if (size > longest) longest = size, apex = k;
+  }
+  const glm::dvec3 toNext = corners[(apex + 1) % 3] - corners[apex];
+  const glm::dvec3 toPrevious = corners[(apex + 2) % 3] - corners[apex];
+  if (toNext == glm::dvec3(0.0) || toPrevious == glm::dvec3(0.0)) return std::nullopt;
+  const glm::dvec3 cross = glm::cross(direction(toNext), direction(toPrevious));
+  const double sine = glm::length(cross);
+  if (!(sine > kDegenerateSine)) return std::nullopt;
+  return cross / sine;
+}
+
+}  // namespace detail
+
 /// The unit normal of triangle abc (counter-clockwise faces it), or nothing when it is
-/// degenerate (relative area below about kDegenerateAreaRatio, as for newellNormal). A plain cross
-/// product when the numbers are well inside double's range (the common case); newellNormal
-/// otherwise.
+/// degenerate: the sine of its largest angle is at most kDegenerateSine (its corners are
+/// collinear to within rounding). A plain cross product when the numbers are well inside
+/// double's range and the angle at a is clearly not degenerate (the common case);
+/// detail::sliverNormal otherwise, which decides by the largest angle. Scale-free: a
+/// triangle 1 unit wide and 1e300 long has a normal.
 inline std::optional<glm::dvec3> triangleNormal(const glm::dvec3& a, const glm::dvec3& b,
                                                 const glm::dvec3& c) {
   const glm::dvec3 ab = b - a, ac = c - a;
   const glm::dvec3 cross = glm::cross(ab, ac);
   const double lengthSquared = glm::dot(cross, cross);
-  const double extentSquared = std::max(glm::dot(ab, ab), glm::dot(ac, ac));
+  const double abSquared = glm::dot(ab, ab), acSquared = glm::dot(ac, ac);
   // Squares of squares: safe only for moderate magnitudes.
-  if (lengthSquared > 1e-200 && lengthSquared < 1e200 && extentSquared > 1e-100 &&
-      extentSquared < 1e100) {
-    // |ab × ac| vs the bounding-box diagonal² (within a factor 3 of max(|ab|², |ac|²)).
-    if (!(lengthSquared >
-          kDegenerateAreaRatio * kDegenerateAreaRatio * 9.0 * extentSquared * extentSquared)) {
-      return std::nullopt;
-    }
+  const bool moderate = lengthSquared > 1e-200 && lengthSquared < 1e200 && abSquared > 1e-100 &&
+                        abSquared < 1e100 && acSquared > 1e-100 && acSquared < 1e100;
+  // sin²(angle at a) = |ab × ac|² / (|ab|² |ac|²); the sine at a never exceeds the largest.
+  if (moderate && lengthSquared > kDegenerateSine * kDegenerateSine * abSquared * acSquared) {
     return cross * (1.0 / std::sqrt(lengthSquared));
   }
-  const glm::dvec3 corners[3] = {a, b, c};
-  return newellNormal(3, [&](std::size_t i) { return corners[i]; });
+  if (!detail::isFinite(a) || !detail::isFinite(b) || !detail::isFinite(c)) return std::nullopt;
+  return detail::sliverNormal(a, b, c);
+}
+
+/// The normal Facet lights, orients and culls a polygon by: triangleNormal for a triangle;
+/// otherwise newellNormal, or for a polygon whose Newell vector area cancels out (a bowtie),
+/// alignedFanNormal.
+template <class VertexAt>
+std::optional<glm::dvec3> polygonNormal(std::size_t count, const VertexAt& vertexAt) {
+  if (count == 3) return triangleNormal(vertexAt(0), vertexAt(1), vertexAt(2));
+  if (std::optional<glm::dvec3> normal = newellNormal(count, vertexAt)) return normal;
+  return alignedFanNormal(count, vertexAt);
 }
 
 /// newellNormal for a polygon given as a span of vertices.
