@@ -30,6 +30,10 @@ PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpn
 # without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
 # and the hierarchy files the plugin build needs).
+# The parallel tests (tests/parallel): Open MPI's mpirun, mpi4py, and the IceT that ParaView
+# ships (libraries in paraview, headers in paraview-dev; without recommends, as below). A
+# build finds IceT when it configures; without it, it builds and renders as before.
+PARALLEL_PACKAGES := openmpi-bin python3-mpi4py paraview-dev
 PLUGIN_BUILD_DIR ?= build-plugin
 PLUGIN_PACKAGES := paraview-dev python3-numpy
 PARAVIEW_PYTHON_ROOT := $(PLUGIN_BUILD_DIR)/python3-paraview
@@ -53,7 +57,7 @@ FUZZ_SECONDS ?= 120
 FUZZ_TARGETS := facet_fuzz_core facet_fuzz_filter
 FUZZ_FLAGS ?= -max_len=4096 -len_control=0 -timeout=60 -rss_limit_mb=4096 -print_final_stats=1
 
-.PHONY: all deps deps-plugin build plugin test test-main test-sanitized test-thread-sanitized \
+.PHONY: all deps deps-parallel deps-plugin build plugin test test-main test-sanitized test-thread-sanitized \
         test-plugin fuzz fuzz-build demo bench bench-peers clean
 
 all: build
@@ -75,6 +79,9 @@ endef
 deps:
 	$(call install-missing,$(PACKAGES))
 
+deps-parallel: deps
+	$(call install-missing,$(PARALLEL_PACKAGES))
+
 deps-plugin: deps
 	$(call install-missing,$(PLUGIN_PACKAGES))
 
@@ -84,7 +91,7 @@ $(BUILD_DIR)/build.ninja:
 build: deps $(BUILD_DIR)/build.ninja
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-test-main: build
+test-main: deps-parallel build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 $(SANITIZE_BUILD_DIR)/build.ninja:
@@ -115,7 +122,7 @@ test-plugin: plugin
 fuzz-build: deps $(SANITIZE_BUILD_DIR)/build.ninja
 	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
 
-test-sanitized: deps $(SANITIZE_BUILD_DIR)/build.ninja
+test-sanitized: deps-parallel $(SANITIZE_BUILD_DIR)/build.ninja
 	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS)
 	cd $(SANITIZE_BUILD_DIR) && $(SANITIZER_ENV) \
 	  ctest --output-on-failure -j $(JOBS) -LE asan-preload
