@@ -35,7 +35,7 @@ PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpn
 # build finds IceT when it configures; without it, it builds and renders as before.
 PARALLEL_PACKAGES := openmpi-bin python3-mpi4py paraview-dev
 PLUGIN_BUILD_DIR ?= build-plugin
-PLUGIN_PACKAGES := paraview-dev python3-numpy
+PLUGIN_PACKAGES := paraview-dev python3-numpy openmpi-bin
 PARAVIEW_PYTHON_ROOT := $(PLUGIN_BUILD_DIR)/python3-paraview
 # The peers of `make bench-peers` (optional: the build skips a peer whose library is missing).
 PEER_PACKAGES := libosmesa6-dev
