@@ -14,8 +14,9 @@ its back half, which pieces cannot), so ranks split the same work.
 
 Times are per frame, the median of --frames frames after a first one that converts the
 mesh; each frame turns the camera. Of every frame the slowest rank counts (a composite
-waits for it): wall (Update, from a barrier) and render (FacetRenderSeconds minus the
-composite); the composite (FacetCompositeSeconds: packing, IceT, unpacking) and IceT's part
+waits for it): wall (Update, from a barrier), CPU (the process's CPU time in Update, all
+its threads: the work, whatever else shares the cores; Open MPI's waiting spins count too)
+and render (FacetRenderSeconds minus the composite); the composite (FacetCompositeSeconds: packing, IceT, unpacking) and IceT's part
 are the slowest renderer's, since the others' include waiting for it.
 Bytes are what IceT sent (FacetCompositeBytes), the most any rank sent and all ranks'.
 """
@@ -58,7 +59,8 @@ def slowest(ranks):
     """One frame of every rank: the longest wall and render; the composite of the rank that
     rendered longest (the others' composites include waiting for it); the most bytes."""
     last = max(ranks, key=lambda r: r["render"])
-    return {"wall": max(r["wall"] for r in ranks), "render": last["render"],
+    return {"wall": max(r["wall"] for r in ranks), "cpu": max(r["cpu"] for r in ranks),
+            "render": last["render"],
             "composite": last["composite"], "icet": last["icet"],
             "bytes_max": max(r["bytes"] for r in ranks), "bytes_all": ranks[0]["bytes_all"]}
 
@@ -94,12 +96,12 @@ def worker(args):
         camera.Azimuth(3.0)
         render.Modified()
         comm.Barrier()
-        start = time.perf_counter()
+        start, cpu_start = time.perf_counter(), time.process_time()
         render.Update()
-        wall = time.perf_counter() - start
+        wall, cpu = time.perf_counter() - start, time.process_time() - cpu_start
         fields = render.GetOutput().GetFieldData()
         composite = component(fields, "FacetCompositeSeconds", "Total")
-        mine = {"wall": wall,
+        mine = {"wall": wall, "cpu": cpu,
                 "render": component(fields, "FacetRenderSeconds", "Total") - composite,
                 "composite": composite,
                 "icet": component(fields, "FacetCompositeSeconds", "IceT"),
@@ -130,14 +132,15 @@ def run_case(args, ranks, scaling, millions):
 
 
 def table(results):
-    lines = ["| mesh | scaling | ranks x threads | triangles per rank | wall ms | render ms | "
-             "composite ms (IceT) | MB sent, most by a rank / all |",
-             "|---|---|---|---|---:|---:|---:|---:|"]
+    lines = ["| mesh | scaling | ranks x threads | triangles per rank | wall ms | CPU ms | "
+             "render ms | composite ms (IceT) | MB sent, most by a rank / all |",
+             "|---|---|---|---|---:|---:|---:|---:|---:|"]
     for r in results:
         flag = " (oversubscribed)" if r["oversubscribed"] else ""
-        lines.append("| %.0fM | %s | %d x %d%s | %.2fM | %.0f | %.0f | %.1f (%.1f) | %.1f / %.1f |"
+        lines.append("| %.0fM | %s | %d x %d%s | %.2fM | %.0f | %.0f | %.0f | %.1f (%.1f) | "
+                     "%.1f / %.1f |"
                      % (r["mesh"], r["scaling"], r["ranks"], r["threads"], flag,
-                        r["per_rank"] / 1e6, 1e3 * r["wall"], 1e3 * r["render"],
+                        r["per_rank"] / 1e6, 1e3 * r["wall"], 1e3 * r["cpu"], 1e3 * r["render"],
                         1e3 * r["composite"], 1e3 * r["icet"], r["bytes_max"] / 1e6,
                         r["bytes_all"] / 1e6))
     return "\n".join(lines)
