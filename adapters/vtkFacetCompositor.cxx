@@ -1,6 +1,7 @@
 // VTK-HeaderTest-Exclude: vtkFacetCompositor.h
 #include "vtkFacetCompositor.h"
 
+#include "vtkCellData.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -15,6 +16,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -329,6 +331,29 @@ void vtkFacetCompositor::Prepare(vtkMultiProcessController* controller,
       std::to_string(this->Ranks) + " processes are ranks 0 to " + std::to_string(this->Ranks - 1));
     this->Agreed = false;
   }
+}
+
+//------------------------------------------------------------------------------
+vtkDataArray* vtkFacetCompositor::GlobalIdsOf(vtkPolyData* input, vtkFacetMessages& messages)
+{
+  vtkDataArray* ids = input ? input->GetCellData()->GetGlobalIds() : nullptr;
+  if (!ids)
+  {
+    return nullptr;
+  }
+  const int type = ids->GetDataType();
+  if (ids->GetNumberOfComponents() != 1 || ids->GetNumberOfTuples() < input->GetNumberOfCells() ||
+    type == VTK_FLOAT || type == VTK_DOUBLE)
+  {
+    messages.AddWarning(std::string("the global cell ids '") +
+      (ids->GetName() ? ids->GetName() : "") + "' (" + ids->GetDataTypeAsString() + ", " +
+      std::to_string(ids->GetNumberOfTuples()) + " tuples of " +
+      std::to_string(ids->GetNumberOfComponents()) + " components for " +
+      std::to_string(input->GetNumberOfCells()) +
+      " cells) are not one integer a cell: CellId keeps the piece's cell ids");
+    return nullptr;
+  }
+  return ids;
 }
 
 //------------------------------------------------------------------------------

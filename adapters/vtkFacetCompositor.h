@@ -47,6 +47,7 @@ class vtkFacetImageRenderer;
 class vtkFacetMessages;
 class vtkImageData;
 class vtkMultiProcessController;
+class vtkPolyData;
 
 class vtkFacetCompositor
 {
@@ -89,6 +90,10 @@ public:
     const Settings& settings,
     double bounds[6],
     vtkFacetMessages& messages);
+
+  /// The input's global cell ids (vtkCellData::GetGlobalIds) if it has usable ones: one
+  /// integer per cell; else none, with a warning if it has unusable ones.
+  static vtkDataArray* GlobalIdsOf(vtkPolyData* input, vtkFacetMessages& messages);
 
   /**
    * Labels the pixels [begin, end) of this process's render: RankId is this rank where a

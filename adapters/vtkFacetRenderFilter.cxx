@@ -2,7 +2,6 @@
 
 #include "vtkAbstractMapper.h"
 #include "vtkCamera.h"
-#include "vtkCellData.h"
 #include "vtkFacetActorConverter.h"
 #include "vtkFacetColoringMapper.h"
 #include "vtkFacetCompositor.h"
@@ -46,8 +45,6 @@ public:
   // The filter's camera, or the automatic camera: a copy of the filter's camera
   // (FitCameraToInput) or VTK's default camera, fitted to `bounds`.
   vtkCamera* CameraFor(vtkCamera* camera, bool fit, const double bounds[6], int width, int height);
-  // The input's global cell ids, if it has usable ones.
-  vtkDataArray* GlobalIdsOf(vtkPolyData* input);
 };
 
 //------------------------------------------------------------------------------
@@ -90,23 +87,6 @@ vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
   this->AutomaticCamera->DeepCopy(camera ? camera : fresh.Get());
   vtkFacetSceneConverter::FitCamera(this->AutomaticCamera, bounds, width, height);
   return this->AutomaticCamera;
-}
-
-//------------------------------------------------------------------------------
-vtkDataArray* vtkFacetRenderFilter::vtkInternals::GlobalIdsOf(vtkPolyData* input)
-{
-  vtkDataArray* ids = input ? input->GetCellData()->GetGlobalIds() : nullptr;
-  if (ids &&
-    (ids->GetNumberOfComponents() != 1 || ids->GetNumberOfTuples() < input->GetNumberOfCells()))
-  {
-    this->Messages.AddWarning(std::string("the global cell ids '") +
-      (ids->GetName() ? ids->GetName() : "") + "' have " +
-      std::to_string(ids->GetNumberOfTuples()) + " tuples of " +
-      std::to_string(ids->GetNumberOfComponents()) + " components for " +
-      std::to_string(input->GetNumberOfCells()) + " cells: CellId keeps the piece's cell ids");
-    return nullptr;
-  }
-  return ids;
 }
 
 vtkStandardNewMacro(vtkFacetRenderFilter);
@@ -441,7 +421,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
 
   // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids
   // (across processes: global ids if the input has them, and the rank in RankId).
-  vtkDataArray* globalIds = parallel ? internals.GlobalIdsOf(input) : nullptr;
+  vtkDataArray* globalIds = parallel ? vtkFacetCompositor::GlobalIdsOf(input, messages) : nullptr;
   const bool rendered = internals.Image.Render(
     scene,
     facetCamera,

@@ -292,6 +292,25 @@ def global_ids_become_cell_ids():
 
 
 @case
+def unusable_global_ids_are_ignored():
+    """Global ids that are not one integer a cell: a warning, and CellId stays the piece's."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    piece = piece_of(points, triangles, first, last, with_global_ids=False)
+    ids = numpy_to_vtk(numpy.arange(first, last, dtype=numpy.float64) + 0.5, deep=1)
+    ids.SetName("FloatIds")
+    piece.GetCellData().SetGlobalIds(ids)
+    render = Render(piece)
+    check(any("not one integer a cell" in w for w in render.warnings),
+          "no warning of the float global ids: %s" % render.warnings)
+    if RANK == 0:
+        mine = render.planes["RankId"] == 0
+        expected = serial(polydata(points, triangles)).planes["CellId"][mine]
+        check(numpy.array_equal(render.planes["CellId"][mine], expected),
+              "rank 0's CellId is not its piece's cell id")
+
+
+@case
 def distributed_data_filter_pieces():
     """The mesh handed to vtkPDistributedDataFilter (D3) from rank 0: spatial pieces whose
     cells are in another order, with the original ids as global cell ids."""
