@@ -11,6 +11,8 @@ SHELL := /bin/bash
 BUILD_DIR ?= build
 # Everything (core, adapters, their C++ tests, the fuzz targets) built by clang under
 # AddressSanitizer + UndefinedBehaviorSanitizer with assertions on; VTK is not instrumented.
+# It is also the build without IceT (tests/parallel check there that MPI ranks render as
+# before, each its own piece); the main build composites.
 SANITIZE_BUILD_DIR ?= build-sanitize
 # The core alone, without VTK (it must build and test where VTK is absent), under
 # ThreadSanitizer: the thread pool and the parallel phases. The allocation test is left out
@@ -97,7 +99,7 @@ test-main: deps-parallel build
 $(SANITIZE_BUILD_DIR)/build.ninja:
 	CC=clang CXX=clang++ cmake -S . -B $(SANITIZE_BUILD_DIR) -G Ninja \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_SANITIZE=address,undefined -DFACET_FUZZ=ON \
-	  -DFACET_BUILD_BENCHMARKS=OFF
+	  -DFACET_BUILD_BENCHMARKS=OFF -DFACET_ENABLE_ICET=OFF
 
 # python3-paraview, the same version as the installed ParaView, unpacked (not installed).
 $(PARAVIEW_PYTHON_ROOT)/.unpacked: | deps-plugin
