@@ -244,8 +244,8 @@ def cell_ranges_compose_to_the_serial_image():
         check_receives_nothing(render)
         return
     whole = polydata(points, triangles)
-    reference, open_reference = serial(whole), serial(whole, closed=False)
-    check_same_image(render, reference, open_reference)
+    reference = serial(whole)
+    check_same_image(render, reference)
     rank_id, cell_id = render.planes["RankId"], render.planes["CellId"]
     expected = reference.planes["CellId"]
     check(numpy.array_equal(rank_id < 0, expected < 0), "RankId -1 where the serial CellId is not")
@@ -337,7 +337,7 @@ def distributed_data_filter_pieces():
         return
     whole = polydata(points, triangles)
     reference = serial(whole)
-    check_same_image(render, reference, serial(whole, closed=False))
+    check_same_image(render, reference)
     check_plane("CellId", render, reference)
 
 
@@ -357,7 +357,7 @@ def an_empty_piece():
           "an empty piece is not a problem: %s" % (render.errors + render.warnings))
     if RANK == 0:
         whole = polydata(points, triangles)
-        check_same_image(render, serial(whole), serial(whole, closed=False))
+        check_same_image(render, serial(whole))
         check(empty_rank not in render.planes["RankId"], "the empty rank shows")
 
 
@@ -409,7 +409,7 @@ def an_invalid_piece():
     valid = [cell_range(len(triangles), r, RANKS) for r in range(RANKS) if r != 1]
     kept = numpy.concatenate([numpy.arange(a, b) for a, b in valid])
     reference = serial(polydata(points, triangles[kept]),
-                       camera=render.filter.GetActiveCamera(), closed=False)
+                       camera=render.filter.GetActiveCamera())
     check_same_image(render, reference)
 
 
@@ -443,7 +443,7 @@ def ties_go_to_the_lowest_rank():
         rank_id = render.planes["RankId"]
         shown = set(numpy.unique(rank_id)) - {-1}
         check(shown == {0}, "%s: ties went to ranks %s" % (strategy, sorted(shown)))
-        reference = serial(polydata(points, triangles), closed=False)
+        reference = serial(polydata(points, triangles))
         check_same_image(render, reference)
         check(strategy.replace("BinarySwap", "Binary Swap").replace("RadixK", "Radix-k")
               .replace("Tree", "Binary Tree") in render.field("FacetCompositeStrategy").GetValue(0),
