@@ -11,6 +11,8 @@ SHELL := /bin/bash
 BUILD_DIR ?= build
 # Everything (core, adapters, their C++ tests, the fuzz targets) built by clang under
 # AddressSanitizer + UndefinedBehaviorSanitizer with assertions on; VTK is not instrumented.
+# It is also the build without IceT (tests/parallel check there that MPI ranks render as
+# before, each its own piece); the main build composites.
 SANITIZE_BUILD_DIR ?= build-sanitize
 # The core alone, without VTK (it must build and test where VTK is absent), under
 # ThreadSanitizer: the thread pool and the parallel phases. The allocation test is left out
@@ -31,8 +33,12 @@ PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpn
 # without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
 # and the hierarchy files the plugin build needs).
+# The parallel tests (tests/parallel): Open MPI's mpirun, mpi4py, and the IceT that ParaView
+# ships (libraries in paraview, headers in paraview-dev; without recommends, as below). A
+# build finds IceT when it configures; without it, it builds and renders as before.
+PARALLEL_PACKAGES := openmpi-bin python3-mpi4py paraview-dev
 PLUGIN_BUILD_DIR ?= build-plugin
-PLUGIN_PACKAGES := paraview-dev python3-numpy
+PLUGIN_PACKAGES := paraview-dev python3-numpy openmpi-bin
 PARAVIEW_PYTHON_ROOT := $(PLUGIN_BUILD_DIR)/python3-paraview
 # The peers of `make bench-peers` (optional: the build skips a peer whose library is missing).
 PEER_PACKAGES := libosmesa6-dev
@@ -54,7 +60,7 @@ FUZZ_SECONDS ?= 120
 FUZZ_TARGETS := facet_fuzz_core facet_fuzz_filter
 FUZZ_FLAGS ?= -max_len=4096 -len_control=0 -timeout=60 -rss_limit_mb=4096 -print_final_stats=1
 
-.PHONY: all deps deps-plugin build plugin test test-main test-sanitized test-thread-sanitized \
+.PHONY: all deps deps-parallel deps-plugin build plugin test test-main test-sanitized test-thread-sanitized \
         test-plugin fuzz fuzz-build demo bench bench-peers stability-report clean
 
 all: build
@@ -76,6 +82,9 @@ endef
 deps:
 	$(call install-missing,$(PACKAGES))
 
+deps-parallel: deps
+	$(call install-missing,$(PARALLEL_PACKAGES))
+
 deps-plugin: deps
 	$(call install-missing,$(PLUGIN_PACKAGES))
 
@@ -85,13 +94,13 @@ $(BUILD_DIR)/build.ninja:
 build: deps $(BUILD_DIR)/build.ninja
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-test-main: build
+test-main: deps-parallel build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 $(SANITIZE_BUILD_DIR)/build.ninja:
 	CC=clang CXX=clang++ cmake -S . -B $(SANITIZE_BUILD_DIR) -G Ninja \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_SANITIZE=address,undefined -DFACET_FUZZ=ON \
-	  -DFACET_BUILD_BENCHMARKS=OFF
+	  -DFACET_BUILD_BENCHMARKS=OFF -DFACET_ENABLE_ICET=OFF
 
 # python3-paraview, the same version as the installed ParaView, unpacked (not installed).
 $(PARAVIEW_PYTHON_ROOT)/.unpacked: | deps-plugin
@@ -116,7 +125,7 @@ test-plugin: plugin
 fuzz-build: deps $(SANITIZE_BUILD_DIR)/build.ninja
 	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
 
-test-sanitized: deps $(SANITIZE_BUILD_DIR)/build.ninja
+test-sanitized: deps-parallel $(SANITIZE_BUILD_DIR)/build.ninja
 	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS)
 	cd $(SANITIZE_BUILD_DIR) && $(SANITIZER_ENV) \
 	  ctest --output-on-failure -j $(JOBS) -LE asan-preload

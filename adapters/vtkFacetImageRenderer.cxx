@@ -126,6 +126,17 @@ int vtkFacetImageRenderer::RequestInformation(vtkAlgorithm* algorithm,
 }
 
 //------------------------------------------------------------------------------
+vtkFloatArray* vtkFacetImageRenderer::GetDepth() const
+{
+  return this->Depth;
+}
+
+vtkIntArray* vtkFacetImageRenderer::GetRankIds() const
+{
+  return this->RankIds;
+}
+
+//------------------------------------------------------------------------------
 bool vtkFacetImageRenderer::CheckThreadCount(vtkObject* object, int threads, int current)
 {
   if (threads < 0 || threads > 1024)
@@ -159,7 +170,7 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
   vtkFacetMessages& messages)
 {
   const int width = settings.Width, height = settings.Height;
-  const bool actorIds = settings.ActorIds;
+  const bool actorIds = settings.ActorIds, rankIds = settings.RankIds;
   const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
   output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
@@ -172,7 +183,12 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
   {
     pointData->AddArray(OutputArray(this->ActorIds, "ActorId", 1, pixels));
   }
-  if (!this->Rgba || !this->Depth || !this->CellIds || (actorIds && !this->ActorIds))
+  if (rankIds)
+  {
+    pointData->AddArray(OutputArray(this->RankIds, "RankId", 1, pixels));
+  }
+  if (!this->Rgba || !this->Depth || !this->CellIds || (actorIds && !this->ActorIds) ||
+    (rankIds && !this->RankIds))
   {
     messages.AddError("cannot allocate the " + std::to_string(width) + " x " +
       std::to_string(height) + " output image");
@@ -289,4 +305,19 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
   plan->SetName("FacetRenderPlan");
   plan->InsertNextValue(this->Plan);
   fieldData->AddArray(plan);
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetImageRenderer::AddToReport(vtkImageData* output, const std::string& lines)
+{
+  this->Plan += lines;
+  vtkFieldData* fieldData = output->GetFieldData();
+  if (auto* plan = vtkStringArray::SafeDownCast(fieldData->GetAbstractArray("FacetRenderPlan")))
+  {
+    plan->SetValue(0, this->Plan);
+  }
+  if (vtkDataArray* total = fieldData->GetArray("FacetRenderSeconds"))
+  {
+    total->SetComponent(0, 0, SecondsSince(this->StartTime));
+  }
 }

@@ -5,7 +5,8 @@
  *
  * Render makes the output a width × height image (extent (0, W-1, 0, H-1, 0, 0), spacing
  * 1, origin 0, row 0 at the bottom) with point data `RGBA` (the scalars), `Depth`, `CellId`
- * and, for vtkFacetRendererToImageFilter, `ActorId`. The arrays of the last execution are
+ * and, for vtkFacetRendererToImageFilter, `ActorId` (for vtkFacetRenderFilter across MPI
+ * processes, `RankId`). The arrays of the last execution are
  * reused when nobody else holds them (re-rendering then allocates and page-faults nothing;
  * the pipeline empties the output before every execution, so this class keeps its own
  * references), and large ones are 2 MiB-aligned with transparent huge pages advised (tile
@@ -50,6 +51,7 @@ public:
     int Width = 640;
     int Height = 480;
     bool ActorIds = false; ///< add the ActorId array
+    bool RankIds = false;  ///< add the RankId array (vtkFacetCompositor fills it)
     int Threads = 0;       ///< 0: one per hardware thread
     facet::Visibility Visibility = facet::Visibility::ZBuffer;
     bool TwoSidedLighting = true;
@@ -82,8 +84,10 @@ public:
   void ConversionDone();
 
   vtkUnsignedCharArray* GetRgba() const { return this->Rgba; }
+  vtkFloatArray* GetDepth() const;
   vtkIdTypeArray* GetCellIds() const { return this->CellIds; }
   vtkIntArray* GetActorIds() const { return this->ActorIds; }
+  vtkIntArray* GetRankIds() const;
   void GetSize(int size[2]) const
   {
     size[0] = this->Width;
@@ -110,6 +114,12 @@ public:
   /// What the last render did and left out (empty before the first).
   const std::string& GetPlan() const { return this->Plan; }
 
+  /**
+   * For work done after Render (compositing): appends `lines` to the plan (and to
+   * `FacetRenderPlan`) and makes `FacetRenderSeconds` count until now.
+   */
+  void AddToReport(vtkImageData* output, const std::string& lines);
+
 private:
   using Clock = std::chrono::steady_clock;
   bool Allocate(const Settings& settings, vtkImageData* output, vtkFacetMessages& messages);
@@ -121,6 +131,7 @@ private:
   vtkSmartPointer<vtkFloatArray> Depth;
   vtkSmartPointer<vtkIdTypeArray> CellIds;
   vtkSmartPointer<vtkIntArray> ActorIds;
+  vtkSmartPointer<vtkIntArray> RankIds;
   vtkAlgorithm* Algorithm = nullptr;
   int Width = 0;
   int Height = 0;

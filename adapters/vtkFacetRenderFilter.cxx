@@ -4,6 +4,7 @@
 #include "vtkCamera.h"
 #include "vtkFacetActorConverter.h"
 #include "vtkFacetColoringMapper.h"
+#include "vtkFacetCompositor.h"
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
 #include "vtkFacetPolyDataConverter.h"
@@ -14,11 +15,14 @@
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
 #include <string>
@@ -33,13 +37,14 @@ public:
   vtkNew<vtkFacetColoringMapper> Coloring; // the coloring settings, a vtkMapper's
   vtkNew<vtkCamera> AutomaticCamera;       // fitted at every execution without a camera
   vtkFacetMessages Messages;
+  vtkFacetCompositor Compositor; // with other processes: one camera, one image
 
   // The mapper's coloring, with the array an input array to process names (ParaView's array
   // selection) in place of the mapper's.
   vtkFacetScalarColors::Settings ColoringOf(vtkFacetRenderFilter* filter);
   // The filter's camera, or the automatic camera: a copy of the filter's camera
-  // (FitCameraToInput) or VTK's default camera, fitted to the input's finite points.
-  vtkCamera* CameraFor(vtkCamera* camera, bool fit, int width, int height);
+  // (FitCameraToInput) or VTK's default camera, fitted to `bounds`.
+  vtkCamera* CameraFor(vtkCamera* camera, bool fit, const double bounds[6], int width, int height);
 };
 
 //------------------------------------------------------------------------------
@@ -68,6 +73,7 @@ vtkFacetScalarColors::Settings vtkFacetRenderFilter::vtkInternals::ColoringOf(
 //------------------------------------------------------------------------------
 vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
   bool fit,
+  const double bounds[6],
   int width,
   int height)
 {
@@ -79,8 +85,6 @@ vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
   // (0, 0, 1) looking down -Z), whatever the user did to the last automatic camera.
   vtkNew<vtkCamera> fresh;
   this->AutomaticCamera->DeepCopy(camera ? camera : fresh.Get());
-  double bounds[6];
-  this->Actor.GetFiniteBounds(bounds);
   vtkFacetSceneConverter::FitCamera(this->AutomaticCamera, bounds, width, height);
   return this->AutomaticCamera;
 }
@@ -88,6 +92,7 @@ vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
 vtkStandardNewMacro(vtkFacetRenderFilter);
 vtkCxxSetObjectMacro(vtkFacetRenderFilter, Camera, vtkCamera);
 vtkCxxSetObjectMacro(vtkFacetRenderFilter, Property, vtkProperty);
+vtkCxxSetObjectMacro(vtkFacetRenderFilter, Controller, vtkMultiProcessController);
 
 //------------------------------------------------------------------------------
 vtkFacetRenderFilter::vtkFacetRenderFilter()
@@ -96,6 +101,7 @@ vtkFacetRenderFilter::vtkFacetRenderFilter()
   this->Lights = vtkLightCollection::New();
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 //------------------------------------------------------------------------------
@@ -103,6 +109,7 @@ vtkFacetRenderFilter::~vtkFacetRenderFilter()
 {
   this->SetCamera(nullptr);
   this->SetProperty(nullptr);
+  this->SetController(nullptr);
   this->Lights->Delete();
   delete this->Internals;
 }
@@ -262,6 +269,12 @@ int vtkFacetRenderFilter::GetArrayAccessMode()
 }
 
 //------------------------------------------------------------------------------
+bool vtkFacetRenderFilter::CanComposite()
+{
+  return vtkFacetCompositor::IsAvailable();
+}
+
+//------------------------------------------------------------------------------
 const char* vtkFacetRenderFilter::GetRenderPlan()
 {
   return this->Internals->Image.GetPlan().c_str();
@@ -317,6 +330,26 @@ int vtkFacetRenderFilter::RequestInformation(vtkInformation*,
 }
 
 //------------------------------------------------------------------------------
+int vtkFacetRenderFilter::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // Across processes each renders its piece of the input, the one VTK's parallel pipeline
+  // gives a process: piece = rank, pieces = processes, no ghost cells (they would be drawn
+  // twice).
+  if (vtkFacetCompositor::IsParallel(this->Controller))
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(),
+      this->Controller->GetLocalProcessId());
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(),
+      this->Controller->GetNumberOfProcesses());
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkFacetRenderFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -351,8 +384,27 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   }
   internals.Image.ConversionDone();
 
-  // The renderer: camera, lights and the rest of the image's settings.
-  vtkCamera* camera = internals.CameraFor(this->Camera, this->FitCameraToInput != 0, width, height);
+  // The renderer: camera, lights and the rest of the image's settings. Across processes
+  // the camera is fitted to the union of all pieces' bounds: all render one view.
+  const bool parallel = vtkFacetCompositor::IsParallel(this->Controller);
+  double bounds[6];
+  internals.Actor.GetFiniteBounds(bounds);
+  if (parallel)
+  {
+    if (messages.HasErrors())
+    {
+      vtkMath::UninitializeBounds(bounds); // this piece adds nothing
+    }
+    vtkFacetCompositor::Settings composite;
+    composite.Width = width;
+    composite.Height = height;
+    composite.Target = this->CompositeRank;
+    composite.ToAllRanks = this->CompositeToAllRanks != 0;
+    composite.Method = static_cast<vtkFacetCompositor::Strategy>(this->CompositeStrategy);
+    internals.Compositor.Prepare(this->Controller, composite, bounds, messages);
+  }
+  vtkCamera* camera =
+    internals.CameraFor(this->Camera, this->FitCameraToInput != 0, bounds, width, height);
   const facet::Camera facetCamera =
     vtkFacetSceneConverter::ConvertCamera(camera, width, height, messages);
   scene.lights = vtkFacetSceneConverter::ConvertLights(this->Lights, camera, lights, messages);
@@ -365,19 +417,31 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   settings.TwoSidedLighting = this->TwoSidedLighting != 0;
   std::copy_n(this->Background, 3, settings.Background);
   settings.BackgroundAlpha = this->BackgroundAlpha;
+  settings.RankIds = parallel;
 
-  // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids.
-  internals.Image.Render(
+  // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids
+  // (across processes: global ids if the input has them, and the rank in RankId).
+  vtkDataArray* globalIds = parallel ? vtkFacetCompositor::GlobalIdsOf(input, messages) : nullptr;
+  const bool rendered = internals.Image.Render(
     scene,
     facetCamera,
     settings,
     output,
     [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
-      internals.Actor.CellIdsOf(
-        polygonIds, internals.Image.GetCellIds()->GetPointer(0), begin, end);
+      vtkIdType* cellIds = internals.Image.GetCellIds()->GetPointer(0);
+      internals.Actor.CellIdsOf(polygonIds, cellIds, begin, end);
+      if (parallel)
+      {
+        internals.Compositor.LabelPixels(
+          globalIds, cellIds, internals.Image.GetRankIds()->GetPointer(0), begin, end);
+      }
     },
     internals.Actor.GetNumberOfConversions(),
     messages);
+  if (parallel)
+  {
+    internals.Compositor.Composite(internals.Image, output, rendered, messages);
+  }
   return messages.Report(this, output);
 }
 
@@ -417,4 +481,9 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "VisibilityMode: " << (this->VisibilityMode == PainterSort ? "PainterSort" : "ZBuffer")
      << "\n";
   os << indent << "DetectClosedSurfaces: " << this->DetectClosedSurfaces << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "CompositeRank: " << this->CompositeRank << "\n";
+  os << indent << "CompositeToAllRanks: " << this->CompositeToAllRanks << "\n";
+  const char* strategies[] = { "Automatic", "BinarySwap", "Tree", "RadixK" };
+  os << indent << "CompositeStrategy: " << strategies[this->CompositeStrategy] << "\n";
 }

@@ -28,6 +28,25 @@
  * Problems found during an execution are reported at its end, errors in one vtkErrorMacro,
  * warnings in one vtkWarningMacro.
  *
+ * Distributed data (MPI): with a controller of more than one process (the global
+ * controller by default, as VTK's parallel filters; pvbatch --mpi and pvserver set it),
+ * every process renders the piece of the input it holds (the filter asks its input for
+ * piece = rank of pieces = processes) with the same camera and lights, the automatic camera
+ * being fitted to the union of all pieces' bounds, and the images are composited by depth
+ * with IceT onto one process, CompositeRank. Its output is the whole image, exactly the
+ * image one process would render of the whole input for opaque surfaces; the other
+ * processes' outputs hold no pixels (an image of empty extent, with their field data),
+ * unless CompositeToAllRanks. The output then has a fourth array, `RankId` (int, the rank
+ * whose piece shows at the pixel, -1 for background), and CellId is the cell's id in that
+ * rank's piece, or its global id when the input has global cell ids
+ * (vtkCellData::GetGlobalIds). Equal depths from two pieces go to the lower rank. Field
+ * data adds `FacetCompositeSeconds` (Total, Pack, IceT, Unpack), `FacetCompositeBytes`
+ * (SentByThisRank, SentByAllRanks) and `FacetCompositeStrategy`; the render plan says the
+ * same. Every process must execute the filter with the same settings; one whose input is
+ * bad reports its error and adds nothing to the image (the target warns of the missing
+ * piece), and the others do not wait for it. A build without IceT (or without VTK's
+ * ParallelMPI) renders every process's own piece and says so once.
+ *
  * The pieces that make the scene are the ones vtkFacetRendererToImageFilter uses for each
  * actor of a vtkRenderer: the input is converted as an actor's mapper input is, colored as
  * its mapper colors it (the coloring settings here are a vtkMapper's), with the property's
@@ -62,6 +81,7 @@
 class vtkCamera;
 class vtkLight;
 class vtkLightCollection;
+class vtkMultiProcessController;
 class vtkPolyData;
 class vtkProperty;
 class vtkScalarsToColors;
@@ -333,6 +353,60 @@ public:
   vtkBooleanMacro(DetectClosedSurfaces, vtkTypeBool);
   ///@}
 
+  ///@{
+  /**
+   * The processes that render the pieces of distributed data and composite them (default:
+   * the global controller when the filter is made, vtkMultiProcessController's
+   * GetGlobalController). None, or one process: the filter renders its input alone.
+   */
+  void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
+  /**
+   * The rank that receives the composited image (default: 0).
+   */
+  vtkSetMacro(CompositeRank, int);
+  vtkGetMacro(CompositeRank, int);
+  ///@}
+
+  ///@{
+  /**
+   * Every rank receives the composited image, not only CompositeRank (default: off).
+   */
+  vtkSetMacro(CompositeToAllRanks, vtkTypeBool);
+  vtkGetMacro(CompositeToAllRanks, vtkTypeBool);
+  vtkBooleanMacro(CompositeToAllRanks, vtkTypeBool);
+  ///@}
+
+  enum CompositeStrategies
+  {
+    CompositeAutomatic = 0,
+    CompositeBinarySwap = 1,
+    CompositeTree = 2,
+    CompositeRadixK = 3
+  };
+
+  ///@{
+  /**
+   * IceT's strategy for compositing the image (default: CompositeAutomatic, IceT's choice,
+   * radix-k for most rank counts). The image is the same with every strategy.
+   */
+  vtkSetClampMacro(CompositeStrategy, int, CompositeAutomatic, CompositeRadixK);
+  vtkGetMacro(CompositeStrategy, int);
+  void SetCompositeStrategyToAutomatic() { this->SetCompositeStrategy(CompositeAutomatic); }
+  void SetCompositeStrategyToBinarySwap() { this->SetCompositeStrategy(CompositeBinarySwap); }
+  void SetCompositeStrategyToTree() { this->SetCompositeStrategy(CompositeTree); }
+  void SetCompositeStrategyToRadixK() { this->SetCompositeStrategy(CompositeRadixK); }
+  ///@}
+
+  /**
+   * Whether this build composites the pieces of MPI processes (it found IceT and VTK's
+   * ParallelMPI).
+   */
+  static bool CanComposite();
+
   /**
    * What the last render did and left out, a few lines of text (empty before the first).
    */
@@ -349,6 +423,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestUpdateExtent(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
@@ -368,6 +445,10 @@ protected:
   int NumberOfThreads = 0;
   int VisibilityMode = ZBuffer;
   vtkTypeBool DetectClosedSurfaces = 1;
+  vtkMultiProcessController* Controller = nullptr;
+  int CompositeRank = 0;
+  vtkTypeBool CompositeToAllRanks = 0;
+  int CompositeStrategy = CompositeAutomatic;
 
 private:
   vtkFacetRenderFilter(const vtkFacetRenderFilter&) = delete;

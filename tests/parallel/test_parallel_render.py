@@ -1,0 +1,566 @@
+"""vtkFacetRenderFilter on MPI ranks (vtkMPIController from mpi4py), composited with IceT.
+
+Run on N ranks:  mpirun -np N /usr/bin/python3 test_parallel_render.py
+Every rank runs every case in the same order (the filter's calls are collective). Rank 0
+compares the composited image with the image one process renders of the whole input
+(SetController(None)): the same RGBA bytes and Depth, and CellId/RankId naming the cell the
+serial render shows. A failed check on any rank prints why and aborts every rank (a hang
+would be the other failure; ctest's timeout catches it).
+"""
+import os
+import sys
+import time
+import traceback
+
+from mpi4py import MPI  # initializes MPI before VTK's controller takes it over
+
+import numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkCommonTransforms import vtkTransform
+from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkTriangleFilter
+from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
+from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+from vtkmodules.vtkFiltersParallelGeometry import vtkPDistributedDataFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
+from vtkmodules.vtkIOGeometry import vtkOBJReader
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.vtkParallelMPI import vtkMPIController
+from vtkmodules.vtkRenderingCore import vtkCamera
+
+from facet import vtkFacetRenderFilter
+
+CONTROLLER = vtkMPIController()
+CONTROLLER.Initialize()  # MPI is already initialized (mpi4py): this only wraps it
+vtkMultiProcessController.SetGlobalController(CONTROLLER)
+RANK = CONTROLLER.GetLocalProcessId()
+RANKS = CONTROLLER.GetNumberOfProcesses()
+MESHES = os.path.join(os.environ["FACET_SHARED_DATA_DIR"], "meshes")
+WIDTH, HEIGHT = 320, 240
+
+
+def fail(message):
+    raise AssertionError("rank %d of %d: %s" % (RANK, RANKS, message))
+
+
+def check(condition, message):
+    if not condition:
+        fail(message)
+
+
+# --- Meshes -------------------------------------------------------------------------------
+def polydata(points, triangles, cell_ids=None):
+    """A vtkPolyData of triangles (numpy arrays) colored by height (point scalars), with
+    global cell ids if given."""
+    data = vtkPolyData()
+    vtk_points = vtkPoints()
+    points = numpy.ascontiguousarray(points, dtype=numpy.float32)
+    vtk_points.SetData(numpy_to_vtk(points, deep=1))
+    data.SetPoints(vtk_points)
+    height = numpy_to_vtk(numpy.ascontiguousarray(points[:, 1]), deep=1)
+    height.SetName("Height")
+    data.GetPointData().SetScalars(height)
+    cells = vtkCellArray()
+    offsets = numpy.arange(0, 3 * len(triangles) + 1, 3, dtype=numpy.int64)
+    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=1),
+                  numpy_to_vtkIdTypeArray(numpy.ascontiguousarray(triangles, dtype=numpy.int64).ravel(), deep=1))
+    data.SetPolys(cells)
+    if cell_ids is not None:
+        ids = numpy_to_vtkIdTypeArray(numpy.ascontiguousarray(cell_ids, dtype=numpy.int64), deep=1)
+        ids.SetName("OriginalCellId")
+        data.GetCellData().SetGlobalIds(ids)
+    return data
+
+
+def arrays_of(data):
+    points = vtk_to_numpy(data.GetPoints().GetData()).astype(numpy.float32)
+    connectivity = vtk_to_numpy(data.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    return points, connectivity
+
+
+def moved(source_port, center, translate, scale, rotate_y):
+    """The source moved from `center` to `translate`, turned and scaled about it."""
+    transform = vtkTransform()
+    transform.Translate(*translate)
+    transform.RotateY(rotate_y)
+    transform.Scale(scale, scale, scale)
+    transform.Translate(*(-c for c in center))
+    mover = vtkTransformPolyDataFilter()
+    mover.SetTransform(transform)
+    mover.SetInputConnection(source_port)
+    return mover
+
+
+def scene_mesh():
+    """Triangles that hide each other: a closed cow, an open monkey head cutting into it,
+    a plane through both and a sphere behind (9k triangles)."""
+    append = vtkAppendPolyData()
+    cow = vtkOBJReader()
+    cow.SetFileName(os.path.join(MESHES, "spot.obj"))
+    append.AddInputConnection(cow.GetOutputPort())
+    monkey = vtkOBJReader()
+    monkey.SetFileName(os.path.join(MESHES, "suzanne.obj"))
+    monkey_moved = moved(monkey.GetOutputPort(), (-2.49, 1.25, 4.10), (0.25, 0.55, 0.55),
+                         0.3, 30.0)
+    append.AddInputConnection(monkey_moved.GetOutputPort())
+    plane = vtkPlaneSource()
+    plane.SetOrigin(-1.2, -0.9, -0.2)
+    plane.SetPoint1(1.2, -0.5, 0.1)
+    plane.SetPoint2(-1.0, 0.9, -0.4)
+    plane.SetResolution(23, 17)
+    append.AddInputConnection(plane.GetOutputPort())
+    sphere = vtkSphereSource()
+    sphere.SetCenter(-0.5, 0.3, -0.6)
+    sphere.SetRadius(0.35)
+    sphere.SetThetaResolution(40)
+    sphere.SetPhiResolution(20)
+    append.AddInputConnection(sphere.GetOutputPort())
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(append.GetOutputPort())
+    triangles.Update()
+    return arrays_of(triangles.GetOutput())
+
+
+def piece_of(points, triangles, first, last, with_global_ids):
+    """Cells [first, last) with only the points they use, as one rank's piece."""
+    cells = triangles[first:last]
+    used, local = numpy.unique(cells.ravel(), return_inverse=True)
+    ids = numpy.arange(first, last) if with_global_ids else None
+    return polydata(points[used], local.reshape(-1, 3), ids)
+
+
+def cell_range(count, rank, ranks):
+    return count * rank // ranks, count * (rank + 1) // ranks
+
+
+# --- Rendering ----------------------------------------------------------------------------
+class Render:
+    """One execution of the filter: its output planes (numpy, [y, x]) and its messages."""
+
+    def __init__(self, data, controller=CONTROLLER, camera=None, closed=True, **settings):
+        self.filter = vtkFacetRenderFilter()
+        self.filter.SetController(controller)
+        self.filter.SetInputData(data)
+        self.filter.SetSize(WIDTH, HEIGHT)
+        self.filter.SetBackground(0.1, 0.2, 0.3)
+        self.filter.SetDetectClosedSurfaces(closed)
+        self.filter.SetScalarRange(-0.9, 1.3)
+        if camera is None:  # a view from the side, fitted to the data
+            camera = vtkCamera()
+            camera.SetPosition(2.5, 1.2, 2.0)
+            self.filter.FitCameraToInputOn()
+        self.filter.SetCamera(camera)
+        for name, value in settings.items():
+            getattr(self.filter, "Set" + name)(value)
+        # Observers collect the filter's messages (and keep them off stderr).
+        self.errors, self.warnings = [], []
+
+        @calldata_type(VTK_STRING)
+        def error(caller, event, message):
+            self.errors.append(message)
+
+        @calldata_type(VTK_STRING)
+        def warning(caller, event, message):
+            self.warnings.append(message)
+
+        self.filter.AddObserver(vtkCommand.ErrorEvent, error)
+        self.filter.AddObserver(vtkCommand.WarningEvent, warning)
+        self.filter.Update()
+        self.image = self.filter.GetOutput()
+        point_data = self.image.GetPointData()
+        self.planes = {}
+        if self.image.GetNumberOfPoints() > 0:
+            for name in ("RGBA", "Depth", "CellId", "RankId"):
+                array = point_data.GetArray(name)
+                if array is not None:
+                    plane = vtk_to_numpy(array).copy()
+                    self.planes[name] = plane.reshape((HEIGHT, WIDTH) + plane.shape[1:])
+
+    def field(self, name):
+        return self.image.GetFieldData().GetAbstractArray(name)
+
+    def named(self, array_name, component):
+        array = self.image.GetFieldData().GetArray(array_name)
+        names = [array.GetComponentName(c) for c in range(array.GetNumberOfComponents())]
+        return array.GetComponent(0, names.index(component))
+
+
+def serial(data, camera=None, closed=True, **settings):
+    return Render(data, controller=None, camera=camera, closed=closed, **settings)
+
+
+def describe_difference(name, got, expected):
+    differ = numpy.argwhere(numpy.any((got != expected).reshape(HEIGHT, WIDTH, -1), axis=2))
+    y, x = differ[0]
+    return "%s differs at %d pixels, first (x %d, y %d): %s instead of %s" % (
+        name, len(differ), x, y, got[y, x], expected[y, x])
+
+
+def check_plane(name, composited, reference):
+    """A plane of the composited image equal to the one-process render's."""
+    got, expected = composited.planes[name], reference.planes[name]
+    if not numpy.array_equal(got, expected):
+        fail(describe_difference(name, got, expected))
+
+
+def check_same_image(composited, reference, depth_reference=None):
+    """RGBA bytes and Depth equal to the one-process render. A closed surface split into
+    pieces is closed on no rank, so the ranks draw its back faces where one process culls
+    them; the colors agree, but culling changes the core's depth of a few front pixels in
+    the last bits (see the README): Depth is then compared with `depth_reference`, the
+    one-process render without closed-surface detection."""
+    check_plane("RGBA", composited, reference)
+    check_plane("Depth", composited, depth_reference or reference)
+
+
+def check_receives_nothing(render):
+    check(render.image.GetNumberOfPoints() == 0,
+          "a rank that does not receive the image has %d pixels" % render.image.GetNumberOfPoints())
+    check(render.field("FacetRenderSeconds") is not None, "its field data is missing")
+
+
+# --- Cases --------------------------------------------------------------------------------
+CASES = []
+
+
+def case(function):
+    CASES.append(function)
+    return function
+
+
+MESH = scene_mesh()
+
+
+@case
+def cell_ranges_compose_to_the_serial_image():
+    """Consecutive cell ranges, no global ids: the image is the serial one, and
+    first cell of RankId's range + CellId is the serial CellId."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=False))
+    if RANK != 0:
+        check_receives_nothing(render)
+        return
+    whole = polydata(points, triangles)
+    reference = serial(whole)
+    check_same_image(render, reference)
+    rank_id, cell_id = render.planes["RankId"], render.planes["CellId"]
+    expected = reference.planes["CellId"]
+    check(numpy.array_equal(rank_id < 0, expected < 0), "RankId -1 where the serial CellId is not")
+    starts = numpy.array([cell_range(len(triangles), r, RANKS)[0] for r in range(RANKS)])
+    covered = rank_id >= 0
+    global_id = starts[rank_id[covered]] + cell_id[covered]
+    check(numpy.array_equal(global_id, expected[covered]),
+          "range start + CellId differs from the serial CellId at %d pixels"
+          % numpy.count_nonzero(global_id != expected[covered]))
+    check(len(numpy.unique(rank_id[covered])) == RANKS, "every rank's piece shows")
+    check(covered.sum() > 8000, "the scene covers %d pixels" % covered.sum())
+
+
+@case
+def a_closed_surface_split():
+    """A closed sphere in cell ranges: one process culls its back faces, the ranks cannot
+    (no piece is closed), and the front faces hide them: the same colors."""
+    source = vtkSphereSource()
+    source.SetThetaResolution(60)
+    source.SetPhiResolution(30)
+    source.Update()
+    points, triangles = arrays_of(source.GetOutput())
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True))
+    if RANK == 0:
+        whole = polydata(points, triangles)
+        reference = serial(whole)
+        check("closed surfaces skipped" in reference.filter.GetRenderPlan(),
+              "the sphere is not culled as closed: " + reference.filter.GetRenderPlan())
+        check_same_image(render, reference, serial(whole, closed=False))
+        check_plane("CellId", render, reference)
+
+
+@case
+def global_ids_become_cell_ids():
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
+                    CompositeToAllRanks=True)
+    reference = serial(polydata(points, triangles))
+    # Every rank receives the image: each compares.
+    check_plane("RGBA", render, reference)
+    check_plane("CellId", render, reference)
+
+
+@case
+def unusable_global_ids_are_ignored():
+    """Global ids that are not one integer a cell: a warning, and CellId stays the piece's."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    piece = piece_of(points, triangles, first, last, with_global_ids=False)
+    ids = numpy_to_vtk(numpy.arange(first, last, dtype=numpy.float64) + 0.5, deep=1)
+    ids.SetName("FloatIds")
+    piece.GetCellData().SetGlobalIds(ids)
+    render = Render(piece)
+    check(any("not one integer a cell" in w for w in render.warnings),
+          "no warning of the float global ids: %s" % render.warnings)
+    if RANK == 0:
+        mine = render.planes["RankId"] == 0
+        expected = serial(polydata(points, triangles)).planes["CellId"][mine]
+        check(numpy.array_equal(render.planes["CellId"][mine], expected),
+              "rank 0's CellId is not its piece's cell id")
+
+
+@case
+def distributed_data_filter_pieces():
+    """The mesh handed to vtkPDistributedDataFilter (D3) from rank 0: spatial pieces whose
+    cells are in another order, with the original ids as global cell ids."""
+    points, triangles = MESH
+    data = (polydata(points, triangles, numpy.arange(len(triangles))) if RANK == 0
+            else polydata(numpy.zeros((0, 3)), numpy.zeros((0, 3), dtype=numpy.int64),
+                          numpy.zeros(0)))
+    distribute = vtkPDistributedDataFilter()
+    distribute.SetController(CONTROLLER)
+    distribute.SetInputData(data)
+    surface = vtkGeometryFilter()
+    surface.SetInputConnection(distribute.GetOutputPort())
+    surface.Update()
+    piece = vtkPolyData()
+    piece.ShallowCopy(surface.GetOutput())
+    ids = piece.GetCellData().GetArray("OriginalCellId")
+    check(ids is not None, "D3 dropped the OriginalCellId array")
+    piece.GetCellData().SetGlobalIds(ids)
+    check(0 < piece.GetNumberOfCells() < len(triangles),
+          "D3 gave this rank %d of %d cells" % (piece.GetNumberOfCells(), len(triangles)))
+    render = Render(piece)
+    if RANK != 0:
+        check_receives_nothing(render)
+        return
+    whole = polydata(points, triangles)
+    reference = serial(whole)
+    check_same_image(render, reference)
+    check_plane("CellId", render, reference)
+
+
+@case
+def an_empty_piece():
+    """The middle rank (rank 1 of 2) holds nothing; the image is the others'."""
+    points, triangles = MESH
+    empty_rank = RANKS // 2
+    owners = [r for r in range(RANKS) if r != empty_rank]
+    if RANK == empty_rank:
+        piece = vtkPolyData()
+    else:
+        first, last = cell_range(len(triangles), owners.index(RANK), len(owners))
+        piece = piece_of(points, triangles, first, last, with_global_ids=True)
+    render = Render(piece)
+    check(not render.errors and not render.warnings,
+          "an empty piece is not a problem: %s" % (render.errors + render.warnings))
+    if RANK == 0:
+        whole = polydata(points, triangles)
+        check_same_image(render, serial(whole))
+        check(empty_rank not in render.planes["RankId"], "the empty rank shows")
+
+
+@case
+def disjoint_bounds():
+    """Each rank holds a sphere far from the others': the automatic camera frames all."""
+    def sphere(rank):
+        source = vtkSphereSource()
+        source.SetCenter(4.0 * rank, 1.5 * (rank % 2), -2.0 * rank)
+        source.SetThetaResolution(24)
+        source.SetPhiResolution(12)
+        source.Update()
+        return arrays_of(source.GetOutput())
+
+    points, triangles = sphere(RANK)
+    render = Render(polydata(points, triangles))
+    if RANK != 0:
+        return
+    spheres = [sphere(r) for r in range(RANKS)]
+    offsets = numpy.cumsum([0] + [len(p) for p, _ in spheres])
+    whole = polydata(numpy.concatenate([p for p, _ in spheres]),
+                     numpy.concatenate([t + o for (_, t), o in zip(spheres, offsets)]))
+    check_same_image(render, serial(whole))  # every piece is a closed sphere here
+    shown = set(numpy.unique(render.planes["RankId"])) - {-1}
+    check(shown == set(range(RANKS)), "the ranks shown are %s" % sorted(shown))
+
+
+@case
+def an_invalid_piece():
+    """Rank 1's cells use a point it does not have: rank 1 reports the error, the others
+    finish, and rank 0's image is the others' pieces, with a warning naming rank 1."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    piece = piece_of(points, triangles, first, last, with_global_ids=True)
+    if RANK == 1:
+        broken = vtk_to_numpy(piece.GetPolys().GetConnectivityArray())
+        broken[5] = piece.GetNumberOfPoints() + 100
+    render = Render(piece)
+    if RANK == 1:
+        check(any("outside" in e for e in render.errors),
+              "the invalid piece's rank reports no error: %s" % render.errors)
+        check(render.image.GetNumberOfPoints() == 0, "an output after an error")
+        return
+    check(not render.errors, "rank %d reports errors: %s" % (RANK, render.errors))
+    if RANK != 0:
+        return
+    check(any("lacks the piece of rank 1" in w for w in render.warnings),
+          "no warning of the missing piece: %s" % render.warnings)
+    valid = [cell_range(len(triangles), r, RANKS) for r in range(RANKS) if r != 1]
+    kept = numpy.concatenate([numpy.arange(a, b) for a, b in valid])
+    reference = serial(polydata(points, triangles[kept]),
+                       camera=render.filter.GetActiveCamera())
+    check_same_image(render, reference)
+
+
+@case
+def an_invalid_piece_on_the_composite_rank():
+    """Rank 0, which composites, cannot render: every rank finishes, and the ranks that
+    were to receive the image (all of them here) say why they have none."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    piece = piece_of(points, triangles, first, last, with_global_ids=True)
+    if RANK == 0:
+        vtk_to_numpy(piece.GetPolys().GetConnectivityArray())[0] = -7
+    render = Render(piece, CompositeToAllRanks=True)
+    check(render.image.GetNumberOfPoints() == 0,
+          "an image of %d pixels without rank 0's" % render.image.GetNumberOfPoints())
+    expected = "outside" if RANK == 0 else "rank 0, which composites the image, could not"
+    check(any(expected in e for e in render.errors),
+          "no error with '%s': %s" % (expected, render.errors))
+
+
+@case
+def ties_go_to_the_lowest_rank():
+    """Every rank renders the same mesh: every depth ties, and rank 0 wins them all, with
+    every IceT strategy."""
+    points, triangles = MESH
+    for strategy in ("Automatic", "BinarySwap", "Tree", "RadixK"):
+        render = Render(polydata(points, triangles), CompositeStrategy=getattr(
+            vtkFacetRenderFilter, "Composite" + strategy))
+        if RANK != 0:
+            continue
+        rank_id = render.planes["RankId"]
+        shown = set(numpy.unique(rank_id)) - {-1}
+        check(shown == {0}, "%s: ties went to ranks %s" % (strategy, sorted(shown)))
+        reference = serial(polydata(points, triangles))
+        check_same_image(render, reference)
+        check(strategy.replace("BinarySwap", "Binary Swap").replace("RadixK", "Radix-k")
+              .replace("Tree", "Binary Tree") in render.field("FacetCompositeStrategy").GetValue(0),
+              "%s: %s" % (strategy, render.field("FacetCompositeStrategy").GetValue(0)))
+
+
+@case
+def another_composite_rank_and_the_report():
+    points, triangles = MESH
+    target = RANKS - 1
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
+                    CompositeRank=target)
+    sent = render.named("FacetCompositeBytes", "SentByThisRank")
+    total = render.named("FacetCompositeBytes", "SentByAllRanks")
+    sums = MPI.COMM_WORLD.allreduce(sent)
+    check(total == sums > 0, "bytes sent by all ranks: %s, the sum of each rank's: %s"
+          % (total, sums))
+    seconds = render.named("FacetCompositeSeconds", "Total")
+    check(0 < render.named("FacetCompositeSeconds", "IceT") <= seconds,
+          "IceT's time is not within the composite's")
+    check("composite: IceT" in render.filter.GetRenderPlan(), render.filter.GetRenderPlan())
+    if RANK != target:
+        check_receives_nothing(render)
+        return
+    reference = serial(polydata(points, triangles))
+    check_plane("RGBA", render, reference)
+
+
+@case
+def disagreeing_settings_are_an_error_everywhere():
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
+                    Size=(WIDTH + (RANK == 1), HEIGHT))
+    check(any("disagree" in e for e in render.errors),
+          "no error about the sizes: %s" % render.errors)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
+                    CompositeRank=RANKS)
+    check(any("CompositeRank is %d" % RANKS in e for e in render.errors),
+          "no error about CompositeRank: %s" % render.errors)
+
+
+# --- One process, and a build without IceT: nothing changes -------------------------------
+ONE_PROCESS = []
+WITHOUT_ICET = []
+
+
+def arrays_in(attributes):
+    return sorted(attributes.GetArrayName(i) for i in range(attributes.GetNumberOfArrays()))
+
+
+@ONE_PROCESS.append
+def one_process_renders_as_without_a_controller():
+    """An MPI controller of one process is no controller: the same planes, arrays and
+    field data as SetController(None) (global ids do not replace CellId), and no message."""
+    points, triangles = MESH
+    data = polydata(points, triangles, numpy.arange(len(triangles)) + 1000)
+    render, reference = Render(data), serial(data)
+    check(not render.errors and not render.warnings, render.errors + render.warnings)
+    for name in ("RGBA", "Depth", "CellId"):
+        check_plane(name, render, reference)
+    for attributes in ("GetPointData", "GetFieldData"):
+        got, expected = (arrays_in(getattr(r.image, attributes)()) for r in (render, reference))
+        check(got == expected, "%s: %s instead of %s" % (attributes, got, expected))
+    check("composite" not in render.filter.GetRenderPlan(), render.filter.GetRenderPlan())
+
+
+@WITHOUT_ICET.append
+def without_icet_every_rank_keeps_its_piece():
+    """A build without IceT: every rank renders its own piece with the camera of all
+    pieces, says once that it cannot composite, and fails nothing."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    piece = piece_of(points, triangles, first, last, with_global_ids=False)
+    render = Render(piece)
+    check(not render.errors, render.errors)
+    check(len(render.warnings) == 1 and "cannot composite" in render.warnings[0],
+          "warnings: %s" % render.warnings)
+    camera = render.filter.GetActiveCamera()
+    views = MPI.COMM_WORLD.allgather(camera.GetPosition() + camera.GetFocalPoint())
+    check(all(view == views[0] for view in views), "the ranks' cameras differ: %s" % views)
+    reference = serial(piece, camera=camera)
+    for name in ("RGBA", "Depth", "CellId"):
+        check_plane(name, render, reference)
+    rank_id = render.planes["RankId"]
+    check(numpy.array_equal(rank_id, numpy.where(reference.planes["CellId"] < 0, -1, RANK)),
+          "RankId is not this rank's where its piece shows")
+    render.filter.Modified()
+    render.filter.Update()
+    check(not render.warnings[1:], "warned again: %s" % render.warnings)
+
+
+def main():
+    if RANKS == 1:
+        cases = ONE_PROCESS
+    elif vtkFacetRenderFilter.CanComposite() or os.environ.get("FACET_EXPECT_ICET") != "0":
+        check(vtkFacetRenderFilter.CanComposite(), "this build cannot composite (no IceT)")
+        cases = CASES
+    else:
+        cases = WITHOUT_ICET
+    names = [case.__name__ for case in cases]
+    chosen = sys.argv[1:] or names
+    for name in chosen:
+        started = time.monotonic()
+        cases[names.index(name)]()
+        CONTROLLER.Barrier()
+        if RANK == 0:
+            print("%d ranks: %s passed (%.2f s)" % (RANKS, name, time.monotonic() - started),
+                  flush=True)
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except BaseException:  # noqa: B902 (a failure on one rank must stop every rank)
+        sys.stdout.flush()
+        traceback.print_exc()
+        sys.stderr.flush()
+        MPI.COMM_WORLD.Abort(1)
