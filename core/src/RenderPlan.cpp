@@ -38,6 +38,8 @@ std::string RenderPlan::describe() const {
       << onOff(backfaceCulling) << ", back faces of closed surfaces "
       << (closedSurfaces ? "skipped unless the near plane cuts them" : "drawn (none marked closed)")
       << "\n";
+  out << "  routines: raster " << rasterRoutine << "; set-up " << setupRoutine << "; shade "
+      << shadeRoutine << "\n";
   return out.str();
 }
 

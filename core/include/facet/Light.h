@@ -54,6 +54,9 @@ inline constexpr double kMaxAttenuation = 1e6;
 /// a denominator below 1/kMaxAttenuation gives kMaxAttenuation; d so large that d² overflows
 /// gives 0; a NaN or negative d gives 0. Never NaN or infinite.
 double attenuationFactor(const Attenuation& attenuation, double distance);
+/// The same, for one kind of attenuation.
+double attenuationFactor(const QuadraticAttenuation& attenuation, double distance);
+double attenuationFactor(const FalloffDistanceAttenuation& attenuation, double distance);
 
 // ---------------------------------------------------------------------------------------------
 // Spot cones
@@ -84,6 +87,9 @@ using SpotCone = std::variant<LinearSpotCone, ExponentSpotCone>;
 /// (a dot product of unit vectors can round slightly past 1; acos is never called on an
 /// unclamped value). A NaN cosine gives 0.
 double spotFactor(const SpotCone& cone, double cosAngleFromAxis);
+/// The same, for one kind of cone.
+double spotFactor(const LinearSpotCone& cone, double cosAngleFromAxis);
+double spotFactor(const ExponentSpotCone& cone, double cosAngleFromAxis);
 
 // ---------------------------------------------------------------------------------------------
 // Lights

@@ -33,6 +33,12 @@ struct RenderPlan {
   /// the near plane does not cut it (RenderStats::closedMeshesSkippingBackFaces).
   bool closedSurfaces = false;
   bool parallelProjection = false;
+  /// The routines chosen for this render (llvmpipe's habit: pick the routine once, not test
+  /// per triangle or pixel): painting a tile, setting up a mesh's polygons and shading them.
+  /// "per mesh" when meshes differ; the set-up's is known once the render has transformed.
+  const char* rasterRoutine = "";
+  const char* setupRoutine = "";
+  const char* shadeRoutine = "";
   int threads = 1;
   int tileSize = 0;  ///< square tiles of this many pixels, each painted by one thread
   int tilesX = 0, tilesY = 0;

@@ -1,4 +1,4 @@
-#include "Rasterizer.h"
+#include "RasterTriangle.h"
 
 #include <algorithm>
 #include <atomic>

@@ -15,15 +15,10 @@
 #include <cstdint>
 
 #include "FrameTransform.h"
+#include "TileGrid.h"
 #include "facet/Color.h"
 
 namespace facet::detail {
-
-// Inclusive pixel bounds.
-struct PixelBounds {
-  int x0, y0, x1, y1;
-  bool empty() const { return x0 > x1 || y0 > y1; }
-};
 
 // Twice the signed area in fixed-point units²: > 0 counter-clockwise (front-facing).
 inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& b,
