@@ -28,6 +28,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
   if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
     return BinOutcome::CoversNoSample;
   }
+  chunk.counts.boxSamples += bounds.area();
   const auto index = static_cast<std::uint32_t>(chunk.triangles.size());
   grid.forEachTile(bounds, [&](std::size_t t) { chunk.bins[t].push_back(index); });
   chunk.triangles.push_back({{r0, r1, r2}, polygon});

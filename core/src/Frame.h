@@ -51,6 +51,10 @@ struct FrameMesh {
   // plane (see MeshView::closedSurface), or culled by the material. Decided by the
   // transform phase.
   bool skipBackFaces = false;
+  // Rule::GeometryOutsideView (ViewCulling.h): per block of polygons, whether it may be
+  // seen, and per transform task, whether a visible block uses its points. Null: all.
+  const std::uint8_t* visibleBlocks = nullptr;
+  const std::uint8_t* neededTasks = nullptr;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }
@@ -81,6 +85,7 @@ struct BinnedTriangle {
 struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
+  std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
 };
 
 // A run of consecutive draw positions that one task sets up and bins. Its bins list, per

@@ -8,25 +8,15 @@
 #include <glm/trigonometric.hpp>
 
 #include "Overloaded.h"
+#include "Radiance.h"
 #include "Validate.h"
 #include "Vector.h"
 
 namespace facet {
 namespace {
 
-// Caps a non-negative factor so that products of a handful of them stay finite in double
-// (see "Edge cases" in Lighting.h). NaN and negative values map to 0.
-double capped(double x) {
-  return x > 0.0 ? std::min(x, kMaxRadiance) : 0.0;
-}
-glm::dvec3 capped(const Color& c) {
-  return {capped(c.r), capped(c.g), capped(c.b)};
-}
-
-glm::dvec3 radianceOf(const Color& color, double intensity) {
-  const double i = std::max(intensity, 0.0);
-  return {capped(color.r * i), capped(color.g * i), capped(color.b * i)};
-}
+using detail::capped;
+using detail::radianceOf;
 
 double specularFactor(const PreparedMaterial& m, const glm::dvec3& normal,
                       const glm::dvec3& toLight, const glm::dvec3& toViewer, double cosine) {

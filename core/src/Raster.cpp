@@ -17,19 +17,27 @@ void clearTile(const RasterContext& context, const PixelBounds& tile) {
   }
 }
 
-template <DepthMode kMode>
+// kCoarse: with the tile's coarse depth (Rule::HiddenGeometry, depth test only).
+template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
   clearTile(context, tile);
   const Planes planes{context.color, context.depth, context.polygonId, context.width,
                       context.shown.data()};
   PaintCounts counts;
+  CoarseDepth coarse(tile);
   for (const Chunk& chunk : context.chunks) {
     for (const std::uint32_t index : chunk.bins[t]) {
       const BinnedTriangle& tri = chunk.triangles[index];
-      paintTriangle<kMode>(vertexOf(context.vertices, chunk, tri.vertex[0]),
-                           vertexOf(context.vertices, chunk, tri.vertex[1]),
-                           vertexOf(context.vertices, chunk, tri.vertex[2]),
-                           chunk.boundaryEdges[index], tri.polygon, tile, planes, counts);
+      const WindowVertex& a = vertexOf(context.vertices, chunk, tri.vertex[0]);
+      const WindowVertex& b = vertexOf(context.vertices, chunk, tri.vertex[1]);
+      const WindowVertex& c = vertexOf(context.vertices, chunk, tri.vertex[2]);
+      const EdgeMask boundary = chunk.boundaryEdges[index];
+      if constexpr (kCoarse) {
+        paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts,
+                                       coarse);
+      } else {
+        paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
+      }
     }
   }
   return counts;
@@ -37,9 +45,10 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
 
 }  // namespace
 
-TileRoutineChoice chooseTileRoutine(bool depthTest) {
-  if (depthTest) return {paintTile<DepthMode::Test>, "depth test"};
-  return {paintTile<DepthMode::Overwrite>, "painter's overwrite"};
+TileRoutineChoice chooseTileRoutine(bool depthTest, bool coarseDepth) {
+  if (!depthTest) return {paintTile<DepthMode::Overwrite, false>, "painter's overwrite"};
+  if (coarseDepth) return {paintTile<DepthMode::Test, true>, "depth test, hierarchical z"};
+  return {paintTile<DepthMode::Test, false>, "depth test"};
 }
 
 bool paintTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,

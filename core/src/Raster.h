@@ -31,7 +31,8 @@ struct TileRoutineChoice {
   TileRoutine paint;
   const char* name;
 };
-TileRoutineChoice chooseTileRoutine(bool depthTest);
+// The painter's overwrite, the depth test, or the depth test behind the tiles' coarse depth.
+TileRoutineChoice chooseTileRoutine(bool depthTest, bool coarseDepth);
 
 bool paintTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,
                 TileRoutine routine, std::vector<PaintCounts>& counts);

@@ -1,29 +1,33 @@
 // The render, phase by phase. Each phase lives in a file of its own and takes its inputs as
 // arguments; this file only wires them together:
 //
-//   0. plan      Plan.cpp       what runs, and which routines run it
-//      validate  MeshCache.cpp  every mesh's offsets and point ids
-//   1. transform Transform.cpp  points to window coordinates; back-face decision; painter's sort
+//   0. plan      History.cpp    which path: full, re-shade or resolve (incremental rendering)
+//                MeshCache.cpp  validation, and per mesh version its bounding boxes
+//                LightCulling   lights that reach nothing          } the rules
+//                Plan.cpp       what runs, and which routines run it
+//   1. transform ViewCulling    blocks outside the view            }
+//                Transform.cpp  points to window coordinates; back faces; painter's sort
 //   2. set-up    Setup.cpp      polygons to triangles (facing, triangulation, clipping),
 //      binning   Binning.cpp    triangles to the bins of the tiles they touch
-//   3. raster    Raster.cpp     per tile: depth keys and polygon ids
+//   3. raster    Raster.cpp     per tile: depth keys and polygon ids (coarse depth, a rule)
 //   4. shade     Shade.cpp      the color of every polygon that won a pixel
 //   5. resolve   Resolve.cpp    pixel colors and window depths
 
 #include "facet/Renderer.h"
 
 #include <algorithm>
-#include <limits>
 #include <optional>
-#include <string>
 #include <string_view>
 #include <thread>
 
 #include "Frame.h"
+#include "History.h"
+#include "LightCulling.h"
 #include "MeshCache.h"
 #include "PhaseRunner.h"
 #include "Plan.h"
 #include "Raster.h"
+#include "RendererInputs.h"
 #include "Resolve.h"
 #include "Setup.h"
 #include "Shade.h"
@@ -31,7 +35,7 @@
 #include "TileGrid.h"
 #include "Transform.h"
 #include "Validate.h"
-#include "facet/Conventions.h"
+#include "ViewCulling.h"
 #include "facet/Error.h"
 
 namespace facet {
@@ -44,31 +48,7 @@ int hardwareThreads() {
   return n == 0 ? 1 : static_cast<int>(n);
 }
 
-void validateMaterials(const Scene& scene) {
-  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    try {
-      validate(scene.meshes[i].material);
-    } catch (const Error& e) {
-      throw Error("Scene.meshes[" + std::to_string(i) + "]." + e.what());
-    }
-  }
-}
-
-void validateImageSize(int width, int height) {
-  detail::requireInRange(width, 1, kMaxImageSide, "image width");
-  detail::requireInRange(height, 1, kMaxImageSide, "image height");
-}
-
-// Polygon ids and point indices are 32-bit in the framebuffer and the triangle records.
-void validateCounts(const RenderPlan& plan) {
-  constexpr std::size_t kMaxIds = std::numeric_limits<std::int32_t>::max();
-  if (plan.polygons > kMaxIds || plan.points > kMaxIds) {
-    throw Error("Scene has " + std::to_string(plan.polygons) + " polygons and " +
-                std::to_string(plan.points) + " points; at most 2^31 - 1 of each render at once");
-  }
-}
-
-// The name every mesh's routine shares, or "per mesh".
+// The name every item's routine shares, or "per mesh".
 template <class Items, class NameOf>
 const char* commonName(const Items& items, const NameOf& nameOf) {
   if (items.empty()) return "none (no mesh)";
@@ -78,26 +58,69 @@ const char* commonName(const Items& items, const NameOf& nameOf) {
   return nameOf(items.front());
 }
 
-// A stopped render leaves a valid image (background) rather than a half-painted one.
-void clearTarget(const FramebufferView& target, Rgba8 background) {
-  const std::size_t pixels = static_cast<std::size_t>(target.width) * target.height;
-  std::fill(target.color, target.color + pixels, background);
-  std::fill(target.depth, target.depth + pixels, 1.0f);
-  std::fill(target.polygonId, target.polygonId + pixels, Framebuffer::kBackgroundId);
+detail::PhaseSet phasesOf(RenderPath path) {
+  switch (path) {
+    case RenderPath::Full:
+      return {Phase::Validate, Phase::Measure, Phase::Transform, Phase::Sort,
+              Phase::Setup,    Phase::Raster,  Phase::Shade,     Phase::Resolve};
+    case RenderPath::Reshade:
+      return {Phase::Shade, Phase::Resolve};
+    case RenderPath::Resolve:
+      break;
+  }
+  return {Phase::Resolve};
+}
+
+// The shading routine of every mesh, and what rules 4 and 5 do with them.
+void chooseShading(RenderPlan& plan, const Scene& scene, const RenderRules& rules,
+                   std::vector<detail::ShadeRoutineChoice>& routines) {
+  routines.clear();
+  for (const SceneMesh& mesh : scene.meshes)
+    routines.push_back(detail::chooseShadeRoutine(detail::shadeNeedsOf(plan, mesh, rules)));
+  plan.shadeRoutine = commonName(routines, [](const auto& r) { return r.name; });
+  for (const detail::ShadeRoutineChoice& routine : routines) {
+    plan.rule(Rule::AmbientOnly).fired |= routine.ambientOnly;
+    plan.rule(Rule::OneColor).skipped += routine.oneColor;
+  }
+  plan.rule(Rule::OneColor).fired = plan.rule(Rule::OneColor).skipped > 0;
+}
+
+// Rule::LightsThatReachNothing: the lights kept (into `kept`, prepared into `shader`).
+void cullLights(const Scene& scene, const RenderRules& rules, std::span<const detail::Box> bounds,
+                LightSet& kept, Shader& shader, RenderPlan::LightCulling& report) {
+  if (rules.lightsThatReachNothing) {
+    detail::cullLights(scene.lights, {scene.meshes, bounds}, rules.lightTolerance, kept, report);
+  } else {
+    kept = scene.lights;
+    report = {};
+    report.lights = scene.lights.lights.size();
+  }
+  shader.reset(kept);
+}
+
+void reportLightCulling(RenderPlan& plan, const RenderPlan::LightCulling& report) {
+  plan.lightCulling = report;
+  RuleOutcome& rule = plan.rule(Rule::LightsThatReachNothing);
+  rule.skipped = report.dark + report.outsideCone + report.belowTolerance;
+  rule.fired = rule.skipped > 0;
 }
 
 }  // namespace
 
-// The renderer's state between renders: the plan and every phase's buffers.
+// The renderer's state between renders: the plan, every phase's buffers, and what the
+// previous frame was.
 struct Renderer::Workspace {
   std::unique_ptr<detail::ThreadPool> pool;
   RenderPlan plan;
+  LightSet keptLights;
   Shader shader;
   std::optional<detail::FrameTransform> transform;
   detail::TileGrid grid;
+  detail::MeshCache cache;
+  std::vector<detail::Box> bounds;  // per mesh, for the lights
   std::vector<detail::FrameMesh> meshes;
   std::vector<detail::ShadeRoutineChoice> shadeRoutines;  // per mesh
-  detail::ValidationScratch validation;
+  detail::ViewCulling viewCulling;
   detail::PointRanges pointRanges;
   HugePageVector<detail::WindowVertex> vertices;
   std::vector<detail::MeshRange> sortRanges;
@@ -106,39 +129,119 @@ struct Renderer::Workspace {
   detail::PolygonBuffers polygons;
   std::vector<detail::PaintCounts> tiles;
   detail::ShadeBuffers shading;
+  HugePageVector<float> ownDepth;  // the depth plane of a caller without one
+  detail::FrameHistory history;
 
+  FramebufferView planesFor(const FramebufferView& target);
+  void planShading(const detail::FrameInputs& in, const detail::PathChoice& path, int threads);
   void prepareMeshes(const Scene& scene);
-  bool renderFull(const Scene& scene, const FramebufferView& target, Rgba8 background,
-                  detail::PhaseRunner& runner, RenderStats& stats);
+  bool renderFull(const detail::FrameInputs& in, const detail::PathChoice& path, int threads,
+                  const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
+  bool renderAgain(const detail::FrameInputs& in, const detail::PathChoice& path, int threads,
+                   const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
+  bool renderGeometry(const detail::FrameInputs& in, const FramebufferView& planes,
+                      detail::PhaseRunner& runner, RenderStats& stats);
+  void chooseTileRoutine(const RenderRules& rules, detail::TileRoutine& routine);
+  bool shadeAndResolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
+                       detail::PhaseRunner& runner, RenderStats& stats);
   void collectStatistics(RenderStats& stats) const;
 };
 
-// Each mesh's place in the frame's vertex and polygon numbering, and its shading routine.
+FramebufferView Renderer::Workspace::planesFor(const FramebufferView& target) {
+  FramebufferView planes = target;
+  if (!planes.depth) {
+    ownDepth.resize(static_cast<std::size_t>(target.width) * target.height);
+    planes.depth = ownDepth.data();
+  }
+  return planes;
+}
+
+// The lights kept, the plan and the shading routines (every path).
+void Renderer::Workspace::planShading(const detail::FrameInputs& in, const detail::PathChoice& path,
+                                      int threads) {
+  bounds.clear();
+  for (std::size_t m = 0; m < in.scene.meshes.size() && cache[m].bounded; ++m)
+    bounds.push_back(cache[m].bounds);
+  if (bounds.size() != in.scene.meshes.size()) bounds.clear();  // not known: judged unbounded
+  RenderPlan::LightCulling culling;
+  cullLights(in.scene, in.rules, bounds, keptLights, shader, culling);
+  plan = detail::makePlan({in.scene, in.camera, in.target.width, in.target.height, shader, threads,
+                           in.visibility, in.twoSidedLighting, in.depthOutput, in.rules});
+  plan.path = path.path;
+  plan.pathReason = path.reason;
+  reportLightCulling(plan, culling);
+  chooseShading(plan, in.scene, in.rules, shadeRoutines);
+  prepareMeshes(in.scene);
+}
+
+// Each mesh's place in the frame's vertex and polygon numbering.
 void Renderer::Workspace::prepareMeshes(const Scene& scene) {
   meshes.clear();
-  shadeRoutines.clear();
   std::size_t firstVertex = 0, firstPolygon = 0;
   for (const SceneMesh& mesh : scene.meshes) {
     meshes.push_back({&mesh, PreparedMaterial(mesh.material), firstVertex, firstPolygon});
-    shadeRoutines.push_back(detail::chooseShadeRoutine(detail::shadeNeedsOf(plan, mesh)));
     firstVertex += mesh.mesh.points.count;
     firstPolygon += mesh.mesh.polygons.count;
   }
   polygons.resize(plan.polygons);
-  plan.shadeRoutine = commonName(shadeRoutines, [](const auto& r) { return r.name; });
 }
 
-// Every phase, in order; false as soon as the progress callback asks to stop.
-bool Renderer::Workspace::renderFull(const Scene& scene, const FramebufferView& target,
-                                     Rgba8 background, detail::PhaseRunner& runner,
-                                     RenderStats& stats) {
-  bool completed = detail::validateMeshes(runner, scene, validation);
+bool Renderer::Workspace::renderFull(const detail::FrameInputs& in, const detail::PathChoice& path,
+                                     int threads, const FramebufferView& planes,
+                                     detail::PhaseRunner& runner, RenderStats& stats) {
+  const bool bounded = in.rules.lightsThatReachNothing &&
+                       detail::lightCullingNeedsBounds(in.scene.lights, in.rules.lightTolerance);
+  bool completed = cache.update(runner, in.scene, bounded);
   stats.validateSeconds = runner.lap();
+  planShading(in, path, threads);
+  completed = completed && renderGeometry(in, planes, runner, stats);
+  completed = completed && shadeAndResolve(in, planes, in.depthOutput, runner, stats);
+  collectStatistics(stats);
+  plan.rule(Rule::HiddenGeometry).skipped = stats.trianglesHidden;
+  plan.rule(Rule::HiddenGeometry).fired = stats.trianglesHidden > 0;
+  return completed;
+}
 
-  prepareMeshes(scene);
-  completed =
-      completed && detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);
-  stats.closedMeshesSkippingBackFaces = detail::decideBackFaces(meshes, pointRanges);
+// An incremental render: the previous frame re-shaded, or only recolored. `stats` holds the
+// previous frame's.
+bool Renderer::Workspace::renderAgain(const detail::FrameInputs& in, const detail::PathChoice& path,
+                                      int threads, const FramebufferView& planes,
+                                      detail::PhaseRunner& runner, RenderStats& stats) {
+  const RenderPlan previous = stats.plan;
+  stats.validateSeconds = stats.transformSeconds = stats.setupSeconds = stats.rasterSeconds = 0;
+  if (path.path == RenderPath::Reshade) {
+    planShading(in, path, threads);
+    detail::carryGeometryReport(plan, previous);
+    return shadeAndResolve(in, planes, false, runner, stats);
+  }
+  plan = previous;
+  plan.path = path.path;
+  plan.pathReason = path.reason;
+  plan.threads = threads;
+  const detail::ResolveContext context{polygons.colors.data(), in.background,    planes.color,
+                                       planes.depth,           planes.polygonId, planes.width};
+  const bool completed = detail::resolveTiles(
+      runner, grid, context, detail::chooseResolveRoutine(false).resolve, *transform);
+  stats.shadeSeconds = runner.lap();
+  return completed;
+}
+
+// Phases 1 to 3.
+bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
+                                         const FramebufferView& planes, detail::PhaseRunner& runner,
+                                         RenderStats& stats) {
+  if (in.rules.geometryOutsideView) {
+    detail::cullBlocksOutsideView(meshes, cache, *transform, viewCulling);
+    plan.blocksTested = viewCulling.blocksTested;
+    plan.blocksOutside = viewCulling.blocksOutside;
+    plan.rule(Rule::GeometryOutsideView).skipped = viewCulling.polygonsOutside;
+    plan.rule(Rule::GeometryOutsideView).fired = viewCulling.polygonsOutside > 0;
+  }
+  bool completed = detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);
+  stats.closedMeshesSkippingBackFaces =
+      detail::decideBackFaces(meshes, pointRanges, in.rules.closedSurfaces);
+  plan.rule(Rule::ClosedSurfaces).skipped = stats.closedMeshesSkippingBackFaces;
+  plan.rule(Rule::ClosedSurfaces).fired = stats.closedMeshesSkippingBackFaces > 0;
   plan.setupRoutine =
       commonName(meshes, [](const auto& m) { return detail::setupRoutineName(m.skipBackFaces); });
   order.ids.clear();
@@ -152,25 +255,54 @@ bool Renderer::Workspace::renderFull(const Scene& scene, const FramebufferView& 
   completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
   stats.setupSeconds = runner.lap();
 
-  const detail::RasterContext rasterContext{setup.chunks,  vertices.data(),  target.color,
-                                            target.depth,  target.polygonId, target.width,
+  detail::TileRoutine tileRoutine;
+  chooseTileRoutine(in.rules, tileRoutine);
+  const detail::RasterContext rasterContext{setup.chunks,  vertices.data(),  planes.color,
+                                            planes.depth,  planes.polygonId, planes.width,
                                             polygons.shown};
-  const detail::TileRoutine tileRoutine = detail::chooseTileRoutine(plan.depthTest).paint;
   completed = completed && detail::paintTiles(runner, grid, rasterContext, tileRoutine, tiles);
   stats.rasterSeconds = runner.lap();
+  return completed;
+}
 
+// Rule::HiddenGeometry, from the set-up's estimate of depth complexity.
+void Renderer::Workspace::chooseTileRoutine(const RenderRules& rules,
+                                            detail::TileRoutine& routine) {
+  std::size_t samples = 0, triangles = 0;
+  for (const detail::Chunk& chunk : setup.chunks) {
+    samples += chunk.counts.boxSamples;
+    triangles += chunk.counts.trianglesBinned;
+  }
+  plan.depthComplexity = double(samples) / (double(plan.width) * plan.height);
+  plan.meanTriangleBox = triangles == 0 ? 0.0 : double(samples) / double(triangles);
+  const detail::TileRoutineChoice choice =
+      detail::chooseTileRoutine(plan.depthTest, detail::useCoarseDepth(plan, rules.hiddenGeometry));
+  routine = choice.paint;
+  plan.rasterRoutine = choice.name;
+}
+
+// Phases 4 and 5; `depths`: convert the depth keys too.
+bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
+                                          const FramebufferView& planes, bool depths,
+                                          detail::PhaseRunner& runner, RenderStats& stats) {
   const detail::ShadeContext shadeContext{*transform,
                                           shader,
                                           plan.twoSidedLighting,
                                           polygons.shown.data(),
                                           polygons.backFacing.data(),
                                           polygons.colors.data()};
-  completed =
-      completed && detail::shadePolygons(runner, meshes, shadeRoutines, shadeContext, shading);
-  const detail::ResolveContext resolveContext{polygons.colors.data(), background,
-                                              target.color,           target.depth,
-                                              target.polygonId,       target.width};
-  completed = completed && detail::resolveTiles(runner, grid, resolveContext, *transform);
+  bool completed = detail::shadePolygons(runner, meshes, shadeRoutines, shadeContext, shading);
+  stats.polygonsShaded = 0;
+  for (std::size_t i = 0; i < shading.counts.size(); ++i) {
+    stats.polygonsShaded += shading.counts[i];
+    const bool ambient = shadeRoutines[shading.ranges[i].mesh].ambientOnly;
+    plan.rule(Rule::AmbientOnly).skipped += ambient ? shading.counts[i] : 0;
+  }
+  const detail::ResolveContext resolveContext{polygons.colors.data(), in.background,
+                                              planes.color,           planes.depth,
+                                              planes.polygonId,       planes.width};
+  const detail::ResolveRoutine resolve = detail::chooseResolveRoutine(depths).resolve;
+  completed = completed && detail::resolveTiles(runner, grid, resolveContext, resolve, *transform);
   stats.shadeSeconds = runner.lap();
   return completed;
 }
@@ -188,10 +320,8 @@ void Renderer::Workspace::collectStatistics(RenderStats& stats) const {
   for (const detail::PaintCounts& tile : tiles) {
     stats.fragmentsWritten += tile.written;
     stats.pixelsCovered += tile.covered;
+    stats.trianglesHidden += tile.hidden;
   }
-  for (std::size_t count : shading.counts)
-    stats.polygonsShaded += count;
-  if (stats.aborted) stats.pixelsCovered = 0;  // the image left is the background
 }
 
 Renderer::Renderer() : workspace_(std::make_unique<Workspace>()) {
@@ -212,6 +342,15 @@ int Renderer::threadCount() const {
   return workspace_->pool->threadCount();
 }
 
+void Renderer::setRules(const RenderRules& rules) {
+  detail::requireNonNegative(rules.lightTolerance, "RenderRules.lightTolerance");
+  rules_ = rules;
+}
+
+void Renderer::forgetPreviousFrame() {
+  workspace_->history.forget();
+}
+
 void Renderer::parallelFor(std::size_t count, std::size_t grain,
                            const std::function<void(std::size_t, std::size_t)>& work) {
   grain = std::max<std::size_t>(grain, 1);
@@ -220,45 +359,56 @@ void Renderer::parallelFor(std::size_t count, std::size_t grain,
 }
 
 RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, int height) const {
-  validate(camera);
-  validateImageSize(width, height);
-  validateMaterials(scene);
-  const Shader shader(scene.lights);
-  return detail::makePlan(
-      {scene, camera, width, height, shader, threadCount(), visibility_, twoSidedLighting_});
+  detail::validateSceneInputs(scene, camera, width, height);
+  std::vector<detail::Box> bounds;
+  for (const SceneMesh& mesh : scene.meshes)
+    bounds.push_back(detail::boundsOf(mesh.mesh));
+  LightSet kept;
+  Shader shader;
+  RenderPlan::LightCulling culling;
+  cullLights(scene, rules_, bounds, kept, shader, culling);
+  RenderPlan plan = detail::makePlan({scene, camera, width, height, shader, threadCount(),
+                                      visibility_, twoSidedLighting_, depthOutput_, rules_});
+  plan.pathReason = "planned ahead (Renderer::plan)";
+  reportLightCulling(plan, culling);
+  std::vector<detail::ShadeRoutineChoice> routines;
+  chooseShading(plan, scene, rules_, routines);
+  plan.rasterRoutine =
+      plan.depthTest ? "depth test (hierarchical z decided by the render)" : "painter's overwrite";
+  return plan;
 }
 
 RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                              const FramebufferView& target) {
+  detail::validateRenderInputs(scene, camera, target, depthOutput_);  // before a pixel changes
   Workspace& ws = *workspace_;
-  // Everything that can throw does so before a pixel changes.
-  validate(camera);
-  validateImageSize(target.width, target.height);
-  if (!target.color || !target.depth || !target.polygonId) {
-    throw Error("FramebufferView has a null plane");
-  }
-  validateMaterials(scene);
-  ws.shader.reset(scene.lights);
-  ws.plan = detail::makePlan({scene, camera, target.width, target.height, ws.shader, threadCount(),
-                              visibility_, twoSidedLighting_});
-  ws.plan.rasterRoutine = detail::chooseTileRoutine(ws.plan.depthTest).name;
-  validateCounts(ws.plan);
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-    detail::validateMeshHeader(scene.meshes[m].mesh, m);
-
-  RenderStats stats;
+  const detail::FrameInputs in{scene,
+                               camera,
+                               target,
+                               visibility_,
+                               twoSidedLighting_,
+                               toRgba8(background_, backgroundAlpha_),
+                               depthOutput_,
+                               rules_};
+  const detail::PathChoice path = ws.history.choosePath(in);
+  const FramebufferView planes = ws.planesFor(target);
+  detail::PhaseRunner runner(*ws.pool, progress_, phasesOf(path.path));
   ws.transform.emplace(camera, target.width, target.height);
   ws.grid = detail::TileGrid(target.width, target.height);
-  const Rgba8 background = toRgba8(background_, backgroundAlpha_);
-  const detail::PhaseSet phases{Phase::Validate, Phase::Transform, Phase::Sort,   Phase::Setup,
-                                Phase::Raster,   Phase::Shade,     Phase::Resolve};
-  detail::PhaseRunner runner(*ws.pool, progress_, phases);
-  const bool completed = ws.renderFull(scene, target, background, runner, stats);
-  if (!completed) clearTarget(target, background);
-  stats.shadeSeconds += runner.lap();
-  stats.aborted = !completed;
+
+  RenderStats stats = path.path == RenderPath::Full ? RenderStats{} : ws.history.stats();
+  const bool completed = path.path == RenderPath::Full
+                             ? ws.renderFull(in, path, threadCount(), planes, runner, stats)
+                             : ws.renderAgain(in, path, threadCount(), planes, runner, stats);
   stats.plan = ws.plan;
-  ws.collectStatistics(stats);
+  stats.aborted = !completed;
+  if (completed) {
+    ws.history.remember(in, stats);
+  } else {
+    detail::clearTarget(planes, in.background);  // a valid image rather than half a one
+    ws.history.forget();
+    stats.pixelsCovered = 0;
+  }
   stats.totalSeconds = runner.secondsSinceStart();
   if (completed) runner.finish();
   return stats;

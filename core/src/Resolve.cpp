@@ -3,6 +3,7 @@
 namespace facet::detail {
 namespace {
 
+template <bool kDepth>
 void resolveTile(const ResolveContext& context, const PixelBounds& tile,
                  const FrameTransform& frameTransform) {
   // Locals: the color stores (bytes) may alias anything, which would reload these per pixel.
@@ -18,17 +19,24 @@ void resolveTile(const ResolveContext& context, const PixelBounds& tile,
       const std::int32_t id = ids[x];
       color[x] = id < 0 ? background : colors[static_cast<std::size_t>(id)];
     }
-    for (int x = tile.x0; x <= tile.x1; ++x)
-      depth[x] = ids[x] < 0 ? 1.0f : transform.windowDepth(depth[x]);
+    if constexpr (kDepth) {
+      for (int x = tile.x0; x <= tile.x1; ++x)
+        depth[x] = ids[x] < 0 ? 1.0f : transform.windowDepth(depth[x]);
+    }
   }
 }
 
 }  // namespace
 
+ResolveRoutineChoice chooseResolveRoutine(bool depth) {
+  if (depth) return {resolveTile<true>, "colors and window depths"};
+  return {resolveTile<false>, "colors"};
+}
+
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
-                  const FrameTransform& transform) {
+                  ResolveRoutine routine, const FrameTransform& transform) {
   return runner.run(Phase::Resolve, grid.count(),
-                    [&](std::size_t t) { resolveTile(context, grid.bounds(t), transform); });
+                    [&](std::size_t t) { routine(context, grid.bounds(t), transform); });
 }
 
 }  // namespace facet::detail

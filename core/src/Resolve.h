@@ -21,8 +21,18 @@ struct ResolveContext {
   int width;
 };
 
-// Colors every tile's pixels and turns their depth keys into window depths by `transform`.
+// One tile's resolve, chosen once per render: colors and window depths, or colors only (no
+// depth output, or depths already resolved by the frame an incremental render reuses).
+using ResolveRoutine = void (*)(const ResolveContext& context, const PixelBounds& tile,
+                                const FrameTransform& transform);
+struct ResolveRoutineChoice {
+  ResolveRoutine resolve;
+  const char* name;
+};
+ResolveRoutineChoice chooseResolveRoutine(bool depth);
+
+// Resolves every tile with the routine, turning depth keys into window depths by `transform`.
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
-                  const FrameTransform& transform);
+                  ResolveRoutine routine, const FrameTransform& transform);
 
 }  // namespace facet::detail

@@ -7,6 +7,7 @@
 #include "Binning.h"
 #include "Clipper.h"
 #include "MeshAccess.h"
+#include "MeshCache.h"
 #include "facet/PolygonNormal.h"
 
 namespace facet::detail {
@@ -309,7 +310,12 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   for (; position < chunk.end; ++position) {
     const std::size_t id = context.order.polygonAt(position);
     if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
-    setup.run(id - mesh.firstPolygon);
+    const std::size_t polygon = id - mesh.firstPolygon;
+    if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
+      ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
+      continue;
+    }
+    setup.run(polygon);
   }
   return position;
 }

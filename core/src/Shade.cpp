@@ -1,5 +1,7 @@
 #include "Shade.h"
 
+#include <array>
+
 #include "MeshAccess.h"
 #include "ShaderAccess.h"
 #include "facet/PolygonNormal.h"
@@ -25,22 +27,31 @@ std::size_t forEachShown(const ShadeContext& context, const FrameMesh& mesh, std
   return shaded;
 }
 
-template <bool kPolygonColors>
+// Where a polygon's surface color comes from: the material, the mesh's per-polygon
+// colors, or either, tested per polygon (the routine when Rule::OneColor is off).
+enum class ColorSource { Material, PerPolygon, Either };
+
+Color polygonColor(const FrameMesh& mesh, std::size_t polygon) {
+  const Rgba8 c = mesh.mesh().polygonColors[polygon];
+  return Color(c.r, c.g, c.b) / 255.0f;
+}
+
+template <ColorSource kSource>
 Color surfaceColor(const FrameMesh& mesh, std::size_t polygon) {
-  if constexpr (kPolygonColors) {
-    const Rgba8 c = mesh.mesh().polygonColors[polygon];
-    return Color(c.r, c.g, c.b) / 255.0f;
-  } else {
-    return mesh.source->material.color;
+  if constexpr (kSource == ColorSource::PerPolygon) {
+    return polygonColor(mesh, polygon);
+  } else if constexpr (kSource == ColorSource::Either) {
+    if (!mesh.mesh().polygonColors.empty()) return polygonColor(mesh, polygon);
   }
+  return mesh.source->material.color;
 }
 
 // The flat-shaded color of one polygon under direct light, at its center.
-template <bool kCenters, bool kSpecular, bool kPolygonColors, class PointsT, class PolygonsT>
+template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
 Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess::Routine shade,
                PointsT points, PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
   SurfaceSample sample;
-  sample.color = surfaceColor<kPolygonColors>(mesh, polygon);
+  sample.color = surfaceColor<kColors>(mesh, polygon);
   const std::size_t n = polygons.size(polygon);
   const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
   const std::optional<glm::dvec3> normal =
@@ -60,7 +71,7 @@ Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess:
 
 // Flattened: with this file's many instantiations, GCC's unit-growth limit would otherwise
 // leave the per-polygon helpers (normal, corners, toRgba8) as calls, ~25 % of the phase.
-template <bool kCenters, bool kSpecular, bool kPolygonColors, class PointsT, class PolygonsT>
+template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
 [[gnu::flatten]] std::size_t shadeLitTyped(const ShadeContext& context, const FrameMesh& mesh,
                                            PointsT points, PolygonsT polygons, std::size_t begin,
                                            std::size_t end) {
@@ -70,18 +81,17 @@ template <bool kCenters, bool kSpecular, bool kPolygonColors, class PointsT, cla
     const std::size_t id = mesh.firstPolygon + polygon;
     if (!context.shown[id]) continue;
     ++shaded;
-    context.colors[id] = litColor<kCenters, kSpecular, kPolygonColors>(
+    context.colors[id] = litColor<kCenters, kSpecular, kColors>(
         context, mesh, shade, points, polygons, polygon, context.backFacing[id]);
   }
   return shaded;
 }
 
-template <bool kCenters, bool kSpecular, bool kPolygonColors>
+template <bool kCenters, bool kSpecular, ColorSource kColors>
 std::size_t shadeLit(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
                      std::size_t end) {
   return withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
-    return shadeLitTyped<kCenters, kSpecular, kPolygonColors>(context, mesh, points, polygons,
-                                                              begin, end);
+    return shadeLitTyped<kCenters, kSpecular, kColors>(context, mesh, points, polygons, begin, end);
   });
 }
 
@@ -89,39 +99,87 @@ std::size_t shadeLit(const ShadeContext& context, const FrameMesh& mesh, std::si
 // without its own colors has one color for all its polygons: shaded once.
 std::size_t shadeAmbientOneColor(const ShadeContext& context, const FrameMesh& mesh,
                                  std::size_t begin, std::size_t end) {
-  const Rgba8 color = toRgba8(context.shader.shade(SurfaceSample{}, mesh.material));
+  SurfaceSample sample;
+  sample.color = mesh.source->material.color;
+  const Rgba8 color = toRgba8(context.shader.shade(sample, mesh.material));
   return forEachShown(context, mesh, begin, end, [&](std::size_t, std::size_t) { return color; });
 }
 
+// A small mesh: shaded polygon by polygon, still without normal or light loop.
 std::size_t shadeAmbientPolygonColors(const ShadeContext& context, const FrameMesh& mesh,
                                       std::size_t begin, std::size_t end) {
   return forEachShown(context, mesh, begin, end, [&](std::size_t, std::size_t polygon) {
     SurfaceSample sample;
-    sample.color = surfaceColor<true>(mesh, polygon);
+    sample.color = polygonColor(mesh, polygon);
     return toRgba8(context.shader.shade(sample, mesh.material));
   });
 }
 
-// The routines under direct light, by [centers][specular][polygon colors].
-constexpr ShadeRoutineChoice kLitRoutines[2][2][2] = {
-    {{{shadeLit<false, false, false>, "lit by directions, diffuse, one color"},
-      {shadeLit<false, false, true>, "lit by directions, diffuse, per-polygon colors"}},
-     {{shadeLit<false, true, false>, "lit by directions, specular, one color"},
-      {shadeLit<false, true, true>, "lit by directions, specular, per-polygon colors"}}},
-    {{{shadeLit<true, false, false>, "lit at centers, diffuse, one color"},
-      {shadeLit<true, false, true>, "lit at centers, diffuse, per-polygon colors"}},
-     {{shadeLit<true, true, false>, "lit at centers, specular, one color"},
-      {shadeLit<true, true, true>, "lit at centers, specular, per-polygon colors"}}}};
+// One shade per color value. Without direct light each channel of the formula (Lighting.h)
+// is a function of that channel of the surface color alone, so the shades of the 256 grays
+// give every polygon's color, channel by channel: the same bytes as shading each polygon.
+std::size_t shadeAmbientTable(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
+                              std::size_t end) {
+  std::array<Rgba8, 256> table;
+  for (int v = 0; v < 256; ++v) {
+    SurfaceSample sample;
+    sample.color = Color(static_cast<float>(v)) / 255.0f;
+    table[v] = toRgba8(context.shader.shade(sample, mesh.material));
+  }
+  const std::span<const Rgba8> colors = mesh.mesh().polygonColors;
+  return forEachShown(context, mesh, begin, end, [&](std::size_t, std::size_t polygon) {
+    const Rgba8 c = colors[polygon];
+    return Rgba8{table[c.r].r, table[c.g].g, table[c.b].b, table[c.r].a};
+  });
+}
+
+// Below this many polygons a mesh's table would cost more shades than its polygons.
+constexpr std::size_t kPolygonsForTable = 1024;
+
+// The routines under direct light (or without Rule::AmbientOnly), by [centers][specular]
+// and color source.
+template <bool kCenters, bool kSpecular>
+ShadeRoutineChoice litRoutine(ColorSource colors) {
+  static constexpr const char* kNames[2][2][3] = {
+      {{"lit by directions, diffuse, one color", "lit by directions, diffuse, per-polygon colors",
+        "lit by directions, diffuse, colors tested per polygon"},
+       {"lit by directions, specular, one color", "lit by directions, specular, per-polygon colors",
+        "lit by directions, specular, colors tested per polygon"}},
+      {{"lit at centers, diffuse, one color", "lit at centers, diffuse, per-polygon colors",
+        "lit at centers, diffuse, colors tested per polygon"},
+       {"lit at centers, specular, one color", "lit at centers, specular, per-polygon colors",
+        "lit at centers, specular, colors tested per polygon"}}};
+  const char* name = kNames[kCenters][kSpecular][static_cast<int>(colors)];
+  switch (colors) {
+    case ColorSource::Material:
+      return {shadeLit<kCenters, kSpecular, ColorSource::Material>, name, false, true};
+    case ColorSource::PerPolygon:
+      return {shadeLit<kCenters, kSpecular, ColorSource::PerPolygon>, name};
+    case ColorSource::Either:
+      break;
+  }
+  return {shadeLit<kCenters, kSpecular, ColorSource::Either>, name};
+}
+
+ShadeRoutineChoice ambientRoutine(const ShadeNeeds& needs) {
+  if (!needs.polygonColors) return {shadeAmbientOneColor, "ambient, one color", true, true};
+  if (needs.polygons < kPolygonsForTable) {
+    return {shadeAmbientPolygonColors, "ambient, per-polygon colors", true};
+  }
+  return {shadeAmbientTable, "ambient, per-polygon colors by table", true};
+}
 
 }  // namespace
 
 ShadeRoutineChoice chooseShadeRoutine(const ShadeNeeds& needs) {
-  if (!needs.directLighting) {
-    return needs.polygonColors
-               ? ShadeRoutineChoice{shadeAmbientPolygonColors, "ambient, per-polygon colors"}
-               : ShadeRoutineChoice{shadeAmbientOneColor, "ambient, one color"};
-  }
-  return kLitRoutines[needs.centers][needs.specular][needs.polygonColors];
+  if (!needs.directLighting && needs.ambientOnlyRule) return ambientRoutine(needs);
+  const ColorSource colors = needs.polygonColors  ? ColorSource::PerPolygon
+                             : needs.oneColorRule ? ColorSource::Material
+                                                  : ColorSource::Either;
+  static constexpr ShadeRoutineChoice (*kTable[2][2])(ColorSource) = {
+      {litRoutine<false, false>, litRoutine<false, true>},
+      {litRoutine<true, false>, litRoutine<true, true>}};
+  return kTable[needs.centers][needs.specular](colors);
 }
 
 bool shadePolygons(PhaseRunner& runner, std::span<const FrameMesh> meshes,

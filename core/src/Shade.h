@@ -33,14 +33,19 @@ using ShadeRoutine = std::size_t (*)(const ShadeContext& context, const FrameMes
 struct ShadeRoutineChoice {
   ShadeRoutine shade = nullptr;
   const char* name = "";
+  bool ambientOnly = false;  // Rule::AmbientOnly: no normal, no light loop
+  bool oneColor = false;     // Rule::OneColor: no color fetched per polygon
 };
 
-// What one mesh's shading computes.
+// What one mesh's shading computes, and which rules may leave work out of it.
 struct ShadeNeeds {
   bool directLighting = false;  // else the color does not depend on the normal
   bool centers = false;         // positional lights, or a perspective viewer for specular
   bool specular = false;        // the material's Ks > 0 under a direct light
   bool polygonColors = false;   // the mesh has its own color per polygon
+  std::size_t polygons = 0;
+  bool ambientOnlyRule = true;  // RenderRules::ambientOnly
+  bool oneColorRule = true;     // RenderRules::oneColor
 };
 ShadeRoutineChoice chooseShadeRoutine(const ShadeNeeds& needs);
 

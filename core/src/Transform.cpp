@@ -9,9 +9,13 @@
 namespace facet::detail {
 namespace {
 
-// Points per transform task; polygons per sort task.
-constexpr std::size_t kPointsPerTask = 1 << 14;
+// Polygons per sort task.
 constexpr std::size_t kPolygonsPerSortTask = 1 << 18;
+
+// Whether a task's points are used by a block in view (ViewCulling.h).
+bool needed(const FrameMesh& mesh, const MeshRange& range) {
+  return !mesh.neededTasks || mesh.neededTasks[range.begin / kPointsPerTransformTask];
+}
 
 void transformRange(const FrameMesh& mesh, const FrameTransform& transform, const MeshRange& r,
                     WindowVertex* vertices, std::uint32_t& outcodes) {
@@ -52,8 +56,9 @@ bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
       meshes.empty() ? 0 : meshes.back().firstVertex + meshes.back().mesh().points.count;
   vertices.resize(total);
   splitPerMesh(
-      meshes.size(), kPointsPerTask, [&](std::size_t m) { return meshes[m].mesh().points.count; },
-      ranges.ranges);
+      meshes.size(), kPointsPerTransformTask,
+      [&](std::size_t m) { return meshes[m].mesh().points.count; }, ranges.ranges);
+  std::erase_if(ranges.ranges, [&](const MeshRange& r) { return !needed(meshes[r.mesh], r); });
   ranges.outcodes.assign(ranges.ranges.size(), 0);
   return runner.run(Phase::Transform, ranges.ranges.size(), [&](std::size_t i) {
     const MeshRange& r = ranges.ranges[i];
@@ -63,7 +68,8 @@ bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
 
 // Back faces of a closed surface are hidden while no point of it is beyond the near plane
 // (none behind the eye: the eye is outside) and none is non-finite (no polygon dropped).
-std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& ranges) {
+std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& ranges,
+                            bool closedSurfaces) {
   std::size_t closedSkipping = 0;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     std::uint32_t any = 0;
@@ -72,7 +78,8 @@ std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& rang
     }
     FrameMesh& mesh = meshes[m];
     const bool culled = mesh.source->material.backfaceCulling;
-    const bool hidden = mesh.mesh().closedSurface && (any & (kBeyondNear | kNonFinite)) == 0;
+    const bool hidden =
+        closedSurfaces && mesh.mesh().closedSurface && (any & (kBeyondNear | kNonFinite)) == 0;
     mesh.skipBackFaces = culled || hidden;
     closedSkipping += hidden && !culled;
   }

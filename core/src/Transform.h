@@ -13,6 +13,9 @@
 
 namespace facet::detail {
 
+// Points per transform task.
+inline constexpr std::size_t kPointsPerTransformTask = 1 << 14;
+
 // The transform's tasks and, per task, the OR of its points' outcodes.
 struct PointRanges {
   std::vector<MeshRange> ranges;
@@ -23,9 +26,11 @@ bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
                      const FrameTransform& transform, PointRanges& ranges,
                      HugePageVector<WindowVertex>& vertices);
 
-// Sets FrameMesh::skipBackFaces from the material and, for closed surfaces, from the points'
-// outcodes. Returns how many closed meshes skip their back faces only for being closed.
-std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& ranges);
+// Sets FrameMesh::skipBackFaces from the material and, for closed surfaces (when
+// Rule::ClosedSurfaces may fire), from the points' outcodes. Returns how many closed meshes
+// skip their back faces only for being closed.
+std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& ranges,
+                            bool closedSurfaces);
 
 // Painter's order: far to near by the view distance of each polygon's centroid, ties by id.
 bool sortForPainter(PhaseRunner& runner, std::span<const FrameMesh> meshes,
