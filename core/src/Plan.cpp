@@ -1,5 +1,6 @@
 #include "Plan.h"
 
+#include "LightCulling.h"
 #include "TileGrid.h"
 
 namespace facet::detail {
@@ -19,32 +20,72 @@ void sizeOf(RenderPlan& plan, int width, int height) {
   plan.height = height;
 }
 
+// Rule::LightsThatReachNothing: the lights kept, prepared into the shader.
+void cullLights(const PlanInputs& in, std::span<const Box> bounds, ShadingChoice& shading,
+                RenderPlan& plan) {
+  RenderPlan::LightCulling& report = plan.lightCulling;
+  if (in.rules.lightsThatReachNothing) {
+    detail::cullLights(in.scene.lights, {in.scene.meshes, bounds}, in.rules.lightTolerance,
+                       shading.keptLights, report);
+  } else {
+    shading.keptLights = in.scene.lights;
+    report = {};
+    report.lights = in.scene.lights.lights.size();
+  }
+  shading.shader.reset(shading.keptLights);
+  RuleOutcome& rule = plan.rule(Rule::LightsThatReachNothing);
+  rule.skipped = report.dark + report.outsideCone + report.belowTolerance;
+  rule.fired = rule.skipped > 0;
+}
+
+void planLighting(RenderPlan& plan, const PlanInputs& in, const Shader& shader) {
+  plan.directLighting = shader.lightCount() > 0;
+  plan.positionalLights = shader.hasPositionalLights();
+  plan.twoSidedLighting = in.twoSidedLighting;
+  for (const SceneMesh& mesh : in.scene.meshes)
+    plan.specular |= plan.directLighting && mesh.material.specular > 0.0;
+  plan.viewerDirection = plan.specular;
+  plan.polygonCenters =
+      plan.positionalLights || (plan.viewerDirection && !in.camera.parallelProjection);
+}
+
+// The shading routine of every mesh, and what rules 4 and 5 do with them.
+void chooseShading(RenderPlan& plan, const PlanInputs& in,
+                   std::vector<ShadeRoutineChoice>& routines) {
+  routines.clear();
+  for (const SceneMesh& mesh : in.scene.meshes)
+    routines.push_back(chooseShadeRoutine(shadeNeedsOf(plan, mesh, in.rules)));
+  plan.shadeRoutine = commonName(routines, [](const auto& r) { return r.name; });
+  RuleOutcome& oneColor = plan.rule(Rule::OneColor);
+  for (const ShadeRoutineChoice& routine : routines) {
+    plan.rule(Rule::AmbientOnly).fired |= routine.ambientOnly;
+    oneColor.skipped += routine.oneColor && in.rules.oneColor;
+  }
+  oneColor.fired = oneColor.skipped > 0;
+}
+
 }  // namespace
 
-RenderPlan makePlan(const PlanInputs& in) {
+RenderPlan makePlan(const PlanInputs& in, std::span<const Box> bounds, ShadingChoice& shading) {
   RenderPlan plan;
+  allowRules(plan, in.rules);
+  cullLights(in, bounds, shading, plan);
   plan.visibility = in.visibility;
   plan.depthTest = in.visibility == Visibility::ZBuffer;
   plan.sortByDepth = in.visibility == Visibility::PainterSort;
-  plan.directLighting = in.shader.lightCount() > 0;
-  plan.positionalLights = in.shader.hasPositionalLights();
-  plan.twoSidedLighting = in.twoSidedLighting;
   plan.parallelProjection = in.camera.parallelProjection;
   plan.depthOutput = in.depthOutput;
+  planLighting(plan, in, shading.shader);
   for (const SceneMesh& mesh : in.scene.meshes) {
-    plan.specular |= plan.directLighting && mesh.material.specular > 0.0;
     plan.backfaceCulling |= mesh.material.backfaceCulling;
     plan.closedSurfaces |= mesh.mesh.closedSurface && in.rules.closedSurfaces;
     plan.points += mesh.mesh.points.count;
     plan.polygons += mesh.mesh.polygons.count;
   }
-  plan.viewerDirection = plan.specular;
-  plan.polygonCenters =
-      plan.positionalLights || (plan.viewerDirection && !in.camera.parallelProjection);
   plan.threads = in.threads;
   plan.meshes = in.scene.meshes.size();
   sizeOf(plan, in.width, in.height);
-  allowRules(plan, in.rules);
+  chooseShading(plan, in, shading.routines);
   return plan;
 }
 
@@ -64,6 +105,16 @@ bool useCoarseDepth(const RenderPlan& plan, HierarchicalZ mode) {
   if (!plan.depthTest || mode == HierarchicalZ::Off) return false;
   return mode == HierarchicalZ::On || (plan.depthComplexity >= kCoarseDepthMinComplexity &&
                                        plan.meanTriangleBox >= kCoarseDepthMinTriangleBox);
+}
+
+void estimateDepthComplexity(RenderPlan& plan, std::span<const Chunk> chunks) {
+  std::size_t samples = 0, triangles = 0;
+  for (const Chunk& chunk : chunks) {
+    samples += chunk.counts.boxSamples;
+    triangles += chunk.counts.trianglesBinned;
+  }
+  plan.depthComplexity = double(samples) / (double(plan.width) * plan.height);
+  plan.meanTriangleBox = triangles == 0 ? 0.0 : double(samples) / double(triangles);
 }
 
 void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous) {

@@ -5,6 +5,11 @@
 // routines do the work. Decisions that need the frame's geometry (closed surfaces, the
 // coarse depth) are completed by the phases that learn it.
 
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "Box.h"
 #include "Shade.h"
 #include "facet/Camera.h"
 #include "facet/Lighting.h"
@@ -17,7 +22,6 @@ struct PlanInputs {
   const Scene& scene;
   const Camera& camera;
   int width, height;
-  const Shader& shader;  // the lights that remain after Rule::LightsThatReachNothing
   int threads;
   Visibility visibility;
   bool twoSidedLighting;
@@ -25,7 +29,27 @@ struct PlanInputs {
   const RenderRules& rules;
 };
 
-RenderPlan makePlan(const PlanInputs& inputs);
+// What the plan decides about shading: the lights kept by Rule::LightsThatReachNothing,
+// prepared, and each mesh's shading routine.
+struct ShadingChoice {
+  LightSet keptLights;
+  Shader shader;
+  std::vector<ShadeRoutineChoice> routines;  // per mesh
+};
+
+// The plan of a render, and its shading. `bounds`: each mesh's bounding box, or empty when
+// they are not known (the lights are then judged as reaching everything).
+RenderPlan makePlan(const PlanInputs& inputs, std::span<const Box> bounds, ShadingChoice& shading);
+
+// The name every item's routine shares, or "per mesh".
+template <class Items, class NameOf>
+const char* commonName(const Items& items, const NameOf& nameOf) {
+  if (items.empty()) return "none (no mesh)";
+  for (const auto& item : items) {
+    if (std::string_view(nameOf(item)) != nameOf(items.front())) return "per mesh";
+  }
+  return nameOf(items.front());
+}
 
 // What shading one mesh computes under this plan.
 ShadeNeeds shadeNeedsOf(const RenderPlan& plan, const SceneMesh& mesh, const RenderRules& rules);
@@ -37,6 +61,10 @@ ShadeNeeds shadeNeedsOf(const RenderPlan& plan, const SceneMesh& mesh, const Ren
 inline constexpr double kCoarseDepthMinComplexity = 4.0;
 inline constexpr double kCoarseDepthMinTriangleBox = 64.0;
 bool useCoarseDepth(const RenderPlan& plan, HierarchicalZ mode);
+
+// Rule::HiddenGeometry's estimate, from the set-up's chunks: depth complexity and the mean
+// triangle's box (RenderPlan).
+void estimateDepthComplexity(RenderPlan& plan, std::span<const Chunk> chunks);
 
 // Copies into `plan` what `previous` found out about the geometry of the frame it drew (an
 // incremental render reuses that frame).

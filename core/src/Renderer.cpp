@@ -48,16 +48,6 @@ int hardwareThreads() {
   return n == 0 ? 1 : static_cast<int>(n);
 }
 
-// The name every item's routine shares, or "per mesh".
-template <class Items, class NameOf>
-const char* commonName(const Items& items, const NameOf& nameOf) {
-  if (items.empty()) return "none (no mesh)";
-  for (const auto& item : items) {
-    if (std::string_view(nameOf(item)) != nameOf(items.front())) return "per mesh";
-  }
-  return nameOf(items.front());
-}
-
 detail::PhaseSet phasesOf(RenderPath path) {
   switch (path) {
     case RenderPath::Full:
@@ -71,38 +61,9 @@ detail::PhaseSet phasesOf(RenderPath path) {
   return {Phase::Resolve};
 }
 
-// The shading routine of every mesh, and what rules 4 and 5 do with them.
-void chooseShading(RenderPlan& plan, const Scene& scene, const RenderRules& rules,
-                   std::vector<detail::ShadeRoutineChoice>& routines) {
-  routines.clear();
-  for (const SceneMesh& mesh : scene.meshes)
-    routines.push_back(detail::chooseShadeRoutine(detail::shadeNeedsOf(plan, mesh, rules)));
-  plan.shadeRoutine = commonName(routines, [](const auto& r) { return r.name; });
-  for (const detail::ShadeRoutineChoice& routine : routines) {
-    plan.rule(Rule::AmbientOnly).fired |= routine.ambientOnly;
-    plan.rule(Rule::OneColor).skipped += routine.oneColor;
-  }
-  plan.rule(Rule::OneColor).fired = plan.rule(Rule::OneColor).skipped > 0;
-}
-
-// Rule::LightsThatReachNothing: the lights kept (into `kept`, prepared into `shader`).
-void cullLights(const Scene& scene, const RenderRules& rules, std::span<const detail::Box> bounds,
-                LightSet& kept, Shader& shader, RenderPlan::LightCulling& report) {
-  if (rules.lightsThatReachNothing) {
-    detail::cullLights(scene.lights, {scene.meshes, bounds}, rules.lightTolerance, kept, report);
-  } else {
-    kept = scene.lights;
-    report = {};
-    report.lights = scene.lights.lights.size();
-  }
-  shader.reset(kept);
-}
-
-void reportLightCulling(RenderPlan& plan, const RenderPlan::LightCulling& report) {
-  plan.lightCulling = report;
-  RuleOutcome& rule = plan.rule(Rule::LightsThatReachNothing);
-  rule.skipped = report.dark + report.outsideCone + report.belowTolerance;
-  rule.fired = rule.skipped > 0;
+detail::PlanInputs planInputs(const detail::FrameInputs& in, int threads) {
+  return {in.scene,      in.camera,           in.target.width, in.target.height, threads,
+          in.visibility, in.twoSidedLighting, in.depthOutput,  in.rules};
 }
 
 }  // namespace
@@ -112,14 +73,12 @@ void reportLightCulling(RenderPlan& plan, const RenderPlan::LightCulling& report
 struct Renderer::Workspace {
   std::unique_ptr<detail::ThreadPool> pool;
   RenderPlan plan;
-  LightSet keptLights;
-  Shader shader;
+  detail::ShadingChoice shading;
   std::optional<detail::FrameTransform> transform;
   detail::TileGrid grid;
   detail::MeshCache cache;
   std::vector<detail::Box> bounds;  // per mesh, for the lights
   std::vector<detail::FrameMesh> meshes;
-  std::vector<detail::ShadeRoutineChoice> shadeRoutines;  // per mesh
   detail::ViewCulling viewCulling;
   detail::PointRanges pointRanges;
   HugePageVector<detail::WindowVertex> vertices;
@@ -128,7 +87,7 @@ struct Renderer::Workspace {
   detail::SetupBuffers setup;
   detail::PolygonBuffers polygons;
   std::vector<detail::PaintCounts> tiles;
-  detail::ShadeBuffers shading;
+  detail::ShadeBuffers shadeBuffers;
   HugePageVector<float> ownDepth;  // the depth plane of a caller without one
   detail::FrameHistory history;
 
@@ -144,6 +103,9 @@ struct Renderer::Workspace {
   void chooseTileRoutine(const RenderRules& rules, detail::TileRoutine& routine);
   bool shadeAndResolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
                        detail::PhaseRunner& runner, RenderStats& stats);
+  bool resolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
+               detail::PhaseRunner& runner);
+  void countShaded(RenderStats& stats);
   void collectStatistics(RenderStats& stats) const;
 };
 
@@ -163,14 +125,9 @@ void Renderer::Workspace::planShading(const detail::FrameInputs& in, const detai
   for (std::size_t m = 0; m < in.scene.meshes.size() && cache[m].bounded; ++m)
     bounds.push_back(cache[m].bounds);
   if (bounds.size() != in.scene.meshes.size()) bounds.clear();  // not known: judged unbounded
-  RenderPlan::LightCulling culling;
-  cullLights(in.scene, in.rules, bounds, keptLights, shader, culling);
-  plan = detail::makePlan({in.scene, in.camera, in.target.width, in.target.height, shader, threads,
-                           in.visibility, in.twoSidedLighting, in.depthOutput, in.rules});
+  plan = detail::makePlan(planInputs(in, threads), bounds, shading);
   plan.path = path.path;
   plan.pathReason = path.reason;
-  reportLightCulling(plan, culling);
-  chooseShading(plan, in.scene, in.rules, shadeRoutines);
   prepareMeshes(in.scene);
 }
 
@@ -218,10 +175,7 @@ bool Renderer::Workspace::renderAgain(const detail::FrameInputs& in, const detai
   plan.path = path.path;
   plan.pathReason = path.reason;
   plan.threads = threads;
-  const detail::ResolveContext context{polygons.colors.data(), in.background,    planes.color,
-                                       planes.depth,           planes.polygonId, planes.width};
-  const bool completed = detail::resolveTiles(
-      runner, grid, context, detail::chooseResolveRoutine(false).resolve, *transform);
+  const bool completed = resolve(in, planes, false, runner);
   stats.shadeSeconds = runner.lap();
   return completed;
 }
@@ -268,13 +222,7 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 // Rule::HiddenGeometry, from the set-up's estimate of depth complexity.
 void Renderer::Workspace::chooseTileRoutine(const RenderRules& rules,
                                             detail::TileRoutine& routine) {
-  std::size_t samples = 0, triangles = 0;
-  for (const detail::Chunk& chunk : setup.chunks) {
-    samples += chunk.counts.boxSamples;
-    triangles += chunk.counts.trianglesBinned;
-  }
-  plan.depthComplexity = double(samples) / (double(plan.width) * plan.height);
-  plan.meanTriangleBox = triangles == 0 ? 0.0 : double(samples) / double(triangles);
+  detail::estimateDepthComplexity(plan, setup.chunks);
   const detail::TileRoutineChoice choice =
       detail::chooseTileRoutine(plan.depthTest, detail::useCoarseDepth(plan, rules.hiddenGeometry));
   routine = choice.paint;
@@ -286,25 +234,36 @@ bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
                                           const FramebufferView& planes, bool depths,
                                           detail::PhaseRunner& runner, RenderStats& stats) {
   const detail::ShadeContext shadeContext{*transform,
-                                          shader,
+                                          shading.shader,
                                           plan.twoSidedLighting,
                                           polygons.shown.data(),
                                           polygons.backFacing.data(),
                                           polygons.colors.data()};
-  bool completed = detail::shadePolygons(runner, meshes, shadeRoutines, shadeContext, shading);
-  stats.polygonsShaded = 0;
-  for (std::size_t i = 0; i < shading.counts.size(); ++i) {
-    stats.polygonsShaded += shading.counts[i];
-    const bool ambient = shadeRoutines[shading.ranges[i].mesh].ambientOnly;
-    plan.rule(Rule::AmbientOnly).skipped += ambient ? shading.counts[i] : 0;
-  }
-  const detail::ResolveContext resolveContext{polygons.colors.data(), in.background,
-                                              planes.color,           planes.depth,
-                                              planes.polygonId,       planes.width};
-  const detail::ResolveRoutine resolve = detail::chooseResolveRoutine(depths).resolve;
-  completed = completed && detail::resolveTiles(runner, grid, resolveContext, resolve, *transform);
+  bool completed =
+      detail::shadePolygons(runner, meshes, shading.routines, shadeContext, shadeBuffers);
+  countShaded(stats);
+  completed = completed && resolve(in, planes, depths, runner);
   stats.shadeSeconds = runner.lap();
   return completed;
+}
+
+// Phase 5: the pixels' colors from their polygons'; `depths`: window depths from the keys.
+bool Renderer::Workspace::resolve(const detail::FrameInputs& in, const FramebufferView& planes,
+                                  bool depths, detail::PhaseRunner& runner) {
+  const detail::ResolveContext context{polygons.colors.data(), in.background,    planes.color,
+                                       planes.depth,           planes.polygonId, planes.width};
+  const detail::ResolveRoutine routine = detail::chooseResolveRoutine(depths).resolve;
+  return detail::resolveTiles(runner, grid, context, routine, *transform);
+}
+
+// The polygons lit, and those Rule::AmbientOnly lit without normal or light loop.
+void Renderer::Workspace::countShaded(RenderStats& stats) {
+  stats.polygonsShaded = 0;
+  for (std::size_t i = 0; i < shadeBuffers.counts.size(); ++i) {
+    stats.polygonsShaded += shadeBuffers.counts[i];
+    const bool ambient = shading.routines[shadeBuffers.ranges[i].mesh].ambientOnly;
+    plan.rule(Rule::AmbientOnly).skipped += ambient ? shadeBuffers.counts[i] : 0;
+  }
 }
 
 void Renderer::Workspace::collectStatistics(RenderStats& stats) const {
@@ -363,16 +322,11 @@ RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, i
   std::vector<detail::Box> bounds;
   for (const SceneMesh& mesh : scene.meshes)
     bounds.push_back(detail::boundsOf(mesh.mesh));
-  LightSet kept;
-  Shader shader;
-  RenderPlan::LightCulling culling;
-  cullLights(scene, rules_, bounds, kept, shader, culling);
-  RenderPlan plan = detail::makePlan({scene, camera, width, height, shader, threadCount(),
-                                      visibility_, twoSidedLighting_, depthOutput_, rules_});
+  detail::ShadingChoice shading;
+  RenderPlan plan = detail::makePlan({scene, camera, width, height, threadCount(), visibility_,
+                                      twoSidedLighting_, depthOutput_, rules_},
+                                     bounds, shading);
   plan.pathReason = "planned ahead (Renderer::plan)";
-  reportLightCulling(plan, culling);
-  std::vector<detail::ShadeRoutineChoice> routines;
-  chooseShading(plan, scene, rules_, routines);
   plan.rasterRoutine =
       plan.depthTest ? "depth test (hierarchical z decided by the render)" : "painter's overwrite";
   return plan;
