@@ -303,5 +303,25 @@ TEST(Incremental, ASequenceOfChangesKeepsMatchingFullRenders) {
   }
 }
 
+TEST(Incremental, TheReportSaysWhichPathRanAndWhy) {
+  World world;
+  Renderer renderer;
+  Framebuffer framebuffer(120, 90);
+  const RenderStats full = renderer.render(world.scene, world.camera, framebuffer);
+  Scene dimmer = world.scene;
+  dimmer.lights.ambient.intensity = 0.2;
+  const RenderStats reshade = renderer.render(dimmer, world.camera, framebuffer);
+  const std::string text = reshade.describe();
+  for (const char* expected : {"path: re-shade the previous frame", "(the lights changed)",
+                               "transform 0, set-up 0, raster 0", "rules (off / idle / fired"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << " in\n" << text;
+  }
+  EXPECT_STREQ(full.plan.pathReason, "no previous frame to reuse");
+  EXPECT_GT(full.rasterSeconds, 0.0);
+  EXPECT_GT(reshade.shadeSeconds, 0.0);
+  EXPECT_EQ(reshade.polygonsDrawn, full.polygonsDrawn) << "the frame's counts are kept";
+  EXPECT_STREQ(reshade.plan.rasterRoutine, full.plan.rasterRoutine);
+}
+
 }  // namespace
 }  // namespace facet::testing
