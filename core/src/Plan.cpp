@@ -33,9 +33,8 @@ void cullLights(const PlanInputs& in, std::span<const Box> bounds, ShadingChoice
     report.lights = in.scene.lights.lights.size();
   }
   shading.shader.reset(shading.keptLights);
-  RuleOutcome& rule = plan.rule(Rule::LightsThatReachNothing);
-  rule.skipped = report.dark + report.outsideCone + report.belowTolerance;
-  rule.fired = rule.skipped > 0;
+  reportRule(plan, Rule::LightsThatReachNothing,
+             report.dark + report.outsideCone + report.belowTolerance);
 }
 
 void planLighting(RenderPlan& plan, const PlanInputs& in, const Shader& shader) {
@@ -107,7 +106,8 @@ bool useCoarseDepth(const RenderPlan& plan, HierarchicalZ mode) {
                                        plan.meanTriangleBox >= kCoarseDepthMinTriangleBox);
 }
 
-void estimateDepthComplexity(RenderPlan& plan, std::span<const Chunk> chunks) {
+TileRoutine chooseRasterRoutine(RenderPlan& plan, std::span<const Chunk> chunks,
+                                HierarchicalZ mode) {
   std::size_t samples = 0, triangles = 0;
   for (const Chunk& chunk : chunks) {
     samples += chunk.counts.boxSamples;
@@ -115,6 +115,14 @@ void estimateDepthComplexity(RenderPlan& plan, std::span<const Chunk> chunks) {
   }
   plan.depthComplexity = double(samples) / (double(plan.width) * plan.height);
   plan.meanTriangleBox = triangles == 0 ? 0.0 : double(samples) / double(triangles);
+  const TileRoutineChoice choice = chooseTileRoutine(plan.depthTest, useCoarseDepth(plan, mode));
+  plan.rasterRoutine = choice.name;
+  return choice.paint;
+}
+
+void reportRule(RenderPlan& plan, Rule rule, std::size_t skipped) {
+  plan.rule(rule).skipped = skipped;
+  plan.rule(rule).fired = skipped > 0;
 }
 
 void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous) {

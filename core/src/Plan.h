@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "Box.h"
+#include "Raster.h"
 #include "Shade.h"
 #include "facet/Camera.h"
 #include "facet/Lighting.h"
@@ -62,9 +63,13 @@ inline constexpr double kCoarseDepthMinComplexity = 4.0;
 inline constexpr double kCoarseDepthMinTriangleBox = 64.0;
 bool useCoarseDepth(const RenderPlan& plan, HierarchicalZ mode);
 
-// Rule::HiddenGeometry's estimate, from the set-up's chunks: depth complexity and the mean
-// triangle's box (RenderPlan).
-void estimateDepthComplexity(RenderPlan& plan, std::span<const Chunk> chunks);
+// The tile routine (Raster.h), once the set-up is known: Rule::HiddenGeometry's estimate
+// from the chunks (depth complexity, the mean triangle's box) decides the coarse depth.
+TileRoutine chooseRasterRoutine(RenderPlan& plan, std::span<const Chunk> chunks,
+                                HierarchicalZ mode);
+
+// Records that `rule` left out `skipped` items (fired when some).
+void reportRule(RenderPlan& plan, Rule rule, std::size_t skipped);
 
 // Copies into `plan` what `previous` found out about the geometry of the frame it drew (an
 // incremental render reuses that frame).

@@ -59,4 +59,12 @@ bool paintTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& 
                     [&](std::size_t t) { counts[t] = routine(context, t, grid.bounds(t)); });
 }
 
+void addPaintCounts(std::span<const PaintCounts> tiles, RenderStats& stats) {
+  for (const PaintCounts& tile : tiles) {
+    stats.fragmentsWritten += tile.written;
+    stats.pixelsCovered += tile.covered;
+    stats.trianglesHidden += tile.hidden;
+  }
+}
+
 }  // namespace facet::detail

@@ -11,6 +11,7 @@
 #include "Frame.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
+#include "facet/RenderPlan.h"
 
 namespace facet::detail {
 
@@ -36,5 +37,8 @@ TileRoutineChoice chooseTileRoutine(bool depthTest, bool coarseDepth);
 
 bool paintTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,
                 TileRoutine routine, std::vector<PaintCounts>& counts);
+
+// Adds what the tiles counted (fragments, pixels covered, triangles hidden) to `stats`.
+void addPaintCounts(std::span<const PaintCounts> tiles, RenderStats& stats);
 
 }  // namespace facet::detail

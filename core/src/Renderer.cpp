@@ -100,13 +100,11 @@ struct Renderer::Workspace {
                    const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
   bool renderGeometry(const detail::FrameInputs& in, const FramebufferView& planes,
                       detail::PhaseRunner& runner, RenderStats& stats);
-  void chooseTileRoutine(const RenderRules& rules, detail::TileRoutine& routine);
   bool shadeAndResolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
                        detail::PhaseRunner& runner, RenderStats& stats);
   bool resolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
                detail::PhaseRunner& runner);
   void countShaded(RenderStats& stats);
-  void collectStatistics(RenderStats& stats) const;
 };
 
 FramebufferView Renderer::Workspace::planesFor(const FramebufferView& target) {
@@ -153,9 +151,9 @@ bool Renderer::Workspace::renderFull(const detail::FrameInputs& in, const detail
   planShading(in, path, threads);
   completed = completed && renderGeometry(in, planes, runner, stats);
   completed = completed && shadeAndResolve(in, planes, in.depthOutput, runner, stats);
-  collectStatistics(stats);
-  plan.rule(Rule::HiddenGeometry).skipped = stats.trianglesHidden;
-  plan.rule(Rule::HiddenGeometry).fired = stats.trianglesHidden > 0;
+  detail::addSetupCounts(setup.chunks, stats);
+  detail::addPaintCounts(tiles, stats);
+  detail::reportRule(plan, Rule::HiddenGeometry, stats.trianglesHidden);
   return completed;
 }
 
@@ -188,14 +186,12 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
     detail::cullBlocksOutsideView(meshes, cache, *transform, viewCulling);
     plan.blocksTested = viewCulling.blocksTested;
     plan.blocksOutside = viewCulling.blocksOutside;
-    plan.rule(Rule::GeometryOutsideView).skipped = viewCulling.polygonsOutside;
-    plan.rule(Rule::GeometryOutsideView).fired = viewCulling.polygonsOutside > 0;
+    detail::reportRule(plan, Rule::GeometryOutsideView, viewCulling.polygonsOutside);
   }
   bool completed = detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);
   stats.closedMeshesSkippingBackFaces =
       detail::decideBackFaces(meshes, pointRanges, in.rules.closedSurfaces);
-  plan.rule(Rule::ClosedSurfaces).skipped = stats.closedMeshesSkippingBackFaces;
-  plan.rule(Rule::ClosedSurfaces).fired = stats.closedMeshesSkippingBackFaces > 0;
+  detail::reportRule(plan, Rule::ClosedSurfaces, stats.closedMeshesSkippingBackFaces);
   plan.setupRoutine =
       commonName(meshes, [](const auto& m) { return detail::setupRoutineName(m.skipBackFaces); });
   order.ids.clear();
@@ -209,24 +205,14 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
   completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
   stats.setupSeconds = runner.lap();
 
-  detail::TileRoutine tileRoutine;
-  chooseTileRoutine(in.rules, tileRoutine);
+  const detail::TileRoutine tileRoutine =
+      detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
   const detail::RasterContext rasterContext{setup.chunks,  vertices.data(),  planes.color,
                                             planes.depth,  planes.polygonId, planes.width,
                                             polygons.shown};
   completed = completed && detail::paintTiles(runner, grid, rasterContext, tileRoutine, tiles);
   stats.rasterSeconds = runner.lap();
   return completed;
-}
-
-// Rule::HiddenGeometry, from the set-up's estimate of depth complexity.
-void Renderer::Workspace::chooseTileRoutine(const RenderRules& rules,
-                                            detail::TileRoutine& routine) {
-  detail::estimateDepthComplexity(plan, setup.chunks);
-  const detail::TileRoutineChoice choice =
-      detail::chooseTileRoutine(plan.depthTest, detail::useCoarseDepth(plan, rules.hiddenGeometry));
-  routine = choice.paint;
-  plan.rasterRoutine = choice.name;
 }
 
 // Phases 4 and 5; `depths`: convert the depth keys too.
@@ -263,23 +249,6 @@ void Renderer::Workspace::countShaded(RenderStats& stats) {
     stats.polygonsShaded += shadeBuffers.counts[i];
     const bool ambient = shading.routines[shadeBuffers.ranges[i].mesh].ambientOnly;
     plan.rule(Rule::AmbientOnly).skipped += ambient ? shadeBuffers.counts[i] : 0;
-  }
-}
-
-void Renderer::Workspace::collectStatistics(RenderStats& stats) const {
-  for (const detail::Chunk& chunk : setup.chunks) {
-    stats.polygonsDrawn += chunk.counts.drawn;
-    stats.polygonsCulled += chunk.counts.culled;
-    stats.polygonsOutside += chunk.counts.outside;
-    stats.polygonsDegenerate += chunk.counts.degenerate;
-    stats.polygonsNonFinite += chunk.counts.nonFinite;
-    stats.trianglesBinned += chunk.counts.trianglesBinned;
-    stats.trianglesClipped += chunk.counts.trianglesClipped;
-  }
-  for (const detail::PaintCounts& tile : tiles) {
-    stats.fragmentsWritten += tile.written;
-    stats.pixelsCovered += tile.covered;
-    stats.trianglesHidden += tile.hidden;
   }
 }
 

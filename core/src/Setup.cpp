@@ -381,4 +381,16 @@ bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads
                     [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
 }
 
+void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {
+  for (const Chunk& chunk : chunks) {
+    stats.polygonsDrawn += chunk.counts.drawn;
+    stats.polygonsCulled += chunk.counts.culled;
+    stats.polygonsOutside += chunk.counts.outside;
+    stats.polygonsDegenerate += chunk.counts.degenerate;
+    stats.polygonsNonFinite += chunk.counts.nonFinite;
+    stats.trianglesBinned += chunk.counts.trianglesBinned;
+    stats.trianglesClipped += chunk.counts.trianglesClipped;
+  }
+}
+
 }  // namespace facet::detail

@@ -11,6 +11,7 @@
 #include "Frame.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
+#include "facet/RenderPlan.h"
 
 namespace facet::detail {
 
@@ -36,5 +37,8 @@ const char* setupRoutineName(bool skipBackFaces);
 // order interleaves them) sized for `threads`.
 bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
                    SetupBuffers& buffers);
+
+// Adds what the set-up counted (polygons drawn, culled, ...; triangles) to `stats`.
+void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats);
 
 }  // namespace facet::detail

@@ -58,7 +58,9 @@ Rendered expectSameBytesWithout(Rule rule, const Scene& scene, const Camera& cam
         << on.stats.describe();
   }
   EXPECT_GT(reference.stats.pixelsCovered, 0u);
-  if (mustFire) EXPECT_TRUE(on.stats.plan.rule(rule).fired) << on.stats.describe();
+  if (mustFire) {
+    EXPECT_TRUE(on.stats.plan.rule(rule).fired) << on.stats.describe();
+  }
   return on;
 }
 
