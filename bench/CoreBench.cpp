@@ -7,8 +7,20 @@
 // Counters: triangles/s (input polygons per second) and fragments/s (fill rate, pixel writes incl.
 // overdraw), and the heap peak during the benchmark (mesh + framebuffer + renderer) as a ratio of
 // the bytes of the mesh plus the framebuffer (target: at most 2).
+//
+// BM_Saving: what each rule and each incremental path saves (README, "Leaving out work"), on
+// scenes built to need little: per row, the frame with that work done anyway ("everything
+// on") and the frame with the rule, rendered alternately in one run; `saving` is their ratio.
+//
+//   build/bin/facet_bench --benchmark_filter=Saving
 
+#include <algorithm>
+#include <chrono>
 #include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -26,9 +38,10 @@ constexpr int kWidth = 1920, kHeight = 1080;
 struct VtkLikeMesh {
   std::vector<float> xyz;
   std::vector<std::int64_t> offsets, connectivity;
+  std::vector<Rgba8> colors;
   bool closed = false;
   MeshView view() const {
-    return {PointArray::ofXyz(xyz), PolygonArray::of(offsets, connectivity), {}, closed};
+    return {PointArray::ofXyz(xyz), PolygonArray::of(offsets, connectivity), colors, closed};
   }
   std::size_t bytes() const {
     return xyz.size() * sizeof(float) +
@@ -146,6 +159,295 @@ BENCHMARK(BM_LargeOverlappingPolygons)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// --- What each rule and incremental path saves ------------------------------------------------
+
+// A scene and its camera, with the meshes it views.
+struct SavingScene {
+  std::vector<std::shared_ptr<const VtkLikeMesh>> meshes;
+  Scene scene;
+  Camera camera;
+};
+
+// One row of the table: the same frame rendered by two renderers, one doing the work the
+// rule leaves out ("everything on") and one with the rule. `change` edits the scene or the
+// renderer before every frame of the lean renderer (the incremental rows: a new light).
+struct Comparison {
+  const char* name;
+  SavingScene (*make)();
+  RenderRules lean;  // everything on: every rule off, incremental off
+  void (*setUp)(Renderer& renderer, bool lean) = nullptr;
+  void (*change)(Scene& scene, Renderer& renderer, int frame) = nullptr;
+};
+
+// Spheres are slow to build: one of each size for every row.
+std::shared_ptr<const VtkLikeMesh> sphereMesh(int triangles, bool closed = false) {
+  static std::map<std::pair<int, bool>, std::shared_ptr<const VtkLikeMesh>> spheres;
+  auto& sphere = spheres[{triangles, closed}];
+  if (!sphere) {
+    auto mesh = std::make_shared<VtkLikeMesh>(sphereWithTriangles(triangles).mesh);
+    mesh->closed = closed;
+    sphere = mesh;
+  }
+  return sphere;
+}
+
+Camera sphereCamera() {
+  static const Camera camera = testing::fitCamera(testing::makeUvSphere(16, 18));
+  return camera;
+}
+
+SavingScene sphereScene(int triangles, LightSet lights, bool closed = false) {
+  SavingScene s{{sphereMesh(triangles, closed)}, {}, sphereCamera()};
+  s.scene.meshes.push_back({s.meshes[0]->view(), Material{}});
+  s.scene.meshes[0].mesh.version = 1;  // measured once (GeometryOutsideView)
+  s.scene.lights = std::move(lights);
+  return s;
+}
+
+LightSet ambientOnly() {
+  LightSet lights;
+  lights.ambient.intensity = 3.0;
+  return lights;
+}
+
+LightSet directional() {
+  LightSet lights;
+  lights.lights.push_back(DirectionalLight{{-1.0, -0.5, -1.0}, Color(0.9f), 1.0});
+  return lights;
+}
+
+LightSet headlight() {
+  return benchScene({}, sphereCamera()).lights;
+}
+
+SavingScene ambientOneColor() {
+  return sphereScene(500000, ambientOnly());
+}
+
+SavingScene ambientPolygonColors() {
+  SavingScene s = ambientOneColor();
+  auto mesh = std::make_shared<VtkLikeMesh>(*s.meshes[0]);
+  const std::size_t polygons = mesh->offsets.size() - 1;
+  for (std::size_t i = 0; i < polygons; ++i)
+    mesh->colors.push_back({std::uint8_t(i * 7), std::uint8_t(i * 13), std::uint8_t(i * 31), 255});
+  s.meshes[0] = mesh;
+  s.scene.meshes[0].mesh = mesh->view();
+  return s;
+}
+
+SavingScene directionalOneColor() {
+  return sphereScene(500000, directional());
+}
+
+// Eight spot lights beside the sphere, pointing away from it, and the headlight.
+SavingScene spotsOffTheMesh() {
+  LightSet lights = headlight();
+  for (int i = 0; i < 8; ++i) {
+    const double a = i * 0.785398;
+    const glm::dvec3 out(std::cos(a), std::sin(a), 0.3);
+    lights.lights.push_back(SpotLight{2.0 * out, out, Color(1.0f), 1.0});
+  }
+  return sphereScene(500000, lights);
+}
+
+SavingScene closedSphere() {
+  return sphereScene(500000, headlight(), true);
+}
+
+SavingScene headlitSphere() {
+  return sphereScene(500000, headlight());
+}
+
+SavingScene headlitSphere2M() {
+  return sphereScene(2000000, headlight());
+}
+
+// The 2M sphere seen from its side through a narrow view: the blocks of polygons (half rings
+// of the UV sphere) far from the equator are outside it.
+SavingScene zoomedSphere() {
+  SavingScene s = headlitSphere2M();
+  s.camera = testing::fitCamera(testing::makeUvSphere(16, 18), {-1.0, 0.0, 0.0});
+  s.camera.viewAngleDegrees = 4.0;
+  return s;
+}
+
+// Deep occlusion: 64 screen-filling layers of 8 × 8 quads, nearest first.
+SavingScene stackedLayers() {
+  auto mesh = std::make_shared<VtkLikeMesh>(toVtkLike(testing::makeStackedSquares(64, 8, true)));
+  SavingScene s{{mesh}, {}, {}};
+  s.camera.position = {0.0, 0.0, 2.0};
+  s.camera.nearClip = 0.5;
+  s.camera.farClip = 20.0;
+  s.camera.viewAngleDegrees = 40.0;
+  s.scene.meshes.push_back({mesh->view(), Material{}});
+  s.scene.lights = directional();
+  return s;
+}
+
+void depthOutputOff(Renderer& renderer, bool lean) {
+  renderer.setDepthOutput(!lean);
+}
+
+// A different light in every frame: the lean renderer re-shades.
+void newLight(Scene& scene, Renderer&, int frame) {
+  std::get<PointLight>(scene.lights.lights[0]).intensity = frame % 2 ? 0.9 : 1.0;
+}
+
+// A different background in every frame: the lean renderer only resolves.
+void newBackground(Scene&, Renderer& renderer, int frame) {
+  renderer.setBackground(Color(frame % 2 ? 0.2f : 0.1f));
+}
+
+RenderRules everythingOn() {
+  RenderRules rules;
+  rules.lightsThatReachNothing = rules.geometryOutsideView = false;
+  rules.hiddenGeometry = HierarchicalZ::Off;
+  rules.ambientOnly = rules.oneColor = rules.closedSurfaces = rules.incremental = false;
+  return rules;
+}
+
+// The rules with `rule` alone on (and incremental off): its saving alone.
+RenderRules only(Rule rule) {
+  RenderRules rules = everythingOn();
+  switch (rule) {
+    case Rule::LightsThatReachNothing:
+      rules.lightsThatReachNothing = true;
+      break;
+    case Rule::GeometryOutsideView:
+      rules.geometryOutsideView = true;
+      break;
+    case Rule::HiddenGeometry:
+      rules.hiddenGeometry = HierarchicalZ::Auto;
+      break;
+    case Rule::AmbientOnly:
+      rules.ambientOnly = true;
+      break;
+    case Rule::OneColor:
+      rules.oneColor = true;
+      break;
+    case Rule::ClosedSurfaces:
+      rules.closedSurfaces = true;
+      break;
+  }
+  return rules;
+}
+
+RenderRules allRules() {
+  RenderRules rules;
+  rules.incremental = false;
+  return rules;
+}
+
+RenderRules incremental() {
+  RenderRules rules;
+  rules.incremental = true;
+  return rules;
+}
+
+RenderRules forcedCoarseDepth() {
+  RenderRules rules = everythingOn();
+  rules.hiddenGeometry = HierarchicalZ::On;
+  return rules;
+}
+
+const std::vector<Comparison>& comparisons() {
+  static const std::vector<Comparison> rows = {
+      {"ambient only, one color (500k)", ambientOneColor, only(Rule::AmbientOnly)},
+      {"ambient only, per-polygon colors (500k)", ambientPolygonColors, only(Rule::AmbientOnly)},
+      {"ambient only, one color, every rule (500k)", ambientOneColor, allRules()},
+      {"directional only, one color (500k)", directionalOneColor, only(Rule::OneColor)},
+      {"spot lights off the mesh (500k)", spotsOffTheMesh, only(Rule::LightsThatReachNothing)},
+      {"closed surface (500k)", closedSphere, only(Rule::ClosedSurfaces)},
+      {"geometry outside the view (2M, side, 4 degrees)", zoomedSphere,
+       only(Rule::GeometryOutsideView)},
+      {"deep occlusion, hierarchical z auto (64 layers)", stackedLayers,
+       only(Rule::HiddenGeometry)},
+      {"sphere, hierarchical z forced on (2M)", headlitSphere2M, forcedCoarseDepth()},
+      {"no depth output (500k)", headlitSphere, everythingOn(), depthOutputOff},
+      {"re-light: lights changed, re-shade (2M)", headlitSphere2M, incremental(), nullptr,
+       newLight},
+      {"background changed, resolve only (2M)", headlitSphere2M, incremental(), nullptr,
+       newBackground},
+  };
+  return rows;
+}
+
+// One renderer of a row, and its own copy of the scene to change.
+struct Contender {
+  Renderer renderer;
+  Scene scene;
+  Framebuffer framebuffer{kWidth, kHeight};
+
+  RenderStats last;
+
+  double frameSeconds(const Camera& camera) {
+    const auto start = std::chrono::steady_clock::now();
+    last = renderer.render(scene, camera, framebuffer);
+    benchmark::DoNotOptimize(framebuffer.color().data());
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+// The lean frame must be the everything-on frame (colors and ids; depth may be off), else
+// the row measures nothing worth having.
+bool sameImage(const Contender& a, const Contender& b) {
+  const auto& fa = a.framebuffer;
+  const auto& fb = b.framebuffer;
+  return std::equal(fa.color().begin(), fa.color().end(), fb.color().begin()) &&
+         std::equal(fa.polygonId().begin(), fa.polygonId().end(), fb.polygonId().begin());
+}
+
+// What the lean render left out, for the row's label.
+std::string leftOut(const RenderStats& stats) {
+  std::string label = stats.plan.path == RenderPath::Full ? "" : stats.plan.pathReason;
+  for (int r = 0; r < kRuleCount; ++r) {
+    if (stats.plan.rules[r].fired) {
+      label += (label.empty() ? "" : "; ") + std::string(ruleName(static_cast<Rule>(r))) + ": " +
+               std::to_string(stats.plan.rules[r].skipped);
+    }
+  }
+  return label;
+}
+
+void setUpContender(Contender& c, const Comparison& row, const SavingScene& s, bool lean) {
+  c.renderer.setThreadCount(2);
+  c.renderer.setRules(lean ? row.lean : everythingOn());
+  if (row.setUp) row.setUp(c.renderer, lean);
+  c.scene = s.scene;
+}
+
+void BM_Saving(benchmark::State& state) {
+  const Comparison& row = comparisons().at(state.range(0));
+  const SavingScene s = row.make();
+  Contender everything, lean;
+  setUpContender(everything, row, s, false);
+  setUpContender(lean, row, s, true);
+  everything.frameSeconds(s.camera);  // warm: buffers grow
+  lean.frameSeconds(s.camera);
+  double everythingSeconds = 0.0, leanSeconds = 0.0;
+  int frame = 0;
+  for (auto _ : state) {
+    if (row.change) {
+      row.change(everything.scene, everything.renderer, frame);
+      row.change(lean.scene, lean.renderer, frame);
+    }
+    ++frame;
+    everythingSeconds += everything.frameSeconds(s.camera);
+    leanSeconds += lean.frameSeconds(s.camera);
+  }
+  if (!sameImage(everything, lean)) state.SkipWithError("the rule changed the image");
+  state.SetLabel(std::string(row.name) + " [" + leftOut(lean.last) + "]");
+  state.counters["everything ms"] = 1e3 * everythingSeconds / frame;
+  state.counters["lean ms"] = 1e3 * leanSeconds / frame;
+  state.counters["saving"] = everythingSeconds / leanSeconds;
+}
+BENCHMARK(BM_Saving)
+    ->DenseRange(0, 11)
+    ->ArgName("row")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(4.0);
 
 }  // namespace
 }  // namespace facet::bench

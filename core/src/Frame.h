@@ -1,31 +1,76 @@
 #pragma once
 
-// The state the render phases share. It lives in the Renderer between renders, so that
-// re-rendering the same scene at the same size reuses every buffer and allocates nothing.
+// What the render phases hand each other. The buffers live in the Renderer between renders,
+// so that re-rendering the same scene at the same size reuses every one and allocates
+// nothing. One meaning per buffer.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "FrameTransform.h"
-#include "MeshAccess.h"
-#include "Rasterizer.h"
+#include "RasterTriangle.h"
 #include "Triangulate.h"
 #include "facet/HugePageAllocator.h"
 #include "facet/Lighting.h"
-#include "facet/RenderPlan.h"
 #include "facet/Scene.h"
 
 namespace facet::detail {
 
-// Square screen tiles, each painted by one thread: 64 × 64 pixels keep a tile's color,
-// depth and id planes (48 KiB) in L2 while giving hundreds of tiles to balance at 1080p.
-inline constexpr int kTileSize = 64;
+// A range of one mesh's points or polygons: the unit of the validation, transform and
+// shading tasks, which never straddle meshes.
+struct MeshRange {
+  std::size_t mesh, begin, end;
+};
 
-// A triangle vertex reference: an index into FrameState::vertices, or, with this bit set,
+// Splits every mesh's [0, countOf(mesh)) into ranges of at most `perRange`.
+template <class CountOf>
+void splitPerMesh(std::size_t meshCount, std::size_t perRange, const CountOf& countOf,
+                  std::vector<MeshRange>& ranges) {
+  ranges.clear();
+  for (std::size_t m = 0; m < meshCount; ++m) {
+    const std::size_t n = countOf(m);
+    for (std::size_t begin = 0; begin < n; begin += perRange) {
+      ranges.push_back({m, begin, std::min(n, begin + perRange)});
+    }
+  }
+}
+
+// Per-frame facts about one scene mesh.
+struct FrameMesh {
+  const SceneMesh* source = nullptr;
+  PreparedMaterial material;
+  std::size_t firstVertex = 0;   // into the frame's vertices
+  std::size_t firstPolygon = 0;  // global polygon id of its polygon 0
+  // Back faces cannot be seen this frame: a closed surface wholly in front of the near
+  // plane (see MeshView::closedSurface), or culled by the material. Decided by the
+  // transform phase.
+  bool skipBackFaces = false;
+  // Rule::GeometryOutsideView (ViewCulling.h): per block of polygons, whether it may be
+  // seen, and per transform task, whether a visible block uses its points. Null: all.
+  const std::uint8_t* visibleBlocks = nullptr;
+  const std::uint8_t* neededTasks = nullptr;
+
+  const MeshView& mesh() const { return source->mesh; }
+  std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }
+};
+
+// Painter's order: the polygon id at each draw position. Empty in z-buffer mode, where
+// polygons draw in id order.
+struct DrawOrder {
+  std::vector<std::uint32_t> ids;
+  std::vector<std::pair<double, std::uint32_t>> keys;  // scratch: (view distance, id)
+  std::size_t polygonAt(std::size_t position) const {
+    return ids.empty() ? position : ids[position];
+  }
+};
+
+// A triangle vertex reference: an index into the frame's vertices, or, with this bit set,
 // into the chunk's own clippedVertices.
 inline constexpr std::uint32_t kClippedVertexBit = 0x80000000u;
 
@@ -37,20 +82,15 @@ struct BinnedTriangle {
   std::int32_t polygon;
 };
 
-// Flat shading is deferred to the polygons that end up visible (Resolve.cpp): after set-up,
-// a drawn polygon's slot in FrameState::polygonColors says which side the viewer sees;
-// after shading, it holds the polygon's RGBA8 color.
-inline constexpr std::uint32_t kUnshadedFront = 0;
-inline constexpr std::uint32_t kUnshadedBack = 1;
-
 struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
+  std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
 };
 
-// A run of consecutive draw positions set up by one task. Its bins list, per tile, indices
-// into `triangles`; tiles read the chunks in order, so every tile sees its triangles in draw
-// order whatever the chunking (which depends on the thread count) was.
+// A run of consecutive draw positions that one task sets up and bins. Its bins list, per
+// tile, indices into `triangles`; tiles read the chunks in order, so every tile sees its
+// triangles in draw order whatever the chunking (which depends on the thread count) was.
 struct Chunk {
   std::size_t begin = 0, end = 0;
   HugePageVector<BinnedTriangle> triangles;
@@ -64,55 +104,24 @@ struct Chunk {
   TriangulationScratch triangulation;
 };
 
-// Per-frame facts about one scene mesh.
-struct FrameMesh {
-  const SceneMesh* source = nullptr;
-  PreparedMaterial material;
-  std::size_t firstVertex = 0;   // into FrameState::vertices
-  std::size_t firstPolygon = 0;  // global polygon id of its polygon 0
-  // Without direct light and per-polygon colors, every polygon of the mesh has one color.
-  std::optional<Rgba8> uniformColor;
-  // Back faces cannot be seen this frame: a closed surface wholly in front of the near
-  // plane (see MeshView::closedSurface), or culled by the material.
-  bool skipBackFaces = false;
-};
+inline const WindowVertex& vertexOf(const WindowVertex* vertices, const Chunk& chunk,
+                                    std::uint32_t reference) {
+  return (reference & kClippedVertexBit) ? chunk.clippedVertices[reference & ~kClippedVertexBit]
+                                         : vertices[reference];
+}
 
-struct FrameState {
-  // Set at the start of each render.
-  RenderPlan plan;
-  std::optional<FrameTransform> transform;
-  Shader shader;
-  bool twoSidedLighting = true;
-  PixelBounds viewport{0, 0, -1, -1};
+// What the frame knows per polygon id, one buffer per meaning. Kept after the render: the
+// incremental paths re-shade and re-resolve from them.
+struct PolygonBuffers {
+  HugePageVector<std::uint8_t> backFacing;  // set-up: the viewer sees its back (drawn ones)
+  HugePageVector<std::uint8_t> shown;       // raster: it won a pixel, so it needs a color
+  HugePageVector<Rgba8> colors;             // shade: its flat-shaded color (shown ones)
 
-  // Buffers reused from render to render.
-  std::vector<FrameMesh> meshes;
-  HugePageVector<WindowVertex> vertices;  // every mesh's points, projected
-  std::vector<std::uint32_t> drawOrder;   // painter's order; empty means polygon id order
-  std::vector<std::pair<double, std::uint32_t>> sortKeys;
-  std::vector<Chunk> chunks;
-  HugePageVector<std::uint32_t> polygonColors;  // per polygon id; see kUnshadedFront
-  HugePageVector<std::uint8_t> shown;           // per polygon id: won a pixel (Planes::shown)
-
-  std::size_t meshOfPolygon(std::size_t polygonId) const;
-  const WindowVertex& vertex(const Chunk& chunk, std::uint32_t reference) const {
-    return (reference & kClippedVertexBit) ? chunk.clippedVertices[reference & ~kClippedVertexBit]
-                                           : vertices[reference];
-  }
-  std::size_t polygonAt(std::size_t drawPosition) const {
-    return drawOrder.empty() ? drawPosition : drawOrder[drawPosition];
+  void resize(std::size_t polygons) {
+    backFacing.resize(polygons);
+    shown.resize(polygons);
+    colors.resize(polygons);
   }
 };
-
-// Phase 2 for one chunk: clip, cull, triangulate and bin its polygons.
-void setUpChunk(FrameState& frame, Chunk& chunk);
-
-// Phase 4, colors (Resolve.cpp): shade the shown polygons of one mesh's id range
-// [begin, end), returning how many; then write a tile's colors from its ids and turn its
-// depth keys into window depths.
-std::size_t shadeVisiblePolygons(FrameState& frame, std::size_t meshIndex, std::size_t begin,
-                                 std::size_t end);
-void resolveTile(const FrameState& frame, const PixelBounds& tile, const Planes& planes,
-                 Rgba8 background);
 
 }  // namespace facet::detail

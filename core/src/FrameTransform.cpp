@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -85,6 +86,68 @@ void FrameTransform::placeOnPlane(ClipPoint& c, int plane) const {
       c.y = guardY_ * clipW(c);
       break;
   }
+}
+
+double FrameTransform::viewPlaneDistance(const ClipPoint& c, int plane) const {
+  switch (plane) {
+    case 2:
+      return clipW(c) + c.x;
+    case 3:
+      return clipW(c) - c.x;
+    case 4:
+      return clipW(c) + c.y;
+    case 5:
+      return clipW(c) - c.y;
+    default:
+      return planeDistance(c, plane);  // near and far
+  }
+}
+
+bool FrameTransform::clipCorners(const Box& box, ClipPoint (&corners)[8]) const {
+  for (int i = 0; i < 8; ++i) {
+    corners[i] = toClip(box.corner(i));
+    const ClipPoint& c = corners[i];
+    if (c.h != 1.0 || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.d)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// 1e-9 of the magnitudes whose difference viewPlaneDistance takes.
+double FrameTransform::margin(const ClipPoint& c, int plane) const {
+  const double w = std::abs(clipW(c));
+  switch (plane) {
+    case 0:
+      return 1e-9 * (std::abs(c.d) + std::abs(near_ * c.h));
+    case 1:
+      return 1e-9 * (std::abs(c.d) + std::abs(far_ * c.h));
+    case 2:
+    case 3:
+      return 1e-9 * (w + std::abs(c.x));
+    default:
+      return 1e-9 * (w + std::abs(c.y));
+  }
+}
+
+bool FrameTransform::boxOutsideView(const Box& box) const {
+  ClipPoint corners[8];
+  if (box.empty() || !clipCorners(box, corners)) return false;
+  for (int plane = 0; plane < kClipPlaneCount; ++plane) {
+    const auto outside = [&](const ClipPoint& c) {
+      return viewPlaneDistance(c, plane) < -margin(c, plane);
+    };
+    if (std::all_of(std::begin(corners), std::end(corners), outside)) return true;
+  }
+  return false;
+}
+
+bool FrameTransform::boxInFrontOfNear(const Box& box) const {
+  ClipPoint corners[8];
+  if (box.empty() || !clipCorners(box, corners)) return false;
+  return std::all_of(std::begin(corners), std::end(corners), [&](const ClipPoint& c) {
+    return planeDistance(c, 0) > margin(c, 0) && clipW(c) > 0.0;
+  });
 }
 
 double FrameTransform::viewDistance(const glm::dvec3& world) const {

@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "Box.h"
 #include "facet/Camera.h"
 #include "facet/Conventions.h"
 
@@ -166,6 +167,16 @@ class FrameTransform {
     return toWindow(clip);
   }
 
+  // Whether every point of the box is outside one plane of the view: a side of the viewport
+  // (not of the guard band), the near or the far plane. Every triangle of such points then
+  // covers no pixel center (Rule::GeometryOutsideView). Decided on the box's corners, with a
+  // margin of 1e-9 of their clip coordinates' magnitudes (the planes are affine in the
+  // point, and the points' own transforms round at 1e-16 of them); false for a box whose
+  // corners are not finite or are beyond kLargeCoordinate from the eye.
+  bool boxOutsideView(const Box& box) const;
+  // Whether every point of the box is in front of the near plane, by the same margin.
+  bool boxInFrontOfNear(const Box& box) const;
+
   // Window depth (Conventions.h, "Depth") of a depth key, computed in double and rounded to
   // the nearest float: perspective (1 − n/d)/(1 − n/f) = f(d − n)/(d(f − n)), parallel
   // (d − n)/(f − n). Runs once per pixel.
@@ -200,6 +211,11 @@ class FrameTransform {
     return static_cast<std::int8_t>(std::clamp(r, -127, 127));
   }
   double clipW(const ClipPoint& c) const { return parallel_ ? c.h : c.d; }
+  // Plane `plane` of the view (planeDistance with the viewport's sides), ≥ 0 inside.
+  double viewPlaneDistance(const ClipPoint& c, int plane) const;
+  // The box's corners in clip space, unscaled; false when one is not finite or was scaled.
+  bool clipCorners(const Box& box, ClipPoint (&corners)[8]) const;
+  double margin(const ClipPoint& c, int plane) const;
   // `inverseW` is 1/d in perspective (h/d = 1/distance, so n·h cannot underflow for points
   // scaled by kShrink) and 1/h in parallel projection. Finite.
   float depthKey(const ClipPoint& c, double inverseW) const {

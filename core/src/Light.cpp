@@ -114,24 +114,33 @@ void validateLight(const Light& light, const Name& name) {
 }  // namespace
 
 double attenuationFactor(const Attenuation& attenuation, double distance) {
-  if (!(distance >= 0.0)) return 0.0;
-  return std::visit(
-      detail::Overloaded{
-          [](const NoAttenuation&) { return 1.0; },
-          [&](const QuadraticAttenuation& q) { return quadraticFactor(q, distance); },
-          [&](const FalloffDistanceAttenuation& f) { return falloffDistanceFactor(f, distance); },
-      },
-      attenuation);
+  return std::visit(detail::Overloaded{
+                        [&](const NoAttenuation&) { return distance >= 0.0 ? 1.0 : 0.0; },
+                        [&](const auto& a) { return attenuationFactor(a, distance); },
+                    },
+                    attenuation);
+}
+
+double attenuationFactor(const QuadraticAttenuation& attenuation, double distance) {
+  return distance >= 0.0 ? quadraticFactor(attenuation, distance) : 0.0;
+}
+
+double attenuationFactor(const FalloffDistanceAttenuation& attenuation, double distance) {
+  return distance >= 0.0 ? falloffDistanceFactor(attenuation, distance) : 0.0;
 }
 
 double spotFactor(const SpotCone& cone, double cosAngleFromAxis) {
+  return std::visit([&](const auto& c) { return spotFactor(c, cosAngleFromAxis); }, cone);
+}
+
+double spotFactor(const LinearSpotCone& cone, double cosAngleFromAxis) {
   if (std::isnan(cosAngleFromAxis)) return 0.0;
-  const double cosAngle = std::clamp(cosAngleFromAxis, -1.0, 1.0);
-  return std::visit(detail::Overloaded{
-                        [&](const LinearSpotCone& c) { return linearConeFactor(c, cosAngle); },
-                        [&](const ExponentSpotCone& c) { return exponentConeFactor(c, cosAngle); },
-                    },
-                    cone);
+  return linearConeFactor(cone, std::clamp(cosAngleFromAxis, -1.0, 1.0));
+}
+
+double spotFactor(const ExponentSpotCone& cone, double cosAngleFromAxis) {
+  if (std::isnan(cosAngleFromAxis)) return 0.0;
+  return exponentConeFactor(cone, std::clamp(cosAngleFromAxis, -1.0, 1.0));
 }
 
 void validate(const LightSet& lightSet) {

@@ -2,30 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "Overloaded.h"
+#include "Radiance.h"
 #include "Validate.h"
 #include "Vector.h"
 
 namespace facet {
 namespace {
 
-// Caps a non-negative factor so that products of a handful of them stay finite in double
-// (see "Edge cases" in Lighting.h). NaN and negative values map to 0.
-double capped(double x) {
-  return x > 0.0 ? std::min(x, kMaxRadiance) : 0.0;
-}
-glm::dvec3 capped(const Color& c) {
-  return {capped(c.r), capped(c.g), capped(c.b)};
-}
-
-glm::dvec3 radianceOf(const Color& color, double intensity) {
-  const double i = std::max(intensity, 0.0);
-  return {capped(color.r * i), capped(color.g * i), capped(color.b * i)};
-}
+using detail::capped;
+using detail::radianceOf;
 
 double specularFactor(const PreparedMaterial& m, const glm::dvec3& normal,
                       const glm::dvec3& toLight, const glm::dvec3& toViewer, double cosine) {
@@ -49,35 +40,131 @@ double preparedDiffuseFactor(const PreparedMaterial& m, double cosine) {
   return m.lerpAmbient + (m.lerpFull - m.lerpAmbient) * lit;
 }
 
-}  // namespace
+using detail::PreparedLight;
 
-Shader::PreparedLight Shader::prepare(const Light& light) {
-  using Kind = PreparedLight::Kind;
-  return std::visit(detail::Overloaded{
-                        [](const DirectionalLight& l) {
-                          return PreparedLight{Kind::Directional,
-                                               glm::dvec3{0.0},
-                                               -detail::normalizeRobust(l.direction)->unit,
-                                               radianceOf(l.color, l.intensity),
-                                               NoAttenuation{},
-                                               {}};
-                        },
-                        [](const PointLight& l) {
-                          return PreparedLight{Kind::Point,     l.position,
-                                               glm::dvec3{0.0}, radianceOf(l.color, l.intensity),
-                                               l.attenuation,   {}};
-                        },
-                        [](const SpotLight& l) {
-                          return PreparedLight{Kind::Spot,
-                                               l.position,
-                                               detail::normalizeRobust(l.direction)->unit,
-                                               radianceOf(l.color, l.intensity),
-                                               l.attenuation,
-                                               l.cone};
-                        },
-                    },
-                    light);
+// The direction to a positional light and its distance; a light exactly at the point lights
+// it head-on (see "Edge cases" in Lighting.h). False when the distance is beyond double's
+// range (no light arrives).
+bool towardLight(const PreparedLight& light, const SurfaceSample& sample, glm::dvec3& toLight,
+                 double& distance) {
+  toLight = sample.normal;
+  distance = 0.0;
+  const glm::dvec3 offset = light.position - sample.position;
+  const double distanceSquared = glm::dot(offset, offset);
+  if (distanceSquared > 1e-290 && distanceSquared < 1e290) {  // the common case, exactly
+    distance = std::sqrt(distanceSquared);
+    toLight = offset / distance;
+  } else if (offset != glm::dvec3(0.0)) {
+    const auto unit = detail::normalizeRobust(offset);
+    if (!unit) return false;
+    toLight = unit->unit;
+    distance = unit->length;
+  }
+  return true;
 }
+
+glm::dvec3 arrivingDirectional(const PreparedLight& light, glm::dvec3& toLight) {
+  toLight = light.direction;
+  return light.radiance;
+}
+
+// A point light (ConeT = void) or a spot light of one attenuation and cone kind.
+template <class AttenuationT, class ConeT>
+glm::dvec3 arrivingPositional(const PreparedLight& light, const SurfaceSample& sample,
+                              glm::dvec3& toLight) {
+  double distance;
+  if (!towardLight(light, sample, toLight, distance)) return glm::dvec3(0.0);
+  double factor = 1.0;
+  if constexpr (!std::is_same_v<AttenuationT, NoAttenuation>) {
+    factor = attenuationFactor(*std::get_if<AttenuationT>(&light.attenuation), distance);
+  }
+  if constexpr (!std::is_void_v<ConeT>) {
+    factor *= spotFactor(*std::get_if<ConeT>(&light.cone), glm::dot(-toLight, light.direction));
+  }
+  return light.radiance * factor;
+}
+
+// Any light, tested for its kind.
+glm::dvec3 arrivingAny(const PreparedLight& light, const SurfaceSample& sample,
+                       glm::dvec3& toLight) {
+  if (light.kind == PreparedLight::Kind::Directional) return arrivingDirectional(light, toLight);
+  double distance;
+  if (!towardLight(light, sample, toLight, distance)) return glm::dvec3(0.0);
+  double factor = std::holds_alternative<NoAttenuation>(light.attenuation)
+                      ? 1.0
+                      : attenuationFactor(light.attenuation, distance);
+  if (light.kind == PreparedLight::Kind::Spot) {
+    factor *= spotFactor(light.cone, glm::dot(-toLight, light.direction));
+  }
+  return light.radiance * factor;
+}
+
+// Eᵢ of one light at the sample; sets toLight. Zero when no light arrives.
+template <detail::LightLoop kLoop>
+glm::dvec3 arriving(const PreparedLight& light, const SurfaceSample& sample, glm::dvec3& toLight) {
+  using detail::LightLoop;
+  if constexpr (kLoop == LightLoop::Directional) {
+    return arrivingDirectional(light, toLight);
+  } else if constexpr (kLoop == LightLoop::Point) {
+    return arrivingPositional<NoAttenuation, void>(light, sample, toLight);
+  } else if constexpr (kLoop == LightLoop::PointQuadratic) {
+    return arrivingPositional<QuadraticAttenuation, void>(light, sample, toLight);
+  } else if constexpr (kLoop == LightLoop::PointFalloff) {
+    return arrivingPositional<FalloffDistanceAttenuation, void>(light, sample, toLight);
+  } else {
+    return arrivingAny(light, sample, toLight);
+  }
+}
+
+// The loop for these lights: one specialized for their kind and attenuation when they share
+// them (the common scenes: a headlight, or point lights of one model), else the mixed one.
+detail::LightLoop loopFor(const std::vector<PreparedLight>& lights) {
+  using detail::LightLoop;
+  const auto all = [&](auto&& predicate) {
+    return std::all_of(lights.begin(), lights.end(), predicate);
+  };
+  const auto point = [&](auto attenuation) {
+    return all([&](const PreparedLight& l) {
+      return l.kind == PreparedLight::Kind::Point &&
+             std::holds_alternative<decltype(attenuation)>(l.attenuation);
+    });
+  };
+  if (all([](const PreparedLight& l) { return l.kind == PreparedLight::Kind::Directional; })) {
+    return LightLoop::Directional;
+  }
+  if (point(NoAttenuation{})) return LightLoop::Point;
+  if (point(QuadraticAttenuation{})) return LightLoop::PointQuadratic;
+  if (point(FalloffDistanceAttenuation{})) return LightLoop::PointFalloff;
+  return LightLoop::Mixed;
+}
+
+PreparedLight prepare(const Light& light) {
+  PreparedLight prepared;
+  std::visit(detail::Overloaded{
+                 [&](const DirectionalLight& l) {
+                   prepared.direction = -detail::normalizeRobust(l.direction)->unit;
+                   prepared.radiance = radianceOf(l.color, l.intensity);
+                 },
+                 [&](const PointLight& l) {
+                   prepared.kind = PreparedLight::Kind::Point;
+                   prepared.position = l.position;
+                   prepared.radiance = radianceOf(l.color, l.intensity);
+                   prepared.attenuation = l.attenuation;
+                 },
+                 [&](const SpotLight& l) {
+                   prepared.kind = PreparedLight::Kind::Spot;
+                   prepared.position = l.position;
+                   prepared.direction = detail::normalizeRobust(l.direction)->unit;
+                   prepared.radiance = radianceOf(l.color, l.intensity);
+                   prepared.attenuation = l.attenuation;
+                   prepared.cone = l.cone;
+                 },
+             },
+             light);
+  return prepared;
+}
+
+}  // namespace
 
 void Shader::reset(const LightSet& lightSet) {
   lights_.clear();
@@ -91,6 +178,7 @@ void Shader::reset(const LightSet& lightSet) {
     lights_.push_back(prepared);
     hasPositionalLights_ |= prepared.kind != PreparedLight::Kind::Directional;
   }
+  loop_ = loopFor(lights_);
 }
 
 PreparedMaterial::PreparedMaterial(const Material& m)
@@ -105,62 +193,51 @@ PreparedMaterial::PreparedMaterial(const Material& m)
   if (m.ambientColor) ambientColor = capped(*m.ambientColor);
 }
 
-inline glm::dvec3 Shader::arriving(const PreparedLight& light, const SurfaceSample& sample,
-                                   glm::dvec3& toLight) const {
-  if (light.kind == PreparedLight::Kind::Directional) {
-    toLight = light.direction;
-    return light.radiance;
-  }
-  // A light exactly at the point lights it head-on (see "Edge cases" in Lighting.h).
-  toLight = sample.normal;
-  double distance = 0.0;
-  const glm::dvec3 offset = light.position - sample.position;
-  const double distanceSquared = glm::dot(offset, offset);
-  if (distanceSquared > 1e-290 && distanceSquared < 1e290) {  // the common case, exactly
-    distance = std::sqrt(distanceSquared);
-    toLight = offset / distance;
-  } else if (offset != glm::dvec3(0.0)) {
-    const auto unit = detail::normalizeRobust(offset);
-    if (!unit) return glm::dvec3(0.0);  // beyond double range: unreachable
-    toLight = unit->unit;
-    distance = unit->length;
-  }
-  double factor = std::holds_alternative<NoAttenuation>(light.attenuation)
-                      ? 1.0
-                      : attenuationFactor(light.attenuation, distance);
-  if (light.kind == PreparedLight::Kind::Spot) {
-    factor *= spotFactor(light.cone, glm::dot(-toLight, light.direction));
-  }
-  return light.radiance * factor;
-}
-
 Color Shader::shade(const SurfaceSample& sample, const Material& material) const {
   return shade(sample, PreparedMaterial(material));
 }
 
 Color Shader::shade(const SurfaceSample& sample, const PreparedMaterial& m) const {
+  return routine(m.specular > 0.0)(*this, sample, m);
+}
+
+template <detail::LightLoop kLoop, bool kSpecular>
+Color Shader::shadeWith(const Shader& shader, const SurfaceSample& sample,
+                        const PreparedMaterial& m) {
   const glm::dvec3 surface = capped(sample.color);
   glm::dvec3 diffuseSum{0.0}, specularSum{0.0};
-  for (const PreparedLight& light : lights_) {
+  for (const PreparedLight& light : shader.lights_) {
     glm::dvec3 toLight;
-    const glm::dvec3 radiance = arriving(light, sample, toLight);
+    const glm::dvec3 radiance = arriving<kLoop>(light, sample, toLight);
     if (radiance == glm::dvec3(0.0)) continue;
     const double cosine = glm::dot(sample.normal, toLight);
     diffuseSum += radiance * preparedDiffuseFactor(m, cosine);
-    if (m.specular > 0.0 && cosine > 0.0) {
+    if (kSpecular && cosine > 0.0) {
       specularSum += radiance * specularFactor(m, sample.normal, toLight, sample.toViewer,
                                                std::min(cosine, 1.0));
     }
   }
 
   const glm::dvec3 ambientTerm = m.ambient * (m.ambientColor ? *m.ambientColor : surface);
-  const glm::dvec3 base = ambientTerm + surface * ambient_ + m.diffuse * surface * diffuseSum;
+  const glm::dvec3 base =
+      ambientTerm + surface * shader.ambient_ + m.diffuse * surface * diffuseSum;
   if (m.material.specularMix == SpecularMix::Add) {
     return saturate(Color(base + m.specular * m.specularColor * specularSum));
   }
   const glm::dvec3 unblended(saturate(Color(base)));
   const glm::dvec3 blend = glm::min(m.specular * specularSum, glm::dvec3(1.0));
   return saturate(Color((1.0 - blend) * unblended + blend * m.specularColor));
+}
+
+Shader::Routine Shader::routine(bool specular) const {
+  using detail::LightLoop;
+  static constexpr Routine kRoutines[5][2] = {
+      {shadeWith<LightLoop::Directional, false>, shadeWith<LightLoop::Directional, true>},
+      {shadeWith<LightLoop::Point, false>, shadeWith<LightLoop::Point, true>},
+      {shadeWith<LightLoop::PointQuadratic, false>, shadeWith<LightLoop::PointQuadratic, true>},
+      {shadeWith<LightLoop::PointFalloff, false>, shadeWith<LightLoop::PointFalloff, true>},
+      {shadeWith<LightLoop::Mixed, false>, shadeWith<LightLoop::Mixed, true>}};
+  return kRoutines[static_cast<int>(loop_)][specular];
 }
 
 Color shade(const SurfaceSample& sample, const Material& material, const LightSet& lightSet) {

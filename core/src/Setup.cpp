@@ -1,16 +1,22 @@
-// Phase 2 of a render: the geometry of every polygon — clip, cull, triangulate and bin.
-// Lighting waits for the resolve (Resolve.cpp), which shades only the visible polygons.
+#include "Setup.h"
 
 #include <algorithm>
+#include <optional>
 #include <span>
-#include <utility>
 
+#include "Binning.h"
 #include "Clipper.h"
-#include "Frame.h"
+#include "MeshAccess.h"
+#include "MeshCache.h"
 #include "facet/PolygonNormal.h"
 
 namespace facet::detail {
 namespace {
+
+// Polygons per set-up chunk: about four chunks per thread for load balance, at least 2^10
+// (a chunk's bins cost a vector per tile) and at most 2^20.
+constexpr std::size_t kMinPolygonsPerChunk = 1 << 10;
+constexpr std::size_t kMaxPolygonsPerChunk = 1 << 20;
 
 // Why a polygon's triangles were dropped, to count the polygon once under one reason.
 struct Tally {
@@ -59,49 +65,49 @@ glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
 // whole. A triangle the clipper leaves alone is decided by its exact integer window area
 // instead, as OpenGL's gl_FrontFacing (VTK agreement); one the clipper cuts by its plane.
 // The triangles of a kept polygon are painted whatever their own winding.
-template <class PointsT, class PolygonsT>
+//
+// kSkipBackFaces is the mesh's back-face handling this frame (FrameMesh::skipBackFaces),
+// chosen once per mesh rather than tested per polygon.
+template <class PointsT, class PolygonsT, bool kSkipBackFaces>
 class PolygonSetup {
  public:
-  PolygonSetup(FrameState& frame, Chunk& chunk, const FrameMesh& mesh, PointsT points,
+  PolygonSetup(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh, PointsT points,
                PolygonsT polygons)
-      : frame_(frame),
+      : context_(context),
         chunk_(chunk),
         mesh_(mesh),
         points_(points),
         polygons_(polygons),
-        meshVertices_(frame.vertices.data() + mesh.firstVertex) {}
+        meshVertices_(context.vertices + mesh.firstVertex) {}
 
   void run(std::size_t polygon) {
     polygon_ = polygon;
     polygonId_ = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
-    frame_.shown[static_cast<std::size_t>(polygonId_)] = 0;
     const std::size_t n = polygons_.size(polygon);
     if (n == 3) {
       runTriangle();
-      return;
-    }
-    if (n < 3) {
+    } else if (n < 3) {
       ++chunk_.counts.degenerate;
-      return;
+    } else if (const std::uint32_t code = polygonOutcode(n); code != kInside) {
+      ++((code & kNonFinite) ? chunk_.counts.nonFinite : chunk_.counts.outside);
+    } else {
+      runPolygon(n);
     }
-    std::uint32_t any = 0, all = ~0u;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::uint32_t code = meshVertices_[polygons_.pointId(polygon, k)].outcode;
-      any |= code;
-      all &= code;
-    }
-    if (any & kNonFinite) {
-      ++chunk_.counts.nonFinite;
-      return;
-    }
-    if (all != kInside) {
-      ++chunk_.counts.outside;
-      return;
-    }
-    runPolygon(n);
   }
 
  private:
+  // kNonFinite when a corner is not finite, another bit when every corner is beyond one
+  // plane, else kInside.
+  std::uint32_t polygonOutcode(std::size_t n) const {
+    std::uint32_t any = 0, all = ~0u;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t code = meshVertices_[pointId(k)].outcode;
+      any |= code;
+      all &= code;
+    }
+    return (any & kNonFinite) ? kNonFinite : all;
+  }
+
   // The common case, kept short: a triangle, with the vertex records loaded once.
   void runTriangle() {
     const std::size_t ids[3] = {pointId(0), pointId(1), pointId(2)};
@@ -122,7 +128,7 @@ class PolygonSetup {
       return;
     }
     const std::int64_t area = doubleSignedArea(a, b, c);
-    if (area < 0 && mesh_.skipBackFaces) {
+    if (kSkipBackFaces && area < 0) {
       ++chunk_.counts.culled;
       return;
     }
@@ -157,8 +163,8 @@ class PolygonSetup {
       ++chunk_.counts.degenerate;
       return std::nullopt;
     }
-    const bool back = !frame_.transform->facesViewer(*normal, centerOf(corners));
-    if (back && mesh_.skipBackFaces) {
+    const bool back = !context_.transform.facesViewer(*normal, centerOf(corners));
+    if (kSkipBackFaces && back) {
       ++chunk_.counts.culled;
       return std::nullopt;
     }
@@ -176,8 +182,7 @@ class PolygonSetup {
       countDropped(tally);
       return;
     }
-    frame_.polygonColors[static_cast<std::size_t>(polygonId_)] =
-        back ? kUnshadedBack : kUnshadedFront;
+    context_.backFacing[static_cast<std::size_t>(polygonId_)] = back;
     chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
     ++chunk_.counts.drawn;
   }
@@ -214,74 +219,57 @@ class PolygonSetup {
 
   void clip(const std::size_t (&ids)[3], std::uint32_t planes, EdgeMask boundary, Tally& tally) {
     ++chunk_.counts.trianglesClipped;
-    const FrameTransform& transform = *frame_.transform;
     ClipVertex triangle[3];
     for (int i = 0; i < 3; ++i) {
       const auto onEdges = static_cast<std::uint8_t>(kAllEdges & ~(1u << i));  // not opposite
-      triangle[i] = {transform.toClip(points_[ids[i]]), frameIndex(ids[i]), onEdges};
+      triangle[i] = {context_.transform.toClip(points_[ids[i]]), frameIndex(ids[i]), onEdges};
     }
     ClipVertex clipped[kMaxClippedVertices];
-    const int count = clipTriangle(transform, triangle, planes, clipped);
+    const int count = clipTriangle(context_.transform, triangle, planes, clipped);
     if (count == 0) {
       ++tally.outside;
       return;
     }
     std::uint32_t references[kMaxClippedVertices];
-    for (int i = 0; i < count; ++i) {
-      if (clipped[i].source != ClipVertex::kNewVertex) {
-        references[i] = clipped[i].source;  // an input corner: keep its snapped coordinates
-      } else {
-        references[i] =
-            static_cast<std::uint32_t>(chunk_.clippedVertices.size()) | kClippedVertexBit;
-        chunk_.clippedVertices.push_back(transform.toWindow(clipped[i].clip));
-      }
-    }
+    for (int i = 0; i < count; ++i)
+      references[i] = referenceOf(clipped[i]);
     for (int i = 1; i + 1 < count; ++i) {
       keep(references[0], references[i], references[i + 1],
            clippedFanEdges(clipped, count, i, boundary), tally);
     }
   }
 
+  // An input corner keeps its snapped coordinates; a new vertex joins the chunk's own.
+  std::uint32_t referenceOf(const ClipVertex& vertex) {
+    if (vertex.source != ClipVertex::kNewVertex) return vertex.source;
+    const auto index = static_cast<std::uint32_t>(chunk_.clippedVertices.size());
+    chunk_.clippedVertices.push_back(context_.transform.toWindow(vertex.clip));
+    return index | kClippedVertexBit;
+  }
+
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, EdgeMask boundary, Tally& tally) {
-    const WindowVertex &a = frame_.vertex(chunk_, r0), &b = frame_.vertex(chunk_, r1),
-                       &c = frame_.vertex(chunk_, r2);
+    const WindowVertex& a = vertexOf(context_.vertices, chunk_, r0);
+    const WindowVertex& b = vertexOf(context_.vertices, chunk_, r1);
+    const WindowVertex& c = vertexOf(context_.vertices, chunk_, r2);
     keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), boundary, tally);
   }
 
-  // Keeps a triangle whose corners all have window coordinates, counter-clockwise on screen
-  // (swapped if need be), unless it has zero area or covers no pixel center.
+  // Hands a triangle to binning. Without back faces no silhouette fold can form: no edge
+  // is marked as a polygon boundary, so the unsnapped depth plane holds everywhere
+  // (RasterTriangle.cpp, TriangleDepth).
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
-            const WindowVertex& vertex1, const WindowVertex& vertex2, std::int64_t area,
-            EdgeMask boundary, Tally& tally) {
-    const WindowVertex* b = &vertex1;
-    const WindowVertex* c = &vertex2;
-    if (area == 0) {
-      ++tally.zeroArea;
-      return;
-    }
-    if (area < 0) {  // corners 1 and 2 trade places, and so do the edges opposite them
-      std::swap(r1, r2);
-      std::swap(b, c);
-      boundary =
-          static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
-    }
-    const PixelBounds bounds = samplesInBoundingBox(a, *b, *c, frame_.viewport);
-    if (bounds.empty() || !coversAnySample(a, *b, *c, bounds)) {
-      ++tally.outside;
-      return;
-    }
-    bin(static_cast<std::uint32_t>(chunk_.triangles.size()), bounds);
-    chunk_.triangles.push_back({{r0, r1, r2}, polygonId_});
-    // Without back faces no silhouette fold can form: the unsnapped plane everywhere.
-    chunk_.boundaryEdges.push_back(mesh_.skipBackFaces ? EdgeMask{0} : boundary);
-  }
-
-  void bin(std::uint32_t triangle, const PixelBounds& b) {
-    const int tilesX = frame_.plan.tilesX;
-    for (int ty = b.y0 / kTileSize; ty <= b.y1 / kTileSize; ++ty) {
-      for (int tx = b.x0 / kTileSize; tx <= b.x1 / kTileSize; ++tx) {
-        chunk_.bins[static_cast<std::size_t>(ty) * tilesX + tx].push_back(triangle);
-      }
+            const WindowVertex& b, const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+            Tally& tally) {
+    const EdgeMask edges = kSkipBackFaces ? EdgeMask{0} : boundary;
+    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_)) {
+      case BinOutcome::ZeroArea:
+        ++tally.zeroArea;
+        break;
+      case BinOutcome::CoversNoSample:
+        ++tally.outside;
+        break;
+      case BinOutcome::Binned:
+        break;
     }
   }
 
@@ -293,7 +281,7 @@ class PolygonSetup {
     }
   }
 
-  FrameState& frame_;
+  const SetupContext& context_;
   Chunk& chunk_;
   const FrameMesh& mesh_;
   PointsT points_;
@@ -303,9 +291,8 @@ class PolygonSetup {
   std::int32_t polygonId_ = 0;
 };
 
-}  // namespace
-
-std::size_t FrameState::meshOfPolygon(std::size_t polygonId) const {
+// The mesh a global polygon id belongs to.
+std::size_t meshOfPolygon(std::span<const FrameMesh> meshes, std::size_t polygonId) {
   if (meshes.size() == 1) return 0;
   // The last mesh starting at or before the id.
   const auto after = std::upper_bound(
@@ -314,28 +301,95 @@ std::size_t FrameState::meshOfPolygon(std::size_t polygonId) const {
   return static_cast<std::size_t>(after - meshes.begin()) - 1;
 }
 
-void setUpChunk(FrameState& frame, Chunk& chunk) {
-  chunk.triangles.clear();
-  chunk.boundaryEdges.clear();
+// Sets up draw positions from `position` on while they belong to `mesh`; returns where it
+// stopped.
+template <bool kSkipBackFaces, class PointsT, class PolygonsT>
+std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
+                     PointsT points, PolygonsT polygons, std::size_t position) {
+  PolygonSetup<PointsT, PolygonsT, kSkipBackFaces> setup(context, chunk, mesh, points, polygons);
+  for (; position < chunk.end; ++position) {
+    const std::size_t id = context.order.polygonAt(position);
+    if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
+    const std::size_t polygon = id - mesh.firstPolygon;
+    if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
+      ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
+      continue;
+    }
+    setup.run(polygon);
+  }
+  return position;
+}
+
+// Draw positions come in runs that share a mesh (the whole chunk, in z-buffer mode); each
+// run is set up by code specialized for that mesh's point and index types and back-face
+// handling.
+void setUpChunk(const SetupContext& context, Chunk& chunk) {
+  clearBins(chunk, context.grid);
   chunk.clippedVertices.clear();
-  for (auto& bin : chunk.bins)
-    bin.clear();
   chunk.counts = {};
-  // Draw positions come in runs that share a mesh (the whole chunk, in z-buffer mode);
-  // each run is set up by code specialized for that mesh's point and index types.
   std::size_t position = chunk.begin;
   while (position < chunk.end) {
-    const std::size_t meshIndex = frame.meshOfPolygon(frame.polygonAt(position));
-    const FrameMesh& mesh = frame.meshes[meshIndex];
-    const std::size_t meshEnd = mesh.firstPolygon + mesh.source->mesh.polygons.count;
-    withTypedMesh(mesh.source->mesh, [&](auto points, auto polygons) {
-      PolygonSetup setup(frame, chunk, mesh, points, polygons);
-      for (; position < chunk.end; ++position) {
-        const std::size_t id = frame.polygonAt(position);
-        if (id < mesh.firstPolygon || id >= meshEnd) break;
-        setup.run(id - mesh.firstPolygon);
-      }
+    const FrameMesh& mesh =
+        context.meshes[meshOfPolygon(context.meshes, context.order.polygonAt(position))];
+    withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
+      position = mesh.skipBackFaces
+                     ? setUpRun<true>(context, chunk, mesh, points, polygons, position)
+                     : setUpRun<false>(context, chunk, mesh, points, polygons, position);
     });
+  }
+}
+
+// The chunks' ranges of draw positions.
+void planChunks(const SetupContext& context, int threads, SetupBuffers& buffers) {
+  const std::size_t polygons = context.meshes.empty() ? 0 : context.meshes.back().endPolygon();
+  const std::size_t perChunk =
+      std::clamp<std::size_t>(polygons / (4 * static_cast<std::size_t>(threads)) + 1,
+                              kMinPolygonsPerChunk, kMaxPolygonsPerChunk);
+  std::vector<MeshRange>& ranges = buffers.ranges;
+  ranges.clear();
+  if (!context.order.ids.empty()) {
+    for (std::size_t begin = 0; begin < polygons; begin += perChunk)
+      ranges.push_back({0, begin, std::min(polygons, begin + perChunk)});
+  } else {
+    splitPerMesh(
+        context.meshes.size(), perChunk,
+        [&](std::size_t m) { return context.meshes[m].mesh().polygons.count; }, ranges);
+    for (MeshRange& r : ranges) {  // to draw positions (= global polygon ids)
+      r.begin += context.meshes[r.mesh].firstPolygon;
+      r.end += context.meshes[r.mesh].firstPolygon;
+    }
+  }
+  std::vector<Chunk>& chunks = buffers.chunks;
+  chunks.resize(ranges.size());
+  for (std::size_t i = 0; i < chunks.size(); ++i) {
+    chunks[i].counts = {};  // an aborted render leaves chunks unvisited
+    chunks[i].begin = ranges[i].begin;
+    chunks[i].end = ranges[i].end;
+  }
+}
+
+}  // namespace
+
+const char* setupRoutineName(bool skipBackFaces) {
+  return skipBackFaces ? "back faces skipped" : "back faces drawn";
+}
+
+bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
+                   SetupBuffers& buffers) {
+  planChunks(context, threads, buffers);
+  return runner.run(Phase::Setup, buffers.chunks.size(),
+                    [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
+}
+
+void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {
+  for (const Chunk& chunk : chunks) {
+    stats.polygonsDrawn += chunk.counts.drawn;
+    stats.polygonsCulled += chunk.counts.culled;
+    stats.polygonsOutside += chunk.counts.outside;
+    stats.polygonsDegenerate += chunk.counts.degenerate;
+    stats.polygonsNonFinite += chunk.counts.nonFinite;
+    stats.trianglesBinned += chunk.counts.trianglesBinned;
+    stats.trianglesClipped += chunk.counts.trianglesClipped;
   }
 }
 

@@ -108,6 +108,24 @@ Camera fitCamera(const Mesh& mesh, const glm::dvec3& direction, double viewAngle
   return camera;
 }
 
+Mesh makeStackedSquares(int layers, int cells, bool frontToBack) {
+  Mesh mesh;
+  for (int i = 0; i < layers; ++i) {
+    const double z = -0.1 * (frontToBack ? i : layers - 1 - i);
+    const auto first = static_cast<std::int64_t>(mesh.points.size());
+    for (int y = 0; y <= cells; ++y) {
+      for (int x = 0; x <= cells; ++x)
+        mesh.addPoint({-1.0 + 2.0 * x / cells, -1.0 + 2.0 * y / cells, z});
+    }
+    const auto at = [&](int x, int y) { return first + y * (cells + 1) + x; };
+    for (int y = 0; y < cells; ++y) {
+      for (int x = 0; x < cells; ++x)
+        mesh.addPolygon({at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y + 1)});
+    }
+  }
+  return mesh;
+}
+
 Camera pixelCamera(int width, int height) {
   Camera camera;
   camera.parallelProjection = true;

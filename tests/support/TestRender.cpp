@@ -1,6 +1,9 @@
 #include "TestRender.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 
 namespace facet::testing {
 
@@ -10,9 +13,30 @@ Rendered renderScene(const Scene& scene, const Camera& camera, int width, int he
   renderer.setThreadCount(options.threads);
   renderer.setVisibility(options.visibility);
   renderer.setTwoSidedLighting(options.twoSidedLighting);
+  renderer.setRules(options.rules);
   Rendered result{Framebuffer(width, height), {}};
   result.stats = renderer.render(scene, camera, result.framebuffer);
   return result;
+}
+
+std::size_t differingPixels(const Framebuffer& a, const Framebuffer& b) {
+  if (a.pixelCount() != b.pixelCount()) return std::max(a.pixelCount(), b.pixelCount());
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < a.pixelCount(); ++i) {
+    count += !(a.color()[i] == b.color()[i]) || a.polygonId()[i] != b.polygonId()[i] ||
+             std::memcmp(&a.depth()[i], &b.depth()[i], sizeof(float)) != 0;
+  }
+  return count;
+}
+
+int largestChannelDifference(const Framebuffer& a, const Framebuffer& b) {
+  int largest = 0;
+  for (std::size_t i = 0; i < a.pixelCount(); ++i) {
+    const Rgba8 p = a.color()[i], q = b.color()[i];
+    largest = std::max({largest, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b),
+                        std::abs(p.a - q.a)});
+  }
+  return largest;
 }
 
 Scene oneMeshScene(const MeshView& mesh, const Material& material, const LightSet& lights) {

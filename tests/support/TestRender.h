@@ -14,6 +14,7 @@ struct RenderOptions {
   int threads = 2;
   Visibility visibility = Visibility::ZBuffer;
   bool twoSidedLighting = true;
+  RenderRules rules = {};
 };
 
 struct Rendered {
@@ -23,6 +24,11 @@ struct Rendered {
 
 Rendered renderScene(const Scene& scene, const Camera& camera, int width, int height,
                      const RenderOptions& options = {});
+
+// How many pixels differ in color, depth or polygon id (0: the same bytes).
+std::size_t differingPixels(const Framebuffer& a, const Framebuffer& b);
+// The largest difference of a color channel between two images of one size, in 8-bit steps.
+int largestChannelDifference(const Framebuffer& a, const Framebuffer& b);
 
 // A scene of one mesh, with the given material and lights (default: ambient only).
 Scene oneMeshScene(const MeshView& mesh, const Material& material = {},

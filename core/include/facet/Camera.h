@@ -28,6 +28,7 @@ struct Camera {
   /// Shifts the image center, in units of half the viewport (vtkCamera::WindowCenter);
   /// (1, 0) puts the focal point on the right edge. (default: (0, 0))
   glm::dvec2 windowCenter{0.0, 0.0};
+  friend bool operator==(const Camera&, const Camera&) = default;
 };
 
 /// Throws facet::Error naming the first invalid value: a non-finite number, position equal

@@ -18,7 +18,9 @@ namespace facet {
 // ---------------------------------------------------------------------------------------------
 
 /// No distance attenuation: factor 1 at every distance.
-struct NoAttenuation {};
+struct NoAttenuation {
+  friend bool operator==(const NoAttenuation&, const NoAttenuation&) = default;
+};
 
 /// factor = 1 / (constant + linear·d + quadratic·d²), d in world units.
 ///
@@ -33,12 +35,15 @@ struct QuadraticAttenuation {
   double constant = 1.0;    ///< a0 (default: 1)
   double linear = 0.0;      ///< a1, per world unit (default: 0)
   double quadratic = 1e-4;  ///< a2, per world unit squared (default: 0.0001, Sixth 3D)
+  friend bool operator==(const QuadraticAttenuation&, const QuadraticAttenuation&) = default;
 };
 
 /// The "falloff distance" model: full intensity within `distance` F of the light, F/d beyond
 /// (half at 2F, a third at 3F).
 struct FalloffDistanceAttenuation {
   double distance = 100.0;  ///< F in world units, ≥ 0 (default: 100)
+  friend bool operator==(const FalloffDistanceAttenuation&,
+                         const FalloffDistanceAttenuation&) = default;
 };
 
 using Attenuation = std::variant<NoAttenuation, QuadraticAttenuation, FalloffDistanceAttenuation>;
@@ -54,6 +59,9 @@ inline constexpr double kMaxAttenuation = 1e6;
 /// a denominator below 1/kMaxAttenuation gives kMaxAttenuation; d so large that d² overflows
 /// gives 0; a NaN or negative d gives 0. Never NaN or infinite.
 double attenuationFactor(const Attenuation& attenuation, double distance);
+/// The same, for one kind of attenuation.
+double attenuationFactor(const QuadraticAttenuation& attenuation, double distance);
+double attenuationFactor(const FalloffDistanceAttenuation& attenuation, double distance);
 
 // ---------------------------------------------------------------------------------------------
 // Spot cones
@@ -66,6 +74,7 @@ double attenuationFactor(const Attenuation& attenuation, double distance);
 struct LinearSpotCone {
   double fullIntensityAngleDegrees = 20.0;  ///< degrees, in [0, 180] (default: 20)
   double falloffAngleDegrees = 15.0;        ///< degrees, ≥ 0 (default: 15)
+  friend bool operator==(const LinearSpotCone&, const LinearSpotCone&) = default;
 };
 
 /// Spot cone (b), vtkLight's model (ConeAngle, Exponent): zero outside `coneAngleDegrees`
@@ -75,6 +84,7 @@ struct LinearSpotCone {
 struct ExponentSpotCone {
   double coneAngleDegrees = 30.0;  ///< half-angle in degrees, in [0, 180] (default: 30, VTK)
   double exponent = 1.0;           ///< ≥ 0 (default: 1, VTK)
+  friend bool operator==(const ExponentSpotCone&, const ExponentSpotCone&) = default;
 };
 
 using SpotCone = std::variant<LinearSpotCone, ExponentSpotCone>;
@@ -84,6 +94,9 @@ using SpotCone = std::variant<LinearSpotCone, ExponentSpotCone>;
 /// (a dot product of unit vectors can round slightly past 1; acos is never called on an
 /// unclamped value). A NaN cosine gives 0.
 double spotFactor(const SpotCone& cone, double cosAngleFromAxis);
+/// The same, for one kind of cone.
+double spotFactor(const LinearSpotCone& cone, double cosAngleFromAxis);
+double spotFactor(const ExponentSpotCone& cone, double cosAngleFromAxis);
 
 // ---------------------------------------------------------------------------------------------
 // Lights
@@ -94,6 +107,7 @@ double spotFactor(const SpotCone& cone, double cosAngleFromAxis);
 struct AmbientLight {
   Color color{50.0f / 255.0f};  ///< (default: RGB (50, 50, 50)/255, as Sixth 3D)
   double intensity = 1.0;       ///< (default: 1). Negative counts as 0.
+  friend bool operator==(const AmbientLight&, const AmbientLight&) = default;
 };
 
 /// A light infinitely far away: parallel rays, no attenuation.
@@ -103,6 +117,7 @@ struct DirectionalLight {
   glm::dvec3 direction{0.0, 0.0, -1.0};
   Color color{1.0f};       ///< (default: white)
   double intensity = 1.0;  ///< 1 = normal (default: 1). Negative counts as 0.
+  friend bool operator==(const DirectionalLight&, const DirectionalLight&) = default;
 };
 
 /// A light at a point, shining in every direction.
@@ -111,6 +126,7 @@ struct PointLight {
   Color color{1.0f};                                 ///< (default: white)
   double intensity = 1.0;                            ///< 1 = normal (default: 1). Negative → 0.
   Attenuation attenuation = QuadraticAttenuation{};  ///< (default: Sixth 3D's 1/(1+0.0001·d²))
+  friend bool operator==(const PointLight&, const PointLight&) = default;
 };
 
 /// A light at a point, shining into a cone around `direction`.
@@ -121,6 +137,7 @@ struct SpotLight {
   double intensity = 1.0;                            ///< 1 = normal (default: 1). Negative → 0.
   Attenuation attenuation = QuadraticAttenuation{};  ///< (default: Sixth 3D's)
   SpotCone cone = LinearSpotCone{};                  ///< (default: 20° + 15° linear falloff)
+  friend bool operator==(const SpotLight&, const SpotLight&) = default;
 };
 
 using Light = std::variant<DirectionalLight, PointLight, SpotLight>;
@@ -129,6 +146,7 @@ using Light = std::variant<DirectionalLight, PointLight, SpotLight>;
 struct LightSet {
   AmbientLight ambient;       ///< (default: Sixth 3D's dim gray)
   std::vector<Light> lights;  ///< (default: none)
+  friend bool operator==(const LightSet&, const LightSet&) = default;
 };
 
 /// Throws facet::Error naming the first invalid value: a non-finite number, a zero

@@ -77,6 +77,25 @@ struct PreparedMaterial {
   double lerpAmbient = 0.0, lerpFull = 1.0;
 };
 
+namespace detail {
+struct ShaderAccess;
+
+// The light loop a Shader runs, chosen when its lights are prepared: lights all of one kind
+// (and attenuation) get a loop specialized for it, any mix a loop that tests each light.
+enum class LightLoop { Directional, Point, PointQuadratic, PointFalloff, Mixed };
+
+// A direct light as Shader keeps it (Lighting.cpp).
+struct PreparedLight {
+  enum class Kind { Directional, Point, Spot };
+  Kind kind = Kind::Directional;
+  glm::dvec3 position{0.0};
+  glm::dvec3 direction{0.0};  // Directional: unit vector toward the light. Spot: unit axis.
+  glm::dvec3 radiance{0.0};   // color × max(0, intensity), capped
+  Attenuation attenuation;
+  SpotCone cone;
+};
+}  // namespace detail
+
 /// A LightSet validated and prepared once, so shading a polygon does no setup work.
 /// Cheap to copy; holds no references to the LightSet it came from.
 class Shader {
@@ -104,23 +123,21 @@ class Shader {
   std::size_t lightCount() const { return lights_.size(); }
 
  private:
-  struct PreparedLight {
-    enum class Kind { Directional, Point, Spot };
-    Kind kind = Kind::Directional;
-    glm::dvec3 position{0.0};
-    glm::dvec3 direction{0.0};  // Directional: unit vector toward the light. Spot: unit axis.
-    glm::dvec3 radiance{0.0};   // color × max(0, intensity), capped
-    Attenuation attenuation;
-    SpotCone cone;
-  };
-  static PreparedLight prepare(const Light& light);
-  // Eᵢ of one light at the sample; sets toLight. Zero when no light arrives.
-  glm::dvec3 arriving(const PreparedLight& light, const SurfaceSample& sample,
-                      glm::dvec3& toLight) const;
+  friend struct detail::ShaderAccess;  // the renderer picks the routine once per mesh
 
-  std::vector<PreparedLight> lights_;
+  // shade(), specialized for the light loop and for whether the material has a specular
+  // term (PreparedMaterial::specular > 0).
+  using Routine = Color (*)(const Shader& shader, const SurfaceSample& sample,
+                            const PreparedMaterial& material);
+  Routine routine(bool specular) const;
+  template <detail::LightLoop kLoop, bool kSpecular>
+  static Color shadeWith(const Shader& shader, const SurfaceSample& sample,
+                         const PreparedMaterial& material);
+
+  std::vector<detail::PreparedLight> lights_;
   glm::dvec3 ambient_{0.0};
   bool hasPositionalLights_ = false;
+  detail::LightLoop loop_ = detail::LightLoop::Directional;
 };
 
 /// One-off convenience: Shader(lightSet).shade(sample, material).

@@ -58,6 +58,7 @@ struct Material {
   /// Skip polygons whose window-space winding is clockwise (vtkProperty::BackfaceCulling).
   /// (default: off)
   bool backfaceCulling = false;
+  friend bool operator==(const Material&, const Material&) = default;
 };
 
 /// Throws facet::Error naming the first invalid value: a non-finite number, a negative

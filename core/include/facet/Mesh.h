@@ -75,6 +75,20 @@ struct MeshView {
   /// plane the renderer skips its back faces: same image, about half the work.
   /// Setting it on a mesh that is not closed loses the back faces. (default: false)
   bool closedSurface = false;
+  /// Which version of the point and polygon arrays this view shows. 0: unversioned, the
+  /// renderer reads and checks them anew every render. Any other value is a promise: while
+  /// the arrays' addresses, types, counts and this number stay the same, so do their
+  /// contents — bump it after editing points or polygons in place. The renderer then checks
+  /// a mesh once per version (validation, bounding boxes), leaves out blocks of it outside
+  /// the view, and re-renders a frame whose lights, materials or colors alone changed by
+  /// re-shading the previous one (Renderer::render, "Incremental rendering"). Breaking the
+  /// promise (editing in place without a new version) gives a stale image, or reads out of
+  /// bounds when ids were changed. (default: 0)
+  std::uint64_t version = 0;
+  /// The same promise for polygonColors: bump it after editing colors in place. A new
+  /// version of the colors alone re-shades; 0 treats non-empty colors as changed in every
+  /// render. (default: 0)
+  std::uint64_t colorVersion = 0;
 };
 
 /// An owning mesh with 64-bit indices, for building geometry by hand (examples, tests).
@@ -101,7 +115,7 @@ struct Mesh {
   std::size_t polygonCount() const { return offsets.size() - 1; }
 
   MeshView view() const {
-    return {PointArray::of(points), PolygonArray::of(offsets, connectivity), polygonColors, false};
+    return {PointArray::of(points), PolygonArray::of(offsets, connectivity), polygonColors};
   }
 };
 

@@ -1,18 +1,96 @@
 #pragma once
 
 /// @file RenderPlan.h
-/// The work a render will do, decided once from the scene before any polygon is touched
-/// ("leave out what the scene does not need"), and what the render then counted.
+/// The work a render does, decided once from the scene and from what changed since the
+/// previous render ("leave out what the scene does not need"), the rules that left work
+/// out, and what the render then counted and cost.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "facet/Scene.h"
 
 namespace facet {
 
-/// Which code paths a render takes. Every flag that is false is work skipped.
+/// The rules that leave out work a scene does not need. Each leaves every pixel as it was
+/// (tests/core/RulesTest.cpp), except LightsThatReachNothing with a tolerance above 0, which
+/// stays within the bound the plan reports.
+enum class Rule {
+  /// Lights that reach no mesh are left out of the shading: zero intensity or black color, a
+  /// spot cone that misses every mesh's bounding box, a positional light whose attenuated
+  /// contribution over the boxes is at most RenderRules::lightTolerance.
+  LightsThatReachNothing,
+  /// Blocks of 1024 polygons whose bounding box lies outside the view are neither transformed
+  /// nor set up (versioned meshes: the boxes are kept per MeshView::version).
+  GeometryOutsideView,
+  /// Hierarchical z: a triangle wholly behind what the 8 × 8 pixel blocks it overlaps already
+  /// show is not painted.
+  HiddenGeometry,
+  /// Without direct light: no normals, no light loop, one shade per color value.
+  AmbientOnly,
+  /// A mesh without per-polygon colors is shaded without fetching a color per polygon.
+  OneColor,
+  /// The back faces of closed meshes (MeshView::closedSurface) are skipped while the near
+  /// plane does not cut them.
+  ClosedSurfaces,
+};
+inline constexpr int kRuleCount = 6;
+
+/// The rule's name, as describe() prints it.
+const char* ruleName(Rule rule);
+
+/// When hierarchical z runs.
+enum class HierarchicalZ {
+  Off,
+  /// When the set-up's estimate of depth complexity says it pays (RenderPlan::depthComplexity).
+  Auto,
+  On,
+};
+
+/// Which rules may fire. All are on by default; a rule turned off makes the renderer do that
+/// work anyway, for the same image, which is how bench/ measures what each one saves.
+struct RenderRules {
+  bool lightsThatReachNothing = true;  ///< (default: on)
+  /// A positional light is left out when its contribution to any channel of any polygon is
+  /// at most this, in linear color units ([0, 1] is black to full). The plan reports the
+  /// bound on the error this introduces (RenderPlan::LightCulling). 0 leaves out only lights
+  /// that contribute nothing at all. (default: 0)
+  double lightTolerance = 0.0;
+  bool geometryOutsideView = true;                     ///< (default: on)
+  HierarchicalZ hiddenGeometry = HierarchicalZ::Auto;  ///< (default: Auto)
+  bool ambientOnly = true;                             ///< (default: on)
+  bool oneColor = true;                                ///< (default: on)
+  bool closedSurfaces = true;                          ///< (default: on)
+  /// Reuse the previous frame when only the lights, materials, colors or background changed
+  /// (see Renderer::render, "Incremental rendering"). (default: on)
+  bool incremental = true;
+
+  bool allows(Rule rule) const;
+  friend bool operator==(const RenderRules&, const RenderRules&) = default;
+};
+
+/// How much of the previous frame a render reused.
+enum class RenderPath {
+  Full,     ///< every phase ran
+  Reshade,  ///< only the lights, materials, colors or two-sided lighting changed: shade, resolve
+  Resolve,  ///< only the background changed, or nothing: the pixels' colors, from kept colors
+};
+
+/// What one rule did in one render.
+struct RuleOutcome {
+  bool allowed = false;     ///< RenderRules lets it fire
+  bool fired = false;       ///< it left work out
+  std::size_t skipped = 0;  ///< how much: lights, polygons, triangles, shades or back faces
+};
+
+/// Which code paths a render takes, and why. Every flag that is false is work skipped.
 struct RenderPlan {
+  /// Which path ran and why ("first render", "the camera changed", ...).
+  RenderPath path = RenderPath::Full;
+  const char* pathReason = "";
+
   Visibility visibility = Visibility::ZBuffer;
   bool depthTest = true;     ///< z-buffer mode
   bool sortByDepth = false;  ///< painter mode: sort polygons by centroid depth
@@ -33,6 +111,42 @@ struct RenderPlan {
   /// the near plane does not cut it (RenderStats::closedMeshesSkippingBackFaces).
   bool closedSurfaces = false;
   bool parallelProjection = false;
+  bool depthOutput = true;  ///< window depth written (Renderer::setDepthOutput)
+
+  /// The rules, indexed by Rule.
+  std::array<RuleOutcome, kRuleCount> rules{};
+  const RuleOutcome& rule(Rule r) const { return rules[static_cast<int>(r)]; }
+  RuleOutcome& rule(Rule r) { return rules[static_cast<int>(r)]; }
+
+  /// What Rule::LightsThatReachNothing left out, and the error it may introduce.
+  struct LightCulling {
+    std::size_t lights = 0;          ///< direct lights in the scene
+    std::size_t dark = 0;            ///< zero intensity or black color
+    std::size_t outsideCone = 0;     ///< spot lights whose cone misses every mesh
+    std::size_t belowTolerance = 0;  ///< contribution at most the tolerance (or exactly 0)
+    std::uint64_t culledMask = 0;    ///< bit i: LightSet::lights[i] was left out (i < 64)
+    double tolerance = 0.0;          ///< RenderRules::lightTolerance
+    /// The largest change the lights left out can make to a channel, in linear units (the
+    /// sum of their bounds), and the same on 8-bit output: ⌊255·bound⌋ + 1 when the bound is
+    /// above 0 (the rounding to bytes may tip one step), else 0: the same bytes.
+    double errorBound = 0.0;
+    int errorBound8Bit = 0;
+  } lightCulling;
+
+  /// Rule::GeometryOutsideView: blocks of polygons tested and found outside the view.
+  std::size_t blocksTested = 0, blocksOutside = 0;
+  /// Rule::HiddenGeometry's estimate: the pixels of the triangles' bounding boxes over the
+  /// image's pixels (known once set up). Hierarchical z pays where the triangles are large
+  /// and overlap many times.
+  double depthComplexity = 0.0;
+  double meanTriangleBox = 0.0;  ///< pixels in the average triangle's bounding box
+
+  /// The routines chosen for this render (llvmpipe's habit: pick the routine once, not test
+  /// per triangle or pixel): painting a tile, setting up a mesh's polygons and shading them.
+  /// "per mesh" when meshes differ; the set-up's is known once the render has transformed.
+  const char* rasterRoutine = "";
+  const char* setupRoutine = "";
+  const char* shadeRoutine = "";
   int threads = 1;
   int tileSize = 0;  ///< square tiles of this many pixels, each painted by one thread
   int tilesX = 0, tilesY = 0;
@@ -41,20 +155,23 @@ struct RenderPlan {
   std::size_t points = 0;
   std::size_t polygons = 0;
 
-  /// A few lines saying what will be done and what is left out.
+  /// A few lines saying what will be done, what is left out and why.
   std::string describe() const;
 };
 
-/// What one render did and what it cost. Times are wall-clock seconds.
+/// What one render did and what it cost. Times are wall-clock seconds; phases a path did not
+/// run take 0.
 struct RenderStats {
   RenderPlan plan;
-  double validateSeconds = 0.0;   ///< mesh structure checks
+  double validateSeconds = 0.0;   ///< mesh structure checks (once per version when versioned)
   double transformSeconds = 0.0;  ///< points to window coordinates (and painter's sort)
   double setupSeconds = 0.0;      ///< clip, cull, triangulate, bin
   double rasterSeconds = 0.0;     ///< clear and paint the tiles (depth and polygon ids)
   double shadeSeconds = 0.0;      ///< light the visible polygons, color the pixels
   double totalSeconds = 0.0;
 
+  // The counts describe the frame in the framebuffer: an incremental render repeats those of
+  // the render that drew its geometry, except polygonsShaded.
   std::size_t polygonsDrawn = 0;  ///< sent to the tiles
   /// Lit: the polygons that won a pixel while painting (those visible in the image, and any
   /// overdrawn later).
@@ -65,10 +182,14 @@ struct RenderStats {
   std::size_t polygonsNonFinite = 0;   ///< using a point with a NaN or infinite coordinate
   std::size_t trianglesBinned = 0;     ///< triangles handed to the tiles
   std::size_t trianglesClipped = 0;    ///< triangles that went through the clipper
+  std::size_t trianglesHidden = 0;     ///< not painted: behind the tile (Rule::HiddenGeometry)
   std::size_t fragmentsWritten = 0;    ///< pixel writes, counting overdraw
   std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end
   std::size_t closedMeshesSkippingBackFaces = 0;  ///< closed meshes wholly in front of near
   bool aborted = false;                           ///< the progress callback asked to stop
+
+  /// The plan's description, then what was counted and the time per phase.
+  std::string describe() const;
 };
 
 }  // namespace facet

@@ -19,6 +19,21 @@
 ///     turn its depth key into window depth.
 /// The result is bit-identical for every thread count, and re-rendering the same scene at
 /// the same size allocates nothing.
+///
+/// Before step 1 the render is planned (RenderPlan.h): rules leave out what the scene does
+/// not need (lights that reach nothing, blocks of polygons outside the view, triangles
+/// behind what a tile shows, normals without direct light, ...) and the routines that do the
+/// work are chosen once. Every render returns the plan in RenderStats: what ran, what was
+/// left out and why.
+///
+/// Incremental rendering. When the meshes are versioned (MeshView::version) and the camera,
+/// size, visibility and geometry are those of the previous render into the same planes, a
+/// render reuses that frame: new lights, materials, colors or two-sided lighting re-shade it
+/// from its polygon ids (no transform, set-up or raster); a new background only recolors
+/// it. Each gives the bytes a full render would. The caller keeps the depth and polygon-id
+/// planes as the previous render left them (the color plane is rewritten whole); a caller
+/// that wrote into them, or cannot be sure, calls forgetPreviousFrame() or turns
+/// RenderRules::incremental off. RenderPlan::path says which path ran, and why.
 
 #include <functional>
 #include <memory>
@@ -64,8 +79,24 @@ class Renderer {
 
   void setProgressCallback(ProgressCallback callback) { progress_ = std::move(callback); }
 
-  /// The plan a render of this scene through this camera into a width × height image
-  /// would follow. Throws facet::Error for invalid lights, materials, camera or size.
+  /// Which rules may leave work out (all, by default; see RenderRules).
+  void setRules(const RenderRules& rules);
+  const RenderRules& rules() const { return rules_; }
+
+  /// Write window depths into the depth plane. Off: the depth plane may be null (the renderer
+  /// keeps one of its own) and otherwise holds depth keys (FrameTransform.h), not window
+  /// depths, when render() returns. (default: on)
+  void setDepthOutput(bool enabled) { depthOutput_ = enabled; }
+  bool depthOutput() const { return depthOutput_; }
+
+  /// The next render is a full one: for a caller that wrote into the planes of the previous
+  /// render, or replaced arrays without a new version.
+  void forgetPreviousFrame();
+
+  /// The plan a full render of this scene through this camera into a width × height image
+  /// would start with (the decisions the geometry settles — closed surfaces, hidden geometry
+  /// — are made by the render). Throws facet::Error for invalid lights, materials, camera or
+  /// size.
   RenderPlan plan(const Scene& scene, const Camera& camera, int width, int height) const;
 
   /// Renders the scene into the framebuffer (its size is the image size). Throws
@@ -76,7 +107,8 @@ class Renderer {
   }
 
   /// The same, into planes the caller owns (see FramebufferView). Throws facet::Error for a
-  /// size outside [1, kMaxImageSide] or a null plane.
+  /// size outside [1, kMaxImageSide] or a null plane (the depth plane may be null when depth
+  /// output is off).
   RenderStats render(const Scene& scene, const Camera& camera, const FramebufferView& target);
 
   /// Runs work(begin, end) over [0, count) in blocks of `grain`, on the renderer's threads
@@ -93,6 +125,8 @@ class Renderer {
   Color background_{0.0f};
   float backgroundAlpha_ = 1.0f;
   ProgressCallback progress_;
+  RenderRules rules_;
+  bool depthOutput_ = true;
 };
 
 }  // namespace facet

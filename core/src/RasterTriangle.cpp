@@ -1,7 +1,9 @@
-#include "Rasterizer.h"
+#include "RasterTriangle.h"
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "Assert.h"
@@ -115,6 +117,21 @@ class TriangleDepth {
     return key0_ + perX_ * (s.x - x0_) + perY_ * (s.y - y0_);
   }
   double perPixelX() const { return perX_ * kSubpixelScale * kResidueScale; }
+  // After prepareRows: bounds on every key at(), refine() and keyAt() give for a sample of
+  // the snapped triangle in a box `extent` pixels across. The vertices' keys, widened by the
+  // plane's change over one grid step (a sample of the snapped triangle is within half a
+  // step of the unsnapped one in each axis, and the unsnapped plane goes on that far beyond
+  // it; the snapped plane only interpolates), and by 1e-9 of the magnitudes involved for the
+  // rounding of the interpolation and the stepping in double (below 1e-14 of them).
+  void keyRange(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, int extent,
+                double& lowest, double& highest) const {
+    const double slope = std::abs(perX_) + std::abs(perY_);
+    const double largest = std::max({std::abs(a.depth), std::abs(b.depth), std::abs(c.depth)});
+    const double rounding = 1e-9 * (largest + slope * extent * kSubpixelScale * kResidueScale);
+    const double slack = slope * kResidueScale + rounding;
+    lowest = std::min({a.depth, b.depth, c.depth}) - slack;
+    highest = std::max({a.depth, b.depth, c.depth}) + slack;
+  }
   // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values. A
   // snapped edge value of at least sureInside_ (grid units²) means the sample is inside the
   // unsnapped edge too: residues below 1/2 change (q − p) × (s − p) by at most
@@ -202,6 +219,104 @@ void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const Windo
                        planes, counts);
 }
 
+// One triangle over one box of samples: its edge functions at the box's first sample and
+// its depth plane, then the painting of its rows.
+struct BoxRaster {
+  BoxRaster(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, std::int64_t area,
+            EdgeMask boundary, const PixelBounds& samples)
+      : box(samples),
+        sampleX(std::int64_t{samples.x0} * kSubpixelScale + kHalfPixel),
+        sampleY(std::int64_t{samples.y0} * kSubpixelScale + kHalfPixel),
+        e0(b, c, sampleX, sampleY),  // opposite a
+        e1(c, a, sampleX, sampleY),  // opposite b
+        e2(a, b, sampleX, sampleY),  // opposite c
+        depth(a, b, c, area, boundary) {
+    depth.prepareRows(a, b, c);
+  }
+
+  // An edge's (biased) function at pixel (x, y): ≥ 0 inside, by the fill rule.
+  static std::int64_t at(const Edge& e, std::int64_t dx, std::int64_t dy) {
+    return e.value + dx * e.stepX + dy * e.stepY;
+  }
+  bool covers(int x, int y) const {
+    const std::int64_t dx = x - box.x0, dy = y - box.y0;
+    return (at(e0, dx, dy) | at(e1, dx, dy) | at(e2, dx, dy)) >= 0;
+  }
+  // Whether all four corners of the pixels are outside one edge (then all are: the edge's
+  // function is affine).
+  bool outsideOneEdge(const PixelBounds& p) const {
+    for (const Edge* e : {&e0, &e1, &e2}) {
+      const std::int64_t x0 = p.x0 - box.x0, x1 = p.x1 - box.x0;
+      const std::int64_t y0 = p.y0 - box.y0, y1 = p.y1 - box.y0;
+      if ((at(*e, x0, y0) & at(*e, x1, y0) & at(*e, x0, y1) & at(*e, x1, y1)) < 0) return true;
+    }
+    return false;
+  }
+  // The pixels inside the triangle among a block's, bit (y − p.y0)·8 + (x − p.x0). The four
+  // corners decide a block wholly inside (the triangle is convex) or wholly outside one edge.
+  std::uint64_t coverage(const PixelBounds& p) const {
+    if (outsideOneEdge(p)) return 0;
+    if (covers(p.x0, p.y0) && covers(p.x1, p.y0) && covers(p.x0, p.y1) && covers(p.x1, p.y1)) {
+      return ~std::uint64_t{0};
+    }
+    std::uint64_t mask = 0;
+    for (int y = p.y0; y <= p.y1; ++y) {
+      for (int x = p.x0; x <= p.x1; ++x) {
+        if (covers(x, y)) mask |= std::uint64_t{1} << ((y - p.y0) * 8 + (x - p.x0));
+      }
+    }
+    return mask;
+  }
+
+  // The depth key is affine in window x, y. It is stepped in double and rounded to float
+  // once per fragment: stepping in float would add a rounding per pixel, enough to tie
+  // surfaces 1e-6 apart.
+  template <DepthMode kMode>
+  void paint(std::int32_t polygonId, const Planes& planes, PaintCounts& counts) {
+    const double keyPerPixel = depth.perPixelX();
+    for (int y = box.y0; y <= box.y1; ++y) {
+      std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
+      const std::int64_t rowY = sampleY + std::int64_t{y - box.y0} * kSubpixelScale;
+      double key = depth.at(sampleX, rowY);
+      const std::size_t row = static_cast<std::size_t>(y) * planes.width;
+      for (int x = box.x0; x <= box.x1; ++x) {
+        if ((w0 | w1 | w2) >= 0) {
+          const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
+          const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
+          const double refined = depth.refine(key, columnX, rowY, snapped);
+          writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
+        }
+        w0 += e0.stepX;
+        w1 += e1.stepX;
+        w2 += e2.stepX;
+        key += keyPerPixel;
+      }
+      e0.value += e0.stepY;
+      e1.value += e1.stepY;
+      e2.value += e2.stepY;
+    }
+  }
+
+  PixelBounds box;
+  std::int64_t sampleX, sampleY;
+  Edge e0, e1, e2;
+  TriangleDepth depth;
+};
+
+// Below this many samples in its box a triangle is cheaper to depth-test pixel by pixel than
+// to test against the coarse depth first.
+constexpr std::size_t kSamplesForCoarseDepth = 16;
+
+// The float nearest a double, rounded outward (up or down), so that bounds stay bounds.
+float floatAbove(double key) {
+  const float f = toDepthKey(key);
+  return f < key ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+float floatBelow(double key) {
+  const float f = toDepthKey(key);
+  return f > key ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
 }  // namespace
 
 PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
@@ -245,40 +360,84 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
+  BoxRaster raster(a, b, c, area, boundary, box);
+  raster.paint<kMode>(polygonId, planes, counts);
+}
 
-  const std::int64_t sampleX = std::int64_t{box.x0} * kSubpixelScale + kHalfPixel;
-  const std::int64_t sampleY = std::int64_t{box.y0} * kSubpixelScale + kHalfPixel;
-  Edge e0(b, c, sampleX, sampleY);  // opposite a
-  Edge e1(c, a, sampleX, sampleY);  // opposite b
-  Edge e2(a, b, sampleX, sampleY);  // opposite c
+void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,
+                                    const WindowVertex& c, EdgeMask boundary,
+                                    std::int32_t polygonId, const PixelBounds& tile,
+                                    const Planes& planes, PaintCounts& counts,
+                                    CoarseDepth& coarse) {
+  const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
+  if (box.area() < kSamplesForCoarseDepth) {
+    paintTriangle<DepthMode::Test>(a, b, c, boundary, polygonId, tile, planes, counts);
+    return;
+  }
+  BoxRaster raster(a, b, c, doubleSignedArea(a, b, c), boundary, box);
+  double lowest, highest;
+  raster.depth.keyRange(a, b, c, std::max(box.x1 - box.x0, box.y1 - box.y0) + 1, lowest, highest);
+  if (coarse.hides(box, floatAbove(highest))) {
+    ++counts.hidden;
+    return;
+  }
+  coarse.raise(box, floatBelow(lowest),
+               [&](const PixelBounds& pixels) { return raster.coverage(pixels); });
+  raster.paint<DepthMode::Test>(polygonId, planes, counts);
+}
 
-  // The depth key is affine in window x, y. It is stepped in double and rounded to float
-  // once per fragment: stepping in float would add a rounding per pixel, enough to tie
-  // surfaces 1e-6 apart.
-  TriangleDepth depth(a, b, c, area, boundary);
-  depth.prepareRows(a, b, c);
-  const double keyPerPixel = depth.perPixelX();
+CoarseDepth::CoarseDepth(const PixelBounds& tile) : tile_(tile) {
+  std::fill(std::begin(blocks_), std::end(blocks_),
+            Block{kBackgroundDepthKey, std::numeric_limits<float>::infinity(), 0});
+}
 
-  for (int y = box.y0; y <= box.y1; ++y) {
-    std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
-    const std::int64_t rowY = sampleY + std::int64_t{y - box.y0} * kSubpixelScale;
-    double key = depth.at(sampleX, rowY);
-    const std::size_t row = static_cast<std::size_t>(y) * planes.width;
-    for (int x = box.x0; x <= box.x1; ++x) {
-      if ((w0 | w1 | w2) >= 0) {
-        const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
-        const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
-        const double refined = depth.refine(key, columnX, rowY, snapped);
-        writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
-      }
-      w0 += e0.stepX;
-      w1 += e1.stepX;
-      w2 += e2.stepX;
-      key += keyPerPixel;
+PixelBounds CoarseDepth::blockPixels(int bx, int by) const {
+  const int x0 = tile_.x0 + bx * kBlockSize, y0 = tile_.y0 + by * kBlockSize;
+  return {x0, y0, std::min(tile_.x1, x0 + kBlockSize - 1), std::min(tile_.y1, y0 + kBlockSize - 1)};
+}
+
+// The bits of a block's pixels (fewer than 64 where the image ends inside it).
+std::uint64_t CoarseDepth::allPixels(const PixelBounds& pixels) {
+  const int width = pixels.x1 - pixels.x0 + 1, height = pixels.y1 - pixels.y0 + 1;
+  const std::uint64_t row = width == kBlockSize ? 0xffu : (std::uint64_t{1} << width) - 1;
+  std::uint64_t all = 0;
+  for (int y = 0; y < height; ++y)
+    all |= row << (y * kBlockSize);
+  return all;
+}
+
+bool CoarseDepth::hides(const PixelBounds& box, float nearest) const {
+  for (int by = (box.y0 - tile_.y0) / kBlockSize; by <= (box.y1 - tile_.y0) / kBlockSize; ++by) {
+    for (int bx = (box.x0 - tile_.x0) / kBlockSize; bx <= (box.x1 - tile_.x0) / kBlockSize; ++bx) {
+      if (!(nearest <= blocks_[by * kBlocksPerSide + bx].farthest)) return false;
     }
-    e0.value += e0.stepY;
-    e1.value += e1.stepY;
-    e2.value += e2.stepY;
+  }
+  return true;
+}
+
+void CoarseDepth::cover(Block& block, std::uint64_t all, std::uint64_t mask, float key) {
+  if (mask == all) {
+    block.farthest = std::max(block.farthest, key);
+    return;
+  }
+  block.layerMask |= mask;
+  block.layerKey = std::min(block.layerKey, key);
+  if (block.layerMask == all) {
+    block.farthest = std::max(block.farthest, block.layerKey);
+    block.layerMask = 0;
+    block.layerKey = std::numeric_limits<float>::infinity();
+  }
+}
+
+template <class Coverage>
+void CoarseDepth::raise(const PixelBounds& box, float key, const Coverage& coverage) {
+  for (int by = (box.y0 - tile_.y0) / kBlockSize; by <= (box.y1 - tile_.y0) / kBlockSize; ++by) {
+    for (int bx = (box.x0 - tile_.x0) / kBlockSize; bx <= (box.x1 - tile_.x0) / kBlockSize; ++bx) {
+      const PixelBounds pixels = blockPixels(bx, by);
+      const std::uint64_t all = allPixels(pixels);
+      const std::uint64_t mask = coverage(pixels) & all;
+      if (mask != 0) cover(blocks_[by * kBlocksPerSide + bx], all, mask, key);
+    }
   }
 }
 

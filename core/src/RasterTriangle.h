@@ -12,18 +12,14 @@
 //   two triangles sharing an edge traverse it in opposite directions, so exactly one of
 //   them owns the samples on it (D3D10 / OpenGL rasterization rules, llvmpipe's approach).
 
+#include <cstddef>
 #include <cstdint>
 
 #include "FrameTransform.h"
+#include "TileGrid.h"
 #include "facet/Color.h"
 
 namespace facet::detail {
-
-// Inclusive pixel bounds.
-struct PixelBounds {
-  int x0, y0, x1, y1;
-  bool empty() const { return x0 > x1 || y0 > y1; }
-};
 
 // Twice the signed area in fixed-point units²: > 0 counter-clockwise (front-facing).
 inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& b,
@@ -63,6 +59,41 @@ inline constexpr EdgeMask kAllEdges = 0b111;
 struct PaintCounts {
   std::size_t written = 0;  // pixel writes, counting overdraw
   std::size_t covered = 0;  // background pixels that received their first polygon
+  std::size_t hidden = 0;   // triangles (per tile) the coarse depth proved hidden
+};
+
+// A tile's coarse depth (hierarchical z): per 8 × 8 pixel block, a depth key no nearer than
+// any of the block's pixels — the farthest the block may show. It starts at the
+// background's and rises as triangles cover the block: a triangle covering all of it
+// raises it to the triangle's farthest key; triangles covering parts (the two halves of a
+// quad) gather in a layer (Hasselgren et al., "Masked Software Occlusion Culling", 2016):
+// the union of their pixels holds at least the farthest of their keys, and once the union
+// is the whole block that key becomes the block's. A triangle whose keys are all at most
+// the farthest of every block it overlaps cannot pass the depth test anywhere.
+class CoarseDepth {
+ public:
+  static constexpr int kBlockSize = 8;
+  static constexpr int kBlocksPerSide = TileGrid::kTileSize / kBlockSize;
+
+  explicit CoarseDepth(const PixelBounds& tile);
+  // Whether no key up to `nearest` can win a pixel of the box (inside the tile).
+  bool hides(const PixelBounds& box, float nearest) const;
+  // Notes that the pixels of the blocks the box overlaps that coverage(block pixels) marks
+  // (bit (y − y0)·8 + (x − x0)) now hold `key` or nearer.
+  template <class Coverage>
+  void raise(const PixelBounds& box, float key, const Coverage& coverage);
+
+ private:
+  struct Block {
+    float farthest;
+    float layerKey;
+    std::uint64_t layerMask;
+  };
+  PixelBounds blockPixels(int bx, int by) const;
+  static std::uint64_t allPixels(const PixelBounds& pixels);
+  void cover(Block& block, std::uint64_t all, std::uint64_t mask, float key);
+  PixelBounds tile_;
+  Block blocks_[kBlocksPerSide * kBlocksPerSide];
 };
 
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
@@ -75,5 +106,14 @@ template <DepthMode kMode>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);
+
+// The same with the depth test and the tile's coarse depth (Rule::HiddenGeometry): a
+// triangle of a few samples is painted as above (its per-pixel test costs no more); a larger
+// one is skipped when the coarse depth hides it (counts.hidden), else painted and the coarse
+// depth raised where it covers whole blocks. The same pixels as paintTriangle<Test>.
+void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,
+                                    const WindowVertex& c, EdgeMask boundary,
+                                    std::int32_t polygonId, const PixelBounds& tile,
+                                    const Planes& planes, PaintCounts& counts, CoarseDepth& coarse);
 
 }  // namespace facet::detail

@@ -1,0 +1,47 @@
+#include "Binning.h"
+
+#include <utility>
+
+namespace facet::detail {
+namespace {
+
+// Corners 1 and 2 trade places: so do the edges opposite them (bits 1 and 2).
+EdgeMask swapEdges12(EdgeMask boundary) {
+  return static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
+}
+
+}  // namespace
+
+BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
+                       std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
+                       const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                       std::int32_t polygon) {
+  if (area == 0) return BinOutcome::ZeroArea;
+  const WindowVertex* second = &b;
+  const WindowVertex* third = &c;
+  if (area < 0) {
+    std::swap(r1, r2);
+    std::swap(second, third);
+    boundary = swapEdges12(boundary);
+  }
+  const PixelBounds bounds = samplesInBoundingBox(a, *second, *third, grid.viewport());
+  if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
+    return BinOutcome::CoversNoSample;
+  }
+  chunk.counts.boxSamples += bounds.area();
+  const auto index = static_cast<std::uint32_t>(chunk.triangles.size());
+  grid.forEachTile(bounds, [&](std::size_t t) { chunk.bins[t].push_back(index); });
+  chunk.triangles.push_back({{r0, r1, r2}, polygon});
+  chunk.boundaryEdges.push_back(boundary);
+  return BinOutcome::Binned;
+}
+
+void clearBins(Chunk& chunk, const TileGrid& grid) {
+  chunk.triangles.clear();
+  chunk.boundaryEdges.clear();
+  chunk.bins.resize(grid.count());
+  for (auto& bin : chunk.bins)
+    bin.clear();
+}
+
+}  // namespace facet::detail

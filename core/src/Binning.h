@@ -1,0 +1,27 @@
+#pragma once
+
+// Phase 2, second half: binning. A triangle in window space joins the bins of the tiles its
+// pixel centers may fall in; the raster phase paints each tile from its bins.
+
+#include <cstdint>
+
+#include "Frame.h"
+#include "TileGrid.h"
+
+namespace facet::detail {
+
+enum class BinOutcome { Binned, ZeroArea, CoversNoSample };
+
+// One triangle of `polygon`, given as vertex references (Frame.h) with their window
+// vertices, in either winding, `area` its doubleSignedArea and `boundary` its polygon-edge
+// mask (RasterTriangle.h). Kept counter-clockwise (corners 1 and 2 swapped if need be)
+// unless it has zero area or covers no pixel center.
+BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
+                       std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
+                       const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                       std::int32_t polygon);
+
+// Empties a chunk's triangles and bins for a new frame, with one bin per tile.
+void clearBins(Chunk& chunk, const TileGrid& grid);
+
+}  // namespace facet::detail

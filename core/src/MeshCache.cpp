@@ -1,0 +1,171 @@
+#include "MeshCache.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facet::detail {
+namespace {
+
+// Polygons per validation task: large, the work per polygon is a few loads.
+constexpr std::size_t kPolygonsPerTask = 1 << 18;
+// Points per bounds task, and blocks per block task.
+constexpr std::size_t kPointsPerBoundsTask = 1 << 16;
+constexpr std::size_t kBlocksPerTask = 64;
+
+bool isFinite(const glm::dvec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// The box of the finite points among [begin, end); false when some point is not finite.
+bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& box) {
+  return withTypedMesh(mesh, [&](auto points, auto) {
+    bool finite = true;
+    for (std::size_t i = begin; i < end; ++i) {
+      const glm::dvec3 p = points[i];
+      if (isFinite(p)) {
+        box.add(p);
+      } else {
+        finite = false;
+      }
+    }
+    return finite;
+  });
+}
+
+// Block b's box, point span and finiteness, from the points its polygons use.
+void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
+  const std::size_t begin = b * kPolygonsPerBlock;
+  const std::size_t end = std::min(mesh.polygons.count, begin + kPolygonsPerBlock);
+  Box box;
+  PointSpan span;
+  bool finite = true;
+  withTypedMesh(mesh, [&](auto points, auto polygons) {
+    for (std::size_t p = begin; p < end; ++p) {
+      for (std::size_t k = 0, n = polygons.size(p); k < n; ++k) {
+        const std::size_t id = polygons.pointId(p, k);
+        span.first = std::min(span.first, id);
+        span.last = std::max(span.last, id);
+        const glm::dvec3 point = points[id];
+        isFinite(point) ? box.add(point) : void(finite = false);
+      }
+    }
+  });
+  facts.blocks[b] = box;
+  facts.blockPoints[b] = span;
+  facts.blockFinite[b] = finite;
+}
+
+void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
+  const std::size_t blocks = (polygons + kPolygonsPerBlock - 1) / kPolygonsPerBlock;
+  facts.blocks.resize(blocks);
+  facts.blockPoints.resize(blocks);
+  facts.blockFinite.resize(blocks);
+}
+
+}  // namespace
+
+Box boundsOf(const MeshView& mesh) {
+  Box box;
+  boundPoints(mesh, 0, mesh.points.count, box);
+  return box;
+}
+
+MeshIdentity MeshIdentity::of(const MeshView& mesh) {
+  return {mesh.points.data,
+          mesh.polygons.offsets,
+          mesh.polygons.connectivity,
+          mesh.points.type,
+          mesh.polygons.type,
+          mesh.points.count,
+          mesh.polygons.count,
+          mesh.polygons.connectivitySize,
+          mesh.version};
+}
+
+bool MeshCache::update(PhaseRunner& runner, const Scene& scene, bool bounds) {
+  const std::size_t n = scene.meshes.size();
+  facts_.resize(n);
+  checking_.assign(n, 0);
+  measuring_.assign(n, 0);
+  bounding_.assign(n, 0);
+  for (std::size_t m = 0; m < n; ++m) {
+    MeshFacts& facts = facts_[m];
+    const MeshIdentity identity = MeshIdentity::of(scene.meshes[m].mesh);
+    const bool versioned = identity.version != 0;
+    if (versioned && facts.measured && facts.identity == identity) continue;
+    facts.identity = identity;
+    facts.measured = facts.bounded = false;
+    checking_[m] = 1;
+    measuring_[m] = versioned;
+    bounding_[m] = versioned || bounds;
+  }
+  return validate(runner, scene) && measure(runner, scene);
+}
+
+// Offsets and point ids of the meshes not known already, in parallel.
+bool MeshCache::validate(PhaseRunner& runner, const Scene& scene) {
+  splitPerMesh(
+      scene.meshes.size(), kPolygonsPerTask,
+      [&](std::size_t m) { return checking_[m] ? scene.meshes[m].mesh.polygons.count : 0; },
+      ranges_);
+  problems_.assign(ranges_.size(), std::nullopt);
+  const bool completed = runner.run(Phase::Validate, ranges_.size(), [&](std::size_t i) {
+    const MeshRange& r = ranges_[i];
+    problems_[i] = findMeshProblem(scene.meshes[r.mesh].mesh, r.begin, r.end);
+  });
+  for (std::size_t i = 0; i < problems_.size(); ++i) {
+    if (problems_[i]) throwMeshProblem(*problems_[i], ranges_[i].mesh);
+  }
+  return completed;
+}
+
+// Tasks over points for the bounds of the meshes that want them (the first `pointTasks` of
+// ranges_), then tasks over the blocks of the new versions.
+std::size_t MeshCache::planMeasurement(const Scene& scene) {
+  const auto& meshes = scene.meshes;
+  splitPerMesh(
+      meshes.size(), kPointsPerBoundsTask,
+      [&](std::size_t m) { return bounding_[m] ? meshes[m].mesh.points.count : 0; }, ranges_);
+  const std::size_t pointTasks = ranges_.size();
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    if (!measuring_[m]) continue;
+    sizeBlocks(facts_[m], meshes[m].mesh.polygons.count);
+    for (std::size_t b = 0; b < facts_[m].blocks.size(); b += kBlocksPerTask)
+      ranges_.push_back({m, b, std::min(facts_[m].blocks.size(), b + kBlocksPerTask)});
+  }
+  rangeBounds_.assign(pointTasks, Box{});
+  rangeFinite_.assign(pointTasks, 1);
+  return pointTasks;
+}
+
+bool MeshCache::measure(PhaseRunner& runner, const Scene& scene) {
+  const std::size_t pointTasks = planMeasurement(scene);
+  const bool completed = runner.run(Phase::Measure, ranges_.size(), [&](std::size_t i) {
+    const MeshRange& r = ranges_[i];
+    const MeshView& mesh = scene.meshes[r.mesh].mesh;
+    if (i < pointTasks) {
+      rangeFinite_[i] = boundPoints(mesh, r.begin, r.end, rangeBounds_[i]);
+      return;
+    }
+    for (std::size_t b = r.begin; b < r.end; ++b)
+      measureBlock(mesh, b, facts_[r.mesh]);
+  });
+  if (completed) collectBounds(pointTasks);
+  return completed;
+}
+
+void MeshCache::collectBounds(std::size_t pointTasks) {
+  for (std::size_t m = 0; m < facts_.size(); ++m) {
+    if (!bounding_[m]) continue;
+    facts_[m].bounds = Box{};
+    facts_[m].allFinite = true;
+    facts_[m].bounded = true;
+    facts_[m].measured = measuring_[m];
+  }
+  for (std::size_t i = 0; i < pointTasks; ++i) {
+    facts_[ranges_[i].mesh].bounds.add(rangeBounds_[i]);
+    facts_[ranges_[i].mesh].allFinite &= rangeFinite_[i] != 0;
+  }
+}
+
+}  // namespace facet::detail

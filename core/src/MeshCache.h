@@ -1,0 +1,84 @@
+#pragma once
+
+// Phase 0: what is known about each mesh before a render reads it. An unversioned mesh
+// (MeshView::version 0) is validated every render; a versioned one once per version, and
+// measured then: its bounding box, and the boxes of its blocks of polygons that the rules
+// test the lights and the view against.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "Box.h"
+#include "Frame.h"
+#include "MeshAccess.h"
+#include "PhaseRunner.h"
+#include "facet/Scene.h"
+
+namespace facet::detail {
+
+// Polygons per block: the unit the view culls (Rule::GeometryOutsideView). 1024 keeps a
+// block's box tight on a dense mesh while 2M polygons make only ~2000 boxes to test.
+inline constexpr int kBlockBits = 10;
+inline constexpr std::size_t kPolygonsPerBlock = std::size_t{1} << kBlockBits;
+
+// The range of point ids a block's polygons use.
+struct PointSpan {
+  std::size_t first = SIZE_MAX, last = 0;
+};
+
+// What makes two MeshViews the same arrays (MeshView::version's promise).
+struct MeshIdentity {
+  const void* points = nullptr;
+  const void* offsets = nullptr;
+  const void* connectivity = nullptr;
+  PointArray::Type pointType = PointArray::Type::Float64;
+  PolygonArray::Type indexType = PolygonArray::Type::Int64;
+  std::size_t pointCount = 0, polygonCount = 0, connectivitySize = 0;
+  std::uint64_t version = 0;
+
+  static MeshIdentity of(const MeshView& mesh);
+  friend bool operator==(const MeshIdentity&, const MeshIdentity&) = default;
+};
+
+struct MeshFacts {
+  MeshIdentity identity;
+  bool measured = false;                  // validated, with boxes and blocks, for this identity
+  bool bounded = false;                   // `bounds` and `allFinite` hold for this render
+  Box bounds;                             // its finite points
+  bool allFinite = true;                  // no point has a NaN or infinite coordinate
+  std::vector<Box> blocks;                // per block: the finite points its polygons use
+  std::vector<PointSpan> blockPoints;     // per block
+  std::vector<std::uint8_t> blockFinite;  // per block: every point it uses is finite
+};
+
+// The box of a mesh's finite points (for a plan made ahead of a render).
+Box boundsOf(const MeshView& mesh);
+
+class MeshCache {
+ public:
+  // Validates every mesh not known already (throws facet::Error for the first problem, in
+  // polygon order, whatever the thread count), and measures the new versions. `bounds`:
+  // the bounds of unversioned meshes are wanted too. False when the progress callback asked
+  // to stop.
+  bool update(PhaseRunner& runner, const Scene& scene, bool bounds);
+  const MeshFacts& operator[](std::size_t mesh) const { return facts_[mesh]; }
+  // Forgets every mesh (their next render validates them again).
+  void clear() { facts_.clear(); }
+
+ private:
+  bool validate(PhaseRunner& runner, const Scene& scene);
+  bool measure(PhaseRunner& runner, const Scene& scene);
+  std::size_t planMeasurement(const Scene& scene);
+  void collectBounds(std::size_t pointTasks);
+
+  std::vector<MeshFacts> facts_;
+  std::vector<std::uint8_t> checking_, measuring_, bounding_;  // per mesh, this render
+  std::vector<MeshRange> ranges_;
+  std::vector<std::optional<MeshProblem>> problems_;
+  std::vector<Box> rangeBounds_;
+  std::vector<std::uint8_t> rangeFinite_;
+};
+
+}  // namespace facet::detail

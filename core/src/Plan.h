@@ -1,0 +1,78 @@
+#pragma once
+
+// Phase 0: the plan. Decided once per render from the scene and from what changed since the
+// previous render: which path runs (History.h), which rules may leave work out, and which
+// routines do the work. Decisions that need the frame's geometry (closed surfaces, the
+// coarse depth) are completed by the phases that learn it.
+
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "Box.h"
+#include "Raster.h"
+#include "Shade.h"
+#include "facet/Camera.h"
+#include "facet/Lighting.h"
+#include "facet/RenderPlan.h"
+#include "facet/Scene.h"
+
+namespace facet::detail {
+
+struct PlanInputs {
+  const Scene& scene;
+  const Camera& camera;
+  int width, height;
+  int threads;
+  Visibility visibility;
+  bool twoSidedLighting;
+  bool depthOutput;
+  const RenderRules& rules;
+};
+
+// What the plan decides about shading: the lights kept by Rule::LightsThatReachNothing,
+// prepared, and each mesh's shading routine.
+struct ShadingChoice {
+  LightSet keptLights;
+  Shader shader;
+  std::vector<ShadeRoutineChoice> routines;  // per mesh
+};
+
+// The plan of a render, and its shading. `bounds`: each mesh's bounding box, or empty when
+// they are not known (the lights are then judged as reaching everything).
+RenderPlan makePlan(const PlanInputs& inputs, std::span<const Box> bounds, ShadingChoice& shading);
+
+// The name every item's routine shares, or "per mesh".
+template <class Items, class NameOf>
+const char* commonName(const Items& items, const NameOf& nameOf) {
+  if (items.empty()) return "none (no mesh)";
+  for (const auto& item : items) {
+    if (std::string_view(nameOf(item)) != nameOf(items.front())) return "per mesh";
+  }
+  return nameOf(items.front());
+}
+
+// What shading one mesh computes under this plan.
+ShadeNeeds shadeNeedsOf(const RenderPlan& plan, const SceneMesh& mesh, const RenderRules& rules);
+
+// Rule::HiddenGeometry under HierarchicalZ::Auto: the coarse depth pays where triangles
+// overlap many times (depth complexity, the pixels of their boxes over the image's) and
+// are large enough to cover its 8 × 8 blocks; on a dense mesh's one-pixel triangles it only
+// adds a test. Thresholds measured in bench/ (README, "Leaving out work").
+inline constexpr double kCoarseDepthMinComplexity = 4.0;
+inline constexpr double kCoarseDepthMinTriangleBox = 64.0;
+bool useCoarseDepth(const RenderPlan& plan, HierarchicalZ mode);
+
+// The tile routine (Raster.h), once the set-up is known: Rule::HiddenGeometry's estimate
+// from the chunks (depth complexity, the mean triangle's box) decides the coarse depth.
+TileRoutine chooseRasterRoutine(RenderPlan& plan, std::span<const Chunk> chunks,
+                                HierarchicalZ mode);
+
+// Records that `rule` left out `skipped` items (fired when some).
+void reportRule(RenderPlan& plan, Rule rule, std::size_t skipped);
+
+// Copies into `plan` what `previous` found out about the geometry of the frame it drew (an
+// incremental render reuses that frame).
+void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous);
+
+}  // namespace facet::detail

@@ -1,0 +1,70 @@
+#include "Raster.h"
+
+#include <algorithm>
+
+#include "facet/Framebuffer.h"
+
+namespace facet::detail {
+namespace {
+
+void clearTile(const RasterContext& context, const PixelBounds& tile) {
+  for (int y = tile.y0; y <= tile.y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * context.width;
+    std::fill(context.depth + row + tile.x0, context.depth + row + tile.x1 + 1,
+              kBackgroundDepthKey);
+    std::fill(context.polygonId + row + tile.x0, context.polygonId + row + tile.x1 + 1,
+              Framebuffer::kBackgroundId);
+  }
+}
+
+// kCoarse: with the tile's coarse depth (Rule::HiddenGeometry, depth test only).
+template <DepthMode kMode, bool kCoarse>
+PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
+  clearTile(context, tile);
+  const Planes planes{context.color, context.depth, context.polygonId, context.width,
+                      context.shown.data()};
+  PaintCounts counts;
+  CoarseDepth coarse(tile);
+  for (const Chunk& chunk : context.chunks) {
+    for (const std::uint32_t index : chunk.bins[t]) {
+      const BinnedTriangle& tri = chunk.triangles[index];
+      const WindowVertex& a = vertexOf(context.vertices, chunk, tri.vertex[0]);
+      const WindowVertex& b = vertexOf(context.vertices, chunk, tri.vertex[1]);
+      const WindowVertex& c = vertexOf(context.vertices, chunk, tri.vertex[2]);
+      const EdgeMask boundary = chunk.boundaryEdges[index];
+      if constexpr (kCoarse) {
+        paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts,
+                                       coarse);
+      } else {
+        paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
+      }
+    }
+  }
+  return counts;
+}
+
+}  // namespace
+
+TileRoutineChoice chooseTileRoutine(bool depthTest, bool coarseDepth) {
+  if (!depthTest) return {paintTile<DepthMode::Overwrite, false>, "painter's overwrite"};
+  if (coarseDepth) return {paintTile<DepthMode::Test, true>, "depth test, hierarchical z"};
+  return {paintTile<DepthMode::Test, false>, "depth test"};
+}
+
+bool paintTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,
+                TileRoutine routine, std::vector<PaintCounts>& counts) {
+  std::fill(context.shown.begin(), context.shown.end(), std::uint8_t{0});
+  counts.assign(grid.count(), {});
+  return runner.run(Phase::Raster, grid.count(),
+                    [&](std::size_t t) { counts[t] = routine(context, t, grid.bounds(t)); });
+}
+
+void addPaintCounts(std::span<const PaintCounts> tiles, RenderStats& stats) {
+  for (const PaintCounts& tile : tiles) {
+    stats.fragmentsWritten += tile.written;
+    stats.pixelsCovered += tile.covered;
+    stats.trianglesHidden += tile.hidden;
+  }
+}
+
+}  // namespace facet::detail

@@ -1,0 +1,38 @@
+#pragma once
+
+// Phase 5: resolve. Every pixel takes its polygon's color (or the background's), and its
+// depth key becomes window depth (Conventions.h, "Depth"), tile by tile.
+
+#include <cstdint>
+
+#include "FrameTransform.h"
+#include "PhaseRunner.h"
+#include "TileGrid.h"
+#include "facet/Color.h"
+
+namespace facet::detail {
+
+struct ResolveContext {
+  const Rgba8* colors;  // per polygon id (Shade.h)
+  Rgba8 background;
+  Rgba8* color;  // the framebuffer's planes (FramebufferView)
+  float* depth;
+  const std::int32_t* polygonId;
+  int width;
+};
+
+// One tile's resolve, chosen once per render: colors and window depths, or colors only (no
+// depth output, or depths already resolved by the frame an incremental render reuses).
+using ResolveRoutine = void (*)(const ResolveContext& context, const PixelBounds& tile,
+                                const FrameTransform& transform);
+struct ResolveRoutineChoice {
+  ResolveRoutine resolve;
+  const char* name;
+};
+ResolveRoutineChoice chooseResolveRoutine(bool depth);
+
+// Resolves every tile with the routine, turning depth keys into window depths by `transform`.
+bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
+                  ResolveRoutine routine, const FrameTransform& transform);
+
+}  // namespace facet::detail

@@ -1,0 +1,44 @@
+#pragma once
+
+// Phase 2: set-up. Every polygon becomes triangles in window space: which side the viewer
+// sees, culling, triangulation, clipping; each triangle then goes to binning (Binning.h).
+// Lighting waits for the shade phase, which lights only the polygons that won a pixel.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "Frame.h"
+#include "PhaseRunner.h"
+#include "TileGrid.h"
+#include "facet/RenderPlan.h"
+
+namespace facet::detail {
+
+struct SetupContext {
+  std::span<const FrameMesh> meshes;
+  const FrameTransform& transform;
+  const WindowVertex* vertices;  // every mesh's points, projected (Transform.h)
+  const DrawOrder& order;
+  const TileGrid& grid;
+  std::uint8_t* backFacing;  // out, per polygon id: set for every polygon drawn
+};
+
+// The set-up's chunks (its output) and their ranges.
+struct SetupBuffers {
+  std::vector<MeshRange> ranges;
+  std::vector<Chunk> chunks;
+};
+
+// The name of the set-up routine a mesh gets (FrameMesh::skipBackFaces), for the plan.
+const char* setupRoutineName(bool skipBackFaces);
+
+// Sets up every polygon, in chunks of draw positions (aligned with meshes unless painter's
+// order interleaves them) sized for `threads`.
+bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
+                   SetupBuffers& buffers);
+
+// Adds what the set-up counted (polygons drawn, culled, ...; triangles) to `stats`.
+void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats);
+
+}  // namespace facet::detail

@@ -1,0 +1,109 @@
+#include "Transform.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "MeshAccess.h"
+
+namespace facet::detail {
+namespace {
+
+// Polygons per sort task.
+constexpr std::size_t kPolygonsPerSortTask = 1 << 18;
+
+// Whether a task's points are used by a block in view (ViewCulling.h).
+bool needed(const FrameMesh& mesh, const MeshRange& range) {
+  return !mesh.neededTasks || mesh.neededTasks[range.begin / kPointsPerTransformTask];
+}
+
+void transformRange(const FrameMesh& mesh, const FrameTransform& transform, const MeshRange& r,
+                    WindowVertex* vertices, std::uint32_t& outcodes) {
+  withTypedMesh(mesh.mesh(), [&](auto points, auto) {
+    std::uint32_t any = 0;
+    for (std::size_t p = r.begin; p < r.end; ++p) {
+      const WindowVertex v = transform.project(points[p]);
+      vertices[mesh.firstVertex + p] = v;
+      any |= v.outcode;
+    }
+    outcodes = any;
+  });
+}
+
+// The view distance of each polygon's centroid (+∞ when not finite), with its id.
+void sortKeysOfRange(const FrameMesh& mesh, const FrameTransform& transform, const MeshRange& r,
+                     std::pair<double, std::uint32_t>* keys) {
+  withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
+    for (std::size_t p = r.begin; p < r.end; ++p) {
+      glm::dvec3 sum(0.0);
+      const std::size_t n = polygons.size(p);
+      for (std::size_t k = 0; k < n; ++k)
+        sum += points[polygons.pointId(p, k)];
+      double distance = transform.viewDistance(sum / static_cast<double>(n));
+      if (!std::isfinite(distance)) distance = std::numeric_limits<double>::infinity();
+      const std::size_t id = mesh.firstPolygon + p;
+      keys[id] = {distance, static_cast<std::uint32_t>(id)};
+    }
+  });
+}
+
+}  // namespace
+
+bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
+                     const FrameTransform& transform, PointRanges& ranges,
+                     HugePageVector<WindowVertex>& vertices) {
+  const std::size_t total =
+      meshes.empty() ? 0 : meshes.back().firstVertex + meshes.back().mesh().points.count;
+  vertices.resize(total);
+  splitPerMesh(
+      meshes.size(), kPointsPerTransformTask,
+      [&](std::size_t m) { return meshes[m].mesh().points.count; }, ranges.ranges);
+  std::erase_if(ranges.ranges, [&](const MeshRange& r) { return !needed(meshes[r.mesh], r); });
+  ranges.outcodes.assign(ranges.ranges.size(), 0);
+  return runner.run(Phase::Transform, ranges.ranges.size(), [&](std::size_t i) {
+    const MeshRange& r = ranges.ranges[i];
+    transformRange(meshes[r.mesh], transform, r, vertices.data(), ranges.outcodes[i]);
+  });
+}
+
+// Back faces of a closed surface are hidden while no point of it is beyond the near plane
+// (none behind the eye: the eye is outside) and none is non-finite (no polygon dropped).
+std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& ranges,
+                            bool closedSurfaces) {
+  std::size_t closedSkipping = 0;
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    std::uint32_t any = 0;
+    for (std::size_t i = 0; i < ranges.ranges.size(); ++i) {
+      if (ranges.ranges[i].mesh == m) any |= ranges.outcodes[i];
+    }
+    FrameMesh& mesh = meshes[m];
+    const bool culled = mesh.source->material.backfaceCulling;
+    const bool hidden =
+        closedSurfaces && mesh.mesh().closedSurface && (any & (kBeyondNear | kNonFinite)) == 0;
+    mesh.skipBackFaces = culled || hidden;
+    closedSkipping += hidden && !culled;
+  }
+  return closedSkipping;
+}
+
+bool sortForPainter(PhaseRunner& runner, std::span<const FrameMesh> meshes,
+                    const FrameTransform& transform, std::vector<MeshRange>& ranges,
+                    DrawOrder& order) {
+  const std::size_t polygons = meshes.empty() ? 0 : meshes.back().endPolygon();
+  splitPerMesh(
+      meshes.size(), kPolygonsPerSortTask,
+      [&](std::size_t m) { return meshes[m].mesh().polygons.count; }, ranges);
+  order.keys.resize(polygons);
+  const bool completed = runner.run(Phase::Sort, ranges.size(), [&](std::size_t i) {
+    sortKeysOfRange(meshes[ranges[i].mesh], transform, ranges[i], order.keys.data());
+  });
+  std::sort(order.keys.begin(), order.keys.end(), [](const auto& a, const auto& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
+  });
+  order.ids.resize(polygons);
+  for (std::size_t i = 0; i < polygons; ++i)
+    order.ids[i] = order.keys[i].second;
+  return completed;
+}
+
+}  // namespace facet::detail

@@ -1,0 +1,40 @@
+#pragma once
+
+// Phase 1: every point of every mesh to window coordinates (FrameTransform.h), then which
+// meshes' back faces cannot be seen this frame, and, for the painter's algorithm, the order
+// in which polygons are drawn.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "Frame.h"
+#include "PhaseRunner.h"
+
+namespace facet::detail {
+
+// Points per transform task.
+inline constexpr std::size_t kPointsPerTransformTask = 1 << 14;
+
+// The transform's tasks and, per task, the OR of its points' outcodes.
+struct PointRanges {
+  std::vector<MeshRange> ranges;
+  std::vector<std::uint32_t> outcodes;
+};
+
+bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
+                     const FrameTransform& transform, PointRanges& ranges,
+                     HugePageVector<WindowVertex>& vertices);
+
+// Sets FrameMesh::skipBackFaces from the material and, for closed surfaces (when
+// Rule::ClosedSurfaces may fire), from the points' outcodes. Returns how many closed meshes
+// skip their back faces only for being closed.
+std::size_t decideBackFaces(std::span<FrameMesh> meshes, const PointRanges& ranges,
+                            bool closedSurfaces);
+
+// Painter's order: far to near by the view distance of each polygon's centroid, ties by id.
+bool sortForPainter(PhaseRunner& runner, std::span<const FrameMesh> meshes,
+                    const FrameTransform& transform, std::vector<MeshRange>& ranges,
+                    DrawOrder& order);
+
+}  // namespace facet::detail

@@ -1,0 +1,33 @@
+#pragma once
+
+// Rule::GeometryOutsideView: the blocks of polygons (MeshCache.h) whose bounding box lies
+// outside the view are dropped before any per-vertex work. Their points are not transformed
+// (unless a visible block uses them too) and their polygons not set up, counted as outside.
+//
+// A closed mesh's back faces are skipped only while none of its points is beyond the near
+// plane (Transform.h, decideBackFaces), which untransformed points could not tell: such a
+// mesh is culled only when its whole box is in front of the near plane, which decides the
+// same way. Blocks with a non-finite point are kept, so that their polygons are counted as
+// non-finite as before.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "Frame.h"
+#include "MeshCache.h"
+
+namespace facet::detail {
+
+struct ViewCulling {
+  std::vector<std::uint8_t> visibleBlocks;  // per block of every culled mesh, in turn
+  std::vector<std::uint8_t> neededTasks;    // per transform task of every culled mesh
+  std::size_t blocksTested = 0, blocksOutside = 0, polygonsOutside = 0;
+};
+
+// Tests the blocks of every measured mesh against the view and points the meshes with
+// blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededTasks).
+void cullBlocksOutsideView(std::span<FrameMesh> meshes, const MeshCache& cache,
+                           const FrameTransform& transform, ViewCulling& culling);
+
+}  // namespace facet::detail
