@@ -75,6 +75,16 @@ struct MeshView {
   /// plane the renderer skips its back faces: same image, about half the work.
   /// Setting it on a mesh that is not closed loses the back faces. (default: false)
   bool closedSurface = false;
+  /// Optional normals at the points (one xyz per point, as vtkPointData::GetNormals stores
+  /// them), for shading that interpolates across polygons (QualityRenderer.h): used as given
+  /// instead of computed ones (VertexNormals.h). The flat Renderer ignores them.
+  /// (default: none, count 0)
+  PointArray pointNormals{nullptr, PointArray::Type::Float64, 0};
+  /// Optional colors at the points, already mapped (vtkMapper's default,
+  /// InterpolateScalarsBeforeMapping off), interpolated across polygons by the Gouraud and
+  /// Phong modes (QualityRenderer.h); they win over polygonColors there. Alpha is ignored.
+  /// The flat Renderer ignores them (give it polygonColors). (default: empty)
+  std::span<const Rgba8> pointColors;
 };
 
 /// An owning mesh with 64-bit indices, for building geometry by hand (examples, tests).
@@ -101,7 +111,11 @@ struct Mesh {
   std::size_t polygonCount() const { return offsets.size() - 1; }
 
   MeshView view() const {
-    return {PointArray::of(points), PolygonArray::of(offsets, connectivity), polygonColors, false};
+    MeshView view;
+    view.points = PointArray::of(points);
+    view.polygons = PolygonArray::of(offsets, connectivity);
+    view.polygonColors = polygonColors;
+    return view;
   }
 };
 
