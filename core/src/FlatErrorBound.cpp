@@ -40,7 +40,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "Overloaded.h"
 #include "Vector.h"
@@ -49,24 +48,38 @@
 namespace facet {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+// An angle in [0, π] as its cosine and sine, so that the bound adds angles without a
+// transcendental call (angle addition; a sum past π is clamped to π, where the ranges below
+// are already the whole of [−1, 1]).
+struct Angle {
+  double cos = 1.0, sin = 0.0;
 
-// The half-angle asin(s) of the cone a ball of radius r fills seen from distance d, s = r/d;
-// π when the point is inside the ball.
-double coneAngle(double s) {
-  return s < 1.0 ? std::asin(s) : kPi;
-}
+  static Angle straight() { return {-1.0, 0.0}; }
+  static Angle ofCosine(double c) {
+    c = std::clamp(c, -1.0, 1.0);  // NaN stays NaN and gives the widest ranges below
+    return {c, std::sqrt(std::max(0.0, 1.0 - c * c))};
+  }
+  // The half-angle asin(s) of the cone a ball of radius r fills seen from distance d,
+  // s = r/d; straight when the point is inside the ball.
+  static Angle ofConeSine(double s) {
+    if (!(s < 1.0)) return straight();
+    return {std::sqrt(1.0 - s * s), s};
+  }
+  Angle operator+(const Angle& b) const {
+    if (cos <= -1.0 || b.cos <= -1.0) return straight();
+    const Angle sum{cos * b.cos - sin * b.sin, sin * b.cos + cos * b.sin};
+    return sum.sin < 0.0 || !(sum.cos > -1.0) ? straight() : sum;  // past π
+  }
+};
 
-double angleOf(double cosine) {
-  return std::acos(std::clamp(cosine, -1.0, 1.0));
-}
-
-// The cosines at the ends of [angle − spread, angle + spread], clamped to [0, π].
+// The cosines at the ends of [θ − Δ, θ + Δ] clamped to [0, π]: cos(θ + Δ) and, unless θ ≤ Δ
+// (then 1), cos(θ − Δ) = cosθ·cosΔ + sinθ·sinΔ.
 struct CosineRange {
   double lo, hi;
 };
-CosineRange cosineRange(double angle, double spread) {
-  return {std::cos(std::min(kPi, angle + spread)), std::cos(std::max(0.0, angle - spread))};
+CosineRange cosineRange(const Angle& theta, const Angle& spread) {
+  const double hi = theta.cos >= spread.cos ? 1.0 : theta.cos * spread.cos + theta.sin * spread.sin;
+  return {(theta + spread).cos, std::min(hi, 1.0)};
 }
 
 glm::dvec3 radianceOf(const Color& color, double intensity) {
@@ -89,17 +102,83 @@ glm::dvec3 deviation(const glm::dvec3& lo, const glm::dvec3& f, const glm::dvec3
   return glm::max(glm::max(hi - f, f - lo), glm::dvec3(0.0));
 }
 
-}  // namespace
-
-struct FlatErrorBound::Interval {
+struct Interval {
   double lo, flat, hi;
 };
 
 // One light's spread over the polygon: its diffuse and specular deviations and the largest
 // diffuse light it can give (which the surface color's spread multiplies).
-struct FlatErrorBound::LightTerms {
+struct LightTerms {
   glm::dvec3 diffuse{0.0}, specular{0.0}, diffuseHigh{0.0};
 };
+
+// Steps 2 to 6 of the derivation for one light.
+LightTerms lightTerms(const Light& light, const PolygonShape& polygon, const glm::dvec3& normal,
+                      const Angle& normalAngle, const glm::dvec3& viewer, const Angle& viewerAngle,
+                      const PreparedMaterial& m) {
+  glm::dvec3 toLight = normal, radiance{0.0};
+  Angle lightAngle;
+  Interval factor{1.0, 1.0, 1.0};  // attenuation × cone
+  std::visit(
+      detail::Overloaded{
+          [&](const DirectionalLight& l) {
+            toLight = -glm::normalize(l.direction);
+            radiance = radianceOf(l.color, l.intensity);
+          },
+          [&](const auto& l) {  // point and spot lights
+            radiance = radianceOf(l.color, l.intensity);
+            const glm::dvec3 offset = l.position - polygon.center;
+            const double d = glm::length(offset);
+            if (d > 0.0 && std::isfinite(d)) toLight = offset / d;
+            lightAngle = Angle::ofConeSine(d > 0.0 ? polygon.radius / d : 2.0);
+            const double near = std::max(0.0, d - polygon.radius), far = d + polygon.radius;
+            factor = {attenuationFactor(l.attenuation, far), attenuationFactor(l.attenuation, d),
+                      attenuationFactor(l.attenuation, near)};
+            if constexpr (std::is_same_v<std::decay_t<decltype(l)>, SpotLight>) {
+              const Angle gamma = Angle::ofCosine(glm::dot(-toLight, glm::normalize(l.direction)));
+              const CosineRange axis = cosineRange(gamma, lightAngle);
+              factor.lo *= spotFactor(l.cone, axis.lo);
+              factor.flat *= spotFactor(l.cone, gamma.cos);
+              factor.hi *= spotFactor(l.cone, axis.hi);
+            }
+          },
+      },
+      light);
+  const glm::dvec3 eLo = radiance * factor.lo, eF = radiance * factor.flat,
+                   eHi = radiance * factor.hi;
+
+  const double cosine = glm::dot(normal, toLight);
+  const CosineRange lit = cosineRange(Angle::ofCosine(cosine), normalAngle + lightAngle);
+  const Interval d{diffuseOf(m, lit.lo), diffuseOf(m, cosine), diffuseOf(m, lit.hi)};
+  LightTerms terms;
+  // The Lerp model may fall with N·L (lerpFull < lerpAmbient): order the ends.
+  terms.diffuse = deviation(eLo * std::min(d.lo, d.hi), eF * d.flat, eHi * std::max(d.lo, d.hi));
+  terms.diffuseHigh = eHi * std::max(d.lo, d.hi);
+  if (m.specular <= 0.0) return terms;
+
+  double alignment = 0.0;
+  Angle spread = Angle::straight();
+  if (m.material.specularModel == SpecularModel::Phong) {
+    alignment = glm::dot(2.0 * std::min(cosine, 1.0) * normal - toLight, viewer);
+    spread = normalAngle + normalAngle + lightAngle + viewerAngle;
+  } else if (const auto half = detail::normalizeRobust(toLight + viewer)) {
+    alignment = glm::dot(normal, half->unit);
+    // |L_f − L| and |V_f − V| are the chords 2 sin(β/2) = √(2 − 2 cos β) of their angles.
+    const double moved = (std::sqrt(std::max(0.0, 2.0 - 2.0 * lightAngle.cos)) +
+                          std::sqrt(std::max(0.0, 2.0 - 2.0 * viewerAngle.cos))) /
+                         half->length;
+    const Angle halfTurn = Angle::ofConeSine(moved);  // asin(min(1, moved)), doubled below
+    spread = normalAngle + halfTurn + halfTurn;
+  }
+  const CosineRange aligned = cosineRange(Angle::ofCosine(alignment), spread);
+  const Interval s{lit.lo > 0.0 ? powerOf(m, aligned.lo) : 0.0,
+                   cosine > 0.0 ? powerOf(m, alignment) : 0.0,
+                   lit.hi > 0.0 ? powerOf(m, aligned.hi) : 0.0};
+  terms.specular = deviation(eLo * s.lo, eF * s.flat, eHi * s.hi);
+  return terms;
+}
+
+}  // namespace
 
 FlatErrorBound::FlatErrorBound(const LightSet& lights, const Camera& camera, bool twoSidedLighting)
     : lights_(lights), twoSided_(twoSidedLighting) {
@@ -113,71 +192,11 @@ FlatErrorBound::FlatErrorBound(const LightSet& lights, const Camera& camera, boo
 
 glm::dvec3 FlatErrorBound::toViewer(const glm::dvec3& point) const {
   if (parallel_) return -viewDirection_;
-  const auto unit = detail::normalizeRobust(eye_ - point);
+  const glm::dvec3 offset = eye_ - point;
+  const double length = glm::length(offset);
+  if (length > 1e-150 && length < 1e150) return offset / length;  // the common case
+  const auto unit = detail::normalizeRobust(offset);
   return unit ? unit->unit : -viewDirection_;
-}
-
-FlatErrorBound::LightTerms FlatErrorBound::lightTerms(const Light& light,
-                                                      const PolygonShape& polygon,
-                                                      const glm::dvec3& normal, double normalAngle,
-                                                      const glm::dvec3& viewer, double viewerAngle,
-                                                      const PreparedMaterial& m) const {
-  glm::dvec3 toLight = normal, radiance{0.0};
-  double lightAngle = 0.0;
-  Interval factor{1.0, 1.0, 1.0};  // attenuation × cone
-  std::visit(detail::Overloaded{
-                 [&](const DirectionalLight& l) {
-                   toLight = -glm::normalize(l.direction);
-                   radiance = radianceOf(l.color, l.intensity);
-                 },
-                 [&](const auto& l) {  // point and spot lights
-                   radiance = radianceOf(l.color, l.intensity);
-                   const glm::dvec3 offset = l.position - polygon.center;
-                   const double d = glm::length(offset);
-                   if (d > 0.0 && std::isfinite(d)) toLight = offset / d;
-                   lightAngle = coneAngle(d > 0.0 ? polygon.radius / d : 2.0);
-                   const double near = std::max(0.0, d - polygon.radius), far = d + polygon.radius;
-                   factor = {attenuationFactor(l.attenuation, far),
-                             attenuationFactor(l.attenuation, d),
-                             attenuationFactor(l.attenuation, near)};
-                   if constexpr (std::is_same_v<std::decay_t<decltype(l)>, SpotLight>) {
-                     const double gamma = angleOf(glm::dot(-toLight, glm::normalize(l.direction)));
-                     const CosineRange axis = cosineRange(gamma, lightAngle);
-                     factor.lo *= spotFactor(l.cone, axis.lo);
-                     factor.flat *= spotFactor(l.cone, std::cos(gamma));
-                     factor.hi *= spotFactor(l.cone, axis.hi);
-                   }
-                 },
-             },
-             light);
-  const glm::dvec3 eLo = radiance * factor.lo, eF = radiance * factor.flat,
-                   eHi = radiance * factor.hi;
-
-  const double cosine = glm::dot(normal, toLight);
-  const CosineRange lit = cosineRange(angleOf(cosine), normalAngle + lightAngle);
-  const Interval d{diffuseOf(m, lit.lo), diffuseOf(m, cosine), diffuseOf(m, lit.hi)};
-  LightTerms terms;
-  // The Lerp model may fall with N·L (lerpFull < lerpAmbient): order the ends.
-  terms.diffuse = deviation(eLo * std::min(d.lo, d.hi), eF * d.flat, eHi * std::max(d.lo, d.hi));
-  terms.diffuseHigh = eHi * std::max(d.lo, d.hi);
-  if (m.specular <= 0.0) return terms;
-
-  double alignment = 0.0, spread = kPi;
-  if (m.material.specularModel == SpecularModel::Phong) {
-    alignment = glm::dot(2.0 * std::min(cosine, 1.0) * normal - toLight, viewer);
-    spread = 2.0 * normalAngle + lightAngle + viewerAngle;
-  } else if (const auto half = detail::normalizeRobust(toLight + viewer)) {
-    alignment = glm::dot(normal, half->unit);
-    const double moved =
-        (2.0 * std::sin(lightAngle / 2) + 2.0 * std::sin(viewerAngle / 2)) / half->length;
-    spread = normalAngle + 2.0 * std::asin(std::min(1.0, moved));
-  }
-  const CosineRange aligned = cosineRange(angleOf(alignment), spread);
-  const Interval s{lit.lo > 0.0 ? powerOf(m, aligned.lo) : 0.0,
-                   cosine > 0.0 ? powerOf(m, alignment) : 0.0,
-                   lit.hi > 0.0 ? powerOf(m, aligned.hi) : 0.0};
-  terms.specular = deviation(eLo * s.lo, eF * s.flat, eHi * s.hi);
-  return terms;
 }
 
 double FlatErrorBound::bound(const PolygonShape& polygon, const PreparedMaterial& m,
@@ -187,11 +206,12 @@ double FlatErrorBound::bound(const PolygonShape& polygon, const PreparedMaterial
   glm::dvec3 normal = polygon.normal;
   if (twoSided_ && glm::dot(normal, viewer) < 0.0) normal = -normal;
   // Beyond 90° the cone of corner normals is not convex: no bound on the normal's angle.
-  const double normalAngle = polygon.cosNormalSpread > 0.0 ? angleOf(polygon.cosNormalSpread) : kPi;
-  double viewerAngle = 0.0;
+  const Angle normalAngle =
+      polygon.cosNormalSpread > 0.0 ? Angle::ofCosine(polygon.cosNormalSpread) : Angle::straight();
+  Angle viewerAngle;
   if (!parallel_) {
     const double eyeDistance = glm::length(eye_ - polygon.center);
-    viewerAngle = coneAngle(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
+    viewerAngle = Angle::ofConeSine(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
   }
 
   LightTerms sum;

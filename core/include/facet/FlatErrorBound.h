@@ -66,12 +66,6 @@ class FlatErrorBound {
   }
 
  private:
-  struct Interval;
-  struct LightTerms;
-  LightTerms lightTerms(const Light& light, const PolygonShape& polygon, const glm::dvec3& normal,
-                        double normalAngle, const glm::dvec3& viewer, double viewerAngle,
-                        const PreparedMaterial& material) const;
-
   LightSet lights_;
   glm::dvec3 ambient_{0.0};
   glm::dvec3 eye_{0.0};
