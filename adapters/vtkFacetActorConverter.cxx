@@ -58,7 +58,8 @@ bool vtkFacetActorConverter::Update(const Actor& actor,
     messages.AddWarning("skipped data of type " +
       vtkFacetMessages::List({ skipped.begin(), skipped.end() }) + ": Facet renders vtkPolyData");
   }
-  const std::string unrendered = vtkFacetPropertyConverter::Unrendered(actor.Property);
+  const std::string unrendered =
+    vtkFacetPropertyConverter::Unrendered(actor.Property, actor.RendersInterpolation);
   if (!unrendered.empty())
   {
     messages.AddWarningOnce("the property asks for " + unrendered +

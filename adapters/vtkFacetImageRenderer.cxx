@@ -217,7 +217,8 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
       algorithm->UpdateProgress(0.05 + 0.9 * fraction);
       return !algorithm->GetAbortExecute();
     });
-    stats = this->Renderer.render(scene, camera, target);
+    stats = settings.RenderWith ? settings.RenderWith(this->Renderer, scene, camera, target)
+                                : this->Renderer.render(scene, camera, target);
   }
   catch (const facet::Error& e)
   {

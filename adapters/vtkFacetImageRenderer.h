@@ -55,6 +55,13 @@ public:
     bool TwoSidedLighting = true;
     double Background[3] = { 0.0, 0.0, 0.0 };
     double BackgroundAlpha = 1.0;
+    /// Renders in place of Renderer::render when set (the filter's quality modes,
+    /// vtkFacetQuality), with the renderer set up as above.
+    std::function<facet::RenderStats(facet::Renderer&,
+      const facet::Scene&,
+      const facet::Camera&,
+      const facet::FramebufferView&)>
+      RenderWith;
   };
 
   /// Turns the polygon ids of pixels [begin, end) into the front end's id arrays.
@@ -106,6 +113,9 @@ public:
 
   /// Runs work(begin, end) over the pixels on the renderer's threads.
   void ForEachPixelBlock(const std::function<void(vtkIdType begin, vtkIdType end)>& work);
+
+  /// The last render's polygon id plane (before the IdMap), width × height.
+  const std::int32_t* GetPolygonIds() const { return this->PolygonIds.data(); }
 
   /// What the last render did and left out (empty before the first).
   const std::string& GetPlan() const { return this->Plan; }

@@ -7,6 +7,7 @@
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
 #include "vtkFacetPolyDataConverter.h"
+#include "vtkFacetQuality.h"
 #include "vtkFacetSceneConverter.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -30,6 +31,7 @@ class vtkFacetRenderFilter::vtkInternals
 public:
   vtkFacetImageRenderer Image;
   vtkFacetActorConverter Actor;
+  vtkFacetQuality Quality; // shading modes, supersampling, error estimate and measurement
   vtkNew<vtkFacetColoringMapper> Coloring; // the coloring settings, a vtkMapper's
   vtkNew<vtkCamera> AutomaticCamera;       // fitted at every execution without a camera
   vtkFacetMessages Messages;
@@ -340,6 +342,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   actor.Coloring = internals.ColoringOf(this);
   actor.Property = this->GetProperty();
   actor.Lighting = vtkFacetSceneConverter::LightingOf(this->Lights, lights);
+  actor.RendersInterpolation = true;
   if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)
   {
     actor.Lighting = vtkFacetSceneConverter::Lighting::Lights;
@@ -365,9 +368,18 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   settings.TwoSidedLighting = this->TwoSidedLighting != 0;
   std::copy_n(this->Background, 3, settings.Background);
   settings.BackgroundAlpha = this->BackgroundAlpha;
+  settings.RenderWith = internals.Quality.Prepare(scene,
+    input,
+    { this->GetProperty()->GetInterpolation(),
+      this->SamplesPerPixel,
+      this->MaximumError,
+      this->ComputeError != 0,
+      this->ErrorEstimateArray != 0 },
+    internals.Actor.GetNumberOfConversions() > 0,
+    messages);
 
   // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids.
-  internals.Image.Render(
+  const bool rendered = internals.Image.Render(
     scene,
     facetCamera,
     settings,
@@ -378,6 +390,17 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
     },
     internals.Actor.GetNumberOfConversions(),
     messages);
+  if (rendered)
+  {
+    internals.Quality.AddOutputs(scene,
+      facetCamera,
+      internals.Image.GetPolygonIds(),
+      settings.Background,
+      settings.TwoSidedLighting,
+      this->NumberOfThreads,
+      output,
+      messages);
+  }
   return messages.Report(this, output);
 }
 
@@ -397,6 +420,10 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AmbientLightColor: (" << this->AmbientLightColor[0] << ", "
      << this->AmbientLightColor[1] << ", " << this->AmbientLightColor[2] << ")\n";
   os << indent << "TwoSidedLighting: " << this->TwoSidedLighting << "\n";
+  os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
+  os << indent << "MaximumError: " << this->MaximumError << "\n";
+  os << indent << "ComputeError: " << this->ComputeError << "\n";
+  os << indent << "ErrorEstimateArray: " << this->ErrorEstimateArray << "\n";
   os << indent << "Property: " << this->Property << "\n";
   vtkFacetColoringMapper* coloring = this->Internals->Coloring;
   os << indent << "ScalarVisibility: " << coloring->GetScalarVisibility() << "\n";

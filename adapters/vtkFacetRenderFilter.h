@@ -21,12 +21,18 @@
  * (none: one fitted to the input's finite points by vtkRenderer::ResetCamera, which
  * GetActiveCamera returns after the execution), vtkLights (none: a
  * headlight, unless AutomaticLightCreation is off), a vtkProperty and vtkMapper's coloring by
- * data. vtkFacetLight adds the light models vtkLight lacks. Shading is flat (per polygon);
- * the property's Interpolation, Opacity, Representation, edge visibility and textures are not
- * used yet: everything renders as opaque, flat-shaded surfaces (a warning, said once, names
- * what the property asks for). Its Lighting off shows the unlit colors, Ka·Ca + Kd·Cd, as VTK.
- * Problems found during an execution are reported at its end, errors in one vtkErrorMacro,
- * warnings in one vtkWarningMacro.
+ * data. vtkFacetLight adds the light models vtkLight lacks. The property's Interpolation
+ * picks the shading: flat (per polygon, the default), Gouraud (lit per vertex) or Phong (lit
+ * per pixel); SetSamplesPerPixel supersamples, SetMaximumError shades adaptively within an
+ * error budget (vtkFacetQuality). The property's Opacity, Representation, edge visibility
+ * and textures are not used yet: everything renders as opaque surfaces (a warning, said
+ * once, names what the property asks for).
+ * Every render estimates its own flat-shading error: field data `FacetErrorEstimate`
+ * (PredictedRMSE, PredictedMax, 8-bit units; point array `ErrorEstimate` with
+ * ErrorEstimateArray on); SetComputeError renders the converged Phong reference beside it
+ * and reports the measured error (`FacetError`, point array `Error`). Its Lighting off shows the
+ * unlit colors, Ka·Ca + Kd·Cd, as VTK. Problems found during an execution are reported at its end,
+ * errors in one vtkErrorMacro, warnings in one vtkWarningMacro.
  *
  * The pieces that make the scene are the ones vtkFacetRendererToImageFilter uses for each
  * actor of a vtkRenderer: the input is converted as an actor's mapper input is, colored as
@@ -189,9 +195,9 @@ public:
   ///@{
   /**
    * Surface material: color, ambient/diffuse/specular coefficients, specular color and
-   * power, backface culling (default: a vtkProperty with VTK's defaults but flat
-   * interpolation). Opacity, Gouraud/Phong interpolation and representations other than
-   * surface are not used yet (one warning says so).
+   * power, backface culling, and Interpolation: VTK_FLAT, VTK_GOURAUD or VTK_PHONG shading
+   * (default: a vtkProperty with VTK's defaults but flat interpolation). Opacity, PBR and
+   * representations other than surface are not used yet (one warning says so).
    */
   void SetProperty(vtkProperty* property);
   vtkProperty* GetProperty();
@@ -285,8 +291,8 @@ public:
 
   ///@{
   /**
-   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Flat shading shows one
-   * color per polygon either way (point colors are averaged); kept for the shading modes.
+   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Every shading mode shows
+   * point scalars' colors averaged per polygon so far (interpolating them is not wired yet).
    */
   void SetInterpolateScalarsBeforeMapping(vtkTypeBool interpolate);
   vtkTypeBool GetInterpolateScalarsBeforeMapping();
@@ -333,6 +339,49 @@ public:
   vtkBooleanMacro(DetectClosedSurfaces, vtkTypeBool);
   ///@}
 
+  ///@{
+  /**
+   * Samples per pixel: 1, 4 or 16, on an ordered 2 × 2 or 4 × 4 grid, averaged (default: 1).
+   * Depth and CellId come from one fixed sample nearest the pixel center (facet's
+   * QualityRenderer.h). Other values are an error at execution.
+   */
+  vtkSetMacro(SamplesPerPixel, int);
+  vtkGetMacro(SamplesPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Adaptive quality: an error budget in 8-bit units. Polygons whose flat-shading error bound
+   * is within it stay flat, the others are shaded per pixel (Phong); every pixel is then
+   * within the budget of the Phong image. 0 turns it off and the property's Interpolation
+   * decides (default: 0).
+   */
+  vtkSetMacro(MaximumError, double);
+  vtkGetMacro(MaximumError, double);
+  ///@}
+
+  ///@{
+  /**
+   * Render the converged Phong mesh reference (64 samples per pixel, ray traced) beside the
+   * image and report the measured error: field data `FacetError` (RMSE, Max, PSNR, SSIM,
+   * SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the point array `Error` (per
+   * pixel, the largest channel difference, 8-bit units). Slow: for measuring (default: off).
+   */
+  vtkSetMacro(ComputeError, vtkTypeBool);
+  vtkGetMacro(ComputeError, vtkTypeBool);
+  vtkBooleanMacro(ComputeError, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Add the per-pixel error estimate as the point array `ErrorEstimate` (8-bit units; the
+   * field data always has its summary) (default: off).
+   */
+  vtkSetMacro(ErrorEstimateArray, vtkTypeBool);
+  vtkGetMacro(ErrorEstimateArray, vtkTypeBool);
+  vtkBooleanMacro(ErrorEstimateArray, vtkTypeBool);
+  ///@}
+
   /**
    * What the last render did and left out, a few lines of text (empty before the first).
    */
@@ -368,6 +417,10 @@ protected:
   int NumberOfThreads = 0;
   int VisibilityMode = ZBuffer;
   vtkTypeBool DetectClosedSurfaces = 1;
+  int SamplesPerPixel = 1;
+  double MaximumError = 0.0;
+  vtkTypeBool ComputeError = 0;
+  vtkTypeBool ErrorEstimateArray = 0;
 
 private:
   vtkFacetRenderFilter(const vtkFacetRenderFilter&) = delete;

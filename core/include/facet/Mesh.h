@@ -68,7 +68,7 @@ struct PolygonArray {
 struct MeshView {
   PointArray points;
   PolygonArray polygons;
-  std::span<const Rgba8> polygonColors;  ///< empty, or one per polygon
+  std::span<const Rgba8> polygonColors{};  ///< empty, or one per polygon
   /// The polygons form closed surfaces wound counter-clockwise seen from outside, as
   /// isClosedSurface() decides (compute it once per mesh, not per frame). Seen from outside,
   /// such a surface shows only front faces, so while the whole mesh is in front of the near
@@ -84,7 +84,7 @@ struct MeshView {
   /// InterpolateScalarsBeforeMapping off), interpolated across polygons by the Gouraud and
   /// Phong modes (QualityRenderer.h); they win over polygonColors there. Alpha is ignored.
   /// The flat Renderer ignores them (give it polygonColors). (default: empty)
-  std::span<const Rgba8> pointColors;
+  std::span<const Rgba8> pointColors{};
 };
 
 /// An owning mesh with 64-bit indices, for building geometry by hand (examples, tests).
