@@ -161,7 +161,9 @@ class FacetRenderCli(unittest.TestCase):
                                (("--bogus",), "unknown option '--bogus'"),
                                (("--light", "laser:1"), "--light expects"),
                                (("--color", "2,0,0"), "must be in [0, 1]"),
-                               (("--interpolation", "gouraud"), "not supported yet"),
+                               (("--shading", "toon"), "flat, gouraud or phong"),
+                               (("--samples", "2"), "--samples expects 1, 4 or 16"),
+                               (("--max-error", "-1"), "--max-error expects"),
                                (("--color-by", "nothing"), "no point or cell array 'nothing'"),
                                # Issue 7: NaN and infinities were render errors (exit 1).
                                (("--azimuth", "nan"), "finite numbers"),
