@@ -362,7 +362,7 @@ public:
 
   ///@{
   /**
-   * Render the converged Phong mesh reference (64 samples per pixel, ray traced) beside the
+   * Render the converged Phong mesh reference (128 samples per pixel, ray traced) beside the
    * image and report the measured error: field data `FacetError` (RMSE, Max, PSNR, SSIM,
    * SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the point array `Error` (per
    * pixel, the largest channel difference, 8-bit units). Slow: for measuring (default: off).

@@ -302,7 +302,7 @@ report mode: facet-render --report [MESH ...] [options]
       --sweep N,N,...     the sphere's segments, or "none" (default: 8,...,1024)
       --no-builtin        leave out the bunny and fandisk
       --repeats N         timed renders per mode (default: 3)
-      --reference-samples N  per pixel, for the references (default: 64)
+      --reference-samples N  per pixel, for the references (default: 128)
 
 Colors are in [0, 1]. Example:
   facet-render bunny.obj -o bunny.png --size 1280x960 --azimuth 30 \
