@@ -83,23 +83,6 @@ ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept,
   return kept;
 }
 
-template<class ArrayType>
-void AddNamedComponents(vtkFieldData* fieldData,
-  const char* name,
-  std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
-{
-  vtkNew<ArrayType> array;
-  array->SetName(name);
-  array->SetNumberOfComponents(static_cast<int>(values.size()));
-  array->SetNumberOfTuples(1);
-  int component = 0;
-  for (const auto& [componentName, value] : values)
-  {
-    array->SetComponentName(component, componentName);
-    array->SetTypedComponent(0, component++, value);
-  }
-  fieldData->AddArray(array);
-}
 }
 
 //------------------------------------------------------------------------------
@@ -258,9 +241,9 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
 {
   vtkFieldData* fieldData = output->GetFieldData();
   fieldData->Initialize();
-  AddNamedComponents<vtkDoubleArray>(
+  vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(
     fieldData, "FacetRenderSeconds", { { "Total", SecondsSince(this->StartTime) } });
-  AddNamedComponents<vtkDoubleArray>(fieldData,
+  vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(fieldData,
     "FacetPhaseSeconds",
     { { "Conversion", this->ConversionSeconds },
       { "Validate", stats.validateSeconds },
@@ -270,7 +253,7 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "Shade", stats.shadeSeconds },
       { "Output", this->OutputSeconds } });
   const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
-  AddNamedComponents<vtkIdTypeArray>(fieldData,
+  vtkFacetImageRenderer::AddNamedComponents<vtkIdTypeArray>(fieldData,
     "FacetCounts",
     { { "Polygons", count(stats.plan.polygons) },
       { "PolygonsDrawn", count(stats.polygonsDrawn) },
@@ -283,7 +266,7 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "TrianglesClipped", count(stats.trianglesClipped) },
       { "FragmentsWritten", count(stats.fragmentsWritten) },
       { "PixelsCovered", count(stats.pixelsCovered) } });
-  AddNamedComponents<vtkIdTypeArray>(
+  vtkFacetImageRenderer::AddNamedComponents<vtkIdTypeArray>(
     fieldData, "FacetMeshConverted", { { "Converted", conversions } });
   this->Plan = stats.plan.describe();
   vtkNew<vtkStringArray> plan;

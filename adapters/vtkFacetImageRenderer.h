@@ -20,6 +20,8 @@
 #ifndef vtkFacetImageRenderer_h
 #define vtkFacetImageRenderer_h
 
+#include "vtkFieldData.h"
+#include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -29,7 +31,9 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 class vtkAlgorithm;
 class vtkFacetMessages;
@@ -110,6 +114,25 @@ public:
     const IdMap& mapIds,
     int conversions,
     vtkFacetMessages& messages);
+
+  /// Adds a one-tuple array of named components (`FacetCounts` and the like) to field data.
+  template<class ArrayType>
+  static void AddNamedComponents(vtkFieldData* fieldData,
+    const char* name,
+    std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
+  {
+    vtkNew<ArrayType> array;
+    array->SetName(name);
+    array->SetNumberOfComponents(static_cast<int>(values.size()));
+    array->SetNumberOfTuples(1);
+    int component = 0;
+    for (const auto& [componentName, value] : values)
+    {
+      array->SetComponentName(component, componentName);
+      array->SetTypedComponent(0, component++, value);
+    }
+    fieldData->AddArray(array);
+  }
 
   /// Runs work(begin, end) over the pixels on the renderer's threads.
   void ForEachPixelBlock(const std::function<void(vtkIdType begin, vtkIdType end)>& work);

@@ -2,6 +2,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -29,23 +30,6 @@ namespace {
 // doubled) for the bunny at 1080p (README, "Measuring error"); smaller images converge more
 // slowly at the silhouette (Reference.h).
 constexpr int kReferenceSamples = 128;
-
-void AddNamedComponents(vtkFieldData* fieldData,
-  const char* name,
-  std::initializer_list<std::pair<const char*, double>> values)
-{
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(name);
-  array->SetNumberOfComponents(static_cast<int>(values.size()));
-  array->SetNumberOfTuples(1);
-  int component = 0;
-  for (const auto& [componentName, value] : values)
-  {
-    array->SetComponentName(component, componentName);
-    array->SetTypedComponent(0, component++, value);
-  }
-  fieldData->AddArray(array);
-}
 
 void AddPixelArray(vtkImageData* output, const char* name, std::span<const float> values)
 {
@@ -165,7 +149,7 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   vtkImageData* output,
   vtkFacetMessages& messages)
 {
-  AddNamedComponents(output->GetFieldData(),
+  vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
     "FacetErrorEstimate",
     { { "PredictedRMSE", this->Stats.predictedRmse },
       { "PredictedMax", this->Stats.predictedMaxError } });
@@ -208,7 +192,7 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
         width,
         height);
     const facet::ImageError error = facet::compareImages(reference.image, image);
-    AddNamedComponents(output->GetFieldData(),
+    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
       "FacetError",
       { { "RMSE", error.rmse },
         { "Max", error.maxError },

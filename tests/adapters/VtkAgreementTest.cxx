@@ -71,6 +71,17 @@ Scene LoadScene(const std::string& mesh, double azimuth, double elevation)
   return scene;
 }
 
+// The largest channel difference between a Facet pixel and a VTK one.
+int LargestDifference(const std::array<int, 4>& rgba, const unsigned char* reference)
+{
+  int difference = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    difference = std::max(difference, std::abs(rgba[c] - reference[c]));
+  }
+  return difference;
+}
+
 vtkSmartPointer<vtkRenderWindow> RenderOffScreen(vtkRenderer* renderer)
 {
   return facet_test::RenderOffScreen(renderer, Width, Height);
@@ -261,11 +272,7 @@ void Compare(const std::string& mesh, double azimuth, double elevation)
       const std::array<int, 4> rgba = RgbaAt(facet, x, y);
       const unsigned char* reference =
         vtkColor->GetPointer(vtkComponents * PixelIndex(vtk.Color, x, y));
-      int difference = 0;
-      for (int c = 0; c < 3; ++c)
-      {
-        difference = std::max(difference, std::abs(rgba[c] - reference[c]));
-      }
+      const int difference = LargestDifference(rgba, reference);
       worst = std::max(worst, difference);
       if (difference > 1 && ++colorMismatches <= 5)
       {
@@ -333,11 +340,7 @@ void CompareSmooth(const std::string& mesh,
       const std::array<int, 4> rgba = RgbaAt(facet, x, y);
       const unsigned char* reference =
         vtkColor->GetPointer(vtkComponents * PixelIndex(vtk.Color, x, y));
-      int difference = 0;
-      for (int c = 0; c < 3; ++c)
-      {
-        difference = std::max(difference, std::abs(rgba[c] - reference[c]));
-      }
+      const int difference = LargestDifference(rgba, reference);
       differences.push_back(difference);
     }
   }
