@@ -105,6 +105,7 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
     [&](facet::SceneMesh& placed, facet::MeshView mesh, std::span<const facet::Rgba8> colors) {
       mesh.points = world;
       mesh.polygonColors = colors;
+      mesh.pointColors = part.Colors.PointColors();
       mesh.closedSurface = mesh.closedSurface && part.Transform.KeepsOrientation();
       placed = { mesh, material };
     };

@@ -291,8 +291,9 @@ public:
 
   ///@{
   /**
-   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Every shading mode shows
-   * point scalars' colors averaged per polygon so far (interpolating them is not wired yet).
+   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Point scalars are mapped to
+   * colors at the points; flat shading shows their average per polygon, Gouraud and Phong
+   * interpolate the colors (off's meaning; on is not rendered yet and behaves as off).
    */
   void SetInterpolateScalarsBeforeMapping(vtkTypeBool interpolate);
   vtkTypeBool GetInterpolateScalarsBeforeMapping();

@@ -6,15 +6,18 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkElevationFilter.h"
 #include "vtkFacetRenderFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
+#include "vtkPlaneSource.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace {
 using facet_test::FieldValue;
@@ -211,5 +214,39 @@ TEST(QualityFilter, TheInputsPointNormalsAreUsed)
     high = std::max<int>(high, rgba->GetValue(4 * i));
   }
   EXPECT_LE(high - low, 2);
+}
+
+// Point scalars: flat shading shows one (averaged) color per polygon, Phong the colors
+// interpolated across it (vtkMapper's InterpolateScalarsBeforeMapping off).
+TEST(QualityFilter, PointColorsAreInterpolatedBySmoothShading)
+{
+  vtkNew<vtkPlaneSource> plane; // one quad
+  vtkNew<vtkElevationFilter> elevation;
+  elevation->SetInputConnection(plane->GetOutputPort());
+  elevation->SetLowPoint(-0.5, 0.0, 0.0);
+  elevation->SetHighPoint(0.5, 0.0, 0.0);
+  elevation->Update();
+  std::size_t distinct[2] = { 0, 0 };
+  int i = 0;
+  for (const int interpolation : { VTK_FLAT, VTK_PHONG })
+  {
+    vtkNew<vtkFacetRenderFilter> filter;
+    filter->SetInputData(elevation->GetOutput());
+    filter->SetSize(64, 64);
+    filter->GetProperty()->SetInterpolation(interpolation);
+    filter->GetProperty()->LightingOff();
+    filter->Update();
+    auto* rgba =
+      vtkUnsignedCharArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetScalars());
+    std::set<int> colors;
+    for (vtkIdType p = 0; p < rgba->GetNumberOfTuples(); ++p)
+    {
+      colors.insert(
+        rgba->GetValue(4 * p) << 16 | rgba->GetValue(4 * p + 1) << 8 | rgba->GetValue(4 * p + 2));
+    }
+    distinct[i++] = colors.size();
+  }
+  EXPECT_LE(distinct[0], 2u); // the quad's one color and the background
+  EXPECT_GT(distinct[1], 20u);
 }
 }
