@@ -85,6 +85,14 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     return {};
   }
   this->Current = settings;
+  this->Stats = {};
+  this->Estimate.clear();
+  if (settings.Interpolation != VTK_GOURAUD && settings.Interpolation != VTK_PHONG &&
+    samples == 1 && settings.MaximumError == 0.0 && !settings.EstimateError &&
+    !settings.ComputeError)
+  {
+    return {}; // the Renderer alone: nothing to prepare
+  }
   std::vector<std::pair<const void*, std::size_t>> keys;
   for (const facet::SceneMesh& mesh : scene.meshes)
   {
@@ -125,7 +133,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     {
       quality.maximumError = this->Current.MaximumError;
     }
-    quality.estimateError = true;
+    quality.estimateError = this->Current.EstimateError || this->Current.ErrorEstimateArray;
     if (!this->Quality || this->QualityOf != &renderer)
     {
       this->Quality = std::make_unique<facet::QualityRenderer>(renderer);
@@ -149,10 +157,13 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   vtkImageData* output,
   vtkFacetMessages& messages)
 {
-  vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
-    "FacetErrorEstimate",
-    { { "PredictedRMSE", this->Stats.predictedRmse },
-      { "PredictedMax", this->Stats.predictedMaxError } });
+  if (this->Current.EstimateError)
+  {
+    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
+      "FacetErrorEstimate",
+      { { "PredictedRMSE", this->Stats.predictedRmse },
+        { "PredictedMax", this->Stats.predictedMaxError } });
+  }
   if (this->Current.ErrorEstimateArray && !this->Estimate.empty())
   {
     AddPixelArray(output, "ErrorEstimate", this->Estimate);

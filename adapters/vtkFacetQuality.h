@@ -38,6 +38,7 @@ public:
     int SamplesPerPixel = 1; ///< 1, 4 or 16
     double MaximumError = 0; ///< 8-bit units; 0: off
     bool ComputeError = false;
+    bool EstimateError = true;
     bool ErrorEstimateArray = false;
   };
 
@@ -52,7 +53,8 @@ public:
    * its strip triangles, both on the input's points): checks the settings (an error in
    * `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
    * the shading meshes if the scene's meshes changed (`converted`). Returns the function
-   * that renders, or an empty one after an error.
+   * that renders, or an empty one after an error or when the plain Renderer does all that is
+   * asked (flat, one sample, no estimate, no error measurement).
    */
   RenderFunction Prepare(const facet::Scene& scene,
     vtkPolyData* input,

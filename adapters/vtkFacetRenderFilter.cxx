@@ -374,6 +374,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
       this->SamplesPerPixel,
       this->MaximumError,
       this->ComputeError != 0,
+      this->EstimateError != 0,
       this->ErrorEstimateArray != 0 },
     internals.Actor.GetNumberOfConversions() > 0,
     messages);
@@ -423,6 +424,7 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "MaximumError: " << this->MaximumError << "\n";
   os << indent << "ComputeError: " << this->ComputeError << "\n";
+  os << indent << "EstimateError: " << this->EstimateError << "\n";
   os << indent << "ErrorEstimateArray: " << this->ErrorEstimateArray << "\n";
   os << indent << "Property: " << this->Property << "\n";
   vtkFacetColoringMapper* coloring = this->Internals->Coloring;

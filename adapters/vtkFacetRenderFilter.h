@@ -27,8 +27,8 @@
  * error budget (vtkFacetQuality). The property's Opacity, Representation, edge visibility
  * and textures are not used yet: everything renders as opaque surfaces (a warning, said
  * once, names what the property asks for).
- * Every render estimates its own flat-shading error: field data `FacetErrorEstimate`
- * (PredictedRMSE, PredictedMax, 8-bit units; point array `ErrorEstimate` with
+ * Every render estimates its own flat-shading error (EstimateError, on by default): field data
+ * `FacetErrorEstimate` (PredictedRMSE, PredictedMax, 8-bit units; point array `ErrorEstimate` with
  * ErrorEstimateArray on); SetComputeError renders the converged Phong reference beside it
  * and reports the measured error (`FacetError`, point array `Error`). Its Lighting off shows the
  * unlit colors, Ka·Ca + Kd·Cd, as VTK. Problems found during an execution are reported at its end,
@@ -375,6 +375,19 @@ public:
 
   ///@{
   /**
+   * Estimate the render's flat-shading error and put it in the field data
+   * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units). It needs the mesh's
+   * vertex normals, computed once per input (about a second per million triangles), and
+   * costs a bound per visible polygon per render; off, a flat one-sample render is the
+   * plain rasterizer (default: on).
+   */
+  vtkSetMacro(EstimateError, vtkTypeBool);
+  vtkGetMacro(EstimateError, vtkTypeBool);
+  vtkBooleanMacro(EstimateError, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Add the per-pixel error estimate as the point array `ErrorEstimate` (8-bit units; the
    * field data always has its summary) (default: off).
    */
@@ -421,6 +434,7 @@ protected:
   int SamplesPerPixel = 1;
   double MaximumError = 0.0;
   vtkTypeBool ComputeError = 0;
+  vtkTypeBool EstimateError = 1;
   vtkTypeBool ErrorEstimateArray = 0;
 
 private:

@@ -108,6 +108,15 @@ TEST(QualityFilter, EveryRenderReportsItsEstimate)
   ASSERT_NE(estimate, nullptr);
   EXPECT_EQ(estimate->GetNumberOfValues(), 96 * 72);
   EXPECT_FLOAT_EQ(estimate->GetValueRange()[1], predictedMax);
+
+  // Off: the plain rasterizer, the same image, no estimate.
+  vtkNew<vtkImageData> with;
+  with->DeepCopy(filter->GetOutput());
+  filter->EstimateErrorOff();
+  filter->ErrorEstimateArrayOff();
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetFieldData()->GetArray("FacetErrorEstimate"), nullptr);
+  EXPECT_EQ(LargestDifference(with, filter->GetOutput()), 0);
 }
 
 // Measured against the converged Phong reference: Phong is below flat, and flat's measured
