@@ -11,6 +11,7 @@
 #include "facet/QualityRenderer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -229,6 +230,15 @@ struct QualityRenderer::Frame {
     return flip ? -normal : normal;
   }
 
+  // Where a sample's ray meets its polygon: the polygon's triangle whose smallest weight is
+  // largest (the one holding the hit), and the weights clamped onto it.
+  struct Hit {
+    const MeshTriangle* triangle = nullptr;
+    glm::dvec3 weights{0.0};
+    std::array<glm::dvec3, 3> corners{};
+  };
+  Hit hit(std::size_t mesh, std::size_t polygon, const Ray& ray) const;
+  Color phong(std::size_t mesh, std::size_t polygon, const Hit& hit, const Ray& ray) const;
   void lightCorners(std::size_t mesh, std::size_t polygon, std::span<Color> out) const;
   Color shadeSample(std::size_t index, int x, int y, std::span<const Color> cornerColors) const;
 };
@@ -253,52 +263,62 @@ void QualityRenderer::Frame::lightCorners(std::size_t m, std::size_t polygon,
   });
 }
 
-Color QualityRenderer::Frame::shadeSample(std::size_t index, int x, int y,
-                                          std::span<const Color> cornerColors) const {
-  const auto [m, polygon] = locate(static_cast<std::size_t>(samples.polygonId[index]));
-  const MeshView& mesh = scene.meshes[m].mesh;
+QualityRenderer::Frame::Hit QualityRenderer::Frame::hit(std::size_t m, std::size_t polygon,
+                                                        const Ray& ray) const {
   const ShadingMesh& shading = meshes[m];
-  const Ray ray = rays.through({x + 0.5, y + 0.5});
-  // The polygon's triangle that holds the hit: the one whose smallest weight is largest.
-  const MeshTriangle* triangle = nullptr;
-  glm::dvec3 weights(0.0), corners[3];
+  Hit found;
   double best = -INFINITY;
   for (std::uint32_t t = shading.firstTriangle[polygon]; t < shading.firstTriangle[polygon + 1];
        ++t) {
     const MeshTriangle& candidate = shading.triangles[t];
-    glm::dvec3 c[3];
+    std::array<glm::dvec3, 3> c;
     for (int k = 0; k < 3; ++k)
-      c[k] = pointAt(mesh.points, candidate.point[k]);
+      c[k] = pointAt(scene.meshes[m].mesh.points, candidate.point[k]);
     const glm::dvec3 w = barycentric(c[0], c[1], c[2], ray);
     const double smallest = std::min({w.x, w.y, w.z});
-    if (triangle && !(smallest > best)) continue;
-    triangle = &candidate, weights = w, best = smallest;
-    std::copy(c, c + 3, corners);
+    if (found.triangle && !(smallest > best)) continue;
+    found = {&candidate, w, c};
+    best = smallest;
   }
-  if (!triangle) return toColor(samples.color[index]);  // no triangle: as painted
-  weights = clampedOnto(weights);
-  if (settings.shading == Shading::Gouraud && !adaptive()) {
-    glm::dvec3 sum(0.0);
-    for (int k = 0; k < 3; ++k)
-      sum += weights[k] * glm::dvec3(cornerColors[firstCorner[m] + triangle->corner[k]]);
-    return Color(sum);
-  }
+  found.weights = clampedOnto(found.weights);
+  return found;
+}
+
+Color QualityRenderer::Frame::phong(std::size_t m, std::size_t polygon, const Hit& hit,
+                                    const Ray& ray) const {
+  const MeshView& mesh = scene.meshes[m].mesh;
+  const VertexNormals& normals = meshes[m].normals;
   SurfaceSample sample;
   glm::dvec3 normal(0.0), color(0.0);
   for (int k = 0; k < 3; ++k) {
-    sample.position += weights[k] * corners[k];
-    normal +=
-        weights[k] * shading.normals.normals[shading.normals.cornerNormal[triangle->corner[k]]];
+    sample.position += hit.weights[k] * hit.corners[k];
+    normal += hit.weights[k] * normals.normals[normals.cornerNormal[hit.triangle->corner[k]]];
     if (!mesh.pointColors.empty())
-      color += weights[k] * glm::dvec3(toColor(mesh.pointColors[triangle->point[k]]));
+      color += hit.weights[k] * glm::dvec3(toColor(mesh.pointColors[hit.triangle->point[k]]));
   }
-  const PolygonShape& shape = shading.shapes[polygon];
+  const PolygonShape& shape = meshes[m].shapes[polygon];
   const double length = glm::length(normal);
   normal = length > 0.0 && std::isfinite(length) ? normal / length : shape.normal;
   sample.normal = facing(shape, normal, sample.position);
   sample.toViewer = CameraRays::toViewer(ray);
   sample.color = mesh.pointColors.empty() ? polygonColor(m, polygon) : Color(color);
   return shader.shade(sample, materials[m]);
+}
+
+Color QualityRenderer::Frame::shadeSample(std::size_t index, int x, int y,
+                                          std::span<const Color> cornerColors) const {
+  const auto [m, polygon] = locate(static_cast<std::size_t>(samples.polygonId[index]));
+  const Ray ray = rays.through({x + 0.5, y + 0.5});
+  const Hit found = hit(m, polygon, ray);
+  if (!found.triangle) return toColor(samples.color[index]);  // no triangle: as painted
+  if (settings.shading == Shading::Gouraud && !adaptive()) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 3; ++k)
+      sum +=
+          found.weights[k] * glm::dvec3(cornerColors[firstCorner[m] + found.triangle->corner[k]]);
+    return Color(sum);
+  }
+  return phong(m, polygon, found, ray);
 }
 
 namespace {
