@@ -241,9 +241,9 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
 {
   vtkFieldData* fieldData = output->GetFieldData();
   fieldData->Initialize();
-  vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(
+  AddNamedComponents<vtkDoubleArray>(
     fieldData, "FacetRenderSeconds", { { "Total", SecondsSince(this->StartTime) } });
-  vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(fieldData,
+  AddNamedComponents<vtkDoubleArray>(fieldData,
     "FacetPhaseSeconds",
     { { "Conversion", this->ConversionSeconds },
       { "Validate", stats.validateSeconds },
@@ -253,7 +253,7 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "Shade", stats.shadeSeconds },
       { "Output", this->OutputSeconds } });
   const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
-  vtkFacetImageRenderer::AddNamedComponents<vtkIdTypeArray>(fieldData,
+  AddNamedComponents<vtkIdTypeArray>(fieldData,
     "FacetCounts",
     { { "Polygons", count(stats.plan.polygons) },
       { "PolygonsDrawn", count(stats.polygonsDrawn) },
@@ -266,7 +266,7 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "TrianglesClipped", count(stats.trianglesClipped) },
       { "FragmentsWritten", count(stats.fragmentsWritten) },
       { "PixelsCovered", count(stats.pixelsCovered) } });
-  vtkFacetImageRenderer::AddNamedComponents<vtkIdTypeArray>(
+  AddNamedComponents<vtkIdTypeArray>(
     fieldData, "FacetMeshConverted", { { "Converted", conversions } });
   this->Plan = stats.plan.describe();
   vtkNew<vtkStringArray> plan;
