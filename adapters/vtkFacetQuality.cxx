@@ -91,7 +91,8 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     samples == 1 && settings.MaximumError == 0.0 && !settings.EstimateError &&
     !settings.ComputeError)
   {
-    return {}; // the Renderer alone: nothing to prepare
+    this->Keys.clear(); // the meshes may change unseen meanwhile: prepare afresh next time
+    return {};          // the Renderer alone: nothing to prepare
   }
   std::vector<std::pair<const void*, std::size_t>> keys;
   for (const facet::SceneMesh& mesh : scene.meshes)
