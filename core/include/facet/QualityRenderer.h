@@ -93,9 +93,13 @@ struct QualityStats {
   double totalSeconds = 0.0;
   std::size_t samplesReshaded = 0;   ///< samples shaded again (not kept flat)
   std::size_t polygonsReshaded = 0;  ///< visible polygons shaded per sample or per corner
-  /// The estimate (when asked): per pixel, an upper bound on the flat-shading error against
-  /// the Phong-shaded image of the same scene, 8-bit units (largest channel), over covered
-  /// pixels: its root mean square and its maximum. Silhouettes are not part of it.
+  /// The estimate (when asked): per pixel, an upper bound on how far the flat-shaded pixel is
+  /// from the converged Phong image of the scene (the mesh reference, MeshReference.h), in
+  /// 8-bit units of the largest channel — for each polygon the pixel's 3 × 3 samples see, its
+  /// bound (FlatErrorBound.h) plus how far its flat color is from the pixel's, plus 0.5 for
+  /// rounding — averaged over a pixel's samples; over the covered pixels, its root mean
+  /// square and its maximum. Whatever the mode, it is flat shading's estimate. Silhouettes
+  /// (the background a pixel mixes in) are not part of it.
   double predictedRmse = 0.0;
   double predictedMaxError = 0.0;
 };
