@@ -3,7 +3,7 @@
 #   make test   installs what is missing, builds, runs every test suite
 #   make fuzz   builds the libFuzzer targets and fuzzes each for FUZZ_SECONDS (not in make test)
 # Other targets: deps, build, plugin (the ParaView plugin), test-plugin, bench, bench-peers,
-#                stability-report, clean.
+#                stability-report, report (error against time of the quality modes), clean.
 
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -25,10 +25,10 @@ CMAKE_FLAGS ?=
 # tests that compare with VTK's own OpenGL renderer; clang with its sanitizer and libFuzzer
 # runtimes for the sanitized builds and the fuzz targets; Embree for the mesh reference
 # (reference/); scikit-image and Pillow to cross-check the image metrics; NumPy for the
-# stability catalogue (tests/stability/).
+# stability catalogue (tests/stability/); matplotlib for facet-render --report's plot.
 PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth clang libclang-rt-14-dev \
-            libembree-dev python3-skimage python3-pil python3-numpy
+            libembree-dev python3-skimage python3-pil python3-numpy python3-matplotlib
 # The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev
 # without recommends: its recommended python3-paraview conflicts with python3-vtk9, so that
 # package is unpacked into the plugin's build tree instead (it holds pvbatch's Python modules
@@ -61,7 +61,7 @@ FUZZ_TARGETS := facet_fuzz_core facet_fuzz_filter
 FUZZ_FLAGS ?= -max_len=4096 -len_control=0 -timeout=60 -rss_limit_mb=4096 -print_final_stats=1
 
 .PHONY: all deps deps-parallel deps-plugin build plugin test test-main test-sanitized test-thread-sanitized \
-        test-plugin fuzz fuzz-build demo bench bench-peers stability-report clean
+        test-plugin fuzz fuzz-build demo bench bench-peers stability-report report clean
 
 all: build
 
@@ -190,6 +190,12 @@ stability-report: build
 	PYTHONPATH=$(CURDIR)/$(BUILD_DIR)/lib/python$$version/dist-packages \
 	  tests/plugin/xvfb_run.sh /usr/bin/python3 tests/stability/report.py \
 	  --output $(STABILITY_REPORT)
+
+# Error against run time (facet-render --report) on the built-in set at 1920x1080: the
+# Markdown table (also on stdout), the CSV and the plot, which the README embeds.
+REPORT_PREFIX ?= docs/quality-report
+report: build
+	$(BUILD_DIR)/bin/facet-render --report -o $(REPORT_PREFIX) --progress | tee $(REPORT_PREFIX).md
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_BUILD_DIR) $(TSAN_BUILD_DIR) $(PLUGIN_BUILD_DIR)

@@ -58,7 +58,8 @@ bool vtkFacetActorConverter::Update(const Actor& actor,
     messages.AddWarning("skipped data of type " +
       vtkFacetMessages::List({ skipped.begin(), skipped.end() }) + ": Facet renders vtkPolyData");
   }
-  const std::string unrendered = vtkFacetPropertyConverter::Unrendered(actor.Property);
+  const std::string unrendered =
+    vtkFacetPropertyConverter::Unrendered(actor.Property, actor.RendersInterpolation);
   if (!unrendered.empty())
   {
     messages.AddWarningOnce("the property asks for " + unrendered +
@@ -104,6 +105,7 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
     [&](facet::SceneMesh& placed, facet::MeshView mesh, std::span<const facet::Rgba8> colors) {
       mesh.points = world;
       mesh.polygonColors = colors;
+      mesh.pointColors = part.Colors.PointColors();
       mesh.closedSurface = mesh.closedSurface && part.Transform.KeepsOrientation();
       placed = { mesh, material };
     };

@@ -83,23 +83,6 @@ ArrayType* OutputArray(vtkSmartPointer<ArrayType>& kept,
   return kept;
 }
 
-template<class ArrayType>
-void AddNamedComponents(vtkFieldData* fieldData,
-  const char* name,
-  std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
-{
-  vtkNew<ArrayType> array;
-  array->SetName(name);
-  array->SetNumberOfComponents(static_cast<int>(values.size()));
-  array->SetNumberOfTuples(1);
-  int component = 0;
-  for (const auto& [componentName, value] : values)
-  {
-    array->SetComponentName(component, componentName);
-    array->SetTypedComponent(0, component++, value);
-  }
-  fieldData->AddArray(array);
-}
 }
 
 //------------------------------------------------------------------------------
@@ -233,7 +216,8 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
       algorithm->UpdateProgress(0.05 + 0.9 * fraction);
       return !algorithm->GetAbortExecute();
     });
-    stats = this->Renderer.render(scene, camera, target);
+    stats = settings.RenderWith ? settings.RenderWith(this->Renderer, scene, camera, target)
+                                : this->Renderer.render(scene, camera, target);
   }
   catch (const facet::Error& e)
   {

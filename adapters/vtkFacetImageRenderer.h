@@ -21,6 +21,8 @@
 #ifndef vtkFacetImageRenderer_h
 #define vtkFacetImageRenderer_h
 
+#include "vtkFieldData.h"
+#include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -30,7 +32,9 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 class vtkAlgorithm;
 class vtkFacetMessages;
@@ -57,6 +61,13 @@ public:
     bool TwoSidedLighting = true;
     double Background[3] = { 0.0, 0.0, 0.0 };
     double BackgroundAlpha = 1.0;
+    /// Renders in place of Renderer::render when set (the filter's quality modes,
+    /// vtkFacetQuality), with the renderer set up as above.
+    std::function<facet::RenderStats(facet::Renderer&,
+      const facet::Scene&,
+      const facet::Camera&,
+      const facet::FramebufferView&)>
+      RenderWith;
   };
 
   /// Turns the polygon ids of pixels [begin, end) into the front end's id arrays.
@@ -108,8 +119,30 @@ public:
     int conversions,
     vtkFacetMessages& messages);
 
+  /// Adds a one-tuple array of named components (`FacetCounts` and the like) to field data.
+  template<class ArrayType>
+  static void AddNamedComponents(vtkFieldData* fieldData,
+    const char* name,
+    std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
+  {
+    vtkNew<ArrayType> array;
+    array->SetName(name);
+    array->SetNumberOfComponents(static_cast<int>(values.size()));
+    array->SetNumberOfTuples(1);
+    int component = 0;
+    for (const auto& [componentName, value] : values)
+    {
+      array->SetComponentName(component, componentName);
+      array->SetTypedComponent(0, component++, value);
+    }
+    fieldData->AddArray(array);
+  }
+
   /// Runs work(begin, end) over the pixels on the renderer's threads.
   void ForEachPixelBlock(const std::function<void(vtkIdType begin, vtkIdType end)>& work);
+
+  /// The last render's polygon id plane (before the IdMap), width × height.
+  const std::int32_t* GetPolygonIds() const { return this->PolygonIds.data(); }
 
   /// What the last render did and left out (empty before the first).
   const std::string& GetPlan() const { return this->Plan; }

@@ -62,10 +62,11 @@ facet::Material vtkFacetPropertyConverter::Convert(vtkProperty* property,
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFacetPropertyConverter::Unrendered(vtkProperty* property)
+std::string vtkFacetPropertyConverter::Unrendered(vtkProperty* property, bool interpolation)
 {
   std::vector<std::string> asks;
-  if (property->GetInterpolation() != VTK_FLAT)
+  if (property->GetInterpolation() != VTK_FLAT &&
+    !(interpolation && property->GetInterpolation() != VTK_PBR))
   {
     asks.push_back(std::string(property->GetInterpolationAsString()) + " interpolation");
   }

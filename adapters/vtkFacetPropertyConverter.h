@@ -38,9 +38,11 @@ public:
 
   /**
    * What the property asks for that Facet does not render yet, as a phrase ("Gouraud
-   * interpolation and opacity 0.5"); empty when it asks for nothing of the kind.
+   * interpolation and opacity 0.5"); empty when it asks for nothing of the kind. A front end
+   * that renders Gouraud and Phong (vtkFacetQuality) passes `interpolation` true: then only
+   * PBR interpolation is named.
    */
-  static std::string Unrendered(vtkProperty* property);
+  static std::string Unrendered(vtkProperty* property, bool interpolation = false);
 };
 
 #endif

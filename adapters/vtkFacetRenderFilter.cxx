@@ -8,6 +8,7 @@
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
 #include "vtkFacetPolyDataConverter.h"
+#include "vtkFacetQuality.h"
 #include "vtkFacetSceneConverter.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -34,6 +35,7 @@ class vtkFacetRenderFilter::vtkInternals
 public:
   vtkFacetImageRenderer Image;
   vtkFacetActorConverter Actor;
+  vtkFacetQuality Quality; // shading modes, supersampling, error estimate and measurement
   vtkNew<vtkFacetColoringMapper> Coloring; // the coloring settings, a vtkMapper's
   vtkNew<vtkCamera> AutomaticCamera;       // fitted at every execution without a camera
   vtkFacetMessages Messages;
@@ -373,6 +375,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   actor.Coloring = internals.ColoringOf(this);
   actor.Property = this->GetProperty();
   actor.Lighting = vtkFacetSceneConverter::LightingOf(this->Lights, lights);
+  actor.RendersInterpolation = true;
   if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)
   {
     actor.Lighting = vtkFacetSceneConverter::Lighting::Lights;
@@ -418,6 +421,16 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   std::copy_n(this->Background, 3, settings.Background);
   settings.BackgroundAlpha = this->BackgroundAlpha;
   settings.RankIds = parallel;
+  settings.RenderWith = internals.Quality.Prepare(scene,
+    input,
+    { this->GetProperty()->GetInterpolation(),
+      this->SamplesPerPixel,
+      this->MaximumError,
+      this->ComputeError != 0,
+      this->EstimateError != 0,
+      this->ErrorEstimateArray != 0 },
+    internals.Actor.GetNumberOfConversions() > 0,
+    messages);
 
   // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids
   // (across processes: global ids if the input has them, and the rank in RankId).
@@ -438,6 +451,17 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
     },
     internals.Actor.GetNumberOfConversions(),
     messages);
+  if (rendered)
+  {
+    internals.Quality.AddOutputs(scene,
+      facetCamera,
+      internals.Image.GetPolygonIds(),
+      settings.Background,
+      settings.TwoSidedLighting,
+      this->NumberOfThreads,
+      output,
+      messages);
+  }
   if (parallel)
   {
     internals.Compositor.Composite(internals.Image, output, rendered, messages);
@@ -461,6 +485,11 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AmbientLightColor: (" << this->AmbientLightColor[0] << ", "
      << this->AmbientLightColor[1] << ", " << this->AmbientLightColor[2] << ")\n";
   os << indent << "TwoSidedLighting: " << this->TwoSidedLighting << "\n";
+  os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
+  os << indent << "MaximumError: " << this->MaximumError << "\n";
+  os << indent << "ComputeError: " << this->ComputeError << "\n";
+  os << indent << "EstimateError: " << this->EstimateError << "\n";
+  os << indent << "ErrorEstimateArray: " << this->ErrorEstimateArray << "\n";
   os << indent << "Property: " << this->Property << "\n";
   vtkFacetColoringMapper* coloring = this->Internals->Coloring;
   os << indent << "ScalarVisibility: " << coloring->GetScalarVisibility() << "\n";

@@ -21,12 +21,18 @@
  * (none: one fitted to the input's finite points by vtkRenderer::ResetCamera, which
  * GetActiveCamera returns after the execution), vtkLights (none: a
  * headlight, unless AutomaticLightCreation is off), a vtkProperty and vtkMapper's coloring by
- * data. vtkFacetLight adds the light models vtkLight lacks. Shading is flat (per polygon);
- * the property's Interpolation, Opacity, Representation, edge visibility and textures are not
- * used yet: everything renders as opaque, flat-shaded surfaces (a warning, said once, names
- * what the property asks for). Its Lighting off shows the unlit colors, Ka·Ca + Kd·Cd, as VTK.
- * Problems found during an execution are reported at its end, errors in one vtkErrorMacro,
- * warnings in one vtkWarningMacro.
+ * data. vtkFacetLight adds the light models vtkLight lacks. The property's Interpolation
+ * picks the shading: flat (per polygon, the default), Gouraud (lit per vertex) or Phong (lit
+ * per pixel); SetSamplesPerPixel supersamples, SetMaximumError shades adaptively within an
+ * error budget (vtkFacetQuality). The property's Opacity, Representation, edge visibility
+ * and textures are not used yet: everything renders as opaque surfaces (a warning, said
+ * once, names what the property asks for).
+ * Every render estimates its own flat-shading error (EstimateError, on by default): field data
+ * `FacetErrorEstimate` (PredictedRMSE, PredictedMax, 8-bit units; point array `ErrorEstimate` with
+ * ErrorEstimateArray on); SetComputeError renders the converged Phong reference beside it
+ * and reports the measured error (`FacetError`, point array `Error`). Its Lighting off shows the
+ * unlit colors, Ka·Ca + Kd·Cd, as VTK. Problems found during an execution are reported at its end,
+ * errors in one vtkErrorMacro, warnings in one vtkWarningMacro.
  *
  * Distributed data (MPI): with a controller of more than one process (the global
  * controller by default, as VTK's parallel filters; pvbatch --mpi and pvserver set it),
@@ -209,9 +215,9 @@ public:
   ///@{
   /**
    * Surface material: color, ambient/diffuse/specular coefficients, specular color and
-   * power, backface culling (default: a vtkProperty with VTK's defaults but flat
-   * interpolation). Opacity, Gouraud/Phong interpolation and representations other than
-   * surface are not used yet (one warning says so).
+   * power, backface culling, and Interpolation: VTK_FLAT, VTK_GOURAUD or VTK_PHONG shading
+   * (default: a vtkProperty with VTK's defaults but flat interpolation). Opacity, PBR and
+   * representations other than surface are not used yet (one warning says so).
    */
   void SetProperty(vtkProperty* property);
   vtkProperty* GetProperty();
@@ -305,8 +311,9 @@ public:
 
   ///@{
   /**
-   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Flat shading shows one
-   * color per polygon either way (point colors are averaged); kept for the shading modes.
+   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Point scalars are mapped to
+   * colors at the points; flat shading shows their average per polygon, Gouraud and Phong
+   * interpolate the colors (off's meaning; on is not rendered yet and behaves as off).
    */
   void SetInterpolateScalarsBeforeMapping(vtkTypeBool interpolate);
   vtkTypeBool GetInterpolateScalarsBeforeMapping();
@@ -407,6 +414,62 @@ public:
    */
   static bool CanComposite();
 
+  ///@{
+  /**
+   * Samples per pixel: 1, 4 or 16, on an ordered 2 × 2 or 4 × 4 grid, averaged (default: 1).
+   * Depth and CellId come from one fixed sample nearest the pixel center (facet's
+   * QualityRenderer.h). Other values are an error at execution.
+   */
+  vtkSetMacro(SamplesPerPixel, int);
+  vtkGetMacro(SamplesPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Adaptive quality: an error budget in 8-bit units. Polygons whose flat-shading error bound
+   * is within it stay flat, the others are shaded per pixel (Phong); every pixel is then
+   * within the budget of the Phong image. 0 turns it off and the property's Interpolation
+   * decides (default: 0).
+   */
+  vtkSetMacro(MaximumError, double);
+  vtkGetMacro(MaximumError, double);
+  ///@}
+
+  ///@{
+  /**
+   * Render the converged Phong mesh reference (128 samples per pixel, ray traced) beside the
+   * image and report the measured error: field data `FacetError` (RMSE, Max, PSNR, SSIM,
+   * SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the point array `Error` (per
+   * pixel, the largest channel difference, 8-bit units). Slow: for measuring (default: off).
+   */
+  vtkSetMacro(ComputeError, vtkTypeBool);
+  vtkGetMacro(ComputeError, vtkTypeBool);
+  vtkBooleanMacro(ComputeError, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Estimate the render's flat-shading error and put it in the field data
+   * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units). It needs the mesh's
+   * vertex normals, computed once per input (about a second per million triangles), and
+   * costs a bound per visible polygon per render; off, a flat one-sample render is the
+   * plain rasterizer (default: on).
+   */
+  vtkSetMacro(EstimateError, vtkTypeBool);
+  vtkGetMacro(EstimateError, vtkTypeBool);
+  vtkBooleanMacro(EstimateError, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Add the per-pixel error estimate as the point array `ErrorEstimate` (8-bit units; the
+   * field data always has its summary) (default: off).
+   */
+  vtkSetMacro(ErrorEstimateArray, vtkTypeBool);
+  vtkGetMacro(ErrorEstimateArray, vtkTypeBool);
+  vtkBooleanMacro(ErrorEstimateArray, vtkTypeBool);
+  ///@}
+
   /**
    * What the last render did and left out, a few lines of text (empty before the first).
    */
@@ -449,6 +512,11 @@ protected:
   int CompositeRank = 0;
   vtkTypeBool CompositeToAllRanks = 0;
   int CompositeStrategy = CompositeAutomatic;
+  int SamplesPerPixel = 1;
+  double MaximumError = 0.0;
+  vtkTypeBool ComputeError = 0;
+  vtkTypeBool EstimateError = 1;
+  vtkTypeBool ErrorEstimateArray = 0;
 
 private:
   vtkFacetRenderFilter(const vtkFacetRenderFilter&) = delete;

@@ -111,6 +111,7 @@ void vtkFacetScalarColors::Update(vtkPolyData* input,
   {
     this->Polygon.clear();
     this->Strip.clear();
+    this->Point.clear();
     this->Last = settings;
     this->LastTable = table;
     this->LastTableTime = tableTime;
@@ -180,6 +181,11 @@ std::string vtkFacetScalarColors::Compute(vtkDataArray* scalars,
     }
     AveragePerPolygon(mesh.Polygons().polygons, rgba, this->Polygon);
     AveragePerPolygon(mesh.StripTriangles().polygons, rgba, this->Strip);
+    this->Point.resize(static_cast<std::size_t>(input->GetNumberOfPoints()));
+    for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+    {
+      this->Point[p] = ColorAt(rgba, p);
+    }
     return {};
   }
   // Cell (or field) data, indexed by vtkPolyData cell id.

@@ -13,8 +13,8 @@
  * alone a table whose values the user inserted); given the scalar range unless
  * UseLookupTableScalarRange. Cell scalars color each polygon (and every triangle of a strip);
  * point scalars are averaged per polygon, as flat shading shows one color per polygon
- * (VTK's OpenGL mapper interpolates them across the polygon even when flat shading; the
- * shading modes will). The result is kept while the input, the settings and the table are
+ * (VTK's OpenGL mapper interpolates them across the polygon even when flat shading), and
+ * kept per point for the Gouraud and Phong modes, which interpolate them. The result is kept while the input, the settings and the table are
  * unchanged.
  */
 
@@ -75,6 +75,9 @@ public:
   /// One color per polygon and per strip triangle; empty without scalar coloring.
   std::span<const facet::Rgba8> PolygonColors() const { return this->Polygon; }
   std::span<const facet::Rgba8> StripColors() const { return this->Strip; }
+  /// With point scalars, one color per point (mapped, then interpolated by the Gouraud and
+  /// Phong modes: InterpolateScalarsBeforeMapping off); empty otherwise.
+  std::span<const facet::Rgba8> PointColors() const { return this->Point; }
   bool HasColors() const { return !this->Polygon.empty() || !this->Strip.empty(); }
 
   /// The table the last Update prepared (null: none) and its MTime once prepared.
@@ -98,6 +101,7 @@ private:
   std::string Warning; // said again at every execution that keeps these colors
   std::vector<facet::Rgba8> Polygon;
   std::vector<facet::Rgba8> Strip;
+  std::vector<facet::Rgba8> Point;
 };
 
 #endif

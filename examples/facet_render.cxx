@@ -38,6 +38,8 @@
 #include <string>
 #include <vector>
 
+#include "facet_report.h"
+
 namespace {
 // A one-line error for the user; `usage` errors exit with 2, others with 1.
 struct Failure : std::runtime_error
@@ -207,8 +209,16 @@ struct Options
   std::optional<std::array<double, 2>> Range;
   Vector3 Background{ 0.1, 0.1, 0.12 };
   bool Painter = false;
+  int Interpolation = VTK_FLAT; // --shading
+  int Samples = 1;
+  double MaxError = 0.0;
   std::optional<int> Threads;
   bool Progress = false, Quiet = false, Help = false;
+  // --report
+  bool Report = false;
+  std::vector<std::string> Inputs; // every positional argument
+  bool SizeGiven = false;
+  ReportOptions ReportSettings;
 };
 
 std::string Format(double value)
@@ -269,7 +279,10 @@ options:
     Format(tool.Color.data(), 3) + R"()
       --color-by ARRAY    color by a point or cell data array, through a lookup table
       --range MIN,MAX     the values spanning the lookup table (default: the array's range)
-      --interpolation I   shading interpolation; only "flat" is supported yet
+      --shading MODE      flat, gouraud or phong (default: flat)
+      --samples N         samples per pixel: 1, 4 or 16, averaged (default: 1)
+      --max-error E       adaptive: polygons whose flat-shading error bound is within E
+                          (8-bit units) stay flat, the others are Phong-shaded (default: off)
       --background R,G,B  (default: )" +
     Format(tool.Background.data(), 3) + R"()
       --painter           painter's algorithm instead of the z-buffer
@@ -278,6 +291,18 @@ options:
       --progress          always show the progress bar (default: on a terminal only)
   -q, --quiet             no progress bar and no summary
   -h, --help              this text
+
+report mode: facet-render --report [MESH ...] [options]
+  Renders every quality mode (flat, gouraud, phong, adaptive x 1, 4, 16 samples) of a
+  built-in set (the analytic sphere at a sweep of tessellations, the bunny, fandisk) and
+  of each MESH at 1920x1080 (or --size), times them (median in process) and measures them
+  against converged references; prints a Markdown table, writes PREFIX.csv and the
+  error-against-time plot PREFIX.png (/usr/bin/python3 with matplotlib).
+  -o, --output PREFIX     (default: report)
+      --sweep N,N,...     the sphere's segments, or "none" (default: 8,...,1024)
+      --no-builtin        leave out the bunny and fandisk
+      --repeats N         timed renders per mode (default: 3)
+      --reference-samples N  per pixel, for the references (default: 128)
 
 Colors are in [0, 1]. Example:
   facet-render bunny.obj -o bunny.png --size 1280x960 --azimuth 30 \
@@ -319,8 +344,43 @@ Options ParseOptions(int argc, char** argv)
     {
       o.Output = value();
     }
+    else if (arg == "--report")
+    {
+      o.Report = true;
+    }
+    else if (arg == "--sweep")
+    {
+      const std::string text = value();
+      o.ReportSettings.Sweep.clear();
+      if (text != "none")
+      {
+        for (const double n : ParseNumberList(text, ',', arg, "N,N,... or none"))
+        {
+          if (n != static_cast<int>(n) || n < 3 || n > 4096)
+          {
+            BadOption("--sweep expects whole numbers from 3 to 4096");
+          }
+          o.ReportSettings.Sweep.push_back(static_cast<int>(n));
+        }
+      }
+    }
+    else if (arg == "--no-builtin")
+    {
+      o.ReportSettings.BuiltinMeshes = false;
+    }
+    else if (arg == "--repeats" || arg == "--reference-samples")
+    {
+      const double n = ParseNumbers(value(), ',', 1, arg, "a count")[0];
+      if (n != static_cast<int>(n) || n < 1 || n > 4096)
+      {
+        BadOption(arg + " expects a whole number from 1 to 4096");
+      }
+      (arg == "--repeats" ? o.ReportSettings.Repeats : o.ReportSettings.ReferenceSamples) =
+        static_cast<int>(n);
+    }
     else if (arg == "-s" || arg == "--size")
     {
+      o.SizeGiven = true;
       const std::string text = value();
       const auto wh = ParseNumbers(text, 'x', 2, "--size", "WIDTHxHEIGHT, e.g. 800x600");
       if (wh[0] != static_cast<int>(wh[0]) || wh[1] != static_cast<int>(wh[1]) || wh[0] < 1 ||
@@ -372,12 +432,33 @@ Options ParseOptions(int argc, char** argv)
       const auto r = ParseNumbers(value(), ',', 2, arg, "MIN,MAX");
       o.Range = std::array<double, 2>{ r[0], r[1] };
     }
-    else if (arg == "--interpolation")
+    else if (arg == "--shading" || arg == "--interpolation")
     {
       const std::string mode = value();
-      if (mode != "flat")
+      if (mode == "flat" || mode == "gouraud" || mode == "phong")
       {
-        BadOption("--interpolation '" + mode + "' is not supported yet; Facet shades flat");
+        o.Interpolation = mode == "flat" ? VTK_FLAT : mode == "gouraud" ? VTK_GOURAUD : VTK_PHONG;
+      }
+      else
+      {
+        BadOption(arg + " expects flat, gouraud or phong, got '" + mode + "'");
+      }
+    }
+    else if (arg == "--samples")
+    {
+      const double n = ParseNumbers(value(), ',', 1, arg, "1, 4 or 16")[0];
+      if (n != 1 && n != 4 && n != 16)
+      {
+        BadOption("--samples expects 1, 4 or 16");
+      }
+      o.Samples = static_cast<int>(n);
+    }
+    else if (arg == "--max-error")
+    {
+      o.MaxError = ParseNumbers(value(), ',', 1, arg, "8-bit units")[0];
+      if (!(o.MaxError > 0.0))
+      {
+        BadOption("--max-error expects a number > 0 (8-bit units)");
       }
     }
     else if (arg == "--background")
@@ -409,18 +490,31 @@ Options ParseOptions(int argc, char** argv)
     {
       BadOption("unknown option '" + arg + "'");
     }
-    else if (o.Input.empty())
-    {
-      o.Input = arg;
-    }
     else
     {
-      BadOption("one mesh at a time; got '" + o.Input + "' and '" + arg + "'");
+      o.Inputs.push_back(arg);
     }
   }
-  if (!o.Help && o.Input.empty())
+  if (!o.Report && o.Inputs.size() > 1)
+  {
+    BadOption("one mesh at a time; got '" + o.Inputs[0] + "' and '" + o.Inputs[1] + "'");
+  }
+  if (!o.Report && !o.Inputs.empty())
+  {
+    o.Input = o.Inputs[0];
+  }
+  if (!o.Help && !o.Report && o.Input.empty())
   {
     BadOption("no mesh file given");
+  }
+  if (o.Report)
+  {
+    ReportOptions& r = o.ReportSettings;
+    r.Width = o.SizeGiven ? o.Width : 1920;
+    r.Height = o.SizeGiven ? o.Height : 1080;
+    r.Threads = o.Threads.value_or(0);
+    r.Prefix = o.Output.empty() ? "report" : o.Output;
+    r.Progress = !o.Quiet && (o.Progress || isatty(fileno(stderr)));
   }
   if (o.Output.empty() && !o.Input.empty())
   {
@@ -686,6 +780,25 @@ int Run(int argc, char** argv)
     std::fputs(UsageText().c_str(), stdout);
     return 0;
   }
+  if (o.Report)
+  {
+    ReportOptions report = o.ReportSettings;
+    for (const std::string& path : o.Inputs)
+    {
+      report.Meshes.emplace_back(std::filesystem::path(path).filename().string(), ReadMesh(path));
+    }
+    report.MeshFolder = FACET_REPORT_MESH_DIR;
+    report.PlotScript = FACET_REPORT_PLOT_SCRIPT;
+    report.Read = ReadMesh;
+    try
+    {
+      return RunReport(report);
+    }
+    catch (const std::runtime_error& e)
+    {
+      throw Failure(std::string("report: ") + e.what(), false);
+    }
+  }
   vtkSmartPointer<vtkPolyData> mesh = ReadMesh(o.Input);
 
   vtkNew<vtkFacetRenderFilter> render;
@@ -704,6 +817,9 @@ int Run(int argc, char** argv)
   }
   render->SetCamera(FitCamera(mesh, o));
   render->GetProperty()->SetColor(o.Color[0], o.Color[1], o.Color[2]);
+  render->GetProperty()->SetInterpolation(o.Interpolation);
+  render->SetSamplesPerPixel(o.Samples);
+  render->SetMaximumError(o.MaxError);
   if (o.Painter)
   {
     render->SetVisibilityModeToPainterSort();
@@ -750,12 +866,16 @@ int Run(int argc, char** argv)
   if (!o.Quiet)
   {
     vtkFieldData* fieldData = render->GetOutput()->GetFieldData();
-    std::printf("facet-render: wrote %s (%dx%d, %lld polygons, %.1f ms)\n",
+    vtkDataArray* estimate = fieldData->GetArray("FacetErrorEstimate");
+    std::printf("facet-render: wrote %s (%dx%d, %lld polygons, %.1f ms; flat shading's error "
+                "here is at most %.1f RMS, %.0f max, in 8-bit units)\n",
       o.Output.c_str(),
       o.Width,
       o.Height,
       static_cast<long long>(mesh->GetNumberOfCells()),
-      fieldData->GetArray("FacetRenderSeconds")->GetComponent(0, 0) * 1e3);
+      fieldData->GetArray("FacetRenderSeconds")->GetComponent(0, 0) * 1e3,
+      estimate ? estimate->GetComponent(0, 0) : 0.0,
+      estimate ? estimate->GetComponent(0, 1) : 0.0);
   }
   return 0;
 }

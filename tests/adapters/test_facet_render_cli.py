@@ -149,6 +149,36 @@ class FacetRenderCli(unittest.TestCase):
                 self.assertEqual(result.returncode, 0, result.stderr)
                 self.assertTrue(os.path.getsize(path + ".png") > 100)
 
+    def test_shading_modes_samples_and_budget(self):
+        mesh = os.path.join(MESHES, "suzanne.obj")
+        with tempfile.TemporaryDirectory() as folder:
+            images = {}
+            for name, args in (("flat", ()), ("phong", ("--shading", "phong", "--samples", "4")),
+                               ("adaptive", ("--max-error", "3"))):
+                out = os.path.join(folder, name + ".png")
+                result = run(mesh, "-o", out, "--size", "96x72", *args)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertIn("flat shading's error here is at most", result.stdout)
+                images[name] = read_png(out)
+            differing = sum(images["flat"][p] != images["phong"][p] for p in images["flat"])
+            self.assertGreater(differing, 500)
+
+    def test_report_table_csv_and_plot(self):
+        with tempfile.TemporaryDirectory() as folder:
+            prefix = os.path.join(folder, "report")
+            result = run("--report", "--sweep", "8,24", "--no-builtin",
+                         os.path.join(MESHES, "suzanne.obj"), "--size", "96x72",
+                         "--repeats", "1", "--reference-samples", "8", "-o", prefix, "-q")
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertIn("| mesh | mode | samples | time ms | RMSE |", result.stdout)
+            with open(prefix + ".csv") as csv:
+                rows = [line.split(",") for line in csv.read().splitlines()[1:]]
+            self.assertEqual(len(rows), 3 * 12)  # 3 meshes x (4 modes x 3 sample counts)
+            flat = {row[1]: float(row[5]) for row in rows if row[2] == "flat" and row[3] == "1"}
+            self.assertLess(flat["sphere 24"], flat["sphere 8"])  # finer: closer to the sphere
+            with open(prefix + ".png", "rb") as png:
+                self.assertEqual(png.read(8), b"\x89PNG\r\n\x1a\n")
+
     def test_missing_file_is_one_line_and_exit_1(self):
         result = run("no-such-mesh.obj")
         self.assertEqual(result.returncode, 1)
@@ -161,7 +191,9 @@ class FacetRenderCli(unittest.TestCase):
                                (("--bogus",), "unknown option '--bogus'"),
                                (("--light", "laser:1"), "--light expects"),
                                (("--color", "2,0,0"), "must be in [0, 1]"),
-                               (("--interpolation", "gouraud"), "not supported yet"),
+                               (("--shading", "toon"), "flat, gouraud or phong"),
+                               (("--samples", "2"), "--samples expects 1, 4 or 16"),
+                               (("--max-error", "-1"), "--max-error expects"),
                                (("--color-by", "nothing"), "no point or cell array 'nothing'"),
                                # Issue 7: NaN and infinities were render errors (exit 1).
                                (("--azimuth", "nan"), "finite numbers"),

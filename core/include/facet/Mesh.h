@@ -68,7 +68,7 @@ struct PolygonArray {
 struct MeshView {
   PointArray points;
   PolygonArray polygons;
-  std::span<const Rgba8> polygonColors;  ///< empty, or one per polygon
+  std::span<const Rgba8> polygonColors{};  ///< empty, or one per polygon
   /// The polygons form closed surfaces wound counter-clockwise seen from outside, as
   /// isClosedSurface() decides (compute it once per mesh, not per frame). Seen from outside,
   /// such a surface shows only front faces, so while the whole mesh is in front of the near
@@ -89,6 +89,16 @@ struct MeshView {
   /// version of the colors alone re-shades; 0 treats non-empty colors as changed in every
   /// render. (default: 0)
   std::uint64_t colorVersion = 0;
+  /// Optional normals at the points (one xyz per point, as vtkPointData::GetNormals stores
+  /// them), for shading that interpolates across polygons (QualityRenderer.h): used as given
+  /// instead of computed ones (VertexNormals.h). The flat Renderer ignores them.
+  /// (default: none, count 0)
+  PointArray pointNormals{nullptr, PointArray::Type::Float64, 0};
+  /// Optional colors at the points, already mapped (vtkMapper's default,
+  /// InterpolateScalarsBeforeMapping off), interpolated across polygons by the Gouraud and
+  /// Phong modes (QualityRenderer.h); they win over polygonColors there. Alpha is ignored.
+  /// The flat Renderer ignores them (give it polygonColors). (default: empty)
+  std::span<const Rgba8> pointColors{};
 };
 
 /// An owning mesh with 64-bit indices, for building geometry by hand (examples, tests).
@@ -115,7 +125,11 @@ struct Mesh {
   std::size_t polygonCount() const { return offsets.size() - 1; }
 
   MeshView view() const {
-    return {PointArray::of(points), PolygonArray::of(offsets, connectivity), polygonColors};
+    MeshView view;
+    view.points = PointArray::of(points);
+    view.polygons = PolygonArray::of(offsets, connectivity);
+    view.polygonColors = polygonColors;
+    return view;
   }
 };
 

@@ -1,0 +1,91 @@
+/**
+ * @class   vtkFacetQuality
+ * @brief   Private: vtkFacetRenderFilter's quality modes and error reports (facet's
+ *          QualityRenderer.h and MeshReference.h), kept out of the filter.
+ *
+ * The property's Interpolation picks the shading (VTK_FLAT flat, VTK_GOURAUD Gouraud,
+ * VTK_PHONG Phong); SamplesPerPixel supersamples; a MaximumError above 0 shades adaptively.
+ * The ShadingMesh of every scene mesh (triangles, vertex normals: the input's point normals
+ * when it has them, else vtkPolyDataNormals' meaning) is kept while the meshes are unchanged.
+ * Every render computes the flat-shading error estimate; AddOutputs puts it in the field data
+ * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units) and, on request, as the
+ * point-data array `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
+ * reference and adds `FacetError` (RMSE, Max, PSNR, SSIM, SilhouetteFraction,
+ * ReferenceSeconds, RenderSeconds) and the per-pixel `Error` array (ImageMetrics.h).
+ */
+
+#ifndef vtkFacetQuality_h
+#define vtkFacetQuality_h
+
+#include "vtkType.h"
+
+#include "facet/QualityRenderer.h"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+class vtkFacetMessages;
+class vtkImageData;
+class vtkPolyData;
+
+class vtkFacetQuality
+{
+public:
+  struct Settings
+  {
+    int Interpolation = 0;   ///< vtkProperty's: VTK_FLAT, VTK_GOURAUD, VTK_PHONG
+    int SamplesPerPixel = 1; ///< 1, 4 or 16
+    double MaximumError = 0; ///< 8-bit units; 0: off
+    bool ComputeError = false;
+    bool EstimateError = true;
+    bool ErrorEstimateArray = false;
+  };
+
+  /// The renderer call vtkFacetImageRenderer makes: the scene in the settings' mode.
+  using RenderFunction = std::function<facet::RenderStats(facet::Renderer&,
+    const facet::Scene&,
+    const facet::Camera&,
+    const facet::FramebufferView&)>;
+
+  /**
+   * Prepares a render of `scene` (whose first mesh holds the input's polygons, the second
+   * its strip triangles, both on the input's points): checks the settings (an error in
+   * `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
+   * the shading meshes if the scene's meshes changed (`converted`). Returns the function
+   * that renders, or an empty one after an error or when the plain Renderer does all that is
+   * asked (flat, one sample, no estimate, no error measurement).
+   */
+  RenderFunction Prepare(const facet::Scene& scene,
+    vtkPolyData* input,
+    const Settings& settings,
+    bool converted,
+    vtkFacetMessages& messages);
+
+  /**
+   * After the render: the estimate and, with ComputeError, the measured error (the mesh
+   * reference is rendered here) into `output`'s field and point data. `polygonIds` is the
+   * rendered id plane.
+   */
+  void AddOutputs(const facet::Scene& scene,
+    const facet::Camera& camera,
+    const std::int32_t* polygonIds,
+    const double background[3],
+    bool twoSidedLighting,
+    int threads,
+    vtkImageData* output,
+    vtkFacetMessages& messages);
+
+private:
+  Settings Current;
+  std::unique_ptr<facet::QualityRenderer> Quality; // its buffers kept between renders
+  const facet::Renderer* QualityOf = nullptr;      // the renderer it renders through
+  std::vector<facet::ShadingMesh> Shading;
+  std::vector<double> Normals;                           // the input's point normals, xyz in double
+  std::vector<std::pair<const void*, std::size_t>> Keys; // what Shading was made from
+  facet::QualityStats Stats;
+  std::vector<float> Estimate;
+  double RenderSeconds = 0.0;
+};
+
+#endif

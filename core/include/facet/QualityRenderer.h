@@ -1,0 +1,149 @@
+#pragma once
+
+/// @file QualityRenderer.h
+/// Quality modes above the flat Renderer: Gouraud and Phong shading, supersampling, an error
+/// budget (adaptive), and the flat-shading error estimate (FlatErrorBound.h) — all by
+/// visibility-buffer shading (Burns & Hunt 2013, "The Visibility Buffer: A Cache-Friendly
+/// Approach to Deferred Shading"): the Renderer paints, per sample, the id of the polygon
+/// seen and its depth; each covered sample is then shaded again from its polygon.
+///
+/// Per sample: the ray through the sample's window point (CameraRays, Reference.h) meets the
+/// plane of the fan triangle that holds it (the polygon's triangles are the rasterizer's:
+/// triangulateMesh); the exact ray/triangle intersection in double gives perspective-correct
+/// barycentric weights. Gouraud lights every corner of a visible polygon once (its corner
+/// normal, point and color) and interpolates the colors; Phong interpolates the normal (and
+/// the point color) and lights the sample. Both use the one formula of Lighting.h and light
+/// a polygon seen from its back with its normals turned toward the viewer, as flat does.
+/// Colors: MeshView::pointColors interpolated (vtkMapper's InterpolateScalarsBeforeMapping
+/// off: colors mapped at the points, then interpolated), else the polygon's color, else the
+/// material's.
+///
+/// Supersampling: 4 or 16 samples per pixel on an ordered 2 × 2 or 4 × 4 grid (the Renderer
+/// paints a 2× or 4× larger image), averaged with equal weights (a box filter) before the
+/// one rounding to 8 bits. Depth and polygon id of an output pixel are those of one fixed
+/// sample: the one at offset ((g/2 + 0.5)/g, (g/2 + 0.5)/g) from the pixel's corner for a
+/// g × g grid, i.e. (0.75, 0.75) for 4 samples and (0.625, 0.625) for 16 — a sample nearest
+/// the pixel center (for 4, all four are equally near; this one is chosen).
+///
+/// Flat shading with one sample and no estimate is the Renderer itself, unchanged: same
+/// bytes, same cost. Every mode gives the same bytes for any thread count.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "facet/FlatErrorBound.h"
+#include "facet/Framebuffer.h"
+#include "facet/MeshTriangles.h"
+#include "facet/Renderer.h"
+#include "facet/VertexNormals.h"
+
+namespace facet {
+
+enum class Shading {
+  Flat,     ///< one color per polygon, lit at its center (the Renderer's)
+  Gouraud,  ///< lit at every corner, colors interpolated
+  Phong,    ///< normals interpolated, lit at every sample
+};
+
+/// "flat", "gouraud", "phong".
+const char* toString(Shading shading);
+
+/// What shading beyond flat needs of one mesh, computed once per mesh version (not per
+/// frame): the rasterizer's triangles, corner normals (MeshView::pointNormals when given,
+/// else computeVertexNormals) and the shape of every polygon for the error bound.
+struct ShadingMesh {
+  ShadingMesh() = default;
+  /// Validates the mesh (throws facet::Error, naming the problem: also point normals or
+  /// point colors whose count is not the point count).
+  explicit ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options = {});
+
+  std::vector<MeshTriangle> triangles;       ///< in polygon order
+  std::vector<std::uint32_t> firstTriangle;  ///< per polygon, and one past the last
+  VertexNormals normals;
+  std::vector<PolygonShape> shapes;  ///< one per polygon
+  std::size_t polygonCount() const { return shapes.size(); }
+};
+
+struct QualitySettings {
+  Shading shading = Shading::Flat;  ///< (default: flat)
+  /// 1, 4 or 16 samples per pixel (default: 1)
+  int samplesPerPixel = 1;
+  /// Adaptive quality: polygons whose flat-shading bound (plus 0.5 for rounding) is within
+  /// this many 8-bit units stay flat, the others are Phong-shaded; `shading` is then
+  /// ignored. Each sample is so within maximumError of the Phong image. Empty: off.
+  /// (default: off)
+  std::optional<double> maximumError{};
+  /// Compute the flat-shading error estimate (QualityStats::predicted*, and the per-pixel
+  /// image errorEstimate()). (default: off)
+  bool estimateError = false;
+};
+
+/// Throws facet::Error naming a bad value: samples other than 1, 4 or 16, a maximum error
+/// that is negative or not finite.
+void validate(const QualitySettings& settings);
+
+struct QualityStats {
+  RenderStats render;            ///< the Renderer's pass (at the sample grid's size)
+  double shadeSeconds = 0.0;     ///< re-shading and resolving the samples
+  double estimateSeconds = 0.0;  ///< the error estimate (bounds and the per-pixel image)
+  double totalSeconds = 0.0;
+  std::size_t samplesReshaded = 0;   ///< samples shaded again (not kept flat)
+  std::size_t polygonsReshaded = 0;  ///< visible polygons shaded per sample or per corner
+  /// The estimate (when asked): per pixel, an upper bound on how far the flat-shaded pixel is
+  /// from the converged Phong image of the scene (the mesh reference, MeshReference.h), in
+  /// 8-bit units of the largest channel — for each polygon the pixel's 3 × 3 samples see, its
+  /// bound (FlatErrorBound.h) plus how far its flat color is from the pixel's, plus 0.5 for
+  /// rounding — averaged over a pixel's samples; over the covered pixels, its root mean
+  /// square and its maximum. Whatever the mode, it is flat shading's estimate. Silhouettes
+  /// (the background a pixel mixes in) are not part of it.
+  double predictedRmse = 0.0;
+  double predictedMaxError = 0.0;
+};
+
+class QualityRenderer {
+ public:
+  /// Renders through `renderer` (its threads, background, visibility, lighting side), which
+  /// must outlive this object.
+  explicit QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
+
+  /// Renders the scene in the mode the settings ask for. `shading` holds one ShadingMesh per
+  /// scene mesh (prepared once, kept while the meshes do not change), or is empty: they are
+  /// then computed here, every render. Throws facet::Error for bad settings, a shading list
+  /// that does not match the scene, or an image side that a 2× or 4× sample grid would take
+  /// beyond kMaxImageSide; and whatever Renderer::render throws.
+  QualityStats render(const Scene& scene, std::span<const ShadingMesh> shading,
+                      const Camera& camera, const FramebufferView& target,
+                      const QualitySettings& settings);
+  QualityStats render(const Scene& scene, std::span<const ShadingMesh> shading,
+                      const Camera& camera, Framebuffer& framebuffer,
+                      const QualitySettings& settings) {
+    return render(scene, shading, camera, framebuffer.view(), settings);
+  }
+
+  /// The last render's per-pixel estimate (QualityStats), row 0 at the bottom, 0 where no
+  /// polygon shows; empty unless it was asked for.
+  std::span<const float> errorEstimate() const { return estimate_; }
+
+ private:
+  struct Frame;
+  std::span<const ShadingMesh> shadingFor(const Scene& scene, std::span<const ShadingMesh> given);
+  void markVisible(const Frame& frame);
+  std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
+  void estimate(const Frame& frame, const FramebufferView& target, QualityStats& stats);
+  void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
+
+  Renderer& renderer_;
+  Framebuffer samples_;  // the 2× or 4× sample grid
+  std::vector<ShadingMesh> owned_;
+  std::vector<float> estimate_;
+  std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
+  std::vector<Color> cornerColors_;   // Gouraud: per corner of every mesh
+  std::unique_ptr<std::atomic<std::uint8_t>[]> shown_;  // per polygon id: some sample shows it
+  std::size_t shownSize_ = 0;
+};
+
+}  // namespace facet

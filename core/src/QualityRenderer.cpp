@@ -1,0 +1,562 @@
+// Quality modes by visibility-buffer shading (QualityRenderer.h): the Renderer paints the
+// sample grid's polygon ids; the passes below read them.
+//   1. visible polygons: which ids the samples show (atomic flags, order-free);
+//   2. per visible polygon: its flat-shading bound (estimate, adaptive) and, for Gouraud,
+//      its lit corners;
+//   3. the estimate per sample and per pixel (it reads the flat colors, so it runs before
+//      the samples are shaded again in place);
+//   4. per output pixel: shade its samples again where the mode asks, average, round.
+// Each pass writes only its own elements, so every thread count gives the same bytes.
+
+#include "facet/QualityRenderer.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "MeshAccess.h"
+#include "Validate.h"
+#include "facet/Conventions.h"
+#include "facet/Error.h"
+#include "facet/PolygonNormal.h"
+#include "facet/Reference.h"
+
+namespace facet {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Color toColor(Rgba8 c) {
+  return Color(c.r, c.g, c.b) / 255.0f;
+}
+
+int gridSide(int samplesPerPixel) {
+  return samplesPerPixel == 16 ? 4 : samplesPerPixel == 4 ? 2 : 1;
+}
+
+// Rows per task of the per-pixel passes.
+constexpr std::size_t kRowsPerTask = 4;
+constexpr std::size_t kPolygonsPerTask = 1 << 12;
+
+PolygonShape shapeOf(std::span<const glm::dvec3> corners, std::span<const glm::dvec3> normals) {
+  PolygonShape shape;
+  const std::optional<glm::dvec3> normal = corners.size() == 3
+                                               ? triangleNormal(corners[0], corners[1], corners[2])
+                                               : polygonNormal(corners);
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& c : corners)
+    sum += c;
+  shape.center = sum / static_cast<double>(corners.size());
+  for (const glm::dvec3& c : corners)
+    shape.radius = std::max(shape.radius, glm::length(c - shape.center));
+  if (!normal || !std::isfinite(shape.radius)) return shape;  // degenerate: zero normal
+  shape.normal = *normal;
+  for (const glm::dvec3& n : normals)
+    shape.cosNormalSpread =
+        std::min(shape.cosNormalSpread, n == glm::dvec3(0.0) ? -1.0 : glm::dot(*normal, n));
+  return shape;
+}
+
+void addCornerColors(PolygonShape& shape, std::span<const Rgba8> pointColors,
+                     std::span<const std::size_t> pointIds) {
+  shape.pointColors = true;
+  shape.cornerColorLow = Color(1.0f);
+  shape.cornerColorHigh = Color(0.0f);
+  for (const std::size_t id : pointIds) {
+    const Color c = toColor(pointColors[id]);
+    shape.cornerColorLow = glm::min(shape.cornerColorLow, c);
+    shape.cornerColorHigh = glm::max(shape.cornerColorHigh, c);
+  }
+}
+
+void requireCount(std::size_t count, std::size_t points, const char* name) {
+  if (count != 0 && count != points) {
+    detail::fail(name, "has " + std::to_string(count) + " entries for " + std::to_string(points) +
+                           " points; give one per point or none");
+  }
+}
+
+// Barycentric weights of the ray's intersection with triangle abc (Möller & Trumbore 1997),
+// relative to the ray origin, in double; (1/3, 1/3, 1/3) when the ray runs in its plane.
+glm::dvec3 barycentric(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                       const Ray& ray) {
+  const glm::dvec3 e1 = b - a, e2 = c - a;
+  const glm::dvec3 p = glm::cross(ray.direction, e2);
+  const double determinant = glm::dot(e1, p);
+  if (determinant == 0.0 || !std::isfinite(determinant)) return glm::dvec3(1.0 / 3.0);
+  const glm::dvec3 s = ray.origin - a, q = glm::cross(s, e1);
+  const double u = glm::dot(s, p) / determinant, v = glm::dot(ray.direction, q) / determinant;
+  return {1.0 - u - v, u, v};
+}
+
+// Weights clamped onto the triangle (the ray may pass a rounding outside the triangle the
+// rasterizer's fixed-point edges gave the sample to).
+glm::dvec3 clampedOnto(glm::dvec3 weights) {
+  weights = glm::max(weights, glm::dvec3(0.0));
+  const double sum = weights.x + weights.y + weights.z;
+  return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
+}
+
+}  // namespace
+
+const char* toString(Shading shading) {
+  switch (shading) {
+    case Shading::Flat:
+      return "flat";
+    case Shading::Gouraud:
+      return "gouraud";
+    case Shading::Phong:
+      return "phong";
+  }
+  return "unknown";
+}
+
+ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options) {
+  validate(mesh);
+  requireCount(mesh.pointNormals.count, mesh.points.count, "MeshView.pointNormals");
+  requireCount(mesh.pointColors.size(), mesh.points.count, "MeshView.pointColors");
+  triangles = triangulateMesh(mesh);
+  normals = mesh.pointNormals.count > 0 ? fromPointNormals(mesh, mesh.pointNormals)
+                                        : computeVertexNormals(mesh, options);
+  firstTriangle.assign(mesh.polygons.count + 1, 0);
+  for (const MeshTriangle& t : triangles)
+    ++firstTriangle[t.polygon + 1];
+  for (std::size_t p = 0; p < mesh.polygons.count; ++p)
+    firstTriangle[p + 1] += firstTriangle[p];
+  shapes.resize(mesh.polygons.count);
+  detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
+    std::vector<glm::dvec3> corners, cornerNormals;
+    std::vector<std::size_t> ids;
+    for (std::size_t p = 0; p < mesh.polygons.count; ++p) {
+      corners.clear();
+      cornerNormals.clear();
+      ids.clear();
+      for (std::size_t k = 0; k < polygons.size(p); ++k) {
+        ids.push_back(polygons.pointId(p, k));
+        corners.push_back(points[ids.back()]);
+        cornerNormals.push_back(normals.normals[normals.cornerNormal[polygons.begin(p) + k]]);
+      }
+      if (corners.size() < 3) continue;
+      shapes[p] = shapeOf(corners, cornerNormals);
+      if (!mesh.pointColors.empty()) addCornerColors(shapes[p], mesh.pointColors, ids);
+    }
+  });
+}
+
+void validate(const QualitySettings& settings) {
+  const int s = settings.samplesPerPixel;
+  if (s != 1 && s != 4 && s != 16) {
+    detail::fail("QualitySettings.samplesPerPixel",
+                 "is " + std::to_string(s) + ", must be 1, 4 or 16");
+  }
+  if (settings.maximumError) {
+    detail::requireNonNegative(*settings.maximumError, "QualitySettings.maximumError");
+  }
+}
+
+// One render's shared, read-only state for the passes.
+struct QualityRenderer::Frame {
+  const Scene& scene;
+  std::span<const ShadingMesh> meshes;
+  const QualitySettings& settings;
+  FramebufferView samples;  // the sample grid the Renderer painted
+  int grid;                 // samples per pixel side
+  CameraRays rays;          // through the sample grid's pixel centers
+  FlatErrorBound bounds;
+  Shader shader;
+  bool twoSided;
+  std::vector<std::size_t> firstPolygon;  // per mesh, and the total
+  std::vector<std::size_t> firstCorner;   // per mesh
+  std::vector<PreparedMaterial> materials;
+
+  Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
+        const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
+      : scene(s),
+        meshes(m),
+        settings(q),
+        samples(sampleGrid),
+        grid(side),
+        rays(camera, sampleGrid.width, sampleGrid.height),
+        bounds(s.lights, camera, twoSidedLighting),
+        shader(s.lights),
+        twoSided(twoSidedLighting) {
+    std::size_t polygons = 0, corners = 0;
+    for (const SceneMesh& mesh : s.meshes) {
+      firstPolygon.push_back(polygons);
+      firstCorner.push_back(corners);
+      materials.emplace_back(mesh.material);
+      polygons += mesh.mesh.polygons.count;
+      corners += mesh.mesh.polygons.connectivitySize;
+    }
+    firstPolygon.push_back(polygons);
+  }
+
+  bool adaptive() const { return settings.maximumError.has_value(); }
+  bool reshades() const { return adaptive() || settings.shading != Shading::Flat; }
+  // Adaptive: a polygon whose bound, plus the rounding of its flat color, is within budget.
+  bool keepsFlat(float bound) const { return adaptive() && bound + 0.5 <= *settings.maximumError; }
+
+  // (mesh, polygon within it) of a polygon id.
+  std::pair<std::size_t, std::size_t> locate(std::size_t id) const {
+    const auto next = std::upper_bound(firstPolygon.begin(), firstPolygon.end(), id);
+    const std::size_t mesh = static_cast<std::size_t>(next - firstPolygon.begin()) - 1;
+    return {mesh, id - firstPolygon[mesh]};
+  }
+
+  // Cd of flat shading: the polygon's color, else the material's.
+  Color polygonColor(std::size_t mesh, std::size_t polygon) const {
+    const auto& colors = scene.meshes[mesh].mesh.polygonColors;
+    return colors.empty() ? scene.meshes[mesh].material.color : toColor(colors[polygon]);
+  }
+
+  double boundOf(std::size_t mesh, std::size_t polygon) const {
+    return bounds.bound(meshes[mesh].shapes[polygon], materials[mesh], polygonColor(mesh, polygon));
+  }
+
+  // The normal a polygon is lit by, turned toward the viewer when its back is seen.
+  glm::dvec3 facing(const PolygonShape& shape, glm::dvec3 normal, const glm::dvec3& point) const {
+    if (normal == glm::dvec3(0.0)) return bounds.toViewer(point);
+    const bool flip = twoSided && bounds.seenFromBack(shape.center, shape.normal);
+    return flip ? -normal : normal;
+  }
+
+  // Where a sample's ray meets its polygon: the polygon's triangle whose smallest weight is
+  // largest (the one holding the hit), and the weights clamped onto it.
+  struct Hit {
+    const MeshTriangle* triangle = nullptr;
+    glm::dvec3 weights{0.0};
+    std::array<glm::dvec3, 3> corners{};
+  };
+  Hit hit(std::size_t mesh, std::size_t polygon, const Ray& ray) const;
+  Color phong(std::size_t mesh, std::size_t polygon, const Hit& hit, const Ray& ray) const;
+  void lightCorners(std::size_t mesh, std::size_t polygon, std::span<Color> out) const;
+  Color shadeSample(std::size_t index, int x, int y, std::span<const Color> cornerColors) const;
+};
+
+void QualityRenderer::Frame::lightCorners(std::size_t m, std::size_t polygon,
+                                          std::span<Color> out) const {
+  const MeshView& mesh = scene.meshes[m].mesh;
+  const ShadingMesh& shading = meshes[m];
+  const PolygonShape& shape = shading.shapes[polygon];
+  const Color flatColor = polygonColor(m, polygon);
+  detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
+    for (std::size_t k = 0; k < polygons.size(polygon); ++k) {
+      const std::size_t corner = polygons.begin(polygon) + k, point = polygons.pointId(polygon, k);
+      SurfaceSample sample;
+      sample.position = points[point];
+      sample.normal = facing(shape, shading.normals.normals[shading.normals.cornerNormal[corner]],
+                             sample.position);
+      sample.toViewer = bounds.toViewer(sample.position);
+      sample.color = mesh.pointColors.empty() ? flatColor : toColor(mesh.pointColors[point]);
+      out[firstCorner[m] + corner] = shader.shade(sample, materials[m]);
+    }
+  });
+}
+
+QualityRenderer::Frame::Hit QualityRenderer::Frame::hit(std::size_t m, std::size_t polygon,
+                                                        const Ray& ray) const {
+  const ShadingMesh& shading = meshes[m];
+  Hit found;
+  double best = -INFINITY;
+  for (std::uint32_t t = shading.firstTriangle[polygon]; t < shading.firstTriangle[polygon + 1];
+       ++t) {
+    const MeshTriangle& candidate = shading.triangles[t];
+    std::array<glm::dvec3, 3> c;
+    for (int k = 0; k < 3; ++k)
+      c[k] = pointAt(scene.meshes[m].mesh.points, candidate.point[k]);
+    const glm::dvec3 w = barycentric(c[0], c[1], c[2], ray);
+    const double smallest = std::min({w.x, w.y, w.z});
+    if (found.triangle && !(smallest > best)) continue;
+    found = {&candidate, w, c};
+    best = smallest;
+  }
+  found.weights = clampedOnto(found.weights);
+  return found;
+}
+
+Color QualityRenderer::Frame::phong(std::size_t m, std::size_t polygon, const Hit& hit,
+                                    const Ray& ray) const {
+  const MeshView& mesh = scene.meshes[m].mesh;
+  const VertexNormals& normals = meshes[m].normals;
+  SurfaceSample sample;
+  glm::dvec3 normal(0.0), color(0.0);
+  for (int k = 0; k < 3; ++k) {
+    sample.position += hit.weights[k] * hit.corners[k];
+    normal += hit.weights[k] * normals.normals[normals.cornerNormal[hit.triangle->corner[k]]];
+    if (!mesh.pointColors.empty())
+      color += hit.weights[k] * glm::dvec3(toColor(mesh.pointColors[hit.triangle->point[k]]));
+  }
+  const PolygonShape& shape = meshes[m].shapes[polygon];
+  const double length = glm::length(normal);
+  normal = length > 0.0 && std::isfinite(length) ? normal / length : shape.normal;
+  sample.normal = facing(shape, normal, sample.position);
+  sample.toViewer = CameraRays::toViewer(ray);
+  sample.color = mesh.pointColors.empty() ? polygonColor(m, polygon) : Color(color);
+  return shader.shade(sample, materials[m]);
+}
+
+Color QualityRenderer::Frame::shadeSample(std::size_t index, int x, int y,
+                                          std::span<const Color> cornerColors) const {
+  const auto [m, polygon] = locate(static_cast<std::size_t>(samples.polygonId[index]));
+  const Ray ray = rays.through({x + 0.5, y + 0.5});
+  const Hit found = hit(m, polygon, ray);
+  if (!found.triangle) return toColor(samples.color[index]);  // no triangle: as painted
+  if (settings.shading == Shading::Gouraud && !adaptive()) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 3; ++k)
+      sum +=
+          found.weights[k] * glm::dvec3(cornerColors[firstCorner[m] + found.triangle->corner[k]]);
+    return Color(sum);
+  }
+  return phong(m, polygon, found, ray);
+}
+
+namespace {
+
+// Calls work(row) for every row in [0, rows), spread over the renderer's threads.
+template <class Work>
+void forRows(Renderer& renderer, int rows, const Work& work) {
+  renderer.parallelFor(static_cast<std::size_t>(rows), kRowsPerTask,
+                       [&](std::size_t begin, std::size_t end) {
+                         for (std::size_t y = begin; y < end; ++y)
+                           work(static_cast<int>(y));
+                       });
+}
+
+// The flat-shading estimate of one sample (FlatErrorBound.h, extended to what a pixel
+// shows): the sample's color c_p against the Phong color of any polygon q whose part of the
+// neighbourhood the 3 × 3 samples around it see: |c_p − Phong_q(x)| ≤ |c_p − c_q| + 0.5 + b_q
+// (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact one, which is within b_q
+// of Phong_q anywhere on q). For q = p this is b_p + 0.5.
+float sampleEstimate(const FramebufferView& grid, std::span<const float> bounds, int x, int y) {
+  const std::size_t index = static_cast<std::size_t>(y) * grid.width + x;
+  const Rgba8 center = grid.color[index];
+  float largest = 0.0f;
+  for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
+    for (int nx = std::max(0, x - 1); nx <= std::min(grid.width - 1, x + 1); ++nx) {
+      const std::size_t n = static_cast<std::size_t>(ny) * grid.width + nx;
+      const std::int32_t id = grid.polygonId[n];
+      if (id < 0) continue;
+      const Rgba8 c = grid.color[n];
+      const int difference =
+          std::max({std::abs(c.r - center.r), std::abs(c.g - center.g), std::abs(c.b - center.b)});
+      largest = std::max(largest, static_cast<float>(difference) + bounds[id]);
+    }
+  }
+  return largest + 0.5f;
+}
+
+}  // namespace
+
+void QualityRenderer::markVisible(const Frame& frame) {
+  const std::size_t polygons = frame.firstPolygon.back();
+  if (shownSize_ < polygons) {
+    shown_ = std::make_unique<std::atomic<std::uint8_t>[]>(polygons);
+    shownSize_ = polygons;
+  }
+  for (std::size_t i = 0; i < polygons; ++i)
+    shown_[i].store(0, std::memory_order_relaxed);
+  const FramebufferView& grid = frame.samples;
+  forRows(renderer_, grid.height, [&](int y) {
+    const std::int32_t* ids = grid.polygonId + static_cast<std::size_t>(y) * grid.width;
+    for (int x = 0; x < grid.width; ++x) {
+      if (ids[x] >= 0) shown_[static_cast<std::size_t>(ids[x])].store(1, std::memory_order_relaxed);
+    }
+  });
+}
+
+// Per visible polygon: its bound (estimate, adaptive) and, for Gouraud, its lit corners.
+std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bool corners) {
+  const std::size_t polygons = frame.firstPolygon.back();
+  polygonBounds_.assign(bounds ? polygons : 0, 0.0f);
+  if (corners) {
+    std::size_t total = 0;
+    for (const SceneMesh& mesh : frame.scene.meshes)
+      total += mesh.mesh.polygons.connectivitySize;
+    cornerColors_.resize(total);
+  }
+  const std::size_t blocks = (polygons + kPolygonsPerTask - 1) / kPolygonsPerTask;
+  std::vector<std::size_t> reshaded(blocks, 0);
+  renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
+    std::size_t count = 0;
+    for (std::size_t id = begin; id < end; ++id) {
+      if (!shown_[id].load(std::memory_order_relaxed)) continue;
+      const auto [m, polygon] = frame.locate(id);
+      if (bounds) polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
+      if (corners) frame.lightCorners(m, polygon, cornerColors_);
+      count += !frame.keepsFlat(bounds ? polygonBounds_[id] : 0.0f);
+    }
+    reshaded[begin / kPolygonsPerTask] = count;
+  });
+  std::size_t total = 0;
+  for (std::size_t count : reshaded)
+    total += count;
+  return total;
+}
+
+// Per sample (sampleEstimate), then per pixel the mean of its samples' (the pixel's error
+// is the mean of its samples' against their parts of the pixel), plus 0.5 for rounding that
+// mean; 0 where the pixel shows no polygon. Then the statistics over covered pixels.
+void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target,
+                               QualityStats& stats) {
+  const FramebufferView& grid = frame.samples;
+  const int g = frame.grid;
+  estimate_.assign(static_cast<std::size_t>(target.width) * target.height, 0.0f);
+  std::vector<double> rowSquares(static_cast<std::size_t>(target.height), 0.0);
+  std::vector<float> rowLargest(static_cast<std::size_t>(target.height), 0.0f);
+  std::vector<std::size_t> rowCovered(static_cast<std::size_t>(target.height), 0);
+  forRows(renderer_, target.height, [&](int y) {
+    for (int x = 0; x < target.width; ++x) {
+      float sum = 0.0f;
+      bool covered = false;
+      for (int j = 0; j < g; ++j) {
+        for (int i = 0; i < g; ++i) {
+          const int sx = x * g + i, sy = y * g + j;
+          if (grid.polygonId[static_cast<std::size_t>(sy) * grid.width + sx] < 0) continue;
+          covered = true;
+          sum += sampleEstimate(grid, polygonBounds_, sx, sy);
+        }
+      }
+      if (!covered) continue;
+      const float e = std::min(255.0f, g > 1 ? sum / static_cast<float>(g * g) + 0.5f : sum);
+      estimate_[target.width * static_cast<std::size_t>(y) + x] = e;
+      rowSquares[y] += static_cast<double>(e) * e;
+      rowLargest[y] = std::max(rowLargest[y], e);
+      ++rowCovered[y];
+    }
+  });
+  double squares = 0.0;
+  std::size_t covered = 0;
+  for (int y = 0; y < target.height; ++y) {
+    squares += rowSquares[y];
+    covered += rowCovered[y];
+    stats.predictedMaxError = std::max<double>(stats.predictedMaxError, rowLargest[y]);
+  }
+  stats.predictedRmse = covered > 0 ? std::sqrt(squares / static_cast<double>(covered)) : 0.0;
+}
+
+// Per output pixel: its samples, shaded again where the mode asks, averaged and rounded once;
+// depth and id from the fixed sample (QualityRenderer.h).
+void QualityRenderer::shadeAndResolve(const Frame& frame, const FramebufferView& target,
+                                      QualityStats& stats) {
+  const FramebufferView& grid = frame.samples;
+  const int g = frame.grid;
+  const float weight = 1.0f / static_cast<float>(g * g);
+  std::vector<std::size_t> rowReshaded(static_cast<std::size_t>(target.height), 0);
+  forRows(renderer_, target.height, [&](int y) {
+    for (int x = 0; x < target.width; ++x) {
+      glm::vec4 sum(0.0f);
+      for (int j = 0; j < g; ++j) {
+        for (int i = 0; i < g; ++i) {
+          const int sx = x * g + i, sy = y * g + j;
+          const std::size_t index = static_cast<std::size_t>(sy) * grid.width + sx;
+          const std::int32_t id = grid.polygonId[index];
+          const Rgba8 painted = grid.color[index];
+          const bool keep = id < 0 || !frame.reshades() ||
+                            (frame.adaptive() && frame.keepsFlat(polygonBounds_[id]));
+          if (!keep) {
+            sum += glm::vec4(frame.shadeSample(index, sx, sy, cornerColors_), 1.0f);
+            ++rowReshaded[y];
+          } else {
+            sum += glm::vec4(toColor(painted), painted.a / 255.0f);
+          }
+        }
+      }
+      sum *= weight;
+      const std::size_t out = static_cast<std::size_t>(y) * target.width + x;
+      target.color[out] = toRgba8(Color(sum), sum.a);
+      if (g > 1) {
+        const std::size_t fixed =
+            static_cast<std::size_t>(y * g + g / 2) * grid.width + (x * g + g / 2);
+        target.depth[out] = grid.depth[fixed];
+        target.polygonId[out] = grid.polygonId[fixed];
+      }
+    }
+  });
+  for (std::size_t count : rowReshaded)
+    stats.samplesReshaded += count;
+}
+
+QualityStats QualityRenderer::render(const Scene& scene, std::span<const ShadingMesh> shading,
+                                     const Camera& camera, const FramebufferView& target,
+                                     const QualitySettings& settings) {
+  const Clock::time_point start = Clock::now();
+  validate(settings);
+  QualityStats stats;
+  estimate_.clear();
+  const bool reshades = settings.maximumError || settings.shading != Shading::Flat;
+  const int g = gridSide(settings.samplesPerPixel);
+  if (!reshades && g == 1 && !settings.estimateError) {
+    stats.render = renderer_.render(scene, camera, target);
+    stats.totalSeconds = secondsSince(start);
+    return stats;
+  }
+  shading = shadingFor(scene, shading);
+  FramebufferView grid = target;
+  if (g > 1) {
+    const long long side = static_cast<long long>(g) * std::max(target.width, target.height);
+    if (side > kMaxImageSide) {
+      throw Error("QualityRenderer: " + std::to_string(settings.samplesPerPixel) +
+                  " samples per pixel of a " + std::to_string(target.width) + "x" +
+                  std::to_string(target.height) + " image need a sample grid side of " +
+                  std::to_string(side) + ", above kMaxImageSide (" + std::to_string(kMaxImageSide) +
+                  ")");
+    }
+    samples_.resize(target.width * g, target.height * g);
+    grid = samples_.view();
+  }
+  stats.render = renderer_.render(scene, camera, grid);
+  if (stats.render.aborted) {
+    if (g > 1) renderer_.render(Scene{}, camera, target);  // a valid, empty image
+    stats.totalSeconds = secondsSince(start);
+    return stats;
+  }
+  const Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
+  Clock::time_point phase = Clock::now();
+  markVisible(frame);
+  const bool bounds = settings.estimateError || frame.adaptive();
+  const bool corners = settings.shading == Shading::Gouraud && !frame.adaptive();
+  stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
+  if (!frame.reshades()) stats.polygonsReshaded = 0;
+  if (settings.estimateError) estimate(frame, target, stats);
+  stats.estimateSeconds = secondsSince(phase);
+  phase = Clock::now();
+  if (frame.reshades() || g > 1) shadeAndResolve(frame, target, stats);
+  stats.shadeSeconds = secondsSince(phase);
+  stats.totalSeconds = secondsSince(start);
+  return stats;
+}
+
+std::span<const ShadingMesh> QualityRenderer::shadingFor(const Scene& scene,
+                                                         std::span<const ShadingMesh> given) {
+  if (!given.empty() && given.size() != scene.meshes.size()) {
+    throw Error("QualityRenderer got " + std::to_string(given.size()) + " ShadingMeshes for " +
+                std::to_string(scene.meshes.size()) + " scene meshes");
+  }
+  if (given.empty()) {
+    owned_.clear();
+    for (const SceneMesh& mesh : scene.meshes)
+      owned_.emplace_back(mesh.mesh);
+    given = owned_;
+  }
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (given[m].polygonCount() != scene.meshes[m].mesh.polygons.count) {
+      throw Error("ShadingMesh " + std::to_string(m) + " has " +
+                  std::to_string(given[m].polygonCount()) + " polygons, its scene mesh " +
+                  std::to_string(scene.meshes[m].mesh.polygons.count));
+    }
+  }
+  return given;
+}
+
+}  // namespace facet

@@ -1,0 +1,337 @@
+// Quality modes (QualityRenderer.h): Gouraud and Phong against closed forms and the exact
+// sphere, supersampling on silhouettes, the flat-shading bound (FlatErrorBound.h) against the
+// Phong image, the adaptive budget, and the same bytes for any thread count in every mode.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/ReferenceScenes.h"
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+#include "facet/AnalyticReference.h"
+#include "facet/Error.h"
+#include "facet/ImageMetrics.h"
+#include "facet/QualityRenderer.h"
+
+namespace facet {
+namespace {
+
+using testing::fitCamera;
+using testing::makeUvSphere;
+
+struct Output {
+  Framebuffer framebuffer;
+  QualityStats stats;
+  std::vector<float> estimate;
+};
+
+Output renderQuality(const Scene& scene, const Camera& camera, int width, int height,
+                     const QualitySettings& settings, int threads = 2,
+                     std::span<const ShadingMesh> shading = {}) {
+  Renderer renderer;
+  renderer.setThreadCount(threads);
+  QualityRenderer quality(renderer);
+  Output out{Framebuffer(width, height), {}, {}};
+  out.stats = quality.render(scene, shading, camera, out.framebuffer, settings);
+  out.estimate.assign(quality.errorEstimate().begin(), quality.errorEstimate().end());
+  return out;
+}
+
+int channelDifference(Rgba8 a, Rgba8 b) {
+  return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+}
+
+// The lit sphere the reference tests use, as a mesh scene and as the exact sphere.
+Scene sphereScene(const Mesh& sphere) {
+  return testing::oneMeshScene(sphere.view(), testing::shinyMaterial(), testing::twoLights());
+}
+AnalyticScene exactSphere() {
+  AnalyticScene scene;
+  scene.spheres.push_back({glm::dvec3(0.0), 1.0, testing::shinyMaterial()});
+  scene.lights = testing::twoLights();
+  return scene;
+}
+Camera sphereCamera() {
+  return fitCamera(makeUvSphere(8, 5), {0.2, -0.3, -1});
+}
+
+TEST(QualityRenderer, FlatOneSampleIsTheRendererWithOrWithoutEstimate) {
+  const Mesh sphere = makeUvSphere(24, 13);
+  const Scene scene = sphereScene(sphere);
+  const Camera camera = sphereCamera();
+  const auto plain = testing::renderScene(scene, camera, 80, 60);
+  for (const bool estimate : {false, true}) {
+    const Output out = renderQuality(scene, camera, 80, 60, {.estimateError = estimate});
+    EXPECT_TRUE(std::ranges::equal(out.framebuffer.color(), plain.framebuffer.color()));
+    EXPECT_TRUE(std::ranges::equal(out.framebuffer.depth(), plain.framebuffer.depth()));
+    EXPECT_TRUE(std::ranges::equal(out.framebuffer.polygonId(), plain.framebuffer.polygonId()));
+    EXPECT_EQ(out.estimate.empty(), !estimate);
+    EXPECT_EQ(out.stats.samplesReshaded, 0u);
+  }
+}
+
+TEST(QualityRenderer, SameBytesForAnyThreadCountInEveryMode) {
+  const Mesh sphere = makeUvSphere(20, 11);
+  const Mesh box = testing::makeBox({-1.6, -1.2, -0.5}, {-0.9, 1.2, 0.4});
+  Scene scene = sphereScene(sphere);
+  scene.meshes.push_back({box.view(), Material{}});
+  const Camera camera = sphereCamera();
+  std::vector<QualitySettings> modes;
+  for (const int samples : {1, 4, 16}) {
+    for (const Shading shading : {Shading::Flat, Shading::Gouraud, Shading::Phong})
+      modes.push_back({shading, samples, std::nullopt, true});
+    modes.push_back({Shading::Flat, samples, 6.0, true});
+  }
+  for (const QualitySettings& mode : modes) {
+    const Output one = renderQuality(scene, camera, 72, 40, mode, 1);
+    for (const int threads : {2, 8}) {
+      const Output many = renderQuality(scene, camera, 72, 40, mode, threads);
+      const char* name = mode.maximumError ? "adaptive" : toString(mode.shading);
+      EXPECT_TRUE(std::ranges::equal(one.framebuffer.color(), many.framebuffer.color()))
+          << name << " x" << mode.samplesPerPixel << ", " << threads << " threads";
+      EXPECT_TRUE(std::ranges::equal(one.framebuffer.depth(), many.framebuffer.depth())) << name;
+      EXPECT_TRUE(std::ranges::equal(one.framebuffer.polygonId(), many.framebuffer.polygonId()))
+          << name;
+      EXPECT_EQ(one.estimate, many.estimate) << name;
+      EXPECT_EQ(one.stats.samplesReshaded, many.stats.samplesReshaded) << name;
+    }
+  }
+}
+
+// Colors given at the points, unlit (ambient light 1, so C = Cd): Gouraud and Phong both show
+// the colors interpolated with perspective-correct weights, which for a point of the plane
+// z = 0 are its barycentric coordinates in the triangle.
+TEST(QualityRenderer, PointColorsAreInterpolatedPerspectiveCorrectly) {
+  Mesh triangle;
+  triangle.addPoint({-1.0, -1.0, 0.0});
+  triangle.addPoint({1.5, -0.8, 0.0});
+  triangle.addPoint({-0.6, 1.4, 0.0});
+  triangle.addPolygon({0, 1, 2});
+  const std::vector<Rgba8> colors = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}};
+  MeshView view = triangle.view();
+  view.pointColors = colors;
+  LightSet unlit;
+  unlit.ambient = {Color(1.0f), 1.0};
+  const Scene scene = testing::oneMeshScene(view, Material{}, unlit);
+  Camera camera;
+  camera.position = {0.4, -2.0, 1.6};  // oblique: affine interpolation in the window would fail
+  camera.focalPoint = {0.0, 0.0, 0.0};
+  camera.viewAngleDegrees = 70.0;
+  const int width = 96, height = 80;
+  const CameraRays rays(camera, width, height);
+  for (const Shading shading : {Shading::Gouraud, Shading::Phong}) {
+    const Output out = renderQuality(scene, camera, width, height, {.shading = shading});
+    int checked = 0, worst = 0;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        if (out.framebuffer.polygonIdAt(x, y) < 0) continue;
+        const Ray ray = rays.through({x + 0.5, y + 0.5});
+        const glm::dvec3 p = ray.origin - ray.direction * (ray.origin.z / ray.direction.z);
+        // Barycentric coordinates of p in the triangle, in the plane.
+        const glm::dvec2 a(-1.0, -1.0), b(1.5, -0.8), c(-0.6, 1.4);
+        const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        const double wb = ((p.x - a.x) * (c.y - a.y) - (c.x - a.x) * (p.y - a.y)) / area;
+        const double wc = ((b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y)) / area;
+        const double wa = 1.0 - wb - wc;
+        if (std::min({wa, wb, wc}) < 0.0) continue;  // center just outside: clamped, skip
+        const Rgba8 expected = toRgba8(Color(wa, wb, wc));
+        worst = std::max(worst, channelDifference(out.framebuffer.colorAt(x, y), expected));
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 1000) << toString(shading);
+    EXPECT_LE(worst, 1) << toString(shading);
+  }
+}
+
+// A box's corners keep their faces' normals (every edge is sharp at the 30° feature angle):
+// under a directional light and a parallel view, Phong is flat, and the bound says so.
+TEST(QualityRenderer, PhongOfSharpFacesIsFlatAndTheBoundIsZero) {
+  const Mesh box = testing::makeBox({-1, -1, -1}, {1, 1, 1});
+  Material material = testing::shinyMaterial();
+  LightSet lights;
+  lights.lights.push_back(DirectionalLight{{-1, -2, -3}, Color(0.9f)});
+  const Scene scene = testing::oneMeshScene(box.view(), material, lights);
+  Camera camera = fitCamera(box, {-0.5, -0.6, -1});
+  camera.parallelProjection = true;
+  camera.parallelScale = 2.0;
+  const Output flat = renderQuality(scene, camera, 64, 64, {.estimateError = true});
+  const Output phong = renderQuality(scene, camera, 64, 64, {.shading = Shading::Phong});
+  int worst = 0, interior = 0;
+  for (int y = 1; y + 1 < 64; ++y) {
+    for (int x = 1; x + 1 < 64; ++x) {
+      worst = std::max(worst, channelDifference(flat.framebuffer.colorAt(x, y),
+                                                phong.framebuffer.colorAt(x, y)));
+      // Inside a face the estimate is the bound (0) plus rounding; across an edge it also
+      // counts the neighbour's color, which the converged image mixes in.
+      bool inside = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          inside &=
+              flat.framebuffer.polygonIdAt(x + dx, y + dy) == flat.framebuffer.polygonIdAt(x, y);
+      if (!inside || flat.framebuffer.polygonIdAt(x, y) < 0) continue;
+      EXPECT_EQ(flat.estimate[flat.framebuffer.indexOf(x, y)], 0.5f) << x << ", " << y;
+      ++interior;
+    }
+  }
+  EXPECT_LE(worst, 1);
+  EXPECT_GT(interior, 1000);
+  EXPECT_GT(flat.stats.predictedMaxError, 50.0);  // the box's edges
+  EXPECT_GT(phong.stats.samplesReshaded, 1000u);
+}
+
+// Flat against the exact sphere: Phong and Gouraud are below it at every tessellation, and
+// Phong below Gouraud; 16 samples per pixel are below 1 on the silhouette.
+TEST(QualityRenderer, SmoothShadingBeatsFlatOnTheExactSphere) {
+  const int width = 160, height = 120;
+  const Camera camera = sphereCamera();
+  const FloatImage reference =
+      renderAnalyticReference(exactSphere(), camera, width, height, {.samplesPerPixel = 64}).image;
+  for (const int segments : {12, 24, 48}) {
+    const Mesh sphere = makeUvSphere(segments, segments / 2 + 1);
+    const Scene scene = sphereScene(sphere);
+    const auto error = [&](Shading shading) {
+      const Output out = renderQuality(scene, camera, width, height, {.shading = shading});
+      return compareImages(reference, toFloatImage(out.framebuffer)).interiorRmse;
+    };
+    const double flat = error(Shading::Flat), gouraud = error(Shading::Gouraud),
+                 phong = error(Shading::Phong);
+    std::printf("%3d segments: interior RMSE flat %.3f, Gouraud %.3f, Phong %.3f\n", segments, flat,
+                gouraud, phong);
+    EXPECT_LT(phong, flat) << segments;
+    EXPECT_LT(phong, gouraud) << segments;
+    // Coarser, lighting only the corners misses the highlight about as much as flat does.
+    if (segments >= 24) {
+      EXPECT_LT(gouraud, flat) << segments;
+    }
+  }
+}
+
+// RMSE over the pixels the exact sphere covers only in part.
+double silhouetteRmse(const FloatImage& reference, const Framebuffer& image) {
+  const ImageError error = compareImages(reference, toFloatImage(image));
+  double squares = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
+    if (reference.coverage[i] > 0.0f && reference.coverage[i] < 1.0f) {
+      squares += double(error.errorImage[i]) * error.errorImage[i];
+      ++count;
+    }
+  }
+  return std::sqrt(squares / double(count));
+}
+
+TEST(QualityRenderer, SixteenSamplesBeatOneOnTheSilhouette) {
+  const int width = 120, height = 90;
+  const Camera camera = sphereCamera();
+  const FloatImage reference =
+      renderAnalyticReference(exactSphere(), camera, width, height, {.samplesPerPixel = 256}).image;
+  const Mesh sphere = makeUvSphere(64, 33);
+  const Scene scene = sphereScene(sphere);
+  double previous = INFINITY;
+  for (const int samples : {1, 4, 16}) {
+    const Output out = renderQuality(scene, camera, width, height,
+                                     {.shading = Shading::Phong, .samplesPerPixel = samples});
+    const double rmse = silhouetteRmse(reference, out.framebuffer);
+    std::printf("%2d samples: silhouette RMSE %.2f\n", samples, rmse);
+    EXPECT_LT(rmse, previous) << samples;
+    previous = rmse;
+  }
+}
+
+// The estimate bounds flat against Phong at the same samples: each flat pixel is within its
+// estimate (plus 0.5 for rounding the Phong image) of the Phong pixel, on every pixel.
+TEST(QualityRenderer, EstimateBoundsFlatAgainstPhongOnEveryPixel) {
+  const Camera camera = sphereCamera();
+  for (const int segments : {8, 16, 32, 64}) {
+    const Mesh sphere = makeUvSphere(segments, segments / 2 + 1);
+    const Scene scene = sphereScene(sphere);
+    for (const int samples : {1, 4}) {
+      const Output flat =
+          renderQuality(scene, camera, 96, 72, {.samplesPerPixel = samples, .estimateError = true});
+      const Output phong = renderQuality(scene, camera, 96, 72,
+                                         {.shading = Shading::Phong, .samplesPerPixel = samples});
+      double worstRatio = 0.0, measuredSquares = 0.0;
+      std::size_t covered = 0;
+      for (std::size_t i = 0; i < flat.framebuffer.pixelCount(); ++i) {
+        if (flat.framebuffer.polygonId()[i] < 0) continue;
+        const int difference =
+            channelDifference(flat.framebuffer.color()[i], phong.framebuffer.color()[i]);
+        EXPECT_LE(difference, flat.estimate[i] + 0.5)
+            << segments << " segments, " << samples << " samples, pixel " << i;
+        worstRatio = std::max(worstRatio, difference / (flat.estimate[i] + 0.5));
+        measuredSquares += double(difference) * difference;
+        ++covered;
+      }
+      std::printf(
+          "%2d segments x%d: predicted RMSE %6.2f max %6.2f; measured against Phong "
+          "RMSE %6.2f; tightest pixel at %.0f %% of its bound\n",
+          segments, samples, flat.stats.predictedRmse, flat.stats.predictedMaxError,
+          std::sqrt(measuredSquares / double(covered)), 100.0 * worstRatio);
+    }
+  }
+}
+
+TEST(QualityRenderer, AdaptiveStaysWithinItsBudgetOfPhongAndKeepsFlatFacesFlat) {
+  const Mesh sphere = makeUvSphere(48, 25);
+  const Mesh box = testing::makeBox({-1.3, -1.0, -0.2}, {-0.4, 0.2, 1.2});
+  // A directional light: flat faces are then exactly flat under Phong too (their bound is 0).
+  LightSet light;
+  light.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
+  Scene scene = testing::oneMeshScene(sphere.view(), testing::shinyMaterial(), light);
+  scene.meshes.push_back({box.view(), testing::shinyMaterial()});
+  const Camera camera = sphereCamera();
+  const Output phong = renderQuality(scene, camera, 96, 64, {.shading = Shading::Phong});
+  std::size_t previousReshaded = 0;
+  for (const double budget : {8.0, 4.0, 2.0, 1.0}) {
+    const Output adaptive = renderQuality(scene, camera, 96, 64, {.maximumError = budget});
+    int worst = 0;
+    for (std::size_t i = 0; i < phong.framebuffer.pixelCount(); ++i) {
+      worst = std::max(
+          worst, channelDifference(adaptive.framebuffer.color()[i], phong.framebuffer.color()[i]));
+    }
+    std::printf("budget %.0f: %zu of %zu samples Phong-shaded, largest difference to Phong %d\n",
+                budget, adaptive.stats.samplesReshaded, phong.stats.samplesReshaded, worst);
+    EXPECT_LE(worst, budget + 0.5) << budget;
+    EXPECT_LT(adaptive.stats.samplesReshaded, phong.stats.samplesReshaded) << budget;
+    EXPECT_GE(adaptive.stats.samplesReshaded, previousReshaded) << budget;
+    EXPECT_LT(adaptive.stats.polygonsReshaded, phong.stats.polygonsReshaded) << budget;
+    previousReshaded = adaptive.stats.samplesReshaded;
+  }
+}
+
+TEST(QualityRenderer, BadSettingsAndMismatchedMeshesAreNamed) {
+  const Mesh sphere = makeUvSphere(8, 5);
+  const Scene scene = sphereScene(sphere);
+  const Camera camera = sphereCamera();
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(16, 16);
+  const auto message = [&](const QualitySettings& settings,
+                           std::span<const ShadingMesh> shading = {}) {
+    try {
+      quality.render(scene, shading, camera, framebuffer, settings);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({.samplesPerPixel = 2}).find("samplesPerPixel is 2"), std::string::npos);
+  EXPECT_NE(message({.maximumError = -1.0}).find("maximumError"), std::string::npos);
+  const std::vector<ShadingMesh> two(2);
+  EXPECT_NE(message({.shading = Shading::Phong}, two).find("2 ShadingMeshes for 1"),
+            std::string::npos);
+  Framebuffer huge(5000, 8);
+  EXPECT_THROW(quality.render(scene, {}, camera, huge, {.samplesPerPixel = 16}), Error);
+  MeshView badColors = sphere.view();
+  const std::vector<Rgba8> three(3);
+  badColors.pointColors = three;
+  EXPECT_THROW(ShadingMesh{badColors}, Error);
+}
+
+}  // namespace
+}  // namespace facet
