@@ -820,6 +820,7 @@ int Run(int argc, char** argv)
   render->GetProperty()->SetInterpolation(o.Interpolation);
   render->SetSamplesPerPixel(o.Samples);
   render->SetMaximumError(o.MaxError);
+  render->EstimateErrorOn(); // the tool says how far flat shading can be off
   if (o.Painter)
   {
     render->SetVisibilityModeToPainterSort();

@@ -89,9 +89,13 @@ TEST(QualityFilter, InterpolationPicksTheShadingWithoutAWarning)
   EXPECT_NE(messages.Last.find("Physically based"), std::string::npos) << messages.Last;
 }
 
-TEST(QualityFilter, EveryRenderReportsItsEstimate)
+TEST(QualityFilter, EstimateReportedWhenAsked)
 {
   auto filter = SphereFilter(16, VTK_FLAT);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetFieldData()->GetArray("FacetErrorEstimate"), nullptr)
+    << "off by default: it is not free yet";
+  filter->EstimateErrorOn();
   filter->Update();
   const double predictedRmse =
     FieldValue(filter->GetOutput(), "FacetErrorEstimate", "PredictedRMSE");
