@@ -288,6 +288,7 @@ void Renderer::parallelFor(std::size_t count, std::size_t grain,
 
 RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, int height) const {
   detail::validateSceneInputs(scene, camera, width, height);
+  detail::validateMeshHeaders(scene);  // the bounds read the points
   std::vector<detail::Box> bounds;
   for (const SceneMesh& mesh : scene.meshes)
     bounds.push_back(detail::boundsOf(mesh.mesh));

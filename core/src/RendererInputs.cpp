@@ -53,6 +53,10 @@ void validateRenderInputs(const Scene& scene, const Camera& camera, const Frameb
   if (!target.color || (!target.depth && depthOutput) || !target.polygonId) {
     throw Error("FramebufferView has a null plane");
   }
+  validateMeshHeaders(scene);
+}
+
+void validateMeshHeaders(const Scene& scene) {
   validateCounts(scene);
   for (std::size_t m = 0; m < scene.meshes.size(); ++m)
     validateMeshHeader(scene.meshes[m].mesh, m);

@@ -17,6 +17,8 @@ void validateSceneInputs(const Scene& scene, const Camera& camera, int width, in
 // The same, and a null plane (the depth plane may be null without depth output).
 void validateRenderInputs(const Scene& scene, const Camera& camera, const FramebufferView& target,
                           bool depthOutput);
+// The meshes' counts and arrays (non-null where counts say there is data), not their contents.
+void validateMeshHeaders(const Scene& scene);
 
 // The background everywhere: a valid image rather than a half-painted one.
 void clearTarget(const FramebufferView& target, Rgba8 background);

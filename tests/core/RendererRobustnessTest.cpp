@@ -59,6 +59,23 @@ TEST(RendererErrors, BadOffsetsAreNamed) {
             std::string::npos);
 }
 
+// Renderer::plan bounds the points: a mesh without point data is an error there too, not a
+// read through a null pointer (the core fuzzer's seed corpus found it).
+TEST(RendererErrors, PlanNamesAMeshWithoutPointData) {
+  Mesh mesh = makeBox({-1, -1, -1}, {1, 1, 1});
+  MeshView view = mesh.view();
+  view.points.data = nullptr;
+  const Scene scene = oneMeshScene(view);
+  Renderer renderer;
+  try {
+    renderer.plan(scene, frontCamera(), 32, 32);
+    ADD_FAILURE() << "plan() accepted a mesh whose points are null";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("points"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(errorOf(scene, frontCamera()).empty(), false) << "render() rejects it as well";
+}
+
 TEST(RendererErrors, BadCameraSizeLightsAndMaterialsAreNamed) {
   const Mesh box = makeBox({-1, -1, -1}, {1, 1, 1});
   Camera camera = frontCamera();
