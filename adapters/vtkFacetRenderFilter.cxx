@@ -55,6 +55,16 @@ public:
   static vtkFacetImageRenderer::Settings SettingsOf(vtkFacetRenderFilter* filter, bool parallel);
   static vtkFacetQuality::Settings QualityOf(vtkFacetRenderFilter* filter);
 
+  // The camera to render with, fitted to `bounds` if automatic, and the scene's lights.
+  facet::Camera ViewOf(vtkFacetRenderFilter* filter, const double bounds[6], facet::Scene& scene);
+  // Renders in the quality mode asked for, with its reports; false after an error.
+  bool Render(vtkFacetRenderFilter* filter,
+    vtkPolyData* input,
+    const facet::Scene& scene,
+    const facet::Camera& camera,
+    vtkFacetImageRenderer::Settings& settings,
+    vtkImageData* output);
+
   // The bounds to fit the automatic camera to: the input's finite points, across processes
   // those of every piece (this is where the processes first meet: the compositor's Prepare).
   void BoundsOf(vtkFacetRenderFilter* filter, bool parallel, double bounds[6]);
@@ -194,6 +204,53 @@ void vtkFacetRenderFilter::vtkInternals::BoundsOf(vtkFacetRenderFilter* filter,
   composite.ToAllRanks = filter->CompositeToAllRanks != 0;
   composite.Method = static_cast<vtkFacetCompositor::Strategy>(filter->CompositeStrategy);
   this->Compositor.Prepare(filter->Controller, composite, bounds, this->Messages);
+}
+
+//------------------------------------------------------------------------------
+facet::Camera vtkFacetRenderFilter::vtkInternals::ViewOf(vtkFacetRenderFilter* filter,
+  const double bounds[6],
+  facet::Scene& scene)
+{
+  const int width = filter->Size[0], height = filter->Size[1];
+  vtkCamera* camera =
+    this->CameraFor(filter->Camera, filter->FitCameraToInput != 0, bounds, width, height);
+  const facet::Camera view =
+    vtkFacetSceneConverter::ConvertCamera(camera, width, height, this->Messages);
+  scene.lights = vtkFacetSceneConverter::ConvertLights(
+    filter->Lights, camera, LightOptionsOf(filter), this->Messages);
+  return view;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
+  vtkPolyData* input,
+  const facet::Scene& scene,
+  const facet::Camera& camera,
+  vtkFacetImageRenderer::Settings& settings,
+  vtkImageData* output)
+{
+  const int conversions = this->Actor.GetNumberOfConversions();
+  settings.RenderWith =
+    this->Quality.Prepare(scene, input, QualityOf(filter), conversions > 0, this->Messages);
+  if (!this->Image.Render(scene,
+        camera,
+        settings,
+        output,
+        this->CellLabels(input, settings, this->Messages),
+        conversions,
+        this->Messages))
+  {
+    return false;
+  }
+  this->Quality.AddOutputs(scene,
+    camera,
+    this->Image.GetPolygonIds(),
+    settings.Background,
+    settings.TwoSidedLighting,
+    filter->NumberOfThreads,
+    output,
+    this->Messages);
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -513,44 +570,16 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   }
   internals.Image.ConversionDone();
 
-  // The camera (across processes, fitted to the union of all pieces' bounds: all render one
-  // view), the lights and the rest of the image's settings.
+  // The camera, fitted across processes to the union of all pieces' bounds (all render one
+  // view), and the lights.
   const bool parallel = vtkFacetCompositor::IsParallel(this->Controller);
   double bounds[6];
   internals.BoundsOf(this, parallel, bounds);
-  vtkCamera* camera = internals.CameraFor(
-    this->Camera, this->FitCameraToInput != 0, bounds, this->Size[0], this->Size[1]);
-  const facet::Camera facetCamera =
-    vtkFacetSceneConverter::ConvertCamera(camera, this->Size[0], this->Size[1], messages);
-  scene.lights = vtkFacetSceneConverter::ConvertLights(
-    this->Lights, camera, internals.LightOptionsOf(this), messages);
-  vtkFacetImageRenderer::Settings settings = internals.SettingsOf(this, parallel);
-  settings.RenderWith = internals.Quality.Prepare(scene,
-    input,
-    internals.QualityOf(this),
-    internals.Actor.GetNumberOfConversions() > 0,
-    messages);
+  const facet::Camera camera = internals.ViewOf(this, bounds, scene);
 
-  // Render straight into the output's arrays, then the quality modes' reports and, across
-  // processes, the composite.
-  const bool rendered = internals.Image.Render(scene,
-    facetCamera,
-    settings,
-    output,
-    internals.CellLabels(input, settings, messages),
-    internals.Actor.GetNumberOfConversions(),
-    messages);
-  if (rendered)
-  {
-    internals.Quality.AddOutputs(scene,
-      facetCamera,
-      internals.Image.GetPolygonIds(),
-      settings.Background,
-      settings.TwoSidedLighting,
-      this->NumberOfThreads,
-      output,
-      messages);
-  }
+  // Render straight into the output's arrays, then composite across processes.
+  vtkFacetImageRenderer::Settings settings = internals.SettingsOf(this, parallel);
+  const bool rendered = internals.Render(this, input, scene, camera, settings, output);
   if (parallel)
   {
     internals.Compositor.Composite(internals.Image, output, rendered, messages);
