@@ -71,8 +71,7 @@ public:
   // Turns polygon ids into CellId (across processes: global ids if the input has them, and
   // the rank in RankId); nothing without CellId.
   vtkFacetImageRenderer::IdMap CellLabels(vtkPolyData* input,
-    const vtkFacetImageRenderer::Settings& settings,
-    vtkFacetMessages& messages);
+    const vtkFacetImageRenderer::Settings& settings);
   // Across processes Depth and CellId are made to composite by: removed if not asked for.
   static void RemoveArraysNotAsked(vtkFacetRenderFilter* filter, vtkImageData* output);
 };
@@ -236,7 +235,7 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
         camera,
         settings,
         output,
-        this->CellLabels(input, settings, this->Messages),
+        this->CellLabels(input, settings),
         conversions,
         this->Messages))
   {
@@ -255,15 +254,15 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
 
 //------------------------------------------------------------------------------
 vtkFacetImageRenderer::IdMap vtkFacetRenderFilter::vtkInternals::CellLabels(vtkPolyData* input,
-  const vtkFacetImageRenderer::Settings& settings,
-  vtkFacetMessages& messages)
+  const vtkFacetImageRenderer::Settings& settings)
 {
   if (!settings.CellIds)
   {
     return {};
   }
   const bool ranks = settings.RankIds;
-  vtkDataArray* globalIds = ranks ? vtkFacetCompositor::GlobalIdsOf(input, messages) : nullptr;
+  vtkDataArray* globalIds =
+    ranks ? vtkFacetCompositor::GlobalIdsOf(input, this->Messages) : nullptr;
   return [this, ranks, globalIds](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
     vtkIdType* cellIds = this->Image.GetCellIds()->GetPointer(0);
     this->Actor.CellIdsOf(polygonIds, cellIds, begin, end);
