@@ -104,7 +104,9 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
   const auto place =
     [&](facet::SceneMesh& placed, facet::MeshView mesh, std::span<const facet::Rgba8> colors) {
       mesh.points = world;
+      mesh.version = part.Transform.Version(mesh.version);
       mesh.polygonColors = colors;
+      mesh.colorVersion = part.Colors.GetVersion();
       mesh.pointColors = part.Colors.PointColors();
       mesh.closedSurface = mesh.closedSurface && part.Transform.KeepsOrientation();
       placed = { mesh, material };

@@ -70,5 +70,6 @@ facet::PointArray vtkFacetActorTransform::Update(const facet::PointArray& points
   this->Matrix = elements;
   this->Source = points;
   this->Valid = true;
+  this->Transformed.Modified();
   return facet::PointArray::ofXyz(std::span<const double>(this->World));
 }

@@ -23,8 +23,11 @@
 #ifndef vtkFacetActorTransform_h
 #define vtkFacetActorTransform_h
 
+#include "vtkTimeStamp.h"
+
 #include "facet/Mesh.h"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -48,12 +51,20 @@ public:
   /// Whether the last matrix was the identity (the points are the model points).
   bool IsIdentity() const { return this->Identity; }
 
+  /// The MeshView::version of the last world points, for model points of version `points`:
+  /// theirs under the identity, else also when they were last transformed (VTK's clock).
+  vtkMTimeType Version(vtkMTimeType points) const
+  {
+    return this->Identity ? points : std::max(points, this->Transformed.GetMTime());
+  }
+
 private:
   std::array<double, 16> Matrix{};
   facet::PointArray Source;
   bool Valid = false;
   bool Identity = true;
   bool Orientation = true;
+  vtkTimeStamp Transformed;
   std::vector<double> World; // xyz, for a matrix other than the identity
 };
 

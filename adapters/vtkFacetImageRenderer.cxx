@@ -153,31 +153,34 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
   vtkFacetMessages& messages)
 {
   const int width = settings.Width, height = settings.Height;
-  const bool actorIds = settings.ActorIds, rankIds = settings.RankIds;
   const vtkIdType pixels = static_cast<vtkIdType>(width) * height;
   output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
   output->SetOrigin(0.0, 0.0, 0.0);
   vtkPointData* pointData = output->GetPointData();
   pointData->SetScalars(OutputArray(this->Rgba, "RGBA", 4, pixels));
-  pointData->AddArray(OutputArray(this->Depth, "Depth", 1, pixels));
-  pointData->AddArray(OutputArray(this->CellIds, "CellId", 1, pixels));
-  if (actorIds)
-  {
-    pointData->AddArray(OutputArray(this->ActorIds, "ActorId", 1, pixels));
-  }
-  if (rankIds)
-  {
-    pointData->AddArray(OutputArray(this->RankIds, "RankId", 1, pixels));
-  }
-  if (!this->Rgba || !this->Depth || !this->CellIds || (actorIds && !this->ActorIds) ||
-    (rankIds && !this->RankIds))
+  // An array not asked for is released, not kept.
+  const auto add = [&](auto& kept, bool wanted, const char* name) {
+    if (!wanted)
+    {
+      kept = nullptr;
+      return true;
+    }
+    pointData->AddArray(OutputArray(kept, name, 1, pixels));
+    return kept != nullptr;
+  };
+  const bool allocated = add(this->Depth, settings.Depth, "Depth") &&
+    add(this->CellIds, settings.CellIds, "CellId") &&
+    add(this->ActorIds, settings.ActorIds, "ActorId") &&
+    add(this->RankIds, settings.RankIds, "RankId");
+  if (!this->Rgba || !allocated)
   {
     messages.AddError("cannot allocate the " + std::to_string(width) + " x " +
       std::to_string(height) + " output image");
     return false;
   }
   this->PolygonIds.resize(static_cast<std::size_t>(pixels));
+  this->RenderDepth.resize(settings.Composited && settings.Depth ? pixels : 0);
   this->Width = width;
   this->Height = height;
   return true;
@@ -196,10 +199,15 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
   {
     return false;
   }
+  // The renderer's planes: kept from one execution to the next, untouched in between, so
+  // that it can reuse the frame they hold.
+  float* depth = !settings.Depth ? nullptr
+    : settings.Composited        ? this->RenderDepth.data()
+                                 : this->Depth->GetPointer(0);
   const facet::FramebufferView target{ this->Width,
     this->Height,
     reinterpret_cast<facet::Rgba8*>(this->Rgba->GetPointer(0)),
-    this->Depth->GetPointer(0),
+    depth,
     this->PolygonIds.data() };
   facet::RenderStats stats;
   try
@@ -207,6 +215,8 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
     this->Renderer.setThreadCount(settings.Threads);
     this->Renderer.setVisibility(settings.Visibility);
     this->Renderer.setTwoSidedLighting(settings.TwoSidedLighting);
+    this->Renderer.setDepthOutput(settings.Depth);
+    this->Renderer.setRules(settings.Rules);
     const double* b = settings.Background;
     this->Renderer.setBackground(
       facet::Color(static_cast<float>(b[0]), static_cast<float>(b[1]), static_cast<float>(b[2])),
@@ -231,7 +241,20 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
   }
   const Clock::time_point outputStart = Clock::now();
   const std::int32_t* polygonIds = this->PolygonIds.data();
-  this->ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) { mapIds(polygonIds, begin, end); });
+  const float* renderDepth = this->RenderDepth.empty() ? nullptr : this->RenderDepth.data();
+  if (mapIds || renderDepth)
+  {
+    this->ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
+      if (renderDepth)
+      {
+        std::copy(renderDepth + begin, renderDepth + end, this->Depth->GetPointer(0) + begin);
+      }
+      if (mapIds)
+      {
+        mapIds(polygonIds, begin, end);
+      }
+    });
+  }
   this->OutputSeconds = SecondsSince(outputStart);
   this->AddFieldData(output, stats, conversions);
   this->Algorithm->UpdateProgress(1.0);
@@ -284,11 +307,58 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "PixelsCovered", count(stats.pixelsCovered) } });
   AddNamedComponents<vtkIdTypeArray>(
     fieldData, "FacetMeshConverted", { { "Converted", conversions } });
-  this->Plan = stats.plan.describe();
+  this->Plan = stats.describe();
   vtkNew<vtkStringArray> plan;
   plan->SetName("FacetRenderPlan");
   plan->InsertNextValue(this->Plan);
   fieldData->AddArray(plan);
+  AddPlanNumbers(fieldData, stats.plan);
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetImageRenderer::AddPlanNumbers(vtkFieldData* fieldData, const facet::RenderPlan& plan)
+{
+  AddNamedComponents<vtkIntArray>(
+    fieldData, "FacetRenderPath", { { "Path", static_cast<int>(plan.path) } });
+  // One component per rule, named as facet::Rule names it.
+  static_assert(facet::kRuleCount == 6, "name the new rule here");
+  const char* names[facet::kRuleCount] = { "LightsThatReachNothing",
+    "GeometryOutsideView",
+    "HiddenGeometry",
+    "AmbientOnly",
+    "OneColor",
+    "ClosedSurfaces" };
+  const auto perRule = [&](auto array, const char* name, auto value) {
+    array->SetName(name);
+    array->SetNumberOfComponents(facet::kRuleCount);
+    array->SetNumberOfTuples(1);
+    for (int r = 0; r < facet::kRuleCount; ++r)
+    {
+      array->SetComponentName(r, names[r]);
+      array->SetTypedComponent(0, r, value(plan.rules[r]));
+    }
+    fieldData->AddArray(array);
+  };
+  using Outcome = facet::RuleOutcome;
+  perRule(vtkNew<vtkIntArray>(), "FacetRenderPlanRulesAllowed", [](const Outcome& o) {
+    return static_cast<int>(o.allowed);
+  });
+  perRule(vtkNew<vtkIntArray>(), "FacetRenderPlanRulesFired", [](const Outcome& o) {
+    return static_cast<int>(o.fired);
+  });
+  perRule(vtkNew<vtkIdTypeArray>(), "FacetRenderPlanRulesSkipped", [](const Outcome& o) {
+    return static_cast<vtkIdType>(o.skipped);
+  });
+  const facet::RenderPlan::LightCulling& lights = plan.lightCulling;
+  AddNamedComponents<vtkDoubleArray>(fieldData,
+    "FacetRenderPlanLightCulling",
+    { { "Lights", static_cast<double>(lights.lights) },
+      { "Dark", static_cast<double>(lights.dark) },
+      { "OutsideCone", static_cast<double>(lights.outsideCone) },
+      { "BelowTolerance", static_cast<double>(lights.belowTolerance) },
+      { "Tolerance", lights.tolerance },
+      { "ErrorBound", lights.errorBound },
+      { "ErrorBound8Bit", static_cast<double>(lights.errorBound8Bit) } });
 }
 
 //------------------------------------------------------------------------------

@@ -15,7 +15,19 @@
  * stopping when the algorithm's AbortExecute is set; then the front end's IdMap turns the
  * renderer's polygon ids into CellId (and ActorId), on the renderer's threads; then the field
  * data says what the render did and cost: `FacetRenderSeconds`, `FacetPhaseSeconds`,
- * `FacetCounts`, `FacetMeshConverted` and `FacetRenderPlan`.
+ * `FacetCounts`, `FacetMeshConverted`, `FacetRenderPlan` (RenderStats::describe) and the plan
+ * in numbers: `FacetRenderPath` (Path: 0 full, 1 re-shade, 2 resolve, facet::RenderPath),
+ * `FacetRenderPlanRulesAllowed`, `FacetRenderPlanRulesFired` (0 or 1) and
+ * `FacetRenderPlanRulesSkipped` (the work each left out: lights, polygons, triangles, shades
+ * or back faces, RenderPlan.h), one named component per rule, and `FacetRenderPlanLightCulling`
+ * (Lights, Dark, OutsideCone, BelowTolerance, Tolerance, ErrorBound, ErrorBound8Bit).
+ *
+ * Incremental rendering (facet/Renderer.h): the renderer's planes (Depth, or its own without
+ * depth output, and the polygon ids) are the same and untouched from one execution to the
+ * next while nobody else holds the output arrays, so an execution whose meshes carry the
+ * versions of the last (MeshView::version, colorVersion) and whose camera is unchanged
+ * re-shades or resolves the last frame. An array somebody still holds is replaced, and the
+ * render is then a full one.
  */
 
 #ifndef vtkFacetImageRenderer_h
@@ -54,9 +66,16 @@ public:
   {
     int Width = 640;
     int Height = 480;
+    bool Depth = true;     ///< add the Depth array (off: no window depth is computed)
+    bool CellIds = true;   ///< add the CellId array
     bool ActorIds = false; ///< add the ActorId array
     bool RankIds = false;  ///< add the RankId array (vtkFacetCompositor fills it)
-    int Threads = 0;       ///< 0: one per hardware thread
+    /// The front end writes into the output planes after Render (vtkFacetCompositor): the
+    /// renderer's depth plane is then one of this class's own, copied into Depth, so that the
+    /// next render can still reuse the frame it holds.
+    bool Composited = false;
+    facet::RenderRules Rules; ///< which rules may leave work out, incremental rendering
+    int Threads = 0;          ///< 0: one per hardware thread
     facet::Visibility Visibility = facet::Visibility::ZBuffer;
     bool TwoSidedLighting = true;
     double Background[3] = { 0.0, 0.0, 0.0 };
@@ -144,7 +163,8 @@ public:
   /// The last render's polygon id plane (before the IdMap), width × height.
   const std::int32_t* GetPolygonIds() const { return this->PolygonIds.data(); }
 
-  /// What the last render did and left out (empty before the first).
+  /// What the last render did and left out, counted and cost (RenderStats::describe; empty
+  /// before the first).
   const std::string& GetPlan() const { return this->Plan; }
 
   /**
@@ -157,6 +177,7 @@ private:
   using Clock = std::chrono::steady_clock;
   bool Allocate(const Settings& settings, vtkImageData* output, vtkFacetMessages& messages);
   void AddFieldData(vtkImageData* output, const facet::RenderStats& stats, int conversions);
+  static void AddPlanNumbers(vtkFieldData* fieldData, const facet::RenderPlan& plan);
 
   facet::Renderer Renderer;
   facet::HugePageVector<std::int32_t> PolygonIds; // the renderer's id plane, before mapping
@@ -165,6 +186,7 @@ private:
   vtkSmartPointer<vtkIdTypeArray> CellIds;
   vtkSmartPointer<vtkIntArray> ActorIds;
   vtkSmartPointer<vtkIntArray> RankIds;
+  facet::HugePageVector<float> RenderDepth; // the renderer's depth plane when Composited
   vtkAlgorithm* Algorithm = nullptr;
   int Width = 0;
   int Height = 0;

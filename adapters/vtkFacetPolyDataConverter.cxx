@@ -9,9 +9,11 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
 
 #include "facet/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -114,6 +116,19 @@ bool vtkFacetPolyDataConverter::Convert(vtkPolyData* input,
     this->StripView.closedSurface =
       this->NumberOfPolys == 0 && facet::isClosedSurface(this->StripView);
   }
+  // The views' versions (MeshView::version). Arrays read in place take the latest MTime of
+  // the points, the polys and the vtkPolyData itself (not its attributes: new scalars only
+  // re-shade). VTK's clock only moves forward, so any edit made the VTK way (the array's,
+  // the points' or the data's Modified) gives a new version. Arrays copied here are new at
+  // every conversion: they take its time.
+  vtkTimeStamp now;
+  now.Modified();
+  const auto timeOf = [](vtkObject* object) { return object ? object->GetMTime() : 0; };
+  this->PolygonView.version = this->PointCopy.empty()
+    ? std::max(
+        { input->vtkObject::GetMTime(), timeOf(input->GetPoints()), timeOf(input->GetPolys()) })
+    : now.GetMTime();
+  this->StripView.version = now.GetMTime();
   this->Input = input;
   this->InputTime = input->GetMTime();
   this->DetectedClosedSurfaces = detectClosedSurfaces;

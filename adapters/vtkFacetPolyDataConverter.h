@@ -41,7 +41,9 @@ public:
   /// Whether the last Update converted (false: the cached conversion was reused).
   bool ConvertedLastUpdate() const { return this->Converted; }
 
-  /// The meshes to render: polys first, strip triangles second; either may be empty.
+  /// The meshes to render: polys first, strip triangles second; either may be empty. Their
+  /// MeshView::version is the geometry's: the points' and polys' MTimes when read in place,
+  /// the conversion's time for arrays copied here (strips, points of other types).
   const facet::MeshView& Polygons() const { return this->PolygonView; }
   const facet::MeshView& StripTriangles() const { return this->StripView; }
 

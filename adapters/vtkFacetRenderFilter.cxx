@@ -20,6 +20,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
@@ -47,6 +48,32 @@ public:
   // The filter's camera, or the automatic camera: a copy of the filter's camera
   // (FitCameraToInput) or VTK's default camera, fitted to `bounds`.
   vtkCamera* CameraFor(vtkCamera* camera, bool fit, const double bounds[6], int width, int height);
+
+  // The settings an execution assembles, each from the filter's.
+  static vtkFacetSceneConverter::LightOptions LightOptionsOf(vtkFacetRenderFilter* filter);
+  vtkFacetActorConverter::Actor ActorOf(vtkFacetRenderFilter* filter, vtkPolyData* input);
+  static vtkFacetImageRenderer::Settings SettingsOf(vtkFacetRenderFilter* filter, bool parallel);
+  static vtkFacetQuality::Settings QualityOf(vtkFacetRenderFilter* filter);
+
+  // The camera to render with, fitted to `bounds` if automatic, and the scene's lights.
+  facet::Camera ViewOf(vtkFacetRenderFilter* filter, const double bounds[6], facet::Scene& scene);
+  // Renders in the quality mode asked for, with its reports; false after an error.
+  bool Render(vtkFacetRenderFilter* filter,
+    vtkPolyData* input,
+    const facet::Scene& scene,
+    const facet::Camera& camera,
+    vtkFacetImageRenderer::Settings& settings,
+    vtkImageData* output);
+
+  // The bounds to fit the automatic camera to: the input's finite points, across processes
+  // those of every piece (this is where the processes first meet: the compositor's Prepare).
+  void BoundsOf(vtkFacetRenderFilter* filter, bool parallel, double bounds[6]);
+  // Turns polygon ids into CellId (across processes: global ids if the input has them, and
+  // the rank in RankId); nothing without CellId.
+  vtkFacetImageRenderer::IdMap CellLabels(vtkPolyData* input,
+    const vtkFacetImageRenderer::Settings& settings);
+  // Across processes Depth and CellId are made to composite by: removed if not asked for.
+  static void RemoveArraysNotAsked(vtkFacetRenderFilter* filter, vtkImageData* output);
 };
 
 //------------------------------------------------------------------------------
@@ -89,6 +116,176 @@ vtkCamera* vtkFacetRenderFilter::vtkInternals::CameraFor(vtkCamera* camera,
   this->AutomaticCamera->DeepCopy(camera ? camera : fresh.Get());
   vtkFacetSceneConverter::FitCamera(this->AutomaticCamera, bounds, width, height);
   return this->AutomaticCamera;
+}
+
+//------------------------------------------------------------------------------
+vtkFacetSceneConverter::LightOptions vtkFacetRenderFilter::vtkInternals::LightOptionsOf(
+  vtkFacetRenderFilter* filter)
+{
+  vtkFacetSceneConverter::LightOptions lights;
+  lights.AddHeadlight = filter->AutomaticLightCreation && filter->Lights->GetNumberOfItems() == 0;
+  std::copy_n(filter->AmbientLightColor, 3, lights.AmbientColor);
+  return lights;
+}
+
+//------------------------------------------------------------------------------
+vtkFacetActorConverter::Actor vtkFacetRenderFilter::vtkInternals::ActorOf(
+  vtkFacetRenderFilter* filter,
+  vtkPolyData* input)
+{
+  vtkFacetActorConverter::Actor actor;
+  actor.Data = input;
+  actor.Coloring = this->ColoringOf(filter);
+  actor.Property = filter->GetProperty();
+  actor.Lighting = vtkFacetSceneConverter::LightingOf(filter->Lights, LightOptionsOf(filter));
+  actor.RendersInterpolation = true;
+  // Without a light the filter's surfaces are lit by nothing but the ambient light, as they
+  // always have been, not shown unlit.
+  if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)
+  {
+    actor.Lighting = vtkFacetSceneConverter::Lighting::Lights;
+  }
+  return actor;
+}
+
+//------------------------------------------------------------------------------
+vtkFacetImageRenderer::Settings vtkFacetRenderFilter::vtkInternals::SettingsOf(
+  vtkFacetRenderFilter* filter,
+  bool parallel)
+{
+  vtkFacetImageRenderer::Settings settings;
+  settings.Width = filter->Size[0];
+  settings.Height = filter->Size[1];
+  settings.Threads = filter->NumberOfThreads;
+  settings.Visibility = filter->VisibilityMode == PainterSort ? facet::Visibility::PainterSort
+                                                              : facet::Visibility::ZBuffer;
+  settings.TwoSidedLighting = filter->TwoSidedLighting != 0;
+  std::copy_n(filter->Background, 3, settings.Background);
+  settings.BackgroundAlpha = filter->BackgroundAlpha;
+  settings.Depth = filter->OutputDepth || parallel;
+  settings.CellIds = filter->OutputCellIds || parallel;
+  settings.RankIds = settings.Composited = parallel;
+  settings.Rules.lightTolerance = filter->LightCullingTolerance;
+  settings.Rules.incremental = filter->IncrementalRendering != 0;
+  return settings;
+}
+
+//------------------------------------------------------------------------------
+vtkFacetQuality::Settings vtkFacetRenderFilter::vtkInternals::QualityOf(
+  vtkFacetRenderFilter* filter)
+{
+  return { filter->GetProperty()->GetInterpolation(),
+    filter->SamplesPerPixel,
+    filter->MaximumError,
+    filter->ComputeError != 0,
+    filter->EstimateError != 0,
+    filter->ErrorEstimateArray != 0 };
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::vtkInternals::BoundsOf(vtkFacetRenderFilter* filter,
+  bool parallel,
+  double bounds[6])
+{
+  this->Actor.GetFiniteBounds(bounds);
+  if (!parallel)
+  {
+    return;
+  }
+  if (this->Messages.HasErrors())
+  {
+    vtkMath::UninitializeBounds(bounds); // this piece adds nothing
+  }
+  vtkFacetCompositor::Settings composite;
+  composite.Width = filter->Size[0];
+  composite.Height = filter->Size[1];
+  composite.Target = filter->CompositeRank;
+  composite.ToAllRanks = filter->CompositeToAllRanks != 0;
+  composite.Method = static_cast<vtkFacetCompositor::Strategy>(filter->CompositeStrategy);
+  this->Compositor.Prepare(filter->Controller, composite, bounds, this->Messages);
+}
+
+//------------------------------------------------------------------------------
+facet::Camera vtkFacetRenderFilter::vtkInternals::ViewOf(vtkFacetRenderFilter* filter,
+  const double bounds[6],
+  facet::Scene& scene)
+{
+  const int width = filter->Size[0], height = filter->Size[1];
+  vtkCamera* camera =
+    this->CameraFor(filter->Camera, filter->FitCameraToInput != 0, bounds, width, height);
+  const facet::Camera view =
+    vtkFacetSceneConverter::ConvertCamera(camera, width, height, this->Messages);
+  scene.lights = vtkFacetSceneConverter::ConvertLights(
+    filter->Lights, camera, LightOptionsOf(filter), this->Messages);
+  return view;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
+  vtkPolyData* input,
+  const facet::Scene& scene,
+  const facet::Camera& camera,
+  vtkFacetImageRenderer::Settings& settings,
+  vtkImageData* output)
+{
+  const int conversions = this->Actor.GetNumberOfConversions();
+  settings.RenderWith =
+    this->Quality.Prepare(scene, input, QualityOf(filter), conversions > 0, this->Messages);
+  if (!this->Image.Render(scene,
+        camera,
+        settings,
+        output,
+        this->CellLabels(input, settings),
+        conversions,
+        this->Messages))
+  {
+    return false;
+  }
+  this->Quality.AddOutputs(scene,
+    camera,
+    this->Image.GetPolygonIds(),
+    settings.Background,
+    settings.TwoSidedLighting,
+    filter->NumberOfThreads,
+    output,
+    this->Messages);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkFacetImageRenderer::IdMap vtkFacetRenderFilter::vtkInternals::CellLabels(vtkPolyData* input,
+  const vtkFacetImageRenderer::Settings& settings)
+{
+  if (!settings.CellIds)
+  {
+    return {};
+  }
+  const bool ranks = settings.RankIds;
+  vtkDataArray* globalIds =
+    ranks ? vtkFacetCompositor::GlobalIdsOf(input, this->Messages) : nullptr;
+  return [this, ranks, globalIds](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
+    vtkIdType* cellIds = this->Image.GetCellIds()->GetPointer(0);
+    this->Actor.CellIdsOf(polygonIds, cellIds, begin, end);
+    if (ranks)
+    {
+      this->Compositor.LabelPixels(
+        globalIds, cellIds, this->Image.GetRankIds()->GetPointer(0), begin, end);
+    }
+  };
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::vtkInternals::RemoveArraysNotAsked(vtkFacetRenderFilter* filter,
+  vtkImageData* output)
+{
+  if (!filter->OutputDepth)
+  {
+    output->GetPointData()->RemoveArray("Depth");
+  }
+  if (!filter->OutputCellIds)
+  {
+    output->GetPointData()->RemoveArray("CellId");
+  }
 }
 
 vtkStandardNewMacro(vtkFacetRenderFilter);
@@ -360,111 +557,32 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkInternals& internals = *this->Internals;
   vtkFacetMessages& messages = internals.Messages;
-  const int width = this->Size[0], height = this->Size[1];
   internals.Image.Start(this);
 
   // The actor: the input's polygons, colored as the mapper colors them, with the property's
-  // material (each kept from the last execution while unchanged). Without a light the
-  // filter's surfaces are lit by nothing but the ambient light, as they always have been,
-  // not shown unlit.
-  vtkFacetSceneConverter::LightOptions lights;
-  lights.AddHeadlight = this->AutomaticLightCreation && this->Lights->GetNumberOfItems() == 0;
-  std::copy_n(this->AmbientLightColor, 3, lights.AmbientColor);
-  vtkFacetActorConverter::Actor actor;
-  actor.Data = input;
-  actor.Coloring = internals.ColoringOf(this);
-  actor.Property = this->GetProperty();
-  actor.Lighting = vtkFacetSceneConverter::LightingOf(this->Lights, lights);
-  actor.RendersInterpolation = true;
-  if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)
-  {
-    actor.Lighting = vtkFacetSceneConverter::Lighting::Lights;
-  }
+  // material (each kept from the last execution while unchanged).
   facet::Scene scene;
-  if (internals.Actor.Update(actor, this->DetectClosedSurfaces != 0, messages))
+  if (internals.Actor.Update(
+        internals.ActorOf(this, input), this->DetectClosedSurfaces != 0, messages))
   {
     internals.Actor.AddTo(scene);
   }
   internals.Image.ConversionDone();
 
-  // The renderer: camera, lights and the rest of the image's settings. Across processes
-  // the camera is fitted to the union of all pieces' bounds: all render one view.
+  // The camera, fitted across processes to the union of all pieces' bounds (all render one
+  // view), and the lights.
   const bool parallel = vtkFacetCompositor::IsParallel(this->Controller);
   double bounds[6];
-  internals.Actor.GetFiniteBounds(bounds);
-  if (parallel)
-  {
-    if (messages.HasErrors())
-    {
-      vtkMath::UninitializeBounds(bounds); // this piece adds nothing
-    }
-    vtkFacetCompositor::Settings composite;
-    composite.Width = width;
-    composite.Height = height;
-    composite.Target = this->CompositeRank;
-    composite.ToAllRanks = this->CompositeToAllRanks != 0;
-    composite.Method = static_cast<vtkFacetCompositor::Strategy>(this->CompositeStrategy);
-    internals.Compositor.Prepare(this->Controller, composite, bounds, messages);
-  }
-  vtkCamera* camera =
-    internals.CameraFor(this->Camera, this->FitCameraToInput != 0, bounds, width, height);
-  const facet::Camera facetCamera =
-    vtkFacetSceneConverter::ConvertCamera(camera, width, height, messages);
-  scene.lights = vtkFacetSceneConverter::ConvertLights(this->Lights, camera, lights, messages);
-  vtkFacetImageRenderer::Settings settings;
-  settings.Width = width;
-  settings.Height = height;
-  settings.Threads = this->NumberOfThreads;
-  settings.Visibility = this->VisibilityMode == PainterSort ? facet::Visibility::PainterSort
-                                                            : facet::Visibility::ZBuffer;
-  settings.TwoSidedLighting = this->TwoSidedLighting != 0;
-  std::copy_n(this->Background, 3, settings.Background);
-  settings.BackgroundAlpha = this->BackgroundAlpha;
-  settings.RankIds = parallel;
-  settings.RenderWith = internals.Quality.Prepare(scene,
-    input,
-    { this->GetProperty()->GetInterpolation(),
-      this->SamplesPerPixel,
-      this->MaximumError,
-      this->ComputeError != 0,
-      this->EstimateError != 0,
-      this->ErrorEstimateArray != 0 },
-    internals.Actor.GetNumberOfConversions() > 0,
-    messages);
+  internals.BoundsOf(this, parallel, bounds);
+  const facet::Camera camera = internals.ViewOf(this, bounds, scene);
 
-  // Render straight into the output's RGBA and Depth arrays; polygon ids become cell ids
-  // (across processes: global ids if the input has them, and the rank in RankId).
-  vtkDataArray* globalIds = parallel ? vtkFacetCompositor::GlobalIdsOf(input, messages) : nullptr;
-  const bool rendered = internals.Image.Render(
-    scene,
-    facetCamera,
-    settings,
-    output,
-    [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
-      vtkIdType* cellIds = internals.Image.GetCellIds()->GetPointer(0);
-      internals.Actor.CellIdsOf(polygonIds, cellIds, begin, end);
-      if (parallel)
-      {
-        internals.Compositor.LabelPixels(
-          globalIds, cellIds, internals.Image.GetRankIds()->GetPointer(0), begin, end);
-      }
-    },
-    internals.Actor.GetNumberOfConversions(),
-    messages);
-  if (rendered)
-  {
-    internals.Quality.AddOutputs(scene,
-      facetCamera,
-      internals.Image.GetPolygonIds(),
-      settings.Background,
-      settings.TwoSidedLighting,
-      this->NumberOfThreads,
-      output,
-      messages);
-  }
+  // Render straight into the output's arrays, then composite across processes.
+  vtkFacetImageRenderer::Settings settings = internals.SettingsOf(this, parallel);
+  const bool rendered = internals.Render(this, input, scene, camera, settings, output);
   if (parallel)
   {
     internals.Compositor.Composite(internals.Image, output, rendered, messages);
+    internals.RemoveArraysNotAsked(this, output);
   }
   return messages.Report(this, output);
 }
@@ -490,6 +608,10 @@ void vtkFacetRenderFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeError: " << this->ComputeError << "\n";
   os << indent << "EstimateError: " << this->EstimateError << "\n";
   os << indent << "ErrorEstimateArray: " << this->ErrorEstimateArray << "\n";
+  os << indent << "OutputDepth: " << this->OutputDepth << "\n";
+  os << indent << "OutputCellIds: " << this->OutputCellIds << "\n";
+  os << indent << "LightCullingTolerance: " << this->LightCullingTolerance << "\n";
+  os << indent << "IncrementalRendering: " << this->IncrementalRendering << "\n";
   os << indent << "Property: " << this->Property << "\n";
   vtkFacetColoringMapper* coloring = this->Internals->Coloring;
   os << indent << "ScalarVisibility: " << coloring->GetScalarVisibility() << "\n";

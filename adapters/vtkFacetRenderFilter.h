@@ -12,10 +12,18 @@
  * - `Depth`: float window depth in [0, 1], 1 = background (VTK's z-buffer convention);
  * - `CellId`: vtkIdType, the input cell (vtkPolyData::GetCell numbering: verts, lines, polys,
  *   strips) seen at the pixel, -1 for background.
+ * (OutputDepth and OutputCellIds off leave the last two out, and the work that makes them.)
  * Its field data holds `FacetRenderSeconds` (total), `FacetPhaseSeconds` (named components
  * per phase), `FacetCounts` (named components: polygons drawn, shaded, culled, pixels...),
  * `FacetMeshConverted` (1 when this execution converted the input, 0 when it reused the
- * conversion kept from the last one) and `FacetRenderPlan` (what the render did and left out).
+ * conversion kept from the last one), `FacetRenderPlan` (text: what the render did, left out
+ * and why, counted and cost) and the plan in numbers: `FacetRenderPath` (0 full, 1 re-shade,
+ * 2 resolve), `FacetRenderPlanRulesAllowed`, `FacetRenderPlanRulesFired` and
+ * `FacetRenderPlanRulesSkipped` (one component per rule, named LightsThatReachNothing,
+ * GeometryOutsideView, HiddenGeometry, AmbientOnly, OneColor, ClosedSurfaces; skipped counts
+ * the lights, polygons, triangles, shades or back-facing meshes each left out) and
+ * `FacetRenderPlanLightCulling` (Lights, Dark, OutsideCone, BelowTolerance, Tolerance,
+ * ErrorBound, ErrorBound8Bit).
  *
  * Scene settings mean what they mean on vtkRenderer, vtkActor and vtkMapper: a vtkCamera
  * (none: one fitted to the input's finite points by vtkRenderer::ResetCamera, which
@@ -59,8 +67,12 @@
  * material, under an identity matrix.
  *
  * Re-rendering is cheap: the converted mesh is kept while the input is unchanged (points
- * and cells are read in place when their types allow), so a new camera or new lights only
- * render. Long renders report progress and stop when AbortExecute is set.
+ * and cells are read in place when their types allow), so a new camera only renders, and
+ * what changed decides how much (IncrementalRendering, judged by MTimes: of the input's
+ * points, polys and strips for the geometry; of the scalars, the lookup table and the
+ * coloring settings for the colors): new lights, a new property or new colors only re-shade
+ * the last frame, a new background only recolors it. Long renders report progress and stop
+ * when AbortExecute is set.
  *
  * Example (Python):
  * @code{.py}
@@ -471,8 +483,58 @@ public:
   vtkBooleanMacro(ErrorEstimateArray, vtkTypeBool);
   ///@}
 
+  ///@{
   /**
-   * What the last render did and left out, a few lines of text (empty before the first).
+   * Add the `Depth` array to the output (default: on). Off, window depths are not computed
+   * at all (facet::Renderer::setDepthOutput); RGBA is the same bytes.
+   */
+  vtkSetMacro(OutputDepth, vtkTypeBool);
+  vtkGetMacro(OutputDepth, vtkTypeBool);
+  vtkBooleanMacro(OutputDepth, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Add the `CellId` array to the output (default: on). Off, polygon ids are not turned into
+   * cell ids; RGBA is the same bytes. (Across MPI processes both are still computed, to
+   * composite by, and left out of the output.)
+   */
+  vtkSetMacro(OutputCellIds, vtkTypeBool);
+  vtkGetMacro(OutputCellIds, vtkTypeBool);
+  vtkBooleanMacro(OutputCellIds, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Leave out a point or spot light whose contribution to every channel of every polygon is
+   * at most this, in linear color units (0 to 1: black to full). The field data reports the
+   * lights left out and the bound on the error they may make (`FacetRenderPlanLightCulling`:
+   * ErrorBound, linear, and ErrorBound8Bit). Lights that add nothing at all (black, zero
+   * intensity, a spot cone that misses the data) are always left out (default: 0: only
+   * those).
+   */
+  vtkSetClampMacro(LightCullingTolerance, double, 0.0, 1.0);
+  vtkGetMacro(LightCullingTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Reuse the last image where the change allows it, as the field data's `FacetRenderPath`
+   * says: a change of only the lights, the property's material or colors, the lookup table
+   * or the scalars re-shades the last frame (no transform, set-up or raster), a change of
+   * only the background recolors it; a new camera, size or geometry renders in full. Each
+   * gives the same bytes as a full render. The output arrays are reused while nobody else
+   * holds them; one that is held is replaced, and the render is then a full one (default:
+   * on).
+   */
+  vtkSetMacro(IncrementalRendering, vtkTypeBool);
+  vtkGetMacro(IncrementalRendering, vtkTypeBool);
+  vtkBooleanMacro(IncrementalRendering, vtkTypeBool);
+  ///@}
+
+  /**
+   * What the last render did, left out and cost, a few lines of text (empty before the
+   * first): the field data's `FacetRenderPlan`.
    */
   const char* GetRenderPlan();
 
@@ -518,6 +580,10 @@ protected:
   vtkTypeBool ComputeError = 0;
   vtkTypeBool EstimateError = 0;
   vtkTypeBool ErrorEstimateArray = 0;
+  vtkTypeBool OutputDepth = 1;
+  vtkTypeBool OutputCellIds = 1;
+  double LightCullingTolerance = 0.0;
+  vtkTypeBool IncrementalRendering = 1;
 
 private:
   vtkFacetRenderFilter(const vtkFacetRenderFilter&) = delete;

@@ -116,6 +116,7 @@ void vtkFacetScalarColors::Update(vtkPolyData* input,
     this->LastTable = table;
     this->LastTableTime = tableTime;
     this->Valid = true;
+    this->Computed.Modified();
     if (scalars)
     {
       this->Warning = this->Compute(scalars, cellFlag != 0, table, input, mesh, settings);

@@ -14,14 +14,15 @@
  * UseLookupTableScalarRange. Cell scalars color each polygon (and every triangle of a strip);
  * point scalars are averaged per polygon, as flat shading shows one color per polygon
  * (VTK's OpenGL mapper interpolates them across the polygon even when flat shading), and
- * kept per point for the Gouraud and Phong modes, which interpolate them. The result is kept while the input, the settings and the table are
- * unchanged.
+ * kept per point for the Gouraud and Phong modes, which interpolate them. The result is kept while
+ * the input, the settings and the table are unchanged.
  */
 
 #ifndef vtkFacetScalarColors_h
 #define vtkFacetScalarColors_h
 
 #include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
 #include "vtkType.h"
 
 #include "facet/Color.h"
@@ -80,6 +81,10 @@ public:
   std::span<const facet::Rgba8> PointColors() const { return this->Point; }
   bool HasColors() const { return !this->Polygon.empty() || !this->Strip.empty(); }
 
+  /// The colors' MeshView::colorVersion: when they were last computed, on VTK's clock (so
+  /// never given twice).
+  vtkMTimeType GetVersion() const { return this->Computed.GetMTime(); }
+
   /// The table the last Update prepared (null: none) and its MTime once prepared.
   vtkScalarsToColors* GetPreparedTable() const { return this->LastTable; }
   vtkMTimeType GetPreparedTableTime() const { return this->LastTableTime; }
@@ -98,6 +103,7 @@ private:
   vtkScalarsToColors* LastTable = nullptr; // identity only
   vtkMTimeType LastTableTime = 0;
   bool Valid = false;
+  vtkTimeStamp Computed;
   std::string Warning; // said again at every execution that keeps these colors
   std::vector<facet::Rgba8> Polygon;
   std::vector<facet::Rgba8> Strip;

@@ -214,6 +214,7 @@ struct Options
   double MaxError = 0.0;
   std::optional<int> Threads;
   bool Progress = false, Quiet = false, Help = false;
+  bool Explain = false;
   // --report
   bool Report = false;
   std::vector<std::string> Inputs; // every positional argument
@@ -288,6 +289,8 @@ options:
       --painter           painter's algorithm instead of the z-buffer
   -t, --threads N         threads; 0 uses every core (default: )" +
     std::to_string(filter->GetNumberOfThreads()) + R"()
+      --explain           print the render's plan after it: what ran, what each rule
+                          left out and why, the time per phase
       --progress          always show the progress bar (default: on a terminal only)
   -q, --quiet             no progress bar and no summary
   -h, --help              this text
@@ -477,6 +480,10 @@ Options ParseOptions(int argc, char** argv)
         BadOption("--threads expects a whole number from 0 to 1024");
       }
       o.Threads = static_cast<int>(n);
+    }
+    else if (arg == "--explain")
+    {
+      o.Explain = true;
     }
     else if (arg == "--progress")
     {
@@ -877,6 +884,10 @@ int Run(int argc, char** argv)
       fieldData->GetArray("FacetRenderSeconds")->GetComponent(0, 0) * 1e3,
       estimate ? estimate->GetComponent(0, 0) : 0.0,
       estimate ? estimate->GetComponent(0, 1) : 0.0);
+  }
+  if (o.Explain)
+  {
+    std::fputs(render->GetRenderPlan(), stdout);
   }
   return 0;
 }

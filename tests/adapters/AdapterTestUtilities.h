@@ -19,6 +19,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <array>
+#include <functional>
 #include <gtest/gtest.h>
 #include <string>
 
@@ -136,7 +137,12 @@ struct MessageCounter
 
 // An algorithm that renders a width × height image of something covering over 1000 pixels
 // reports progress, and when aborted past 10 % stops early with a valid background image.
-inline void ExpectProgressReportedAndAbortable(vtkImageAlgorithm* algorithm, int width, int height)
+// `renderAgain` makes the next execution a full render (one with nothing changed would
+// only resolve the last frame, facet/Renderer.h: the abort must stop a whole render).
+inline void ExpectProgressReportedAndAbortable(vtkImageAlgorithm* algorithm,
+  int width,
+  int height,
+  const std::function<void()>& renderAgain)
 {
   struct Progress
   {
@@ -160,7 +166,7 @@ inline void ExpectProgressReportedAndAbortable(vtkImageAlgorithm* algorithm, int
   EXPECT_GT(FieldValue(image, "FacetCounts", "PixelsCovered"), 1000.0);
 
   progress.Abort = true;
-  algorithm->Modified();
+  renderAgain();
   algorithm->Update();
   algorithm->SetAbortExecute(0);
   algorithm->RemoveObserver(tag);

@@ -603,5 +603,6 @@ TEST(Progress, ReportedAndAbortable)
   renderer->AddActor(ActorOf(Sphere(1.0, 300)));
   vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(renderer);
   grab->SetSize(400, 300);
-  ExpectProgressReportedAndAbortable(grab, 400, 300);
+  ExpectProgressReportedAndAbortable(
+    grab, 400, 300, [&] { renderer->GetActiveCamera()->Azimuth(10.0); });
 }

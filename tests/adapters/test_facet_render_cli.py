@@ -163,6 +163,22 @@ class FacetRenderCli(unittest.TestCase):
             differing = sum(images["flat"][p] != images["phong"][p] for p in images["flat"])
             self.assertGreater(differing, 500)
 
+    def test_explain_prints_the_plan_after_the_render(self):
+        mesh = os.path.join(MESHES, "suzanne.obj")
+        with tempfile.TemporaryDirectory() as folder:
+            out = os.path.join(folder, "explained.png")
+            # A black light reaches nothing: the plan says it left it out.
+            result = run(mesh, "-o", out, "--size", "96x72", "--explain", "-q",
+                         "--light", "headlight", "--light", "directional:0,0,-1@0,0,0")
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertTrue(os.path.getsize(out) > 100)
+            text = result.stdout
+            self.assertIn("Facet render plan: 96x72 pixels", text)
+            self.assertIn("path: full render (no previous frame to reuse)", text)
+            self.assertIn("fired lights that reach nothing: 1 lights of 2 (1 dark", text)
+            self.assertIn("seconds: validate", text)
+            self.assertEqual(run(mesh, "-o", out, "--size", "96x72", "-q").stdout, "")
+
     def test_report_table_csv_and_plot(self):
         with tempfile.TemporaryDirectory() as folder:
             prefix = os.path.join(folder, "report")

@@ -28,7 +28,7 @@ from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
 from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 from vtkmodules.vtkParallelMPI import vtkMPIController
-from vtkmodules.vtkRenderingCore import vtkCamera
+from vtkmodules.vtkRenderingCore import vtkCamera, vtkLight
 
 from facet import vtkFacetRenderFilter
 
@@ -139,7 +139,8 @@ def cell_range(count, rank, ranks):
 class Render:
     """One execution of the filter: its output planes (numpy, [y, x]) and its messages."""
 
-    def __init__(self, data, controller=CONTROLLER, camera=None, closed=True, **settings):
+    def __init__(self, data, controller=CONTROLLER, camera=None, closed=True, lights=(),
+                 **settings):
         self.filter = vtkFacetRenderFilter()
         self.filter.SetController(controller)
         self.filter.SetInputData(data)
@@ -154,6 +155,8 @@ class Render:
         self.filter.SetCamera(camera)
         for name, value in settings.items():
             getattr(self.filter, "Set" + name)(value)
+        for light in lights:
+            self.filter.AddLight(light)
         # Observers collect the filter's messages (and keep them off stderr).
         self.errors, self.warnings = [], []
 
@@ -167,6 +170,9 @@ class Render:
 
         self.filter.AddObserver(vtkCommand.ErrorEvent, error)
         self.filter.AddObserver(vtkCommand.WarningEvent, warning)
+        self.update()
+
+    def update(self):
         self.filter.Update()
         self.image = self.filter.GetOutput()
         point_data = self.image.GetPointData()
@@ -277,6 +283,49 @@ def a_closed_surface_split():
               "the sphere is not culled as closed: " + reference.filter.GetRenderPlan())
         check_same_image(render, reference, serial(whole, closed=False))
         check_plane("CellId", render, reference)
+
+
+def colored_light():
+    light = vtkLight()
+    light.SetPosition(2.0, 3.0, 4.0)
+    light.SetDiffuseColor(1.0, 0.6, 0.3)
+    return light
+
+
+@case
+def each_rank_reshades_and_the_composite_still_runs():
+    """Only the lights, then only the background change: every rank reuses its last frame
+    (FacetRenderPath), and the composited image is the one a fresh one-process render of
+    the whole input gives."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True))
+    render.filter.AddLight(colored_light())
+    render.update()
+    check(render.named("FacetRenderPath", "Path") == 1, render.filter.GetRenderPlan())
+    if RANK == 0:
+        reference = serial(polydata(points, triangles), lights=[colored_light()])
+        check_same_image(render, reference)
+        check_plane("CellId", render, reference)
+    render.filter.SetBackground(0.5, 0.5, 0.5)
+    render.update()
+    check(render.named("FacetRenderPath", "Path") == 2, render.filter.GetRenderPlan())
+    if RANK == 0:
+        reference = serial(polydata(points, triangles), lights=[colored_light()],
+                           Background=(0.5, 0.5, 0.5))
+        check_same_image(render, reference)
+        check_plane("CellId", render, reference)
+
+
+@case
+def depth_and_cell_ids_composite_but_are_left_out_when_not_asked_for():
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
+                    OutputDepth=False, OutputCellIds=False)
+    if RANK == 0:
+        check(sorted(render.planes) == ["RGBA", "RankId"], "arrays: %s" % sorted(render.planes))
+        check_plane("RGBA", render, serial(polydata(points, triangles)))
 
 
 @case

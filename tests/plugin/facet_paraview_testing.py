@@ -32,8 +32,14 @@ class Image:
         self.scalars = point_data.GetScalars().GetName() if point_data.GetScalars() else None
         shape = (height, width)
         self.rgba = vtk_to_numpy(self.arrays["RGBA"]).reshape(shape + (4,))
-        self.depth = vtk_to_numpy(self.arrays["Depth"]).reshape(shape)
-        self.cell_id = vtk_to_numpy(self.arrays["CellId"]).reshape(shape)
+        # None when left out (OutputDepth, OutputCellIds off).
+        self.depth, self.cell_id = (vtk_to_numpy(self.arrays[name]).reshape(shape)
+                                    if name in self.arrays else None
+                                    for name in ("Depth", "CellId"))
+
+    def path(self):
+        """The path the render took: 0 full, 1 re-shade, 2 resolve (FacetRenderPath)."""
+        return int(self.data.GetFieldData().GetArray("FacetRenderPath").GetValue(0))
 
     def count(self, name):
         """A named component of the FacetCounts field-data array."""

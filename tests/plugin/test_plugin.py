@@ -216,6 +216,34 @@ class Rendering(unittest.TestCase):
         numpy.testing.assert_array_equal(Image(render).rgba, one)
 
 
+class LeavingOutWork(unittest.TestCase):
+    def test_outputs_not_asked_for_are_left_out(self):
+        every = Image(FacetRender(Input=sphere(), Size=[W, H]))
+        image = Image(FacetRender(Input=sphere(), Size=[W, H], OutputDepth=0, OutputCellIds=0))
+        self.assertEqual(sorted(image.arrays), ["RGBA"])
+        numpy.testing.assert_array_equal(image.rgba, every.rgba)
+
+    def test_a_new_light_reshades_and_a_new_background_resolves(self):
+        """ParaView executes the filter again for each change; the filter reuses its last
+        frame as far as the change allows, and gives a fresh filter's bytes."""
+        render = FacetRender(Input=sphere(), Size=[W, H], LightCullingTolerance=0.0)
+        self.assertEqual(Image(render).path(), 0)
+        render.Light1Intensity = 0.5
+        image = Image(render)
+        self.assertEqual(image.path(), 1)
+        fresh = Image(FacetRender(Input=sphere(), Size=[W, H], Light1Intensity=0.5))
+        numpy.testing.assert_array_equal(image.rgba, fresh.rgba)
+        numpy.testing.assert_array_equal(image.depth, fresh.depth)
+        render.Background = [0.5, 0.25, 0.0]
+        image = Image(render)
+        self.assertEqual(image.path(), 2)
+        fresh = Image(FacetRender(Input=sphere(), Size=[W, H], Light1Intensity=0.5,
+                                  Background=[0.5, 0.25, 0.0]))
+        numpy.testing.assert_array_equal(image.rgba, fresh.rgba)
+        render.IncrementalRendering = 0
+        self.assertEqual(Image(render).path(), 0)
+
+
 class ProgressAndAbort(unittest.TestCase):
     def big_render(self):
         # About two million triangles: a render long enough to report progress many times.

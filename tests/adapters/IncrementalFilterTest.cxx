@@ -1,0 +1,369 @@
+// vtkFacetRenderFilter leaves out work: incremental rendering judged by MTimes (each change
+// alone gives the bytes of a fresh filter with the same settings, and the field data names
+// the path that ran), outputs nobody asked for, and the plan in the field data.
+
+#include "AdapterTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkElevationFilter.h"
+#include "vtkFloatArray.h"
+#include "vtkLight.h"
+#include "vtkLookupTable.h"
+#include "vtkNew.h"
+#include "vtkProperty.h"
+#include "vtkSphereSource.h"
+#include "vtkStringArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+using namespace facet_test;
+
+namespace {
+constexpr int Width = 160, Height = 120;
+enum Path
+{
+  Full = 0,
+  Reshade = 1,
+  Resolve = 2
+};
+
+// Everything a test changes, one thing at a time.
+struct Settings
+{
+  double LightColor[3] = { 1.0, 0.9, 0.8 };
+  double LightIntensity = 1.0;
+  double Color[3] = { 0.8, 0.7, 0.6 };
+  double Hue[2] = { 0.0, 0.667 };
+  double Background[3] = { 0.1, 0.2, 0.3 };
+  double Azimuth = 20.0;
+  bool ColorByScalars = true;
+  int Interpolation = VTK_FLAT;
+};
+
+// A filter and the objects it renders with, changed in place as a user would.
+struct Rig
+{
+  vtkNew<vtkFacetRenderFilter> Filter;
+  vtkNew<vtkCamera> Camera;
+  vtkNew<vtkLight> Light;
+  vtkNew<vtkLookupTable> Table;
+
+  explicit Rig(vtkPolyData* input)
+  {
+    this->Filter->SetInputData(input);
+    this->Filter->SetSize(Width, Height);
+    this->Filter->SetNumberOfThreads(2);
+    this->Camera->SetPosition(0.0, 0.5, 3.0);
+    this->Filter->SetCamera(this->Camera);
+    this->Filter->FitCameraToInputOn();
+    this->Light->SetPosition(1.0, 2.0, 3.0);
+    this->Light->SetPositional(true);
+    this->Light->SetConeAngle(180.0);
+    this->Filter->AddLight(this->Light);
+    this->Filter->SetLookupTable(this->Table);
+    this->Filter->SetScalarRange(-0.5, 0.5);
+  }
+
+  vtkImageData* Render(const Settings& s)
+  {
+    this->Light->SetDiffuseColor(s.LightColor[0], s.LightColor[1], s.LightColor[2]);
+    this->Light->SetIntensity(s.LightIntensity);
+    this->Filter->GetProperty()->SetColor(s.Color[0], s.Color[1], s.Color[2]);
+    this->Filter->GetProperty()->SetInterpolation(s.Interpolation);
+    this->Table->SetHueRange(s.Hue[0], s.Hue[1]);
+    this->Filter->SetBackground(s.Background[0], s.Background[1], s.Background[2]);
+    this->Camera->SetPosition(0.0, 0.5, 3.0);
+    this->Camera->SetFocalPoint(0.0, 0.0, 0.0);
+    this->Camera->Azimuth(s.Azimuth);
+    this->Filter->SetScalarVisibility(s.ColorByScalars);
+    this->Filter->Update();
+    return this->Filter->GetOutput();
+  }
+};
+
+// The bytes of one point-data array, or empty if the image has none by that name.
+std::string Bytes(vtkImageData* image, const char* name)
+{
+  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  if (!array)
+  {
+    return {};
+  }
+  const auto* begin = static_cast<const char*>(array->GetVoidPointer(0));
+  return { begin, begin + array->GetNumberOfValues() * array->GetDataTypeSize() };
+}
+
+// Where two images' arrays differ, for the failure message.
+std::string FirstDifference(const std::string& got, const std::string& expected, int itemSize)
+{
+  if (got.size() != expected.size())
+  {
+    return std::to_string(got.size()) + " bytes instead of " + std::to_string(expected.size());
+  }
+  const auto at = std::mismatch(got.begin(), got.end(), expected.begin()).first - got.begin();
+  const long pixel = static_cast<long>(at) / itemSize;
+  return "first at pixel (" + std::to_string(pixel % Width) + ", " + std::to_string(pixel / Width) +
+    ")";
+}
+
+void ExpectSameImage(vtkImageData* got, vtkImageData* expected)
+{
+  for (const auto& [name, size] : { std::pair{ "RGBA", 4 }, { "Depth", 4 }, { "CellId", 8 } })
+  {
+    const std::string a = Bytes(got, name), b = Bytes(expected, name);
+    EXPECT_FALSE(b.empty()) << name;
+    EXPECT_TRUE(a == b) << name << " differs: " << FirstDifference(a, b, size);
+  }
+}
+
+int PathOf(vtkImageData* image)
+{
+  return static_cast<int>(FieldValue(image, "FacetRenderPath", "Path"));
+}
+
+class Incremental : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetThetaResolution(48);
+    sphere->SetPhiResolution(24);
+    vtkNew<vtkElevationFilter> elevation; // point scalars from -0.5 to 0.5
+    elevation->SetInputConnection(sphere->GetOutputPort());
+    elevation->SetLowPoint(0.0, -0.5, 0.0);
+    elevation->SetHighPoint(0.0, 0.5, 0.0);
+    elevation->SetScalarRange(-0.5, 0.5);
+    elevation->Update();
+    this->Input->DeepCopy(elevation->GetOutput());
+  }
+
+  // Renders `changed` after `before` with one filter, and `changed` with a fresh one: the
+  // same bytes, and the kept filter took `path`.
+  void ExpectPath(const Settings& before, const Settings& changed, int path)
+  {
+    Rig kept(this->Input);
+    ASSERT_EQ(PathOf(kept.Render(before)), Full);
+    vtkImageData* again = kept.Render(changed);
+    EXPECT_EQ(PathOf(again), path) << kept.Filter->GetRenderPlan();
+    Rig fresh(this->Input);
+    ExpectSameImage(again, fresh.Render(changed));
+  }
+
+  vtkNew<vtkPolyData> Input;
+};
+}
+
+//------------------------------------------------------------------------------
+TEST_F(Incremental, OnlyALightReshades)
+{
+  Settings changed;
+  changed.LightColor[1] = 0.3;
+  changed.LightIntensity = 0.7;
+  this->ExpectPath(Settings(), changed, Reshade);
+}
+
+TEST_F(Incremental, OnlyThePropertysColorReshades)
+{
+  Settings before;
+  before.ColorByScalars = false;
+  Settings changed = before;
+  changed.Color[2] = 0.1;
+  this->ExpectPath(before, changed, Reshade);
+}
+
+TEST_F(Incremental, OnlyTheLookupTableReshades)
+{
+  Settings changed;
+  changed.Hue[0] = 0.3;
+  this->ExpectPath(Settings(), changed, Reshade);
+}
+
+TEST_F(Incremental, OnlyTheBackgroundResolves)
+{
+  Settings changed;
+  changed.Background[0] = 0.9;
+  this->ExpectPath(Settings(), changed, Resolve);
+}
+
+TEST_F(Incremental, NothingChangedResolves)
+{
+  Rig kept(this->Input);
+  kept.Render(Settings());
+  kept.Filter->Modified();
+  vtkImageData* again = kept.Render(Settings());
+  EXPECT_EQ(PathOf(again), Resolve);
+  Rig fresh(this->Input);
+  ExpectSameImage(again, fresh.Render(Settings()));
+}
+
+TEST_F(Incremental, ANewCameraRendersInFull)
+{
+  Settings changed;
+  changed.Azimuth = 50.0;
+  this->ExpectPath(Settings(), changed, Full);
+}
+
+TEST_F(Incremental, GouraudShadingReshadesToo)
+{
+  Settings before;
+  before.Interpolation = VTK_GOURAUD;
+  Settings changed = before;
+  changed.LightColor[0] = 0.2;
+  this->ExpectPath(before, changed, Reshade);
+}
+
+// The usual VTK edit: points moved, the data marked modified.
+TEST_F(Incremental, MovedPointsRenderInFull)
+{
+  Rig kept(this->Input);
+  kept.Render(Settings());
+  double p[3];
+  for (vtkIdType i = 0; i < this->Input->GetNumberOfPoints(); ++i)
+  {
+    this->Input->GetPoint(i, p);
+    this->Input->GetPoints()->SetPoint(i, 1.2 * p[0], p[1], p[2]);
+  }
+  this->Input->Modified();
+  vtkImageData* again = kept.Render(Settings());
+  EXPECT_EQ(PathOf(again), Full) << kept.Filter->GetRenderPlan();
+  Rig fresh(this->Input);
+  ExpectSameImage(again, fresh.Render(Settings()));
+}
+
+// New scalar values in the same array: new colors on the same geometry.
+TEST_F(Incremental, NewScalarsReshade)
+{
+  Rig kept(this->Input);
+  kept.Render(Settings());
+  vtkDataArray* scalars = this->Input->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    scalars->SetComponent(i, 0, -scalars->GetComponent(i, 0));
+  }
+  scalars->Modified();
+  vtkImageData* again = kept.Render(Settings());
+  EXPECT_EQ(PathOf(again), Reshade) << kept.Filter->GetRenderPlan();
+  Rig fresh(this->Input);
+  ExpectSameImage(again, fresh.Render(Settings()));
+}
+
+TEST_F(Incremental, OffRendersInFull)
+{
+  Rig kept(this->Input);
+  kept.Filter->IncrementalRenderingOff();
+  kept.Render(Settings());
+  Settings changed;
+  changed.LightColor[1] = 0.3;
+  EXPECT_EQ(PathOf(kept.Render(changed)), Full);
+}
+
+// An output array somebody still holds is not rendered into again: it keeps its image, the
+// next render draws into a new one, in full; then nobody holds that one, and it is reused.
+TEST_F(Incremental, AHeldOutputArrayIsReplaced)
+{
+  Rig kept(this->Input);
+  vtkSmartPointer<vtkDataArray> held = kept.Render(Settings())->GetPointData()->GetArray("Depth");
+  const std::string heldBytes = Bytes(kept.Filter->GetOutput(), "Depth");
+  Settings changed;
+  changed.LightColor[1] = 0.3;
+  vtkImageData* again = kept.Render(changed);
+  EXPECT_EQ(PathOf(again), Full) << kept.Filter->GetRenderPlan();
+  EXPECT_NE(again->GetPointData()->GetArray("Depth"), held.Get());
+  const auto* values = static_cast<const char*>(held->GetVoidPointer(0));
+  EXPECT_TRUE(std::string(values, values + heldBytes.size()) == heldBytes);
+  changed.LightColor[2] = 0.1;
+  EXPECT_EQ(PathOf(kept.Render(changed)), Reshade);
+  Rig fresh(this->Input);
+  ExpectSameImage(kept.Filter->GetOutput(), fresh.Render(changed));
+}
+
+//------------------------------------------------------------------------------
+TEST_F(Incremental, OutputsNobodyAskedForAreLeftOut)
+{
+  Rig all(this->Input);
+  const std::string rgba = Bytes(all.Render(Settings()), "RGBA");
+  Rig some(this->Input);
+  some.Filter->OutputDepthOff();
+  vtkImageData* image = some.Render(Settings());
+  EXPECT_EQ(image->GetPointData()->GetArray("Depth"), nullptr);
+  EXPECT_NE(image->GetPointData()->GetArray("CellId"), nullptr);
+  EXPECT_TRUE(Bytes(image, "RGBA") == rgba);
+  EXPECT_NE(std::string(some.Filter->GetRenderPlan()).find("depth output off"), std::string::npos)
+    << some.Filter->GetRenderPlan();
+  some.Filter->OutputCellIdsOff();
+  image = some.Render(Settings());
+  EXPECT_EQ(image->GetPointData()->GetArray("Depth"), nullptr);
+  EXPECT_EQ(image->GetPointData()->GetArray("CellId"), nullptr);
+  EXPECT_TRUE(Bytes(image, "RGBA") == rgba);
+  some.Filter->OutputDepthOn();
+  some.Filter->OutputCellIdsOn();
+  ExpectSameImage(some.Render(Settings()), all.Filter->GetOutput());
+}
+
+//------------------------------------------------------------------------------
+TEST_F(Incremental, ThePlanInNumbers)
+{
+  Rig rig(this->Input);
+  vtkNew<vtkLight> black; // reaches nothing
+  black->SetDiffuseColor(0.0, 0.0, 0.0);
+  rig.Filter->AddLight(black);
+  vtkImageData* image = rig.Render(Settings());
+  auto* plan =
+    vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray("FacetRenderPlan"));
+  ASSERT_NE(plan, nullptr);
+  EXPECT_EQ(plan->GetValue(0), rig.Filter->GetRenderPlan());
+  EXPECT_NE(plan->GetValue(0).find("seconds:"), std::string::npos) << plan->GetValue(0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanRulesAllowed", "LightsThatReachNothing"), 1.0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanRulesFired", "LightsThatReachNothing"), 1.0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanRulesSkipped", "LightsThatReachNothing"), 1.0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanRulesFired", "AmbientOnly"), 0.0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanLightCulling", "Lights"), 2.0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanLightCulling", "Dark"), 1.0);
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanLightCulling", "ErrorBound8Bit"), 0.0);
+  for (const char* phase : { "Validate", "Transform", "Setup", "Raster", "Shade", "Output" })
+  {
+    EXPECT_GE(FieldValue(image, "FacetPhaseSeconds", phase), 0.0) << phase;
+  }
+  EXPECT_GT(FieldValue(image, "FacetPhaseSeconds", "Raster"), 0.0);
+}
+
+// A dim light far away left out by a tolerance: the image stays within the bound the plan
+// reports.
+TEST_F(Incremental, LightCullingToleranceStaysWithinItsBound)
+{
+  Rig exact(this->Input), tolerant(this->Input);
+  for (Rig* rig : { &exact, &tolerant })
+  {
+    vtkNew<vtkLight> far;
+    far->SetPositional(true);
+    far->SetConeAngle(180.0);
+    far->SetPosition(0.0, 0.0, 40.0);
+    far->SetAttenuationValues(0.0, 0.0, 1.0); // 1/d²: at most 1/39² ≈ 6.6e-4
+    rig->Filter->AddLight(far);
+  }
+  tolerant.Filter->SetLightCullingTolerance(0.01);
+  const std::string expected = Bytes(exact.Render(Settings()), "RGBA");
+  vtkImageData* image = tolerant.Render(Settings());
+  EXPECT_EQ(FieldValue(image, "FacetRenderPlanLightCulling", "BelowTolerance"), 1.0);
+  const double bound = FieldValue(image, "FacetRenderPlanLightCulling", "ErrorBound");
+  const int bound8 =
+    static_cast<int>(FieldValue(image, "FacetRenderPlanLightCulling", "ErrorBound8Bit"));
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LE(bound, 0.01);
+  const std::string got = Bytes(image, "RGBA");
+  ASSERT_EQ(got.size(), expected.size());
+  int largest = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+  {
+    largest = std::max(largest,
+      std::abs(static_cast<unsigned char>(got[i]) - static_cast<unsigned char>(expected[i])));
+  }
+  EXPECT_LE(largest, bound8) << "bound " << bound;
+}
