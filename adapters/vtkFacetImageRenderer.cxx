@@ -157,6 +157,12 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
   output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
   output->SetOrigin(0.0, 0.0, 0.0);
+  // The renderer's depth plane must stay as the last render left it (incremental
+  // rendering). It is the output's Depth array until somebody else holds that array (ParaView's
+  // representations do) or a compositor writes into it; from then on it is a plane of this
+  // class's own, copied into Depth.
+  this->OwnDepthPlane = this->OwnDepthPlane || settings.Composited ||
+    (this->Depth && this->Depth->GetReferenceCount() > 1);
   vtkPointData* pointData = output->GetPointData();
   pointData->SetScalars(OutputArray(this->Rgba, "RGBA", 4, pixels));
   // An array not asked for is released, not kept.
@@ -180,7 +186,7 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
     return false;
   }
   this->PolygonIds.resize(static_cast<std::size_t>(pixels));
-  this->RenderDepth.resize(settings.Composited && settings.Depth ? pixels : 0);
+  this->RenderDepth.resize(settings.Depth && this->OwnDepthPlane ? pixels : 0);
   this->Width = width;
   this->Height = height;
   return true;
@@ -202,7 +208,7 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
   // The renderer's planes: kept from one execution to the next, untouched in between, so
   // that it can reuse the frame they hold.
   float* depth = !settings.Depth ? nullptr
-    : settings.Composited        ? this->RenderDepth.data()
+    : this->OwnDepthPlane        ? this->RenderDepth.data()
                                  : this->Depth->GetPointer(0);
   const facet::FramebufferView target{ this->Width,
     this->Height,

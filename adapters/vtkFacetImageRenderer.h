@@ -22,12 +22,14 @@
  * or back faces, RenderPlan.h), one named component per rule, and `FacetRenderPlanLightCulling`
  * (Lights, Dark, OutsideCone, BelowTolerance, Tolerance, ErrorBound, ErrorBound8Bit).
  *
- * Incremental rendering (facet/Renderer.h): the renderer's planes (Depth, or its own without
- * depth output, and the polygon ids) are the same and untouched from one execution to the
- * next while nobody else holds the output arrays, so an execution whose meshes carry the
- * versions of the last (MeshView::version, colorVersion) and whose camera is unchanged
- * re-shades or resolves the last frame. An array somebody still holds is replaced, and the
- * render is then a full one.
+ * Incremental rendering (facet/Renderer.h): the renderer's depth and polygon-id planes are
+ * the same and untouched from one execution to the next, so an execution whose meshes carry
+ * the versions of the last (MeshView::version, colorVersion) and whose camera is unchanged
+ * re-shades or resolves the last frame. The depth plane is the output's Depth array (no
+ * copy) until an execution finds that array held by somebody else (ParaView's
+ * representations hold it) or composited into: that execution renders in full into a plane
+ * of this class's own, kept from then on and copied into Depth. Output arrays somebody
+ * holds are never written again: that execution's are new.
  */
 
 #ifndef vtkFacetImageRenderer_h
@@ -186,7 +188,8 @@ private:
   vtkSmartPointer<vtkIdTypeArray> CellIds;
   vtkSmartPointer<vtkIntArray> ActorIds;
   vtkSmartPointer<vtkIntArray> RankIds;
-  facet::HugePageVector<float> RenderDepth; // the renderer's depth plane when Composited
+  facet::HugePageVector<float> RenderDepth; // the renderer's depth plane, if OwnDepthPlane
+  bool OwnDepthPlane = false; // the output's Depth was held by others or composited into
   vtkAlgorithm* Algorithm = nullptr;
   int Width = 0;
   int Height = 0;

@@ -524,8 +524,10 @@ public:
    * or the scalars re-shades the last frame (no transform, set-up or raster), a change of
    * only the background recolors it; a new camera, size or geometry renders in full. Each
    * gives the same bytes as a full render. The output arrays are reused while nobody else
-   * holds them; one that is held is replaced, and the render is then a full one (default:
-   * on).
+   * holds them; held ones are never written again (the first execution that finds Depth
+   * held renders in full, into a depth plane the filter keeps from then on). A modified
+   * input vtkPolyData counts as new geometry, even if its points and cells are not (ParaView
+   * modifies it before every execution: it renders in full there) (default: on).
    */
   vtkSetMacro(IncrementalRendering, vtkTypeBool);
   vtkGetMacro(IncrementalRendering, vtkTypeBool);
