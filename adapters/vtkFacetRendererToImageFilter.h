@@ -40,9 +40,9 @@
  *
  * Shading is flat, everything is opaque, as with vtkFacetRenderFilter: a warning, said once
  * per actor, names what an actor's property asks for beyond that (the default Gouraud
- * interpolation among them), and an actor's texture or backface property. Errors and warnings of an execution are reported at its end,
- * one vtkErrorMacro and one vtkWarningMacro. Long renders report progress and stop when
- * AbortExecute is set.
+ * interpolation among them), and an actor's texture or backface property. Errors and warnings of an
+ * execution are reported at its end, one vtkErrorMacro and one vtkWarningMacro. Long renders report
+ * progress and stop when AbortExecute is set.
  *
  * Update renders again when something the renderer holds changed (its settings, camera,
  * lights, props and their properties, matrices, mappers and mapper inputs, whose pipelines

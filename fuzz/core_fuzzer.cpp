@@ -52,8 +52,7 @@ void makePoints(FuzzedDataProvider& in, const Placement& placement, FuzzMesh& me
   const std::size_t count = in.ConsumeIntegralInRange<std::size_t>(0, 48);
   for (std::size_t i = 0; i < count; ++i) {
     const glm::dvec3 p = placement.place(anyVector(in, -1.0, 1.0));
-    mesh.xyz64.insert(mesh.xyz64.end(),
-                      {p.x, p.y, p.z});
+    mesh.xyz64.insert(mesh.xyz64.end(), {p.x, p.y, p.z});
   }
   if (in.ConsumeBool()) {
     for (double x : mesh.xyz64)

@@ -160,8 +160,7 @@ vtkSmartPointer<vtkCamera> anyCamera(FuzzedDataProvider& in, const Placement& pl
   camera->SetViewAngle(anyDouble(in, 1.0, 179.0));
   camera->SetUseHorizontalViewAngle(in.ConsumeIntegralInRange(0, 7) == 0);
   camera->SetParallelProjection(in.ConsumeBool());
-  camera->SetParallelScale(
-      placement.scale * anyDouble(in, 0.0, 3.0));
+  camera->SetParallelScale(placement.scale * anyDouble(in, 0.0, 3.0));
   const double nearClip = placement.scale * anyDouble(in, 0.0, 2.0);
   camera->SetClippingRange(nearClip, nearClip + placement.scale * anyDouble(in, 0.0, 10.0));
   if (in.ConsumeIntegralInRange(0, 7) == 0) {
