@@ -414,8 +414,8 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
 // |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
 // one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
 // `bounds`: per sample, the bound of its polygon, negative for the background (which adds
-// 0, as no polygon). Neighbour by neighbour over the whole row: branch-free loops the
-// compiler vectorizes, rather than nine scattered reads per sample.
+// 0, as no polygon). Neighbour by neighbour over the row's covered span: branch-free
+// loops, rather than nine scattered reads per sample.
 void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float* out) {
   const int width = grid.width;
   const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;

@@ -114,11 +114,11 @@ class QualityRenderer {
   /// scene mesh (prepared once, kept while the meshes do not change), or is empty: shading
   /// per sample or per corner (Gouraud, Phong, adaptive) then computes them here, every
   /// render; flat shading with the estimate needs only each polygon's normal, extent and
-  /// normal spread, which this object keeps per mesh version (MeshView::version, which then also
-  /// covers MeshView::pointNormals; an unversioned mesh is measured every render). Throws
-  /// facet::Error for bad settings, a shading list that does not match the scene, or an image side
-  /// that a 2× or 4× sample grid would take beyond kMaxImageSide; and whatever Renderer::render
-  /// throws.
+  /// normal spread, which this object keeps per mesh version (MeshView::version, which then
+  /// also covers MeshView::pointNormals; an unversioned mesh is measured every render).
+  /// Throws facet::Error for bad settings, a shading list that does not match the scene, or
+  /// an image side that a 2× or 4× sample grid would take beyond kMaxImageSide; and whatever
+  /// Renderer::render throws.
   QualityStats render(const Scene& scene, std::span<const ShadingMesh> shading,
                       const Camera& camera, const FramebufferView& target,
                       const QualitySettings& settings);
@@ -130,7 +130,9 @@ class QualityRenderer {
 
   /// The last render's per-pixel estimate (QualityStats), row 0 at the bottom, 0 where no
   /// polygon shows; empty unless it was asked for. A render that only recolors the previous
-  /// frame (RenderPath::Resolve: a new background) keeps the previous estimate.
+  /// frame (RenderPath::Resolve: a new background) keeps the previous estimate, which must
+  /// then be of the renderer's previous frame: render through this object only, or call
+  /// Renderer::forgetPreviousFrame() after rendering without it.
   std::span<const float> errorEstimate() const { return estimate_; }
 
  private:
