@@ -20,6 +20,23 @@
 
 namespace {
 constexpr vtkIdType MaxFacetIds = std::numeric_limits<std::int32_t>::max();
+
+vtkMTimeType TimeOf(vtkObject* object)
+{
+  return object ? object->GetMTime() : 0;
+}
+
+// The latest MTime of what the conversion reads: the vtkPolyData itself, its points and its
+// cells, not its attributes (new scalars or normals are no new geometry).
+vtkMTimeType GeometryTimeOf(vtkPolyData* input)
+{
+  return std::max({ input->vtkObject::GetMTime(),
+    TimeOf(input->GetPoints()),
+    TimeOf(input->GetVerts()),
+    TimeOf(input->GetLines()),
+    TimeOf(input->GetPolys()),
+    TimeOf(input->GetStrips()) });
+}
 }
 
 //------------------------------------------------------------------------------
@@ -59,12 +76,14 @@ bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
   vtkFacetMessages& messages)
 {
   this->Converted = false;
-  if (!(input == this->Input && input->GetMTime() == this->InputTime &&
+  this->InputChanged = !(input == this->Input && input->GetMTime() == this->InputTime);
+  if (!(input == this->Input && GeometryTimeOf(input) == this->GeometryTime &&
         detectClosedSurfaces == this->DetectedClosedSurfaces) &&
     !this->Convert(input, detectClosedSurfaces, messages))
   {
     return false;
   }
+  this->InputTime = input->GetMTime();
   if (this->NumberOfVerts + this->NumberOfLines > 0)
   {
     messages.AddWarning("skipped " + std::to_string(this->NumberOfVerts) + " vertex and " +
@@ -123,16 +142,15 @@ bool vtkFacetPolyDataConverter::Convert(vtkPolyData* input,
   // every conversion: they take its time.
   vtkTimeStamp now;
   now.Modified();
-  const auto timeOf = [](vtkObject* object) { return object ? object->GetMTime() : 0; };
   this->PolygonView.version = this->PointCopy.empty()
     ? std::max(
-        { input->vtkObject::GetMTime(), timeOf(input->GetPoints()), timeOf(input->GetPolys()) })
+        { input->vtkObject::GetMTime(), TimeOf(input->GetPoints()), TimeOf(input->GetPolys()) })
     : now.GetMTime();
   this->StripView.version = now.GetMTime();
   this->Input = input;
-  this->InputTime = input->GetMTime();
+  this->GeometryTime = GeometryTimeOf(input);
   this->DetectedClosedSurfaces = detectClosedSurfaces;
-  this->Converted = true;
+  this->Converted = this->InputChanged = true;
   return true;
 }
 

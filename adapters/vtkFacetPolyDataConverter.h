@@ -5,8 +5,10 @@
  * Polygons are read in place: the cell array's offsets and connectivity (32- or 64-bit) and
  * float or double points are handed to the core without a copy; other point types are
  * copied to double. Triangle strips are decoded into triangles with the alternating winding
- * VTK uses (vtkTriangleStrip::DecomposeStrip). The result is kept while the input's MTime
- * is unchanged, so a new camera or new lights re-render without converting again. Verts
+ * VTK uses (vtkTriangleStrip::DecomposeStrip). The result is kept while the input's geometry
+ * (the vtkPolyData itself, its points and cells: not its point and cell data) is unchanged,
+ * so a new camera, new lights or new scalars re-render without converting, validating or
+ * checking closedness again. Verts
  * and lines are not rendered: every Update counts them in a warning.
  *
  * Polygon ids in the Facet scene: the polygons of mesh 0 (the input's polys), then the
@@ -40,6 +42,9 @@ public:
 
   /// Whether the last Update converted (false: the cached conversion was reused).
   bool ConvertedLastUpdate() const { return this->Converted; }
+  /// Whether the input changed at all since the Update before (converted, or only its
+  /// attributes: scalars, normals).
+  bool InputChangedLastUpdate() const { return this->InputChanged; }
 
   /// The meshes to render: polys first, strip triangles second; either may be empty. Their
   /// MeshView::version is the geometry's: the points' and polys' MTimes when read in place,
@@ -91,9 +96,11 @@ private:
   void ConvertStrips(vtkPolyData* input);
 
   const vtkPolyData* Input = nullptr; // identity only, never dereferenced
-  vtkMTimeType InputTime = 0;
+  vtkMTimeType InputTime = 0;         // its whole MTime, attributes included
+  vtkMTimeType GeometryTime = 0;      // what the conversion read (GeometryTimeOf)
   bool DetectedClosedSurfaces = false;
   bool Converted = false;
+  bool InputChanged = false;
 
   vtkIdType NumberOfVerts = 0;
   vtkIdType NumberOfLines = 0;

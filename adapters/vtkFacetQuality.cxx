@@ -86,25 +86,49 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
   }
   this->Current = settings;
   this->Stats = {};
-  this->Estimate.clear();
-  if (settings.Interpolation != VTK_GOURAUD && settings.Interpolation != VTK_PHONG &&
-    samples == 1 && settings.MaximumError == 0.0 && !settings.EstimateError &&
+  const bool reshades = settings.Interpolation == VTK_GOURAUD ||
+    settings.Interpolation == VTK_PHONG || settings.MaximumError > 0.0;
+  if (!reshades && samples == 1 && !settings.EstimateError && !settings.ErrorEstimateArray &&
     !settings.ComputeError)
   {
-    this->Keys.clear(); // the meshes may change unseen meanwhile: prepare afresh next time
-    return {};          // the Renderer alone: nothing to prepare
+    // The Renderer alone: nothing to prepare, nothing kept (the meshes may change unseen
+    // meanwhile, and the quality renderer's estimate would not be of the next frame).
+    this->Keys.clear();
+    this->Shading.clear();
+    this->Quality.reset();
+    return {};
   }
   std::vector<std::pair<const void*, std::size_t>> keys;
   for (const facet::SceneMesh& mesh : scene.meshes)
   {
     keys.emplace_back(mesh.mesh.points.data, mesh.mesh.polygons.count);
   }
-  const bool stale = converted || keys != this->Keys;
-  if (stale)
+  // The input's normals are attributes: new ones come without a new conversion.
+  vtkDataArray* normalsArray = input ? input->GetPointData()->GetNormals() : nullptr;
+  const std::pair<vtkDataArray*, vtkMTimeType> normalsSource{ normalsArray,
+    normalsArray ? normalsArray->GetMTime() : 0 };
+  if (converted || keys != this->Keys || normalsSource != this->NormalsSource)
   {
-    this->Normals = NormalsOf(input);
+    this->NormalsSource = normalsSource;
+    this->Keys.clear(); // a ShadingMesh that throws leaves nothing half-made behind
+    this->Shading.clear();
+    // New normals only when they differ: the quality renderer keeps what it derives from
+    // them per mesh version, which their time joins below.
+    std::vector<double> normals = NormalsOf(input);
+    if (normals != this->Normals)
+    {
+      this->Normals.swap(normals);
+      this->NormalsTime.Modified();
+    }
   }
-  return [this, stale, keys](facet::Renderer& renderer,
+  // Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps each
+  // polygon's normal, extent and normal spread per mesh version, 20 bytes per polygon.
+  const bool shading = reshades || settings.ComputeError;
+  if (!shading)
+  {
+    this->Shading.clear();
+  }
+  return [this, shading, keys](facet::Renderer& renderer,
            const facet::Scene& given,
            const facet::Camera& camera,
            const facet::FramebufferView& target) {
@@ -115,18 +139,20 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
       if (pointCount > 0 && mesh.mesh.points.count == pointCount)
       {
         mesh.mesh.pointNormals = facet::PointArray::ofXyz(std::span<const double>(this->Normals));
+        if (mesh.mesh.version != 0)
+        {
+          mesh.mesh.version = std::max<std::uint64_t>(mesh.mesh.version, this->NormalsTime);
+        }
       }
     }
-    if (stale)
+    if (shading && this->Shading.empty())
     {
-      this->Keys.clear(); // a ShadingMesh that throws leaves nothing half-made behind
-      this->Shading.clear();
       for (const facet::SceneMesh& mesh : scene.meshes)
       {
         this->Shading.emplace_back(mesh.mesh);
       }
-      this->Keys = keys;
     }
+    this->Keys = keys;
     facet::QualitySettings quality;
     quality.shading = ShadingOf(this->Current.Interpolation);
     quality.samplesPerPixel = this->Current.SamplesPerPixel;
@@ -141,8 +167,6 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
       this->QualityOf = &renderer;
     }
     this->Stats = this->Quality->render(scene, this->Shading, camera, target, quality);
-    const std::span<const float> estimate = this->Quality->errorEstimate();
-    this->Estimate.assign(estimate.begin(), estimate.end());
     this->RenderSeconds = this->Stats.totalSeconds;
     return this->Stats.render;
   };
@@ -158,16 +182,17 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   vtkImageData* output,
   vtkFacetMessages& messages)
 {
-  if (this->Current.EstimateError)
+  if (this->Current.EstimateError || this->Current.ErrorEstimateArray)
   {
     vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
       "FacetErrorEstimate",
       { { "PredictedRMSE", this->Stats.predictedRmse },
-        { "PredictedMax", this->Stats.predictedMaxError } });
+        { "PredictedMax", this->Stats.predictedMaxError },
+        { "Seconds", this->Stats.estimateSeconds } });
   }
-  if (this->Current.ErrorEstimateArray && !this->Estimate.empty())
+  if (this->Current.ErrorEstimateArray && this->Quality && !this->Quality->errorEstimate().empty())
   {
-    AddPixelArray(output, "ErrorEstimate", this->Estimate);
+    AddPixelArray(output, "ErrorEstimate", this->Quality->errorEstimate());
   }
   if (!this->Current.ComputeError)
   {

@@ -5,11 +5,15 @@
  *
  * The property's Interpolation picks the shading (VTK_FLAT flat, VTK_GOURAUD Gouraud,
  * VTK_PHONG Phong); SamplesPerPixel supersamples; a MaximumError above 0 shades adaptively.
- * The ShadingMesh of every scene mesh (triangles, vertex normals: the input's point normals
- * when it has them, else vtkPolyDataNormals' meaning) is kept while the meshes are unchanged.
- * Every render computes the flat-shading error estimate; AddOutputs puts it in the field data
- * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units) and, on request, as the
- * point-data array `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
+ * Shading beyond flat and ComputeError need the ShadingMesh of every scene mesh (triangles,
+ * vertex normals: the input's point normals when it has them, else vtkPolyDataNormals'
+ * meaning), kept while the meshes and the normals are unchanged. Flat shading with the
+ * estimate needs no ShadingMesh: the quality renderer keeps, per mesh version, each
+ * polygon's normal, extent and normal spread (20 bytes), and per render bounds only the
+ * polygons that won a pixel (a new background alone keeps the last estimate). AddOutputs puts
+ * the estimate in the field data (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit
+ * units, and Seconds, what it took) and, on request, as the point-data array
+ * `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
  * reference and adds `FacetError` (RMSE, Max, PSNR, SSIM, SilhouetteFraction,
  * ReferenceSeconds, RenderSeconds) and the per-pixel `Error` array (ImageMetrics.h).
  */
@@ -17,14 +21,17 @@
 #ifndef vtkFacetQuality_h
 #define vtkFacetQuality_h
 
+#include "vtkTimeStamp.h"
 #include "vtkType.h"
 
 #include "facet/QualityRenderer.h"
 
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
+class vtkDataArray;
 class vtkFacetMessages;
 class vtkImageData;
 class vtkPolyData;
@@ -80,11 +87,12 @@ private:
   Settings Current;
   std::unique_ptr<facet::QualityRenderer> Quality; // its buffers kept between renders
   const facet::Renderer* QualityOf = nullptr;      // the renderer it renders through
-  std::vector<facet::ShadingMesh> Shading;
-  std::vector<double> Normals;                           // the input's point normals, xyz in double
-  std::vector<std::pair<const void*, std::size_t>> Keys; // what Shading was made from
+  std::vector<facet::ShadingMesh> Shading;         // only for shading beyond flat and ComputeError
+  std::vector<double> Normals;                     // the input's point normals, xyz in double
+  vtkTimeStamp NormalsTime;                        // when Normals last changed
+  std::pair<vtkDataArray*, vtkMTimeType> NormalsSource{ nullptr, 0 }; // identity only
+  std::vector<std::pair<const void*, std::size_t>> Keys;              // what Normals was read for
   facet::QualityStats Stats;
-  std::vector<float> Estimate;
   double RenderSeconds = 0.0;
 };
 

@@ -36,11 +36,11 @@
  * and textures are not used yet: everything renders as opaque surfaces (a warning, said
  * once, names what the property asks for).
  * A render can estimate its own flat-shading error (EstimateError, off by default): field data
- * `FacetErrorEstimate` (PredictedRMSE, PredictedMax, 8-bit units; point array `ErrorEstimate` with
- * ErrorEstimateArray on); SetComputeError renders the converged Phong reference beside it
- * and reports the measured error (`FacetError`, point array `Error`). Its Lighting off shows the
- * unlit colors, Ka·Ca + Kd·Cd, as VTK. Problems found during an execution are reported at its end,
- * errors in one vtkErrorMacro, warnings in one vtkWarningMacro.
+ * `FacetErrorEstimate` (PredictedRMSE, PredictedMax, 8-bit units, Seconds; point array
+ * `ErrorEstimate` with ErrorEstimateArray on); SetComputeError renders the converged Phong
+ * reference beside it and reports the measured error (`FacetError`, point array `Error`). Its
+ * Lighting off shows the unlit colors, Ka·Ca + Kd·Cd, as VTK. Problems found during an execution
+ * are reported at its end, errors in one vtkErrorMacro, warnings in one vtkWarningMacro.
  *
  * Distributed data (MPI): with a controller of more than one process (the global
  * controller by default, as VTK's parallel filters; pvbatch --mpi and pvserver set it),
@@ -66,8 +66,10 @@
  * its mapper colors it (the coloring settings here are a vtkMapper's), with the property's
  * material, under an identity matrix.
  *
- * Re-rendering is cheap: the converted mesh is kept while the input is unchanged (points
- * and cells are read in place when their types allow), so a new camera only renders, and
+ * Re-rendering is cheap: the converted mesh (validated, checked for closedness, its face
+ * normals kept by the renderer) is kept while the input's geometry is unchanged (points and
+ * cells are read in place when their types allow; new point or cell data is no new
+ * geometry), so a new camera only renders, and
  * what changed decides how much (IncrementalRendering, judged by MTimes: of the input's
  * points, polys and strips for the geometry; of the scalars, the lookup table and the
  * coloring settings for the colors): new lights, a new property or new colors only re-shade
@@ -462,11 +464,14 @@ public:
   ///@{
   /**
    * Estimate the render's flat-shading error and put it in the field data
-   * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units). It needs the mesh's
-   * vertex normals, computed once per input (about a second per million triangles), and
-   * costs a bound per visible polygon per render. Not free yet: on a 2M-triangle sphere at
-   * 1920 x 1080 it added 50-65 % to a turning frame and 2 s to the first Update, so it is
-   * off until it is; off, a flat one-sample render is the plain rasterizer (default: off).
+   * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
+   * cost). Once per mesh version (not per frame) it computes the vertex normals and keeps
+   * each polygon's normal, extent and normal spread (20 bytes); per render it bounds the
+   * polygons that won a pixel and takes one pass over the pixels; a new background alone
+   * keeps the last estimate. Not free: on spheres of 0.5M and 2M triangles at 1920 x 1080
+   * it adds about 35-40 % to a turning-camera Update() and, once, about as much as the
+   * conversion to the first (README, "Leaving out work"), so it stays off; off, a flat
+   * one-sample render is the plain rasterizer (default: off).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);
   vtkGetMacro(EstimateError, vtkTypeBool);
@@ -476,7 +481,7 @@ public:
   ///@{
   /**
    * Add the per-pixel error estimate as the point array `ErrorEstimate` (8-bit units; the
-   * field data always has its summary) (default: off).
+   * field data then has its summary too, as with EstimateError) (default: off).
    */
   vtkSetMacro(ErrorEstimateArray, vtkTypeBool);
   vtkGetMacro(ErrorEstimateArray, vtkTypeBool);

@@ -32,8 +32,10 @@ facet::Rgba8 AverageColor(const unsigned char* rgba, std::size_t count, const Po
       sum[i] += c[i];
     }
   }
+  // Rounded half up in integers: lround(sum / count) without its library call (the quotient
+  // is never within double rounding of a half unless it is one).
   const auto mean = [&](int i) {
-    return static_cast<std::uint8_t>(std::lround(static_cast<double>(sum[i]) / count));
+    return static_cast<std::uint8_t>((2 * std::size_t{ sum[i] } + count) / (2 * count));
   };
   return { mean(0), mean(1), mean(2), mean(3) };
 }
@@ -106,7 +108,7 @@ void vtkFacetScalarColors::Update(vtkPolyData* input,
   // Prepared before the comparison: setting the range may modify the table.
   vtkScalarsToColors* table = scalars ? PrepareLookupTable(scalars, settings) : nullptr;
   const vtkMTimeType tableTime = table ? table->GetMTime() : 0;
-  if (!(this->Valid && !mesh.ConvertedLastUpdate() && settings == this->Last &&
+  if (!(this->Valid && !mesh.InputChangedLastUpdate() && settings == this->Last &&
         table == this->LastTable && tableTime == this->LastTableTime))
   {
     this->Polygon.clear();

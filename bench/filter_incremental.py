@@ -4,11 +4,12 @@
 The 2M-triangle sphere (colored by elevation through a lookup table, one positional light)
 at 1920x1080, 2 threads. Each round changes one thing at a time, in turn: the camera (a
 full render), only the light's color (re-shade), only the lookup table (new colors:
-re-shade) and only the background (resolve). Every Update is timed around Update() (so it
+re-shade), only the scalars' values (new colors of the same geometry: re-shade, no new
+conversion) and only the background (resolve). Every Update is timed around Update() (so it
 includes the outputs RGBA, Depth and CellId and the field data) and its path is checked in
 the field data (FacetRenderPath). The table gives the median of each kind and its ratio
-against the full Update, for the filter's defaults and with EstimateError off (the default
-estimates flat shading's error at every render: vtkFacetQuality).
+against the full Update, with EstimateError on (flat shading's error estimated at every
+render: vtkFacetQuality) and off (the default). Each rig renders its own copy of the data.
 
     PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3 bench/filter_incremental.py
 """
@@ -18,9 +19,11 @@ import statistics
 import time
 
 from vtkmodules.vtkCommonCore import vtkLookupTable
+from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkElevationFilter
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkRenderingCore import vtkCamera, vtkLight
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from facet import vtkFacetRenderFilter
 
@@ -45,8 +48,10 @@ class Rig:
     """A filter and the objects a user changes."""
 
     def __init__(self, data, threads, estimate_error):
+        self.data = vtkPolyData()  # its own: the scalars change per rig
+        self.data.DeepCopy(data)
         self.filter = vtkFacetRenderFilter()
-        self.filter.SetInputData(data)
+        self.filter.SetInputData(self.data)
         self.filter.SetSize(WIDTH, HEIGHT)
         self.filter.SetNumberOfThreads(threads)
         self.filter.SetEstimateError(estimate_error)
@@ -74,6 +79,11 @@ class Rig:
             self.light.SetDiffuseColor(1.0, 0.8 + wiggle, 0.7)
         elif kind == "recolor":
             self.table.SetHueRange(0.0 + wiggle, 0.667)
+        elif kind == "scalars":
+            scalars = self.data.GetPointData().GetScalars()
+            values = vtk_to_numpy(scalars)
+            values[:] = 1.0 - values
+            scalars.Modified()
         elif kind == "background":
             self.filter.SetBackground(0.1 + wiggle, 0.1, 0.2)
 
@@ -85,7 +95,8 @@ class Rig:
         return seconds, PATHS[int(path)]
 
 
-KINDS = {"full": "full", "re-light": "re-shade", "recolor": "re-shade", "background": "resolve"}
+KINDS = {"full": "full", "re-light": "re-shade", "recolor": "re-shade", "scalars": "re-shade",
+         "background": "resolve"}
 
 
 def main():
@@ -94,7 +105,7 @@ def main():
     parser.add_argument("--threads", type=int, default=2)
     args = parser.parse_args()
     data = sphere()
-    rigs = {"defaults": Rig(data, args.threads, True),
+    rigs = {"EstimateError on": Rig(data, args.threads, True),
             "EstimateError off": Rig(data, args.threads, False)}
     times = {(setup, kind): [] for setup in rigs for kind in KINDS}
     for _ in range(args.rounds):

@@ -9,6 +9,12 @@ off) and with VTK's default multisampling.
 
     PYTHONPATH=build/lib/python3.11/dist-packages xvfb-run -a -s "-screen 0 1920x1080x24" \\
         /usr/bin/python3 bench/filter_speed.py
+
+--overhead (no VTK renderer, no Xvfb): what Update() costs beyond the core's frame, and what
+the error estimate adds, per size; two filters on the same input (EstimateError off and on)
+render alternately, so their ratio is of one run:
+
+    PYTHONPATH=build/lib/python3.11/dist-packages /usr/bin/python3 bench/filter_speed.py --overhead
 """
 import argparse
 import os
@@ -22,16 +28,21 @@ from vtkmodules.vtkRenderingCore import vtkLight, vtkRenderer
 from facet import vtkFacetRenderFilter
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_vtk import SIZES, vtk_seconds_per_frame  # noqa: E402
+from compare_vtk import SIZES  # noqa: E402
 
 WIDTH, HEIGHT = 1920, 1080
 
 
-def facet_seconds_per_frame(theta, frames, threads, detect_closed):
+def sphere_of(theta):
     sphere = vtkSphereSource()
     sphere.SetThetaResolution(theta)
     sphere.SetPhiResolution(theta + 2)
     sphere.Update()
+    return sphere
+
+
+def facet_filter(sphere, threads, detect_closed):
+    """The filter on the sphere, its camera fitted, one positional light at the camera."""
     fit = vtkRenderer()
     fit.SetAspect(WIDTH / HEIGHT, 1.0)
     camera = fit.GetActiveCamera()
@@ -50,6 +61,18 @@ def facet_seconds_per_frame(theta, frames, threads, detect_closed):
     render.SetAmbientLightColor(0, 0, 0)
     render.SetNumberOfThreads(threads)
     render.SetDetectClosedSurfaces(detect_closed)
+    return render, camera
+
+
+def timed_update(render):
+    """(wall seconds, CPU seconds of all threads) of one Update()."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    render.Update()
+    return time.perf_counter() - wall, time.process_time() - cpu
+
+
+def facet_seconds_per_frame(theta, frames, threads, detect_closed):
+    render, camera = facet_filter(sphere_of(theta), threads, detect_closed)
     render.Update()  # first frame: converts the mesh (and checks closedness once)
     first = render.GetOutput().GetFieldData().GetArray("FacetRenderSeconds").GetValue(0)
     times = []
@@ -63,12 +86,66 @@ def facet_seconds_per_frame(theta, frames, threads, detect_closed):
     return statistics.median(times), first
 
 
+def core_seconds(render):
+    """The core renderer's own phases in the last Update (field data FacetPhaseSeconds)."""
+    phases = render.GetOutput().GetFieldData().GetArray("FacetPhaseSeconds")
+    names = {"Validate", "Transform", "Setup", "Raster", "Shade"}
+    return sum(phases.GetComponent(0, i) for i in range(phases.GetNumberOfComponents())
+               if phases.GetComponentName(i) in names)
+
+
+def overhead(frames, threads):
+    """Update() with a turning camera against the core's frame, estimate off and on."""
+    print("vtkFacetRenderFilter.Update(), 1920x1080, camera turning every frame (every face "
+          f"drawn), {threads} threads, median of {frames} frames; 'core' = the core renderer's "
+          "phases inside the same Update(); estimate off and on render alternately; CPU = "
+          f"seconds of all threads (steadier than wall time on a shared machine); load average "
+          f"{os.getloadavg()[0]:.1f} at the start")
+    print(f"{'triangles':>10} | {'Update s':>9} {'core s':>8} {'Update/core':>11} | "
+          f"{'+estimate':>9} {'CPU':>6} | {'first Update s':>14} {'+estimate':>9} {'CPU':>7}")
+    for triangles, theta in SIZES.items():
+        if triangles < 500000:
+            continue
+        sphere = sphere_of(theta)
+        plain, camera = facet_filter(sphere, threads, False)
+        plain.SetEstimateError(False)
+        estimating, _ = facet_filter(sphere, threads, False)
+        estimating.SetCamera(camera)
+        estimating.SetEstimateError(True)
+        first = timed_update(plain)
+        first_estimating = timed_update(estimating)
+        times = {id(plain): [], id(estimating): []}
+        cores = []
+        for _ in range(frames):
+            camera.Azimuth(0.5)
+            for render in (plain, estimating):
+                times[id(render)].append(timed_update(render))
+            cores.append(core_seconds(plain))
+
+        def median(render, which):
+            return statistics.median(t[which] for t in times[id(render)])
+
+        update = median(plain, 0)
+        core = statistics.median(cores)
+        wall_cost = median(estimating, 0) / update - 1
+        cpu_cost = median(estimating, 1) / median(plain, 1) - 1
+        print(f"{triangles:>10} | {update:>9.4f} {core:>8.4f} {update / core:>10.2f}x | "
+              f"{100 * wall_cost:>+8.0f}% {100 * cpu_cost:>+5.0f}% | {first[0]:>14.3f} "
+              f"{first_estimating[0] - first[0]:>+9.3f} {first_estimating[1] - first[1]:>+7.3f}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--frames", type=int, default=10)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--overhead", action="store_true",
+                        help="Update() against the core's frame, and the estimate's cost")
     args = parser.parse_args()
+    if args.overhead:
+        overhead(args.frames, args.threads)
+        return
     os.environ["LP_NUM_THREADS"] = str(args.threads)  # read when llvmpipe's screen is created
+    from compare_vtk import vtk_seconds_per_frame
 
     def best_vtk(theta, multisamples):
         return min((vtk_seconds_per_frame(theta, 5, multisamples) for _ in range(2)),

@@ -55,6 +55,9 @@ struct FrameMesh {
   // seen, and per transform task, whether a visible block uses its points. Null: all.
   const std::uint8_t* visibleBlocks = nullptr;
   const std::uint8_t* neededTasks = nullptr;
+  // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
+  // shade phase from the points (an unversioned mesh).
+  const glm::vec3* faceNormals = nullptr;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "FaceNormal.h"
+
 namespace facet::detail {
 namespace {
 
@@ -32,7 +34,8 @@ bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& 
   });
 }
 
-// Block b's box, point span and finiteness, from the points its polygons use.
+// Block b's box, point span and finiteness, from the points its polygons use, and its
+// polygons' normals.
 void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   const std::size_t begin = b * kPolygonsPerBlock;
   const std::size_t end = std::min(mesh.polygons.count, begin + kPolygonsPerBlock);
@@ -41,13 +44,16 @@ void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   bool finite = true;
   withTypedMesh(mesh, [&](auto points, auto polygons) {
     for (std::size_t p = begin; p < end; ++p) {
-      for (std::size_t k = 0, n = polygons.size(p); k < n; ++k) {
+      const std::size_t n = polygons.size(p);
+      for (std::size_t k = 0; k < n; ++k) {
         const std::size_t id = polygons.pointId(p, k);
         span.first = std::min(span.first, id);
         span.last = std::max(span.last, id);
         const glm::dvec3 point = points[id];
         isFinite(point) ? box.add(point) : void(finite = false);
       }
+      facts.faceNormals[p] =
+          faceNormalOf(n, [&](std::size_t k) { return points[polygons.pointId(p, k)]; });
     }
   });
   facts.blocks[b] = box;
@@ -60,6 +66,7 @@ void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   facts.blocks.resize(blocks);
   facts.blockPoints.resize(blocks);
   facts.blockFinite.resize(blocks);
+  facts.faceNormals.resize(polygons);
 }
 
 }  // namespace

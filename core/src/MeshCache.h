@@ -2,8 +2,8 @@
 
 // Phase 0: what is known about each mesh before a render reads it. An unversioned mesh
 // (MeshView::version 0) is validated every render; a versioned one once per version, and
-// measured then: its bounding box, and the boxes of its blocks of polygons that the rules
-// test the lights and the view against.
+// measured then: its bounding box, the boxes of its blocks of polygons that the rules test
+// the lights and the view against, and its polygons' unit normals (the shade phase's).
 
 #include <cstdint>
 #include <optional>
@@ -51,6 +51,8 @@ struct MeshFacts {
   std::vector<Box> blocks;                // per block: the finite points its polygons use
   std::vector<PointSpan> blockPoints;     // per block
   std::vector<std::uint8_t> blockFinite;  // per block: every point it uses is finite
+  // Per polygon, for a measured mesh: its unit normal rounded to float (FaceNormal.h).
+  std::vector<glm::vec3> faceNormals;
 };
 
 // The box of a mesh's finite points (for a plan made ahead of a render).

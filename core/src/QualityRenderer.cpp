@@ -17,6 +17,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -48,6 +49,14 @@ int gridSide(int samplesPerPixel) {
 constexpr std::size_t kRowsPerTask = 4;
 constexpr std::size_t kPolygonsPerTask = 1 << 12;
 
+// The smallest cosine between a unit axis and the corner normals (−1 for a zero one).
+double smallestCosine(const glm::dvec3& axis, std::span<const glm::dvec3> normals) {
+  double smallest = 1.0;
+  for (const glm::dvec3& n : normals)
+    smallest = std::min(smallest, n == glm::dvec3(0.0) ? -1.0 : glm::dot(axis, n));
+  return smallest;
+}
+
 PolygonShape shapeOf(std::span<const glm::dvec3> corners, std::span<const glm::dvec3> normals) {
   PolygonShape shape;
   const std::optional<glm::dvec3> normal = corners.size() == 3
@@ -61,22 +70,88 @@ PolygonShape shapeOf(std::span<const glm::dvec3> corners, std::span<const glm::d
     shape.radius = std::max(shape.radius, glm::length(c - shape.center));
   if (!normal || !std::isfinite(shape.radius)) return shape;  // degenerate: zero normal
   shape.normal = *normal;
-  for (const glm::dvec3& n : normals)
-    shape.cosNormalSpread =
-        std::min(shape.cosNormalSpread, n == glm::dvec3(0.0) ? -1.0 : glm::dot(*normal, n));
+  shape.cosNormalSpread = smallestCosine(*normal, normals);
   return shape;
 }
 
-void addCornerColors(PolygonShape& shape, std::span<const Rgba8> pointColors,
-                     std::span<const std::size_t> pointIds) {
+// The range of the corners' colors; idAt(k) is corner k's point id.
+template <class IdAt>
+void addCornerColors(PolygonShape& shape, std::span<const Rgba8> pointColors, std::size_t count,
+                     const IdAt& idAt) {
   shape.pointColors = true;
   shape.cornerColorLow = Color(1.0f);
   shape.cornerColorHigh = Color(0.0f);
-  for (const std::size_t id : pointIds) {
-    const Color c = toColor(pointColors[id]);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Color c = toColor(pointColors[idAt(k)]);
     shape.cornerColorLow = glm::min(shape.cornerColorLow, c);
     shape.cornerColorHigh = glm::max(shape.cornerColorHigh, c);
   }
+}
+
+// One polygon's corners: points, point ids and, when asked, corner normals (scratch space,
+// reused from polygon to polygon).
+struct Corners {
+  std::vector<glm::dvec3> points, normals;
+  std::vector<std::size_t> ids;
+};
+
+void readCorners(const MeshView& mesh, std::size_t p, const VertexNormals* normals, Corners& out) {
+  out.points.clear();
+  out.normals.clear();
+  out.ids.clear();
+  detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
+    for (std::size_t k = 0; k < polygons.size(p); ++k) {
+      out.ids.push_back(polygons.pointId(p, k));
+      out.points.push_back(points[out.ids.back()]);
+      if (normals)
+        out.normals.push_back(normals->normals[normals->cornerNormal[polygons.begin(p) + k]]);
+    }
+  });
+}
+
+// Polygon p's shape; its normal spread from `normals` (null: left at 1, for the caller to
+// fill in).
+PolygonShape polygonShape(const MeshView& mesh, std::size_t p, const VertexNormals* normals,
+                          Corners& corners) {
+  readCorners(mesh, p, normals, corners);
+  if (corners.points.size() < 3) return {};
+  PolygonShape shape = shapeOf(corners.points, corners.normals);
+  if (!mesh.pointColors.empty()) {
+    addCornerColors(shape, mesh.pointColors, corners.ids.size(),
+                    [&](std::size_t k) { return corners.ids[k]; });
+  }
+  return shape;
+}
+
+// The part of a polygon's shape that its PolygonExtent leaves out: its center (kept in double
+// for data far from the origin) and, with point colors, its corners' color range.
+void addCenterAndColors(const MeshView& mesh, std::size_t p, PolygonShape& shape) {
+  detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
+    const std::size_t n = polygons.size(p);
+    glm::dvec3 sum(0.0);
+    for (std::size_t k = 0; k < n; ++k)
+      sum += points[polygons.pointId(p, k)];
+    shape.center = sum / static_cast<double>(n);
+    if (!mesh.pointColors.empty()) {
+      addCornerColors(shape, mesh.pointColors, n,
+                      [&](std::size_t k) { return polygons.pointId(p, k); });
+    }
+  });
+}
+
+float roundedUp(double value) {
+  const float f = static_cast<float>(value);
+  return f < value ? std::nextafter(f, INFINITY) : f;
+}
+
+// The spread is kept as a sine, rounded up: a float cosine near 1 moves in steps of ~3e-4 rad
+// of the angle. sin α of a spread with cosine c, or 2 for α ≥ 90° (no bound).
+float sineOfSpread(double c) {
+  if (!(c > 0.0)) return 2.0f;
+  return roundedUp(std::sqrt(std::max(0.0, 1.0 - c * c)));
+}
+double cosineOfSpread(float sine) {
+  return sine >= 1.0f ? 0.0 : std::sqrt(1.0 - static_cast<double>(sine) * sine);
 }
 
 void requireCount(std::size_t count, std::size_t points, const char* name) {
@@ -134,23 +209,9 @@ ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& option
   for (std::size_t p = 0; p < mesh.polygons.count; ++p)
     firstTriangle[p + 1] += firstTriangle[p];
   shapes.resize(mesh.polygons.count);
-  detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
-    std::vector<glm::dvec3> corners, cornerNormals;
-    std::vector<std::size_t> ids;
-    for (std::size_t p = 0; p < mesh.polygons.count; ++p) {
-      corners.clear();
-      cornerNormals.clear();
-      ids.clear();
-      for (std::size_t k = 0; k < polygons.size(p); ++k) {
-        ids.push_back(polygons.pointId(p, k));
-        corners.push_back(points[ids.back()]);
-        cornerNormals.push_back(normals.normals[normals.cornerNormal[polygons.begin(p) + k]]);
-      }
-      if (corners.size() < 3) continue;
-      shapes[p] = shapeOf(corners, cornerNormals);
-      if (!mesh.pointColors.empty()) addCornerColors(shapes[p], mesh.pointColors, ids);
-    }
-  });
+  Corners corners;
+  for (std::size_t p = 0; p < mesh.polygons.count; ++p)
+    shapes[p] = polygonShape(mesh, p, &normals, corners);
 }
 
 void validate(const QualitySettings& settings) {
@@ -178,6 +239,7 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstPolygon;  // per mesh, and the total
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
+  std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
         const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
@@ -219,8 +281,21 @@ struct QualityRenderer::Frame {
     return colors.empty() ? scene.meshes[mesh].material.color : toColor(colors[polygon]);
   }
 
+  // A polygon's shape: its ShadingMesh's, or its kept extent with its center.
+  PolygonShape shapeAt(std::size_t mesh, std::size_t polygon) const {
+    if (!meshes.empty()) return meshes[mesh].shapes[polygon];
+    const PolygonExtent& extent = extents[mesh].polygons[polygon];
+    PolygonShape shape;
+    if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
+    shape.normal = glm::dvec3(extent.normal);
+    shape.radius = extent.radius;
+    shape.cosNormalSpread = cosineOfSpread(extent.sinNormalSpread);
+    addCenterAndColors(scene.meshes[mesh].mesh, polygon, shape);
+    return shape;
+  }
+
   double boundOf(std::size_t mesh, std::size_t polygon) const {
-    return bounds.bound(meshes[mesh].shapes[polygon], materials[mesh], polygonColor(mesh, polygon));
+    return bounds.bound(shapeAt(mesh, polygon), materials[mesh], polygonColor(mesh, polygon));
   }
 
   // The normal a polygon is lit by, turned toward the viewer when its back is seen.
@@ -333,27 +408,44 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
                        });
 }
 
-// The flat-shading estimate of one sample (FlatErrorBound.h, extended to what a pixel
-// shows): the sample's color c_p against the Phong color of any polygon q whose part of the
-// neighbourhood the 3 × 3 samples around it see: |c_p − Phong_q(x)| ≤ |c_p − c_q| + 0.5 + b_q
-// (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact one, which is within b_q
-// of Phong_q anywhere on q). For q = p this is b_p + 0.5.
-float sampleEstimate(const FramebufferView& grid, std::span<const float> bounds, int x, int y) {
-  const std::size_t index = static_cast<std::size_t>(y) * grid.width + x;
-  const Rgba8 center = grid.color[index];
-  float largest = 0.0f;
+// The flat-shading estimate of the samples of row y (FlatErrorBound.h, extended to what a
+// pixel shows), into `out`: a sample's color c_p against the Phong color of any polygon q
+// whose part of the neighbourhood the 3 × 3 samples around it see: |c_p − Phong_q(x)| ≤
+// |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
+// one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
+// `bounds`: per sample, the bound of its polygon, negative for the background (which adds
+// 0, as no polygon). Neighbour by neighbour over the row's covered span: branch-free
+// loops, rather than nine scattered reads per sample.
+void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float* out) {
+  const int width = grid.width;
+  const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;
+  std::fill(out, out + width, 0.0f);
+  // Only the span of the row's covered samples: the others are not estimated.
+  const float* own = bounds + static_cast<std::size_t>(y) * width;
+  int first = 0, last = width - 1;
+  while (first <= last && own[first] < 0.0f)
+    ++first;
+  while (last >= first && own[last] < 0.0f)
+    --last;
   for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
-    for (int nx = std::max(0, x - 1); nx <= std::min(grid.width - 1, x + 1); ++nx) {
-      const std::size_t n = static_cast<std::size_t>(ny) * grid.width + nx;
-      const std::int32_t id = grid.polygonId[n];
-      if (id < 0) continue;
-      const Rgba8 c = grid.color[n];
-      const int difference =
-          std::max({std::abs(c.r - center.r), std::abs(c.g - center.g), std::abs(c.b - center.b)});
-      largest = std::max(largest, static_cast<float>(difference) + bounds[id]);
+    const float* rowBounds = bounds + static_cast<std::size_t>(ny) * width;
+    const Rgba8* rowColors = grid.color + static_cast<std::size_t>(ny) * width;
+    for (int dx = -1; dx <= 1; ++dx) {
+      const std::uint8_t* c = &rowColors[dx].r;  // the neighbours' channels, 4 per sample
+      const std::uint8_t* p = &center[0].r;
+      const float* b = rowBounds + dx;
+      for (int x = std::max(first, -dx); x < std::min(last + 1, width - dx); ++x) {
+        const int r = std::abs(c[4 * x] - p[4 * x]), g = std::abs(c[4 * x + 1] - p[4 * x + 1]),
+                  bl = std::abs(c[4 * x + 2] - p[4 * x + 2]);
+        const float difference = static_cast<float>(std::max(std::max(r, g), bl));
+        // Background (b < 0): 0, by a multiply the loop vectorizes rather than a branch.
+        const float v = (difference + b[x]) * static_cast<float>(b[x] >= 0.0f);
+        out[x] = out[x] > v ? out[x] : v;
+      }
     }
   }
-  return largest + 0.5f;
+  for (int x = first; x <= last; ++x)
+    out[x] += 0.5f;
 }
 
 }  // namespace
@@ -364,8 +456,10 @@ void QualityRenderer::markVisible(const Frame& frame) {
     shown_ = std::make_unique<std::atomic<std::uint8_t>[]>(polygons);
     shownSize_ = polygons;
   }
-  for (std::size_t i = 0; i < polygons; ++i)
-    shown_[i].store(0, std::memory_order_relaxed);
+  renderer_.parallelFor(polygons, std::size_t{1} << 20, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      shown_[i].store(0, std::memory_order_relaxed);
+  });
   const FramebufferView& grid = frame.samples;
   forRows(renderer_, grid.height, [&](int y) {
     const std::int32_t* ids = grid.polygonId + static_cast<std::size_t>(y) * grid.width;
@@ -404,35 +498,49 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   return total;
 }
 
-// Per sample (sampleEstimate), then per pixel the mean of its samples' (the pixel's error
+// Per sample (rowEstimates), then per pixel the mean of its samples' (the pixel's error
 // is the mean of its samples' against their parts of the pixel), plus 0.5 for rounding that
-// mean; 0 where the pixel shows no polygon. Then the statistics over covered pixels.
+// mean; 0 where the pixel shows no polygon. Then the statistics over covered pixels. The
+// samples' bounds are gathered first, in one pass: the 3 × 3 neighbourhoods then read them
+// in image order rather than the polygons' bounds nine times at random.
 void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target,
                                QualityStats& stats) {
   const FramebufferView& grid = frame.samples;
   const int g = frame.grid;
+  sampleBounds_.resize(static_cast<std::size_t>(grid.width) * grid.height);
+  forRows(renderer_, grid.height, [&](int y) {
+    const std::size_t row = static_cast<std::size_t>(y) * grid.width;
+    for (std::size_t i = row; i < row + grid.width; ++i)
+      sampleBounds_[i] = grid.polygonId[i] < 0 ? -1.0f : polygonBounds_[grid.polygonId[i]];
+  });
   estimate_.assign(static_cast<std::size_t>(target.width) * target.height, 0.0f);
   std::vector<double> rowSquares(static_cast<std::size_t>(target.height), 0.0);
   std::vector<float> rowLargest(static_cast<std::size_t>(target.height), 0.0f);
   std::vector<std::size_t> rowCovered(static_cast<std::size_t>(target.height), 0);
-  forRows(renderer_, target.height, [&](int y) {
-    for (int x = 0; x < target.width; ++x) {
-      float sum = 0.0f;
-      bool covered = false;
-      for (int j = 0; j < g; ++j) {
-        for (int i = 0; i < g; ++i) {
-          const int sx = x * g + i, sy = y * g + j;
-          if (grid.polygonId[static_cast<std::size_t>(sy) * grid.width + sx] < 0) continue;
-          covered = true;
-          sum += sampleEstimate(grid, polygonBounds_, sx, sy);
+  const std::size_t rowSize = static_cast<std::size_t>(grid.width);
+  renderer_.parallelFor(target.height, kRowsPerTask, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> rows(g * rowSize);  // the estimates of a pixel row's sample rows
+    for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
+      for (int j = 0; j < g; ++j)
+        rowEstimates(grid, sampleBounds_.data(), y * g + j, rows.data() + j * rowSize);
+      for (int x = 0; x < target.width; ++x) {
+        float sum = 0.0f;
+        bool covered = false;
+        for (int j = 0; j < g; ++j) {
+          for (int i = 0; i < g; ++i) {
+            const int sx = x * g + i, sy = y * g + j;
+            if (sampleBounds_[static_cast<std::size_t>(sy) * rowSize + sx] < 0.0f) continue;
+            covered = true;
+            sum += rows[j * rowSize + sx];
+          }
         }
+        if (!covered) continue;
+        const float e = std::min(255.0f, g > 1 ? sum / static_cast<float>(g * g) + 0.5f : sum);
+        estimate_[target.width * static_cast<std::size_t>(y) + x] = e;
+        rowSquares[y] += static_cast<double>(e) * e;
+        rowLargest[y] = std::max(rowLargest[y], e);
+        ++rowCovered[y];
       }
-      if (!covered) continue;
-      const float e = std::min(255.0f, g > 1 ? sum / static_cast<float>(g * g) + 0.5f : sum);
-      estimate_[target.width * static_cast<std::size_t>(y) + x] = e;
-      rowSquares[y] += static_cast<double>(e) * e;
-      rowLargest[y] = std::max(rowLargest[y], e);
-      ++rowCovered[y];
     }
   });
   double squares = 0.0;
@@ -493,15 +601,16 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   const Clock::time_point start = Clock::now();
   validate(settings);
   QualityStats stats;
-  estimate_.clear();
   const bool reshades = settings.maximumError || settings.shading != Shading::Flat;
   const int g = gridSide(settings.samplesPerPixel);
+  const int estimatedGrid = std::exchange(estimatedGrid_, 0);  // until this render's is made
+  if (!settings.estimateError) estimate_.clear();
   if (!reshades && g == 1 && !settings.estimateError) {
     stats.render = renderer_.render(scene, camera, target);
     stats.totalSeconds = secondsSince(start);
     return stats;
   }
-  shading = shadingFor(scene, shading);
+  shading = shadingFor(scene, shading, reshades, settings.estimateError);
   FramebufferView grid = target;
   if (g > 1) {
     const long long side = static_cast<long long>(g) * std::max(target.width, target.height);
@@ -521,14 +630,30 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     stats.totalSeconds = secondsSince(start);
     return stats;
   }
-  const Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
+  Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
+  frame.extents = extents_;
   Clock::time_point phase = Clock::now();
-  markVisible(frame);
-  const bool bounds = settings.estimateError || frame.adaptive();
+  // Only the background changed since this object's last render: same polygons, same flat
+  // colors where any polygon shows, so the same estimate (it ignores the background).
+  const bool keepEstimate =
+      settings.estimateError && stats.render.plan.path == RenderPath::Resolve &&
+      estimatedGrid == g &&
+      estimate_.size() == static_cast<std::size_t>(target.width) * target.height;
+  const bool bounds = (settings.estimateError && !keepEstimate) || frame.adaptive();
   const bool corners = settings.shading == Shading::Gouraud && !frame.adaptive();
-  stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
+  if (bounds || corners || frame.reshades()) {
+    markVisible(frame);
+    stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
+  }
   if (!frame.reshades()) stats.polygonsReshaded = 0;
-  if (settings.estimateError) estimate(frame, target, stats);
+  if (keepEstimate) {
+    stats.predictedRmse = estimated_.predictedRmse;
+    stats.predictedMaxError = estimated_.predictedMaxError;
+  } else if (settings.estimateError) {
+    estimate(frame, target, stats);
+    estimated_ = stats;
+  }
+  if (settings.estimateError) estimatedGrid_ = g;
   stats.estimateSeconds = secondsSince(phase);
   phase = Clock::now();
   if (frame.reshades() || g > 1) shadeAndResolve(frame, target, stats);
@@ -538,7 +663,13 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
 }
 
 std::span<const ShadingMesh> QualityRenderer::shadingFor(const Scene& scene,
-                                                         std::span<const ShadingMesh> given) {
+                                                         std::span<const ShadingMesh> given,
+                                                         bool reshades, bool estimates) {
+  if (given.empty() && !reshades) {
+    owned_.clear();
+    if (estimates) updateExtents(scene);
+    return {};
+  }
   if (!given.empty() && given.size() != scene.meshes.size()) {
     throw Error("QualityRenderer got " + std::to_string(given.size()) + " ShadingMeshes for " +
                 std::to_string(scene.meshes.size()) + " scene meshes");
@@ -557,6 +688,54 @@ std::span<const ShadingMesh> QualityRenderer::shadingFor(const Scene& scene,
     }
   }
   return given;
+}
+
+}  // namespace facet
+
+namespace facet {
+
+// The extents of the meshes whose arrays or version changed (every render for an
+// unversioned mesh), from their corner normals: a ShadingMesh's shapes without their centers,
+// and without keeping the normals, triangles and shapes themselves.
+void QualityRenderer::updateExtents(const Scene& scene) {
+  extents_.resize(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshView& mesh = scene.meshes[m].mesh;
+    const SpreadKey key{mesh.points.data,
+                        mesh.polygons.offsets,
+                        mesh.polygons.connectivity,
+                        mesh.pointNormals.data,
+                        mesh.points.count,
+                        mesh.polygons.count,
+                        mesh.polygons.connectivitySize,
+                        mesh.pointNormals.count,
+                        static_cast<int>(mesh.points.type) |
+                            static_cast<int>(mesh.polygons.type) << 4 |
+                            static_cast<int>(mesh.pointNormals.type) << 8,
+                        mesh.version};
+    MeshExtents& extents = extents_[m];
+    if (key.version != 0 && extents.key == key) continue;
+    extents = {};  // a mesh that throws leaves nothing behind that claims to be its
+    requireCount(mesh.pointNormals.count, mesh.points.count, "MeshView.pointNormals");
+    requireCount(mesh.pointColors.size(), mesh.points.count, "MeshView.pointColors");
+    const VertexNormals normals = mesh.pointNormals.count > 0
+                                      ? fromPointNormals(mesh, mesh.pointNormals)
+                                      : computeVertexNormals(mesh);
+    extents.polygons.resize(mesh.polygons.count);
+    renderer_.parallelFor(
+        mesh.polygons.count, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
+          Corners corners;
+          for (std::size_t p = begin; p < end; ++p) {
+            const PolygonShape shape = polygonShape(mesh, p, &normals, corners);
+            if (shape.normal == glm::dvec3(0.0)) continue;  // degenerate
+            // The spread about the normal flat shading lights by: the rounded one.
+            const glm::vec3 rounded(shape.normal);
+            const double c = smallestCosine(glm::normalize(glm::dvec3(rounded)), corners.normals);
+            extents.polygons[p] = {rounded, roundedUp(shape.radius), sineOfSpread(c)};
+          }
+        });
+    extents.key = key;
+  }
 }
 
 }  // namespace facet

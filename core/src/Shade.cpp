@@ -2,9 +2,9 @@
 
 #include <array>
 
+#include "FaceNormal.h"
 #include "MeshAccess.h"
 #include "ShaderAccess.h"
-#include "facet/PolygonNormal.h"
 
 namespace facet::detail {
 namespace {
@@ -54,8 +54,7 @@ Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess:
   sample.color = surfaceColor<kColors>(mesh, polygon);
   const std::size_t n = polygons.size(polygon);
   const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
-  const std::optional<glm::dvec3> normal =
-      n == 3 ? triangleNormal(corner(0), corner(1), corner(2)) : polygonNormal(n, corner);
+  const glm::vec3 normal = mesh.faceNormals ? mesh.faceNormals[polygon] : faceNormalOf(n, corner);
   if constexpr (kCenters) {
     glm::dvec3 sum(0.0);
     for (std::size_t k = 0; k < n; ++k)
@@ -64,7 +63,8 @@ Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess:
   }
   if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
   // A polygon with area on screen but none in 3D (pathological input only) faces the viewer.
-  sample.normal = normal ? *normal : context.transform.toViewer(corner(0));
+  sample.normal =
+      normal != glm::vec3(0.0f) ? glm::dvec3(normal) : context.transform.toViewer(corner(0));
   if (seenFromBack && context.twoSidedLighting) sample.normal = -sample.normal;
   return toRgba8(shade(context.shader, sample, mesh.material));
 }

@@ -10,6 +10,7 @@
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
 #include "vtkLookupTable.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
@@ -253,6 +254,61 @@ TEST_F(Incremental, NewScalarsReshade)
   EXPECT_EQ(PathOf(again), Reshade) << kept.Filter->GetRenderPlan();
   Rig fresh(this->Input);
   ExpectSameImage(again, fresh.Render(Settings()));
+}
+
+// New scalars are no new geometry: the mesh is not converted again (nor validated, nor
+// checked for closedness), only colored again.
+TEST_F(Incremental, NewScalarsAreNoNewConversion)
+{
+  Rig kept(this->Input);
+  kept.Render(Settings());
+  vtkDataArray* scalars = this->Input->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    scalars->SetComponent(i, 0, 0.5 * scalars->GetComponent(i, 0));
+  }
+  scalars->Modified();
+  vtkImageData* again = kept.Render(Settings());
+  EXPECT_EQ(FieldValue(again, "FacetMeshConverted", "Converted"), 0.0);
+  EXPECT_EQ(PathOf(again), Reshade) << kept.Filter->GetRenderPlan();
+  Rig fresh(this->Input);
+  ExpectSameImage(again, fresh.Render(Settings()));
+}
+
+// The estimate's camera-independent part is kept per mesh version; new point normals (an
+// attribute, no new conversion) still reach it, and a new background keeps it.
+TEST_F(Incremental, TheEstimateFollowsNewPointNormals)
+{
+  const auto predicted = [](vtkImageData* image) {
+    return FieldValue(image, "FacetErrorEstimate", "PredictedRMSE");
+  };
+  Rig kept(this->Input);
+  kept.Filter->EstimateErrorOn();
+  const double before = predicted(kept.Render(Settings()));
+  vtkDataArray* normals = this->Input->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    double n[3];
+    normals->GetTuple(i, n);
+    n[0] += 0.3;
+    vtkMath::Normalize(n);
+    normals->SetTuple(i, n);
+  }
+  normals->Modified();
+  vtkImageData* again = kept.Render(Settings());
+  EXPECT_EQ(FieldValue(again, "FacetMeshConverted", "Converted"), 0.0);
+  const double after = predicted(again);
+  Rig fresh(this->Input);
+  fresh.Filter->EstimateErrorOn();
+  EXPECT_EQ(after, predicted(fresh.Render(Settings())));
+  EXPECT_GT(after, before) << "tilted normals are further from the faces'";
+
+  Settings background;
+  background.Background[0] = 0.9;
+  vtkImageData* recolored = kept.Render(background);
+  EXPECT_EQ(PathOf(recolored), Resolve);
+  EXPECT_EQ(predicted(recolored), after);
 }
 
 TEST_F(Incremental, OffRendersInFull)

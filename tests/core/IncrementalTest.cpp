@@ -323,5 +323,26 @@ TEST(Incremental, TheReportSaysWhichPathRanAndWhy) {
   EXPECT_STREQ(reshade.plan.rasterRoutine, full.plan.rasterRoutine);
 }
 
+// A versioned mesh is shaded from the face normals kept per version (MeshCache), an
+// unversioned one from normals computed every frame: the same bytes.
+TEST(Incremental, KeptFaceNormalsShadeToTheSameBytes) {
+  const World world;
+  Scene unversioned = world.scene;
+  for (SceneMesh& mesh : unversioned.meshes)
+    mesh.mesh.version = mesh.mesh.colorVersion = 0;
+  for (int threads : {1, 2}) {
+    Settings settings;
+    settings.threads = threads;
+    Renderer kept, computed;
+    apply(kept, settings);
+    apply(computed, settings);
+    Framebuffer a(220, 170), b(220, 170);
+    const RenderStats stats = kept.render(world.scene, world.camera, a);
+    computed.render(unversioned, world.camera, b);
+    EXPECT_GT(stats.pixelsCovered, 0u);
+    EXPECT_EQ(differingPixels(a, b), 0u) << threads << " threads";
+  }
+}
+
 }  // namespace
 }  // namespace facet::testing

@@ -333,5 +333,71 @@ TEST(QualityRenderer, BadSettingsAndMismatchedMeshesAreNamed) {
   EXPECT_THROW(ShadingMesh{badColors}, Error);
 }
 
+// Flat shading with the estimate keeps per mesh version only each polygon's normal, extent and
+// normal spread (rounded outward to float): the estimate is that of a ShadingMesh's shapes
+// to float precision, and never below it.
+TEST(QualityRenderer, EstimateWithoutShadingMeshesIsTheShadingMeshOne) {
+  const Mesh sphere = makeUvSphere(24, 13);
+  Scene scene = sphereScene(sphere);
+  scene.meshes[0].mesh.version = 1;
+  const Camera camera = sphereCamera();
+  const std::vector<ShadingMesh> shading{ShadingMesh(sphere.view())};
+  for (const int samples : {1, 4}) {
+    const QualitySettings settings{.samplesPerPixel = samples, .estimateError = true};
+    const Output kept = renderQuality(scene, camera, 80, 60, settings);
+    const Output given = renderQuality(scene, camera, 80, 60, settings, 2, shading);
+    ASSERT_EQ(kept.estimate.size(), given.estimate.size());
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < kept.estimate.size(); ++i) {
+      EXPECT_GE(kept.estimate[i], given.estimate[i] - 1e-4f) << "pixel " << i;
+      largest = std::max(largest, std::abs(kept.estimate[i] - given.estimate[i]));
+    }
+    EXPECT_LT(largest, 1e-3f) << samples << " samples";
+    EXPECT_NEAR(kept.stats.predictedRmse, given.stats.predictedRmse, 1e-3);
+    EXPECT_TRUE(std::ranges::equal(kept.framebuffer.color(), given.framebuffer.color()));
+  }
+}
+
+// The estimate follows the mesh's versions, lights and camera, and a render that only
+// recolors the frame (a new background) keeps it: every time what a fresh renderer gives.
+TEST(QualityRenderer, EstimateFollowsVersionsAndIsKeptWhenOnlyTheBackgroundChanges) {
+  Mesh sphere = makeUvSphere(24, 13);
+  Scene scene = sphereScene(sphere);
+  scene.meshes[0].mesh.version = 1;
+  const Camera camera = sphereCamera();
+  const QualitySettings settings{.estimateError = true};
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(80, 60);
+  const auto render = [&](const Scene& s) {
+    const QualityStats stats = quality.render(s, {}, camera, framebuffer, settings);
+    const Output fresh = renderQuality(s, camera, 80, 60, settings);
+    EXPECT_TRUE(std::ranges::equal(quality.errorEstimate(), fresh.estimate));
+    EXPECT_EQ(stats.predictedRmse, fresh.stats.predictedRmse);
+    EXPECT_EQ(stats.predictedMaxError, fresh.stats.predictedMaxError);
+    return stats;
+  };
+  const QualityStats first = render(scene);
+  const std::vector<float> firstEstimate(quality.errorEstimate().begin(),
+                                         quality.errorEstimate().end());
+
+  renderer.setBackground(Color(0.2f, 0.3f, 0.4f));
+  const QualityStats recolored = quality.render(scene, {}, camera, framebuffer, settings);
+  EXPECT_EQ(recolored.render.plan.path, RenderPath::Resolve);
+  EXPECT_TRUE(std::ranges::equal(quality.errorEstimate(), firstEstimate));
+  EXPECT_EQ(recolored.predictedRmse, first.predictedRmse);
+
+  scene.lights.lights.pop_back();  // a new light set: the bounds change, the frame re-shades
+  const QualityStats relit = render(scene);
+  EXPECT_EQ(relit.render.plan.path, RenderPath::Reshade);
+  EXPECT_NE(relit.predictedRmse, first.predictedRmse);
+
+  for (glm::dvec3& p : sphere.points)  // edited in place, with a new version
+    p.z *= 0.5;
+  scene.meshes[0].mesh.version = 2;
+  const QualityStats flattened = render(scene);
+  EXPECT_NE(flattened.predictedRmse, relit.predictedRmse);
+}
+
 }  // namespace
 }  // namespace facet

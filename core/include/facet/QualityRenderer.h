@@ -111,10 +111,14 @@ class QualityRenderer {
   explicit QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
 
   /// Renders the scene in the mode the settings ask for. `shading` holds one ShadingMesh per
-  /// scene mesh (prepared once, kept while the meshes do not change), or is empty: they are
-  /// then computed here, every render. Throws facet::Error for bad settings, a shading list
-  /// that does not match the scene, or an image side that a 2× or 4× sample grid would take
-  /// beyond kMaxImageSide; and whatever Renderer::render throws.
+  /// scene mesh (prepared once, kept while the meshes do not change), or is empty: shading
+  /// per sample or per corner (Gouraud, Phong, adaptive) then computes them here, every
+  /// render; flat shading with the estimate needs only each polygon's normal, extent and
+  /// normal spread, which this object keeps per mesh version (MeshView::version, which then
+  /// also covers MeshView::pointNormals; an unversioned mesh is measured every render).
+  /// Throws facet::Error for bad settings, a shading list that does not match the scene, or
+  /// an image side that a 2× or 4× sample grid would take beyond kMaxImageSide; and whatever
+  /// Renderer::render throws.
   QualityStats render(const Scene& scene, std::span<const ShadingMesh> shading,
                       const Camera& camera, const FramebufferView& target,
                       const QualitySettings& settings);
@@ -125,21 +129,55 @@ class QualityRenderer {
   }
 
   /// The last render's per-pixel estimate (QualityStats), row 0 at the bottom, 0 where no
-  /// polygon shows; empty unless it was asked for.
+  /// polygon shows; empty unless it was asked for. A render that only recolors the previous
+  /// frame (RenderPath::Resolve: a new background) keeps the previous estimate, which must
+  /// then be of the renderer's previous frame: render through this object only, or call
+  /// Renderer::forgetPreviousFrame() after rendering without it.
   std::span<const float> errorEstimate() const { return estimate_; }
 
  private:
   struct Frame;
-  std::span<const ShadingMesh> shadingFor(const Scene& scene, std::span<const ShadingMesh> given);
+  std::span<const ShadingMesh> shadingFor(const Scene& scene, std::span<const ShadingMesh> given,
+                                          bool reshades, bool estimates);
   void markVisible(const Frame& frame);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
   void estimate(const Frame& frame, const FramebufferView& target, QualityStats& stats);
+  void updateExtents(const Scene& scene);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
 
   Renderer& renderer_;
   Framebuffer samples_;  // the 2× or 4× sample grid
   std::vector<ShadingMesh> owned_;
   std::vector<float> estimate_;
+  QualityStats estimated_;  // predicted* of estimate_, for a render that keeps it
+  int estimatedGrid_ = 0;   // the sample grid side estimate_ was made on; 0: none
+
+  // Per scene mesh, the estimate's camera-independent part (a PolygonShape but its center)
+  // for the arrays and version in `key`: 20 bytes per polygon in place of a ShadingMesh's
+  // ~250. The normal is flat shading's, rounded to float as the Renderer's, and the spread
+  // is taken about it; the radius and the spread's sine are rounded up, so the bound stays a
+  // bound.
+  struct SpreadKey {
+    const void* points = nullptr;
+    const void* offsets = nullptr;
+    const void* connectivity = nullptr;
+    const void* pointNormals = nullptr;
+    std::size_t pointCount = 0, polygonCount = 0, connectivitySize = 0, normalCount = 0;
+    int types = 0;  // point, index and normal types
+    std::uint64_t version = 0;
+    friend bool operator==(const SpreadKey&, const SpreadKey&) = default;
+  };
+  struct PolygonExtent {
+    glm::vec3 normal{0.0f};  // zero: degenerate
+    float radius = 0.0f;
+    float sinNormalSpread = 0.0f;  // 2: 90° or more
+  };
+  struct MeshExtents {
+    SpreadKey key;
+    std::vector<PolygonExtent> polygons;
+  };
+  std::vector<MeshExtents> extents_;
+  std::vector<float> sampleBounds_;   // per sample: its polygon's bound; −1: background
   std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
   std::vector<Color> cornerColors_;   // Gouraud: per corner of every mesh
   std::unique_ptr<std::atomic<std::uint8_t>[]> shown_;  // per polygon id: some sample shows it
