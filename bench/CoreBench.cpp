@@ -26,6 +26,7 @@
 #include <benchmark/benchmark.h>
 
 #include "HeapCounter.h"
+#include "SetupBatch.h"
 #include "facet/Renderer.h"
 #include "support/TestMeshes.h"
 
@@ -122,6 +123,65 @@ BENCHMARK(BM_Sphere)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);
+
+// The set-up's batches (core/src/SetupBatch.h): the spheres' frames with batches off (every
+// polygon through the per-triangle path), on the portable target and on the best this CPU
+// has, rendered in turn in one run. Counters: each variant's set-up phase and whole frame,
+// the fastest of the run in ms (the machine is shared: the minimum is the frame least
+// disturbed), and the speed-ups of the best target over batches off.
+//
+//   build/bin/facet_bench --benchmark_filter=SetupBatches
+void BM_SetupBatches(benchmark::State& state) {
+  SphereCase sphere = sphereWithTriangles(state.range(0));
+  sphere.mesh.closed = state.range(2) != 0 && isClosedSurface(sphere.mesh.view());
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  struct Variant {
+    Variant(const char* n, bool b, std::int64_t t) : name(n), batches(b), target(t) {}
+    const char* name;
+    bool batches;
+    std::int64_t target;
+    Renderer renderer;
+    Framebuffer framebuffer{kWidth, kHeight};
+    double setupSeconds = 1e30, frameSeconds = 1e30;
+  };
+  Variant variants[3] = {{"off", false, 0},
+                         {"portable", true, targets.back().bits},
+                         {"best", true, targets.front().bits}};
+  const Scene scene = benchScene(sphere.mesh.view(), sphere.camera);
+  const auto render = [&](Variant& v) {
+    detail::enableSetupBatches(v.batches);
+    detail::useSimdTarget(v.target);
+    const RenderStats stats = v.renderer.render(scene, sphere.camera, v.framebuffer);
+    benchmark::DoNotOptimize(v.framebuffer.color().data());
+    v.setupSeconds = std::min(v.setupSeconds, stats.setupSeconds);
+    v.frameSeconds = std::min(v.frameSeconds, stats.totalSeconds);
+  };
+  for (Variant& v : variants) {
+    v.renderer.setThreadCount(static_cast<int>(state.range(1)));
+    render(v);  // warm: buffers grow
+    v.setupSeconds = v.frameSeconds = 1e30;
+  }
+  for (auto _ : state) {
+    for (Variant& v : variants)
+      render(v);
+  }
+  detail::enableSetupBatches(true);
+  detail::useSimdTarget(0);
+  for (const Variant& v : variants) {
+    state.counters[std::string(v.name) + " setup ms"] = 1e3 * v.setupSeconds;
+    state.counters[std::string(v.name) + " frame ms"] = 1e3 * v.frameSeconds;
+  }
+  state.counters["setup speed-up"] = variants[0].setupSeconds / variants[2].setupSeconds;
+  state.counters["frame speed-up"] = variants[0].frameSeconds / variants[2].frameSeconds;
+  state.SetLabel(std::string("best: ") + targets.front().name +
+                 ", portable: " + targets.back().name);
+}
+BENCHMARK(BM_SetupBatches)
+    ->ArgNames({"triangles", "threads", "closed"})
+    ->ArgsProduct({{500000, 2000000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
 
 // Eight screen-sized quads at different depths and tilts: fill rate with overdraw.
 void BM_LargeOverlappingPolygons(benchmark::State& state) {
