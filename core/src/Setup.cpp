@@ -98,13 +98,13 @@ class PolygonSetup {
     batch.tested[lane] = any == kInside;
   }
 
-  // Counts the polygons of `lanePolygon` the batch dropped as run() would, and runs the
-  // others, in lane order.
+  // Counts the polygons of the first `lanes` lanes that the batch dropped as run() would,
+  // and runs the others, in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
-    chunk_.counts.culled += std::popcount(verdicts.culled);
-    chunk_.counts.degenerate += std::popcount(verdicts.zeroArea);
-    chunk_.counts.outside += std::popcount(verdicts.coversNoSample);
     const std::uint32_t used = (1u << lanes) - 1;
+    chunk_.counts.culled += std::popcount(verdicts.culled & used);
+    chunk_.counts.degenerate += std::popcount(verdicts.zeroArea & used);
+    chunk_.counts.outside += std::popcount(verdicts.coversNoSample & used);
     for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1)
       run(lanePolygon[std::countr_zero(rest)]);
   }
@@ -359,11 +359,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       if (++lanes == kBatchSize) settleBatch();
     }
   }
-  if (lanes > 0) {
-    for (int lane = lanes; lane < kBatchSize; ++lane)
-      batch.tested[lane] = 0;
-    settleBatch();
-  }
+  if (lanes > 0) settleBatch();  // lanes beyond hold earlier triangles: not counted
   return position;
 }
 

@@ -210,29 +210,12 @@ Mesh confetti(int triangles, unsigned seed) {
   return mesh;
 }
 
-// A floor grid whose front the near plane cuts (WatertightTest, ClippedByTheNearPlane).
-Mesh floorGrid(int cells, double extent) {
-  Mesh floor;
-  for (int j = 0; j <= cells; ++j) {
-    for (int i = 0; i <= cells; ++i)
-      floor.addPoint({-extent + 2 * extent * i / cells, -extent + 2 * extent * j / cells, 0.0});
-  }
-  for (int j = 0; j < cells; ++j) {
-    for (int i = 0; i < cells; ++i) {
-      const std::int64_t a = j * (cells + 1) + i;
-      floor.addPolygon({a, a + 1, a + cells + 2});
-      floor.addPolygon({a, a + cells + 2, a + cells + 1});
-    }
-  }
-  return floor;
-}
-
 TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
   const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
   Camera bunnyCamera = fitCamera(bunny, {0.2, -0.3, -1.0});
   bunnyCamera.nearClip *= 1.3;  // the clipper runs too (DeterminismTest)
   const Mesh dots = confetti(4000, 5);
-  const Mesh floor = floorGrid(40, 20.0);
+  const Mesh floor = makeFloorGrid(40, 20.0);  // WatertightTest, ClippedByTheNearPlane
   Camera floorCamera;
   floorCamera.position = {0.3, 0.1, 1.0};
   floorCamera.focalPoint = {0.3, 1.1, 0.0};
