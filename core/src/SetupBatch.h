@@ -15,8 +15,8 @@
 
 namespace facet::detail {
 
-// 16: the int32 lanes of one AVX-512 vector, two of AVX2, four of SSE4 or of the portable
-// target.
+// 16: the int32 lanes of one AVX-512 vector, two of AVX2, four of SSE4, sixteen rounds of
+// the portable target's one lane.
 inline constexpr int kBatchSize = 16;
 static_assert(kBatchSize <= 32, "verdicts hold a bit per lane");
 

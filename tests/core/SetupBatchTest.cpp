@@ -30,7 +30,7 @@ class SetupBatches : public ::testing::Test {
     detail::useSimdTarget(0);
     detail::enableSetupBatches(true);
   }
-  // Every target, and at least the portable one and the best.
+  // Every target this CPU has, the best first and the portable one last.
   static std::vector<SimdTarget> targets() {
     std::vector<SimdTarget> all = detail::simdTargets();
     EXPECT_GE(all.size(), 1u);
