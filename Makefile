@@ -25,8 +25,9 @@ CMAKE_FLAGS ?=
 # tests that compare with VTK's own OpenGL renderer; clang with its sanitizer and libFuzzer
 # runtimes for the sanitized builds and the fuzz targets; Embree for the mesh reference
 # (reference/); scikit-image and Pillow to cross-check the image metrics; NumPy for the
-# stability catalogue (tests/stability/); matplotlib for facet-render --report's plot.
-PACKAGES := cmake ninja-build g++ libglm-dev libgtest-dev libbenchmark-dev libpng-dev \
+# stability catalogue (tests/stability/); matplotlib for facet-render --report's plot; Google
+# Highway for the core's SIMD set-up (runtime dispatch).
+PACKAGES := cmake ninja-build g++ libglm-dev libhwy-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth clang libclang-rt-14-dev \
             libembree-dev python3-skimage python3-pil python3-numpy python3-matplotlib
 # The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev

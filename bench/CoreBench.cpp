@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <ctime>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -26,6 +28,7 @@
 #include <benchmark/benchmark.h>
 
 #include "HeapCounter.h"
+#include "SetupBatch.h"
 #include "facet/Renderer.h"
 #include "support/TestMeshes.h"
 
@@ -122,6 +125,80 @@ BENCHMARK(BM_Sphere)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);
+
+// The set-up's batches (core/src/SetupBatch.h): the spheres' frames with batches off (every
+// polygon through the per-triangle path) and on every instruction set this CPU has, from
+// the best to the portable one, rendered in turn in one run. Counters: each variant's set-up
+// phase and whole frame, the fastest of the run in ms (the machine is shared: the minimum
+// is the frame least disturbed), on one thread also the frame's CPU time (the thread renders
+// alone: waiting for a core does not count), and the speed-ups of the best target over
+// batches off.
+//
+//   build/bin/facet_bench --benchmark_filter=SetupBatches
+// The calling thread's CPU time: on one thread, the renderer's own.
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+void BM_SetupBatches(benchmark::State& state) {
+  SphereCase sphere = sphereWithTriangles(state.range(0));
+  sphere.mesh.closed = state.range(2) != 0 && isClosedSurface(sphere.mesh.view());
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  struct Variant {
+    Variant(const char* n, bool b, std::int64_t t) : name(n), batches(b), target(t) {}
+    const char* name;
+    bool batches;
+    std::int64_t target;
+    Renderer renderer;
+    Framebuffer framebuffer{kWidth, kHeight};
+    double setupSeconds = 1e30, frameSeconds = 1e30, cpuSeconds = 1e30;
+  };
+  std::deque<Variant> variants;  // off, then every target, best first
+  variants.emplace_back("off", false, 0);
+  for (const detail::SimdTarget& target : targets)
+    variants.emplace_back(target.name, true, target.bits);
+  const Scene scene = benchScene(sphere.mesh.view(), sphere.camera);
+  const auto render = [&](Variant& v) {
+    detail::enableSetupBatches(v.batches);
+    detail::useSimdTarget(v.target);
+    const double cpuStart = threadCpuSeconds();
+    const RenderStats stats = v.renderer.render(scene, sphere.camera, v.framebuffer);
+    v.cpuSeconds = std::min(v.cpuSeconds, threadCpuSeconds() - cpuStart);
+    benchmark::DoNotOptimize(v.framebuffer.color().data());
+    v.setupSeconds = std::min(v.setupSeconds, stats.setupSeconds);
+    v.frameSeconds = std::min(v.frameSeconds, stats.totalSeconds);
+  };
+  const bool oneThread = state.range(1) == 1;
+  for (Variant& v : variants) {
+    v.renderer.setThreadCount(static_cast<int>(state.range(1)));
+    render(v);  // warm: buffers grow
+    v.setupSeconds = v.frameSeconds = v.cpuSeconds = 1e30;
+  }
+  for (auto _ : state) {
+    for (Variant& v : variants)
+      render(v);
+  }
+  detail::enableSetupBatches(true);
+  detail::useSimdTarget(0);
+  for (const Variant& v : variants) {
+    state.counters[std::string(v.name) + " setup ms"] = 1e3 * v.setupSeconds;
+    state.counters[std::string(v.name) + " frame ms"] = 1e3 * v.frameSeconds;
+    if (oneThread) state.counters[std::string(v.name) + " frame cpu ms"] = 1e3 * v.cpuSeconds;
+  }
+  const Variant &off = variants[0], &best = variants[1];
+  state.counters["setup speed-up"] = off.setupSeconds / best.setupSeconds;
+  state.counters["frame speed-up"] = off.frameSeconds / best.frameSeconds;
+  if (oneThread) state.counters["cpu speed-up"] = off.cpuSeconds / best.cpuSeconds;
+  state.SetLabel(std::string("best: ") + best.name);
+}
+BENCHMARK(BM_SetupBatches)
+    ->ArgNames({"triangles", "threads", "closed"})
+    ->ArgsProduct({{500000, 2000000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(12);
 
 // Eight screen-sized quads at different depths and tilts: fill rate with overdraw.
 void BM_LargeOverlappingPolygons(benchmark::State& state) {

@@ -1,6 +1,7 @@
 #include "Setup.h"
 
 #include <algorithm>
+#include <bit>
 #include <optional>
 #include <span>
 
@@ -8,6 +9,7 @@
 #include "Clipper.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
+#include "SetupBatch.h"
 #include "facet/PolygonNormal.h"
 
 namespace facet::detail {
@@ -79,6 +81,33 @@ class PolygonSetup {
         points_(points),
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex) {}
+
+  // Puts the polygon in a batch's lane, to be tested there when it is a triangle with every
+  // vertex inside (SetupBatch.h).
+  void load(std::size_t polygon, TriangleBatch& batch, int lane) const {
+    batch.tested[lane] = 0;
+    if (polygons_.size(polygon) != 3) return;
+    std::uint32_t any = 0;
+    for (int j = 0; j < 3; ++j) {
+      const WindowVertex& v =
+          meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
+      batch.x[j][lane] = v.x;
+      batch.y[j][lane] = v.y;
+      any |= v.outcode;
+    }
+    batch.tested[lane] = any == kInside;
+  }
+
+  // Counts the polygons of the first `lanes` lanes that the batch dropped as run() would,
+  // and runs the others, in lane order.
+  void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
+    const std::uint32_t used = (1u << lanes) - 1;
+    chunk_.counts.culled += std::popcount(verdicts.culled & used);
+    chunk_.counts.degenerate += std::popcount(verdicts.zeroArea & used);
+    chunk_.counts.outside += std::popcount(verdicts.coversNoSample & used);
+    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1)
+      run(lanePolygon[std::countr_zero(rest)]);
+  }
 
   void run(std::size_t polygon) {
     polygon_ = polygon;
@@ -301,22 +330,36 @@ std::size_t meshOfPolygon(std::span<const FrameMesh> meshes, std::size_t polygon
   return static_cast<std::size_t>(after - meshes.begin()) - 1;
 }
 
-// Sets up draw positions from `position` on while they belong to `mesh`; returns where it
-// stopped.
+// Sets up draw positions from `position` on while they belong to `mesh`, in batches
+// (SetupBatch.h) unless they are off; returns where it stopped. The batch only drops
+// polygons: the others are set up in draw order, as without batches.
 template <bool kSkipBackFaces, class PointsT, class PolygonsT>
 std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
                      PointsT points, PolygonsT polygons, std::size_t position) {
   PolygonSetup<PointsT, PolygonsT, kSkipBackFaces> setup(context, chunk, mesh, points, polygons);
+  const bool batched = setupBatchesEnabled();
+  TriangleBatch batch{};
+  std::size_t lanePolygon[kBatchSize];
+  int lanes = 0;
+  const auto settleBatch = [&] {
+    setup.settle(classifyBatch(batch, context.grid.viewport(), kSkipBackFaces), lanePolygon, lanes);
+    lanes = 0;
+  };
   for (; position < chunk.end; ++position) {
     const std::size_t id = context.order.polygonAt(position);
     if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
     const std::size_t polygon = id - mesh.firstPolygon;
     if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
       ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
-      continue;
+    } else if (!batched) {
+      setup.run(polygon);
+    } else {
+      setup.load(polygon, batch, lanes);
+      lanePolygon[lanes] = polygon;
+      if (++lanes == kBatchSize) settleBatch();
     }
-    setup.run(polygon);
   }
+  if (lanes > 0) settleBatch();  // lanes beyond hold earlier triangles: not counted
   return position;
 }
 

@@ -149,21 +149,8 @@ TEST(Watertight, BeyondTheGuardBand) {
 // A floor grid seen from a low camera looking down: the near plane cuts through the
 // visible floor, so the front triangles are clipped in homogeneous space.
 TEST(Watertight, ClippedByTheNearPlane) {
-  const int cells = 40;
   const double extent = 20.0;
-  Mesh floor;
-  for (int j = 0; j <= cells; ++j) {
-    for (int i = 0; i <= cells; ++i) {
-      floor.addPoint({-extent + 2 * extent * i / cells, -extent + 2 * extent * j / cells, 0.0});
-    }
-  }
-  for (int j = 0; j < cells; ++j) {
-    for (int i = 0; i < cells; ++i) {
-      const std::int64_t a = j * (cells + 1) + i;
-      floor.addPolygon({a, a + 1, a + cells + 2});
-      floor.addPolygon({a, a + cells + 2, a + cells + 1});
-    }
-  }
+  const Mesh floor = makeFloorGrid(40, extent);
   Camera camera;
   camera.position = {0.3, 0.1, 1.0};
   camera.focalPoint = {0.3, 1.1, 0.0};

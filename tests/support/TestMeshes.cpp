@@ -74,6 +74,22 @@ Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius, const g
   return mesh;
 }
 
+Mesh makeFloorGrid(int cells, double extent) {
+  Mesh floor;
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i)
+      floor.addPoint({-extent + 2 * extent * i / cells, -extent + 2 * extent * j / cells, 0.0});
+  }
+  for (int j = 0; j < cells; ++j) {
+    for (int i = 0; i < cells; ++i) {
+      const std::int64_t a = j * (cells + 1) + i;
+      floor.addPolygon({a, a + 1, a + cells + 2});
+      floor.addPolygon({a, a + cells + 2, a + cells + 1});
+    }
+  }
+  return floor;
+}
+
 Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high) {
   Mesh mesh;
   for (int i = 0; i < 8; ++i) {

@@ -28,6 +28,10 @@ Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius = 1.0,
 // An axis-aligned box as 6 outward quads.
 Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high);
 
+// The square [−extent, extent]² in the plane z = 0, cells × cells quads each split into two
+// triangles.
+Mesh makeFloorGrid(int cells, double extent);
+
 // Deep occlusion: `layers` squares [−1, 1]² stacked along −z, 0.1 apart, each a grid of
 // cells × cells quads, listed nearest first (front to back) or farthest first.
 Mesh makeStackedSquares(int layers, int cells, bool frontToBack);
