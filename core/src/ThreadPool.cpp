@@ -7,6 +7,11 @@ ThreadPool::ThreadPool(int threads) {
     workers_.emplace_back([this] { workerLoop(); });
 }
 
+int ThreadPool::hardwareThreads() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : static_cast<int>(n);
+}
+
 ThreadPool::~ThreadPool() {
   {
     std::lock_guard lock(mutex_);

@@ -24,6 +24,8 @@ class ThreadPool {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   int threadCount() const { return static_cast<int>(workers_.size()) + 1; }
+  /// The hardware's threads (at least 1): the count a thread count of 0 asks for.
+  static int hardwareThreads();
 
   /// Runs task(i) for every i in [0, count) on all threads, the caller included, and
   /// returns when all have finished. After each task the *caller* runs, it calls
