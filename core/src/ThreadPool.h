@@ -43,7 +43,8 @@ class ThreadPool {
   std::condition_variable wake_;
   std::condition_variable finished_;
   std::size_t generation_ = 0;  // guarded by mutex_
-  int busyWorkers_ = 0;         // guarded by mutex_
+  int busyWorkers_ = 0;         // guarded by mutex_: workers inside the current job
+  bool open_ = false;           // guarded by mutex_: workers may still join the current job
   bool stopping_ = false;       // guarded by mutex_
 
   // The current job; written by run() before the generation is published under mutex_.
