@@ -10,6 +10,9 @@ the build tree's facet_bench (2 threads, full frame including the clear) run by 
 in the same session. Prints a table and the ratios.
 
     xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/compare_vtk.py
+
+Give --facet-bench twice (a build before a change, then one after) for both tables against
+the same VTK frames, in one run.
 """
 import argparse
 import json
@@ -118,7 +121,10 @@ def facet_seconds_per_frame(bench, threads, sizes=tuple(SIZES)):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--facet-bench", default=str(BUILD_BIN / "facet_bench"))
+    parser.add_argument("--facet-bench", action="append",
+                        help="facet_bench to measure (default: the build tree's); give it twice, "
+                        "e.g. a build before a change and one after, for a table each against "
+                        "the same VTK frames")
     parser.add_argument("--frames", type=int, default=5)
     parser.add_argument("--threads", type=int, default=2)
     args = parser.parse_args()
@@ -128,7 +134,8 @@ def main():
     for triangles, theta in SIZES.items():
         vtk_off[triangles] = vtk_seconds_per_frame(theta, args.frames, 0)
         vtk_default[triangles] = vtk_seconds_per_frame(theta, args.frames)
-    facet = facet_seconds_per_frame(args.facet_bench, args.threads)
+    benches = args.facet_bench or [str(BUILD_BIN / "facet_bench")]
+    facets = [facet_seconds_per_frame(bench, args.threads) for bench in benches]
     for triangles, theta in SIZES.items():  # VTK again after Facet: both see the same machine
         for rows, samples in ((vtk_off, 0), (vtk_default, None)):
             again = vtk_seconds_per_frame(theta, args.frames, samples)
@@ -141,18 +148,21 @@ def main():
           f"{granted})")
     print("Facet: every face drawn (as VTK does) | with the closed-surface hint (hidden back "
           "faces skipped); ratio = VTK time / Facet time")
-    print(f"{'triangles':>10} {'VTK 1x s':>9} {f'VTK {granted}x s':>9} | {'Facet s':>8} "
-          f"{'vs 1x':>6} {f'vs {granted}x':>6} {'peak':>5} | {'Facet s':>8} {'vs 1x':>6} "
-          f"{f'vs {granted}x':>6} {'peak':>5}")
-    for triangles in SIZES:
-        off, default = vtk_off[triangles], vtk_default[triangles]
-        cells = []
-        for closed in (0, 1):
-            f = facet[(triangles, closed)]
-            cells.append(f"{f.seconds:>8.4f} {off.seconds / f.seconds:>5.1f}x "
-                         f"{default.seconds / f.seconds:>5.1f}x {f.peak:>5.2f}")
-        print(f"{off.triangles:>10} {off.seconds:>9.3f} {default.seconds:>9.3f} | "
-              f"{cells[0]} | {cells[1]}")
+    for bench, facet in zip(benches, facets):
+        if len(benches) > 1:
+            print(f"Facet: {bench}")
+        print(f"{'triangles':>10} {'VTK 1x s':>9} {f'VTK {granted}x s':>9} | {'Facet s':>8} "
+              f"{'vs 1x':>6} {f'vs {granted}x':>6} {'peak':>5} | {'Facet s':>8} {'vs 1x':>6} "
+              f"{f'vs {granted}x':>6} {'peak':>5}")
+        for triangles in SIZES:
+            off, default = vtk_off[triangles], vtk_default[triangles]
+            cells = []
+            for closed in (0, 1):
+                f = facet[(triangles, closed)]
+                cells.append(f"{f.seconds:>8.4f} {off.seconds / f.seconds:>5.1f}x "
+                             f"{default.seconds / f.seconds:>5.1f}x {f.peak:>5.2f}")
+            print(f"{off.triangles:>10} {off.seconds:>9.3f} {default.seconds:>9.3f} | "
+                  f"{cells[0]} | {cells[1]}")
     print(f"VTK {vtk.vtkVersion.GetVTKVersion()} ({off.renderer}, LP_NUM_THREADS={args.threads}), "
           f"best of two passes of {args.frames} frames (median); Facet: {args.threads} threads, "
           f"Google Benchmark mean; peak = heap peak / (mesh + framebuffer bytes)")

@@ -10,6 +10,7 @@
 
 #include "FunctionRef.h"
 #include "ThreadPool.h"
+#include "facet/RenderPlan.h"
 
 namespace facet::detail {
 
@@ -37,6 +38,20 @@ class PhaseSet {
   static constexpr unsigned bit(Phase phase) { return 1u << static_cast<int>(phase); }
   unsigned bits_ = 0;
 };
+
+// The phases each path runs (RenderPath): the incremental paths run only the last ones.
+constexpr PhaseSet phasesOf(RenderPath path) {
+  switch (path) {
+    case RenderPath::Full:
+      return {Phase::Validate, Phase::Measure, Phase::Transform, Phase::Sort,
+              Phase::Setup,    Phase::Raster,  Phase::Shade,     Phase::Resolve};
+    case RenderPath::Reshade:
+      return {Phase::Shade, Phase::Resolve};
+    case RenderPath::Resolve:
+      break;
+  }
+  return {Phase::Resolve};
+}
 
 class PhaseRunner {
  public:

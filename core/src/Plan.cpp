@@ -1,6 +1,7 @@
 #include "Plan.h"
 
 #include "LightCulling.h"
+#include "MeshCache.h"
 #include "TileGrid.h"
 
 namespace facet::detail {
@@ -85,6 +86,18 @@ RenderPlan makePlan(const PlanInputs& in, std::span<const Box> bounds, ShadingCh
   plan.meshes = in.scene.meshes.size();
   sizeOf(plan, in.width, in.height);
   chooseShading(plan, in, shading.routines);
+  return plan;
+}
+
+RenderPlan planAhead(const PlanInputs& in) {
+  std::vector<Box> bounds;
+  for (const SceneMesh& mesh : in.scene.meshes)
+    bounds.push_back(boundsOf(mesh.mesh));
+  ShadingChoice shading;
+  RenderPlan plan = makePlan(in, bounds, shading);
+  plan.pathReason = "planned ahead (Renderer::plan)";
+  plan.rasterRoutine =
+      plan.depthTest ? "depth test (hierarchical z decided by the render)" : "painter's overwrite";
   return plan;
 }
 

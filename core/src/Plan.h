@@ -42,6 +42,10 @@ struct ShadingChoice {
 // they are not known (the lights are then judged as reaching everything).
 RenderPlan makePlan(const PlanInputs& inputs, std::span<const Box> bounds, ShadingChoice& shading);
 
+// The plan a full render would start with (Renderer::plan): the meshes' bounds measured
+// here, the decisions the geometry settles left to the render.
+RenderPlan planAhead(const PlanInputs& inputs);
+
 // The name every item's routine shares, or "per mesh".
 template <class Items, class NameOf>
 const char* commonName(const Items& items, const NameOf& nameOf) {

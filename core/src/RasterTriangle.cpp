@@ -220,10 +220,14 @@ void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const Windo
 }
 
 // One triangle over one box of samples: its edge functions at the box's first sample and
-// its depth plane, then the painting of its rows.
+// its depth plane, then the painting of its rows. Always inlined: with two callers (the
+// plain and the coarse-depth paths) GCC 12 left the constructor out of line, a call per
+// triangle on the hottest path that cost the raster phase 8 % more instructions on a
+// 500k-triangle sphere (bench/full_render_speed.md).
 struct BoxRaster {
-  BoxRaster(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, std::int64_t area,
-            EdgeMask boundary, const PixelBounds& samples)
+  [[gnu::always_inline]] BoxRaster(const WindowVertex& a, const WindowVertex& b,
+                                   const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                   const PixelBounds& samples)
       : box(samples),
         sampleX(std::int64_t{samples.x0} * kSubpixelScale + kHalfPixel),
         sampleY(std::int64_t{samples.y0} * kSubpixelScale + kHalfPixel),
@@ -272,7 +276,8 @@ struct BoxRaster {
   // once per fragment: stepping in float would add a rounding per pixel, enough to tie
   // surfaces 1e-6 apart.
   template <DepthMode kMode>
-  void paint(std::int32_t polygonId, const Planes& planes, PaintCounts& counts) {
+  [[gnu::always_inline]] void paint(std::int32_t polygonId, const Planes& planes,
+                                    PaintCounts& counts) {
     const double keyPerPixel = depth.perPixelX();
     for (int y = box.y0; y <= box.y1; ++y) {
       std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;

@@ -12,169 +12,73 @@
 //   3. raster    Raster.cpp     per tile: depth keys and polygon ids (coarse depth, a rule)
 //   4. shade     Shade.cpp      the color of every polygon that won a pixel
 //   5. resolve   Resolve.cpp    pixel colors and window depths
+//
+// What the renderer keeps between renders (the plan, every phase's buffers, the previous
+// frame) is Workspace.h; the bookkeeping around the phases is Workspace.cpp.
 
 #include "facet/Renderer.h"
 
 #include <algorithm>
-#include <optional>
-#include <string_view>
-#include <thread>
 
-#include "Frame.h"
-#include "History.h"
-#include "LightCulling.h"
-#include "MeshCache.h"
-#include "PhaseRunner.h"
-#include "Plan.h"
 #include "Raster.h"
 #include "RendererInputs.h"
 #include "Resolve.h"
-#include "Setup.h"
-#include "Shade.h"
-#include "ThreadPool.h"
-#include "TileGrid.h"
-#include "Transform.h"
 #include "Validate.h"
-#include "ViewCulling.h"
+#include "Workspace.h"
 #include "facet/Error.h"
 
 namespace facet {
-namespace {
 
-using detail::Phase;
-
-int hardwareThreads() {
-  const unsigned n = std::thread::hardware_concurrency();
-  return n == 0 ? 1 : static_cast<int>(n);
+// The phases a render runs: all of them, or the last ones of an incremental render.
+RenderStats Renderer::render(const Scene& scene, const Camera& camera,
+                             const FramebufferView& target) {
+  detail::validateRenderInputs(scene, camera, target, depthOutput_);  // before a pixel changes
+  Workspace& ws = *workspace_;
+  const detail::FrameInputs in{scene,
+                               camera,
+                               target,
+                               visibility_,
+                               twoSidedLighting_,
+                               toRgba8(background_, backgroundAlpha_),
+                               depthOutput_,
+                               rules_};
+  const detail::PathChoice path = ws.history.choosePath(in);
+  const FramebufferView planes = ws.startFrame(in);
+  detail::PhaseRunner runner(*ws.pool, progress_, detail::phasesOf(path.path));
+  RenderStats stats = ws.statsToStartFrom(path);
+  const bool completed = path.path == RenderPath::Full
+                             ? ws.renderFull(in, path, threadCount(), planes, runner, stats)
+                             : ws.renderAgain(in, path, threadCount(), planes, runner, stats);
+  ws.finishFrame(in, planes, completed, stats);
+  stats.totalSeconds = runner.secondsSinceStart();
+  if (completed) runner.finish();
+  return stats;
 }
 
-detail::PhaseSet phasesOf(RenderPath path) {
-  switch (path) {
-    case RenderPath::Full:
-      return {Phase::Validate, Phase::Measure, Phase::Transform, Phase::Sort,
-              Phase::Setup,    Phase::Raster,  Phase::Shade,     Phase::Resolve};
-    case RenderPath::Reshade:
-      return {Phase::Shade, Phase::Resolve};
-    case RenderPath::Resolve:
-      break;
-  }
-  return {Phase::Resolve};
-}
-
-detail::PlanInputs planInputs(const detail::FrameInputs& in, int threads) {
-  return {in.scene,      in.camera,           in.target.width, in.target.height, threads,
-          in.visibility, in.twoSidedLighting, in.depthOutput,  in.rules};
-}
-
-}  // namespace
-
-// The renderer's state between renders: the plan, every phase's buffers, and what the
-// previous frame was.
-struct Renderer::Workspace {
-  std::unique_ptr<detail::ThreadPool> pool;
-  RenderPlan plan;
-  detail::ShadingChoice shading;
-  std::optional<detail::FrameTransform> transform;
-  detail::TileGrid grid;
-  detail::MeshCache cache;
-  std::vector<detail::Box> bounds;  // per mesh, for the lights
-  std::vector<detail::FrameMesh> meshes;
-  detail::ViewCulling viewCulling;
-  detail::PointRanges pointRanges;
-  HugePageVector<detail::WindowVertex> vertices;
-  std::vector<detail::MeshRange> sortRanges;
-  detail::DrawOrder order;
-  detail::SetupBuffers setup;
-  detail::PolygonBuffers polygons;
-  std::vector<detail::PaintCounts> tiles;
-  detail::ShadeBuffers shadeBuffers;
-  HugePageVector<float> ownDepth;  // the depth plane of a caller without one
-  detail::FrameHistory history;
-
-  FramebufferView planesFor(const FramebufferView& target);
-  void planShading(const detail::FrameInputs& in, const detail::PathChoice& path, int threads);
-  void prepareMeshes(const Scene& scene);
-  bool renderFull(const detail::FrameInputs& in, const detail::PathChoice& path, int threads,
-                  const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
-  bool renderAgain(const detail::FrameInputs& in, const detail::PathChoice& path, int threads,
-                   const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
-  bool renderGeometry(const detail::FrameInputs& in, const FramebufferView& planes,
-                      detail::PhaseRunner& runner, RenderStats& stats);
-  bool shadeAndResolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
-                       detail::PhaseRunner& runner, RenderStats& stats);
-  bool resolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
-               detail::PhaseRunner& runner);
-  void countShaded(RenderStats& stats);
-};
-
-FramebufferView Renderer::Workspace::planesFor(const FramebufferView& target) {
-  FramebufferView planes = target;
-  if (!planes.depth) {
-    ownDepth.resize(static_cast<std::size_t>(target.width) * target.height);
-    planes.depth = ownDepth.data();
-  }
-  return planes;
-}
-
-// The lights kept, the plan and the shading routines (every path).
-void Renderer::Workspace::planShading(const detail::FrameInputs& in, const detail::PathChoice& path,
-                                      int threads) {
-  bounds.clear();
-  for (std::size_t m = 0; m < in.scene.meshes.size() && cache[m].bounded; ++m)
-    bounds.push_back(cache[m].bounds);
-  if (bounds.size() != in.scene.meshes.size()) bounds.clear();  // not known: judged unbounded
-  plan = detail::makePlan(planInputs(in, threads), bounds, shading);
-  plan.path = path.path;
-  plan.pathReason = path.reason;
-  prepareMeshes(in.scene);
-}
-
-// Each mesh's place in the frame's vertex and polygon numbering.
-void Renderer::Workspace::prepareMeshes(const Scene& scene) {
-  meshes.clear();
-  std::size_t firstVertex = 0, firstPolygon = 0;
-  for (const SceneMesh& mesh : scene.meshes) {
-    meshes.push_back({&mesh, PreparedMaterial(mesh.material), firstVertex, firstPolygon});
-    if (cache[meshes.size() - 1].measured)
-      meshes.back().faceNormals = cache[meshes.size() - 1].faceNormals.data();
-    firstVertex += mesh.mesh.points.count;
-    firstPolygon += mesh.mesh.polygons.count;
-  }
-  polygons.resize(plan.polygons);
-}
-
+// Phase 0 (validation, plan), then the geometry phases, then shade and resolve.
 bool Renderer::Workspace::renderFull(const detail::FrameInputs& in, const detail::PathChoice& path,
                                      int threads, const FramebufferView& planes,
                                      detail::PhaseRunner& runner, RenderStats& stats) {
-  const bool bounded = in.rules.lightsThatReachNothing &&
-                       detail::lightCullingNeedsBounds(in.scene.lights, in.rules.lightTolerance);
-  bool completed = cache.update(runner, in.scene, bounded);
+  bool completed = cache.update(runner, in.scene, lightsNeedBounds(in));
   stats.validateSeconds = runner.lap();
   planShading(in, path, threads);
   completed = completed && renderGeometry(in, planes, runner, stats);
   completed = completed && shadeAndResolve(in, planes, in.depthOutput, runner, stats);
-  detail::addSetupCounts(setup.chunks, stats);
-  detail::addPaintCounts(tiles, stats);
-  detail::reportRule(plan, Rule::HiddenGeometry, stats.trianglesHidden);
+  countGeometry(stats);
   return completed;
 }
 
 // An incremental render: the previous frame re-shaded, or only recolored. `stats` holds the
-// previous frame's.
+// previous frame's counts.
 bool Renderer::Workspace::renderAgain(const detail::FrameInputs& in, const detail::PathChoice& path,
                                       int threads, const FramebufferView& planes,
                                       detail::PhaseRunner& runner, RenderStats& stats) {
-  const RenderPlan previous = stats.plan;
-  stats.validateSeconds = stats.transformSeconds = stats.setupSeconds = stats.rasterSeconds = 0;
   if (path.path == RenderPath::Reshade) {
     planShading(in, path, threads);
-    detail::carryGeometryReport(plan, previous);
+    detail::carryGeometryReport(plan, stats.plan);
     return shadeAndResolve(in, planes, false, runner, stats);
   }
-  plan = previous;
-  plan.path = path.path;
-  plan.pathReason = path.reason;
-  plan.threads = threads;
+  keepPreviousPlan(path, threads);
   const bool completed = resolve(in, planes, false, runner);
   stats.shadeSeconds = runner.lap();
   return completed;
@@ -186,9 +90,7 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
                                          RenderStats& stats) {
   if (in.rules.geometryOutsideView) {
     detail::cullBlocksOutsideView(meshes, cache, *transform, viewCulling);
-    plan.blocksTested = viewCulling.blocksTested;
-    plan.blocksOutside = viewCulling.blocksOutside;
-    detail::reportRule(plan, Rule::GeometryOutsideView, viewCulling.polygonsOutside);
+    reportViewCulling();
   }
   bool completed = detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);
   stats.closedMeshesSkippingBackFaces =
@@ -244,16 +146,6 @@ bool Renderer::Workspace::resolve(const detail::FrameInputs& in, const Framebuff
   return detail::resolveTiles(runner, grid, context, routine, *transform);
 }
 
-// The polygons lit, and those Rule::AmbientOnly lit without normal or light loop.
-void Renderer::Workspace::countShaded(RenderStats& stats) {
-  stats.polygonsShaded = 0;
-  for (std::size_t i = 0; i < shadeBuffers.counts.size(); ++i) {
-    stats.polygonsShaded += shadeBuffers.counts[i];
-    const bool ambient = shading.routines[shadeBuffers.ranges[i].mesh].ambientOnly;
-    plan.rule(Rule::AmbientOnly).skipped += ambient ? shadeBuffers.counts[i] : 0;
-  }
-}
-
 Renderer::Renderer() : workspace_(std::make_unique<Workspace>()) {
   setThreadCount(0);
 }
@@ -262,7 +154,7 @@ Renderer::~Renderer() = default;
 void Renderer::setThreadCount(int threads) {
   if (threads < 0)
     throw Error("Renderer thread count is " + std::to_string(threads) + ", must be >= 0");
-  const int count = threads == 0 ? hardwareThreads() : threads;
+  const int count = threads == 0 ? detail::ThreadPool::hardwareThreads() : threads;
   if (!workspace_->pool || workspace_->pool->threadCount() != count) {
     workspace_->pool = std::make_unique<detail::ThreadPool>(count);
   }
@@ -291,53 +183,8 @@ void Renderer::parallelFor(std::size_t count, std::size_t grain,
 RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, int height) const {
   detail::validateSceneInputs(scene, camera, width, height);
   detail::validateMeshHeaders(scene);  // the bounds read the points
-  std::vector<detail::Box> bounds;
-  for (const SceneMesh& mesh : scene.meshes)
-    bounds.push_back(detail::boundsOf(mesh.mesh));
-  detail::ShadingChoice shading;
-  RenderPlan plan = detail::makePlan({scene, camera, width, height, threadCount(), visibility_,
-                                      twoSidedLighting_, depthOutput_, rules_},
-                                     bounds, shading);
-  plan.pathReason = "planned ahead (Renderer::plan)";
-  plan.rasterRoutine =
-      plan.depthTest ? "depth test (hierarchical z decided by the render)" : "painter's overwrite";
-  return plan;
-}
-
-RenderStats Renderer::render(const Scene& scene, const Camera& camera,
-                             const FramebufferView& target) {
-  detail::validateRenderInputs(scene, camera, target, depthOutput_);  // before a pixel changes
-  Workspace& ws = *workspace_;
-  const detail::FrameInputs in{scene,
-                               camera,
-                               target,
-                               visibility_,
-                               twoSidedLighting_,
-                               toRgba8(background_, backgroundAlpha_),
-                               depthOutput_,
-                               rules_};
-  const detail::PathChoice path = ws.history.choosePath(in);
-  const FramebufferView planes = ws.planesFor(target);
-  detail::PhaseRunner runner(*ws.pool, progress_, phasesOf(path.path));
-  ws.transform.emplace(camera, target.width, target.height);
-  ws.grid = detail::TileGrid(target.width, target.height);
-
-  RenderStats stats = path.path == RenderPath::Full ? RenderStats{} : ws.history.stats();
-  const bool completed = path.path == RenderPath::Full
-                             ? ws.renderFull(in, path, threadCount(), planes, runner, stats)
-                             : ws.renderAgain(in, path, threadCount(), planes, runner, stats);
-  stats.plan = ws.plan;
-  stats.aborted = !completed;
-  if (completed) {
-    ws.history.remember(in, stats);
-  } else {
-    detail::clearTarget(planes, in.background);  // a valid image rather than half a one
-    ws.history.forget();
-    stats.pixelsCovered = 0;
-  }
-  stats.totalSeconds = runner.secondsSinceStart();
-  if (completed) runner.finish();
-  return stats;
+  return detail::planAhead({scene, camera, width, height, threadCount(), visibility_,
+                            twoSidedLighting_, depthOutput_, rules_});
 }
 
 }  // namespace facet

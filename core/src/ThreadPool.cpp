@@ -7,6 +7,11 @@ ThreadPool::ThreadPool(int threads) {
     workers_.emplace_back([this] { workerLoop(); });
 }
 
+int ThreadPool::hardwareThreads() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : static_cast<int>(n);
+}
+
 ThreadPool::~ThreadPool() {
   {
     std::lock_guard lock(mutex_);
@@ -34,6 +39,8 @@ void ThreadPool::workerLoop() {
       wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
       if (stopping_) return;
       seen = generation_;
+      if (!open_) continue;  // woke after the others finished the job: nothing to join
+      ++busyWorkers_;
     }
     runTasks();
     {
@@ -53,10 +60,12 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
     next_.store(0);
     done_.store(0);
     cancelled_.store(false);
-    busyWorkers_ = static_cast<int>(workers_.size());
+    open_ = true;
     ++generation_;
   }
-  wake_.notify_all();
+  // One task is the caller's: no worker to wake (a wake-up costs a system call, and a worker
+  // that another program's threads keep waiting would hold up the return).
+  if (count > 1) wake_.notify_all();
 
   while (!cancelled_.load(std::memory_order_relaxed)) {
     const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
@@ -66,7 +75,11 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
     if (afterCallerTask && !afterCallerTask(finished)) cancelled_.store(true);
   }
 
+  // Wait only for the workers that joined: on a busy machine a worker may not run for a
+  // scheduler time slice (milliseconds) after it is woken, long after the caller took the
+  // remaining tasks; it then finds the job closed and goes back to sleep.
   std::unique_lock lock(mutex_);
+  open_ = false;
   finished_.wait(lock, [&] { return busyWorkers_ == 0; });
   return !cancelled_.load();
 }

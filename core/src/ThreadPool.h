@@ -24,6 +24,8 @@ class ThreadPool {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   int threadCount() const { return static_cast<int>(workers_.size()) + 1; }
+  /// The hardware's threads (at least 1): the count a thread count of 0 asks for.
+  static int hardwareThreads();
 
   /// Runs task(i) for every i in [0, count) on all threads, the caller included, and
   /// returns when all have finished. After each task the *caller* runs, it calls
@@ -41,7 +43,8 @@ class ThreadPool {
   std::condition_variable wake_;
   std::condition_variable finished_;
   std::size_t generation_ = 0;  // guarded by mutex_
-  int busyWorkers_ = 0;         // guarded by mutex_
+  int busyWorkers_ = 0;         // guarded by mutex_: workers inside the current job
+  bool open_ = false;           // guarded by mutex_: workers may still join the current job
   bool stopping_ = false;       // guarded by mutex_
 
   // The current job; written by run() before the generation is published under mutex_.

@@ -1,0 +1,78 @@
+// The time of each render phase for facet_bench's sphere (BM_Sphere: 1920 × 1080, one
+// positional light at the eye, float points and 64-bit cells as VTK hands them over), over a
+// fixed number of frames: the best of each phase, for comparing two builds phase by phase.
+// A fixed frame count also makes the program's instruction count comparable between builds
+// (valgrind --tool=callgrind), which the load of a shared machine does not change.
+//
+//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS]
+//   build/bin/facet_phase_times 500000 0 20 2
+//
+// It uses only the public API and the tests' sphere generator, so it also compiles against
+// an older tree (bench/full_render_speed.md).
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "facet/Renderer.h"
+#include "support/TestMeshes.h"
+
+namespace {
+
+using namespace facet;
+
+struct Phases {
+  double seconds[6] = {1e30, 1e30, 1e30, 1e30, 1e30, 1e30};
+  void keepBest(const RenderStats& s) {
+    const double now[6] = {s.validateSeconds, s.transformSeconds, s.setupSeconds,
+                           s.rasterSeconds,   s.shadeSeconds,     s.totalSeconds};
+    for (int i = 0; i < 6; ++i)
+      seconds[i] = std::min(seconds[i], now[i]);
+  }
+};
+
+int run(int triangles, bool closed, int frames, int threads) {
+  // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles.
+  const int theta = triangles == 20000 ? 100 : triangles == 500000 ? 500 : 1000;
+  const Mesh sphere = testing::makeUvSphere(theta, theta + 2);
+  std::vector<float> xyz;
+  for (const auto& p : sphere.points)
+    xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
+  const Camera camera = testing::fitCamera(sphere);
+  const MeshView view{
+      PointArray::ofXyz(xyz), PolygonArray::of(sphere.offsets, sphere.connectivity), {}, closed};
+  Scene scene;
+  scene.meshes.push_back({view, Material{}});
+  scene.lights.ambient.intensity = 0.0;
+  scene.lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
+
+  Renderer renderer;
+  renderer.setThreadCount(threads);
+  Framebuffer framebuffer(1920, 1080);
+  renderer.render(scene, camera, framebuffer);  // warm: buffers grow
+  Phases best;
+  for (int i = 0; i < frames; ++i)
+    best.keepBest(renderer.render(scene, camera, framebuffer));
+  const double* s = best.seconds;
+  std::printf(
+      "%d triangles, closed %d, %d threads, best of %d frames, ms: validate %.3f transform "
+      "%.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f\n",
+      triangles, int(closed), threads, frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
+      s[4] * 1e3, s[5] * 1e3);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int triangles = argc < 3 ? 0 : std::atoi(argv[1]);
+  if (triangles != 20000 && triangles != 500000 && triangles != 2000000) {
+    std::fprintf(stderr,
+                 "usage: %s TRIANGLES(20000|500000|2000000) CLOSED(0|1) [FRAMES] [THREADS]\n",
+                 argv[0]);
+    return 2;
+  }
+  return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
+             argc > 4 ? std::atoi(argv[4]) : 2);
+}
