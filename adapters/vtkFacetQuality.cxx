@@ -87,8 +87,13 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
   this->Current = settings;
   this->Stats = {};
   this->Estimate.clear();
-  if (settings.Interpolation != VTK_GOURAUD && settings.Interpolation != VTK_PHONG &&
-    samples == 1 && settings.MaximumError == 0.0 && !settings.EstimateError &&
+  const auto smooth = [](int interpolation) {
+    return interpolation == VTK_GOURAUD || interpolation == VTK_PHONG;
+  };
+  const bool anySmooth = settings.MeshInterpolation.empty()
+    ? smooth(settings.Interpolation)
+    : std::any_of(settings.MeshInterpolation.begin(), settings.MeshInterpolation.end(), smooth);
+  if (!anySmooth && samples == 1 && settings.MaximumError == 0.0 && !settings.EstimateError &&
     !settings.ComputeError)
   {
     this->Keys.clear(); // the meshes may change unseen meanwhile: prepare afresh next time
@@ -129,6 +134,10 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     }
     facet::QualitySettings quality;
     quality.shading = ShadingOf(this->Current.Interpolation);
+    for (const int interpolation : this->Current.MeshInterpolation)
+    {
+      quality.meshShading.push_back(ShadingOf(interpolation));
+    }
     quality.samplesPerPixel = this->Current.SamplesPerPixel;
     if (this->Current.MaximumError > 0.0)
     {

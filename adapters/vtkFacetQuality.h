@@ -4,10 +4,11 @@
  *          QualityRenderer.h and MeshReference.h), kept out of the filter.
  *
  * The property's Interpolation picks the shading (VTK_FLAT flat, VTK_GOURAUD Gouraud,
- * VTK_PHONG Phong); SamplesPerPixel supersamples; a MaximumError above 0 shades adaptively.
- * The ShadingMesh of every scene mesh (triangles, vertex normals: the input's point normals
- * when it has them, else vtkPolyDataNormals' meaning) is kept while the meshes are unchanged.
- * Every render computes the flat-shading error estimate; AddOutputs puts it in the field data
+ * VTK_PHONG Phong; per mesh for vtkFacetRendererToImageFilter, each actor's own); SamplesPerPixel
+ * supersamples; a MaximumError above 0 shades adaptively. The ShadingMesh of every scene mesh
+ * (triangles, vertex normals: the input's point normals when it has them, else vtkPolyDataNormals'
+ * meaning) is kept while the meshes are unchanged. Every render computes the flat-shading error
+ * estimate; AddOutputs puts it in the field data
  * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units) and, on request, as the
  * point-data array `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
  * reference and adds `FacetError` (RMSE, Max, PSNR, SSIM, SilhouetteFraction,
@@ -40,6 +41,8 @@ public:
     bool ComputeError = false;
     bool EstimateError = true;
     bool ErrorEstimateArray = false;
+    /// One Interpolation per scene mesh (a VTK scene's actors); empty: Interpolation for all.
+    std::vector<int> MeshInterpolation;
   };
 
   /// The renderer call vtkFacetImageRenderer makes: the scene in the settings' mode.
@@ -49,9 +52,10 @@ public:
     const facet::FramebufferView&)>;
 
   /**
-   * Prepares a render of `scene` (whose first mesh holds the input's polygons, the second
-   * its strip triangles, both on the input's points): checks the settings (an error in
-   * `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
+   * Prepares a render of `scene` (for vtkFacetRenderFilter, whose first mesh holds the
+   * input's polygons, the second its strip triangles, both on the input's points, whose point
+   * normals are then used; `input` may be null: normals are computed): checks the settings (an
+   * error in `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
    * the shading meshes if the scene's meshes changed (`converted`). Returns the function
    * that renders, or an empty one after an error or when the plain Renderer does all that is
    * asked (flat, one sample, no estimate, no error measurement).
