@@ -148,7 +148,16 @@ facet::PointArray vtkFacetActorConverter::Part::WorldNormals(vtkPolyData* data,
     return model;
   }
   // Normals transform by the inverse transpose of the matrix's linear part; the core
-  // normalizes them (VertexNormals.h: fromPointNormals).
+  // normalizes them (VertexNormals.h: fromPointNormals). Kept while neither the normals nor
+  // the world points change.
+  const vtkMTimeType version =
+    std::max(normals->GetMTime(), this->Transform.Version(this->Geometry.Polygons().version));
+  if (version == this->NormalsVersion &&
+    this->Normals.size() == 3 * static_cast<std::size_t>(normals->GetNumberOfTuples()))
+  {
+    return facet::PointArray::ofXyz(std::span<const double>(this->Normals));
+  }
+  this->NormalsVersion = version;
   double inverse[16];
   vtkMatrix4x4::Invert(matrix ? matrix->GetData() : vtkNew<vtkMatrix4x4>()->GetData(), inverse);
   this->Normals.resize(3 * static_cast<std::size_t>(normals->GetNumberOfTuples()));

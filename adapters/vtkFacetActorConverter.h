@@ -97,6 +97,7 @@ private:
     facet::SceneMesh Strips; // the strip triangles, likewise
     std::int64_t FirstPolygon = 0;
     std::vector<double> Normals; // world point normals, for a matrix other than the identity
+    vtkMTimeType NormalsVersion = 0;
 
     // The data's point normals (3 components, one per point) in world coordinates, for the
     // shading modes (MeshView::pointNormals); none without them.

@@ -99,10 +99,11 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     this->Keys.clear(); // the meshes may change unseen meanwhile: prepare afresh next time
     return {};          // the Renderer alone: nothing to prepare
   }
-  std::vector<std::pair<const void*, std::size_t>> keys;
+  std::vector<Key> keys;
   for (const facet::SceneMesh& mesh : scene.meshes)
   {
-    keys.emplace_back(mesh.mesh.points.data, mesh.mesh.polygons.count);
+    // The version too: an actor's world points move in place when its matrix changes.
+    keys.emplace_back(mesh.mesh.points.data, mesh.mesh.polygons.count, mesh.mesh.version);
   }
   const bool stale = converted || keys != this->Keys;
   if (stale)

@@ -24,6 +24,7 @@
 
 #include <functional>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 class vtkFacetMessages;
@@ -85,8 +86,9 @@ private:
   std::unique_ptr<facet::QualityRenderer> Quality; // its buffers kept between renders
   const facet::Renderer* QualityOf = nullptr;      // the renderer it renders through
   std::vector<facet::ShadingMesh> Shading;
-  std::vector<double> Normals;                           // the input's point normals, xyz in double
-  std::vector<std::pair<const void*, std::size_t>> Keys; // what Shading was made from
+  std::vector<double> Normals; // the input's point normals, xyz in double
+  using Key = std::tuple<const void*, std::size_t, std::uint64_t>; // points, polygons, version
+  std::vector<Key> Keys;                                           // what Shading was made from
   facet::QualityStats Stats;
   std::vector<float> Estimate;
   double RenderSeconds = 0.0;

@@ -520,8 +520,9 @@ TEST(Warnings, UnrenderablePropsAndFeaturesAreNamedOnce)
 
 //------------------------------------------------------------------------------
 // Each actor's interpolation, as VTK's OpenGL mapper shades it: with point normals (a
-// vtkSphereSource makes them) Phong and Gouraud shade smoothly; without, flat whatever the
-// interpolation. SamplesPerPixel blends the silhouettes; bad settings are errors.
+// vtkSphereSource makes them, turned with the actor) Phong and Gouraud shade smoothly;
+// without, flat whatever the interpolation. SamplesPerPixel blends the silhouettes; bad settings
+// are errors.
 namespace {
 struct QualityScene
 {
@@ -580,6 +581,13 @@ TEST(Quality, EachActorsInterpolationAsVtkShadesIt)
       << interpolation << ": without point normals, flat as VTK shows it";
   }
   EXPECT_NE(QualityScene::Pixels(grab->GetOutput(), 0).second, flatSmooth);
+
+  // Turning an actor turns its normals: the image is a fresh filter's, not the last shading.
+  scene.Smooth->RotateX(90.0);
+  grab->Update();
+  vtkSmartPointer<vtkFacetRendererToImageFilter> fresh = Grab(scene.Renderer);
+  fresh->Update();
+  ExpectSameArray(grab->GetOutput(), fresh->GetOutput(), "RGBA");
 }
 
 TEST(Quality, SamplesPerPixelBlendTheSilhouettesAndBadSettingsAreErrors)
