@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <ranges>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -191,8 +190,9 @@ namespace {
 bool reshadesAny(const QualitySettings& settings) {
   const auto smooth = [](Shading s) { return s != Shading::Flat; };
   return settings.maximumError.has_value() ||
-         (settings.meshShading.empty() ? smooth(settings.shading)
-                                       : std::ranges::any_of(settings.meshShading, smooth));
+         (settings.meshShading.empty()
+              ? smooth(settings.shading)
+              : std::any_of(settings.meshShading.begin(), settings.meshShading.end(), smooth));
 }
 }  // namespace
 
@@ -602,9 +602,9 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   Clock::time_point phase = Clock::now();
   markVisible(frame);
   const bool bounds = settings.estimateError || frame.adaptive();
-  const bool corners = !frame.adaptive() &&
-                       std::ranges::any_of(std::views::iota(std::size_t{0}, scene.meshes.size()),
-                                           [&](std::size_t m) { return frame.gouraud(m); });
+  bool corners = false;  // some mesh is Gouraud-shaded: its corners are lit first
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    corners = corners || frame.gouraud(m);
   stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
   if (settings.estimateError) estimate(frame, target, stats);
   stats.estimateSeconds = secondsSince(phase);

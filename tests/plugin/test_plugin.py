@@ -234,7 +234,7 @@ class Quality(unittest.TestCase):
             self.assertIn(name, render.ListProperties())
         self.assertEqual(render.GetProperty("Shading").Available, ["Flat", "Gouraud", "Phong"])
         self.assertEqual(render.Shading, "Flat")
-        self.assertEqual(render.SamplesPerPixel, 1)
+        self.assertEqual(render.SamplesPerPixel, "1")  # an enumeration: its entry text
 
     def test_shading_changes_the_image(self):
         render = self.render()
