@@ -4,8 +4,13 @@
 #include "vtkBoundingBox.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkDoubleArray.h"
 #include "vtkFacetMessages.h"
 #include "vtkFacetPropertyConverter.h"
+#include "vtkFloatArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkSmartPointer.h"
@@ -99,6 +104,7 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
   part.Colors.Update(data, part.Geometry, actor.Coloring, messages);
   const facet::PointArray world = part.Transform.Update(
     part.Geometry.Polygons().points, part.Geometry.ConvertedLastUpdate(), actor.Matrix);
+  const facet::PointArray normals = part.WorldNormals(data, actor.Matrix);
   const facet::Material material =
     vtkFacetPropertyConverter::Convert(actor.Property, part.Colors.HasColors(), actor.Lighting);
   const auto place =
@@ -108,12 +114,64 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
       mesh.polygonColors = colors;
       mesh.colorVersion = part.Colors.GetVersion();
       mesh.pointColors = part.Colors.PointColors();
+      mesh.scalarTexture = part.Colors.ScalarTexture();
+      mesh.pointNormals = normals;
       mesh.closedSurface = mesh.closedSurface && part.Transform.KeepsOrientation();
       placed = { mesh, material };
     };
   place(part.Polys, part.Geometry.Polygons(), part.Colors.PolygonColors());
   place(part.Strips, part.Geometry.StripTriangles(), part.Colors.StripColors());
   return true;
+}
+
+//------------------------------------------------------------------------------
+facet::PointArray vtkFacetActorConverter::Part::WorldNormals(vtkPolyData* data,
+  vtkMatrix4x4* matrix)
+{
+  vtkDataArray* normals = data->GetPointData()->GetNormals();
+  if (!normals || normals->GetNumberOfComponents() != 3 ||
+    normals->GetNumberOfTuples() != data->GetNumberOfPoints())
+  {
+    return {};
+  }
+  auto* floats = vtkFloatArray::SafeDownCast(normals);
+  auto* doubles = vtkDoubleArray::SafeDownCast(normals);
+  const facet::PointArray model = floats ? facet::PointArray{ floats->GetPointer(0),
+    facet::PointArray::Type::Float32,
+    static_cast<std::size_t>(normals->GetNumberOfTuples()) }
+    : doubles                            ? facet::PointArray{ doubles->GetPointer(0),
+        facet::PointArray::Type::Float64,
+        static_cast<std::size_t>(normals->GetNumberOfTuples()) }
+                                         : facet::PointArray{};
+  if (this->Transform.IsIdentity() && model.count > 0)
+  {
+    return model;
+  }
+  // Normals transform by the inverse transpose of the matrix's linear part; the core
+  // normalizes them (VertexNormals.h: fromPointNormals). Kept while neither the normals nor
+  // the world points change.
+  const vtkMTimeType version =
+    std::max(normals->GetMTime(), this->Transform.Version(this->Geometry.Polygons().version));
+  if (version == this->NormalsVersion &&
+    this->Normals.size() == 3 * static_cast<std::size_t>(normals->GetNumberOfTuples()))
+  {
+    return facet::PointArray::ofXyz(std::span<const double>(this->Normals));
+  }
+  this->NormalsVersion = version;
+  double inverse[16];
+  vtkMatrix4x4::Invert(matrix ? matrix->GetData() : vtkNew<vtkMatrix4x4>()->GetData(), inverse);
+  this->Normals.resize(3 * static_cast<std::size_t>(normals->GetNumberOfTuples()));
+  for (vtkIdType p = 0; p < normals->GetNumberOfTuples(); ++p)
+  {
+    double n[3];
+    normals->GetTuple(p, n);
+    for (int row = 0; row < 3; ++row)
+    {
+      this->Normals[3 * p + row] =
+        inverse[row] * n[0] + inverse[4 + row] * n[1] + inverse[8 + row] * n[2];
+    }
+  }
+  return facet::PointArray::ofXyz(std::span<const double>(this->Normals));
 }
 
 //------------------------------------------------------------------------------

@@ -9,7 +9,8 @@
  * polydata is a part, converted by vtkFacetPolyDataConverter, moved to world coordinates by
  * vtkFacetActorTransform and colored by vtkFacetScalarColors, and each step is kept while
  * what it depends on is unchanged. A part gives the scene up to two meshes, its polys and
- * its strip triangles, with one material (vtkFacetPropertyConverter).
+ * its strip triangles, with one material (vtkFacetPropertyConverter) and, when its polydata
+ * has point normals, those in world coordinates for the shading modes.
  *
  * Polygon ids count through the parts in order, from 0 for the actor's first polygon (the
  * scene numbers them from the actor's first mesh on); CellIdOf maps one back to the cell
@@ -95,6 +96,12 @@ private:
     facet::SceneMesh Polys;  // world points, colors and material, ready to render
     facet::SceneMesh Strips; // the strip triangles, likewise
     std::int64_t FirstPolygon = 0;
+    std::vector<double> Normals; // world point normals, for a matrix other than the identity
+    vtkMTimeType NormalsVersion = 0;
+
+    // The data's point normals (3 components, one per point) in world coordinates, for the
+    // shading modes (MeshView::pointNormals); none without them.
+    facet::PointArray WorldNormals(vtkPolyData* data, vtkMatrix4x4* matrix);
   };
   bool UpdatePart(Part& part,
     vtkPolyData* data,

@@ -86,8 +86,13 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
   }
   this->Current = settings;
   this->Stats = {};
-  const bool reshades = settings.Interpolation == VTK_GOURAUD ||
-    settings.Interpolation == VTK_PHONG || settings.MaximumError > 0.0;
+  const auto smooth = [](int interpolation) {
+    return interpolation == VTK_GOURAUD || interpolation == VTK_PHONG;
+  };
+  const bool anySmooth = settings.MeshInterpolation.empty()
+    ? smooth(settings.Interpolation)
+    : std::any_of(settings.MeshInterpolation.begin(), settings.MeshInterpolation.end(), smooth);
+  const bool reshades = anySmooth || settings.MaximumError > 0.0;
   if (!reshades && samples == 1 && !settings.EstimateError && !settings.ErrorEstimateArray &&
     !settings.ComputeError)
   {
@@ -98,10 +103,11 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     this->Quality.reset();
     return {};
   }
-  std::vector<std::pair<const void*, std::size_t>> keys;
+  std::vector<Key> keys;
   for (const facet::SceneMesh& mesh : scene.meshes)
   {
-    keys.emplace_back(mesh.mesh.points.data, mesh.mesh.polygons.count);
+    // The version too: an actor's world points move in place when its matrix changes.
+    keys.emplace_back(mesh.mesh.points.data, mesh.mesh.polygons.count, mesh.mesh.version);
   }
   // The input's normals are attributes: new ones come without a new conversion.
   vtkDataArray* normalsArray = input ? input->GetPointData()->GetNormals() : nullptr;
@@ -155,6 +161,10 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     this->Keys = keys;
     facet::QualitySettings quality;
     quality.shading = ShadingOf(this->Current.Interpolation);
+    for (const int interpolation : this->Current.MeshInterpolation)
+    {
+      quality.meshShading.push_back(ShadingOf(interpolation));
+    }
     quality.samplesPerPixel = this->Current.SamplesPerPixel;
     if (this->Current.MaximumError > 0.0)
     {

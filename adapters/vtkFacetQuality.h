@@ -4,16 +4,16 @@
  *          QualityRenderer.h and MeshReference.h), kept out of the filter.
  *
  * The property's Interpolation picks the shading (VTK_FLAT flat, VTK_GOURAUD Gouraud,
- * VTK_PHONG Phong); SamplesPerPixel supersamples; a MaximumError above 0 shades adaptively.
- * Shading beyond flat and ComputeError need the ShadingMesh of every scene mesh (triangles,
- * vertex normals: the input's point normals when it has them, else vtkPolyDataNormals'
- * meaning), kept while the meshes and the normals are unchanged. Flat shading with the
- * estimate needs no ShadingMesh: the quality renderer keeps, per mesh version, each
- * polygon's normal, extent and normal spread (20 bytes), and per render bounds only the
- * polygons that won a pixel (a new background alone keeps the last estimate). AddOutputs puts
- * the estimate in the field data (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit
- * units, and Seconds, what it took) and, on request, as the point-data array
- * `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
+ * VTK_PHONG Phong; per mesh for vtkFacetRendererToImageFilter, each actor's own); SamplesPerPixel
+ * supersamples; a MaximumError above 0 shades adaptively. Shading beyond flat and ComputeError
+ * need the ShadingMesh of every scene mesh (triangles, vertex normals: the input's point normals
+ * when it has them, else vtkPolyDataNormals' meaning), kept while the meshes and the normals are
+ * unchanged. Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps,
+ * per mesh version, each polygon's normal, extent and normal spread (20 bytes), and per render
+ * bounds only the polygons that won a pixel (a new background alone keeps the last estimate).
+ * AddOutputs puts the estimate in the field data (`FacetErrorEstimate`: PredictedRMSE,
+ * PredictedMax, 8-bit units, and Seconds, what it took) and, on request, as the point-data
+ * array `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
  * reference and adds `FacetError` (RMSE, Max, PSNR, SSIM, SilhouetteFraction,
  * ReferenceSeconds, RenderSeconds) and the per-pixel `Error` array (ImageMetrics.h).
  */
@@ -28,6 +28,7 @@
 
 #include <functional>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -47,6 +48,8 @@ public:
     bool ComputeError = false;
     bool EstimateError = true;
     bool ErrorEstimateArray = false;
+    /// One Interpolation per scene mesh (a VTK scene's actors); empty: Interpolation for all.
+    std::vector<int> MeshInterpolation;
   };
 
   /// The renderer call vtkFacetImageRenderer makes: the scene in the settings' mode.
@@ -56,9 +59,10 @@ public:
     const facet::FramebufferView&)>;
 
   /**
-   * Prepares a render of `scene` (whose first mesh holds the input's polygons, the second
-   * its strip triangles, both on the input's points): checks the settings (an error in
-   * `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
+   * Prepares a render of `scene` (for vtkFacetRenderFilter, whose first mesh holds the
+   * input's polygons, the second its strip triangles, both on the input's points, whose point
+   * normals are then used; `input` may be null: normals are computed): checks the settings (an
+   * error in `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
    * the shading meshes if the scene's meshes changed (`converted`). Returns the function
    * that renders, or an empty one after an error or when the plain Renderer does all that is
    * asked (flat, one sample, no estimate, no error measurement).
@@ -91,7 +95,8 @@ private:
   std::vector<double> Normals;                     // the input's point normals, xyz in double
   vtkTimeStamp NormalsTime;                        // when Normals last changed
   std::pair<vtkDataArray*, vtkMTimeType> NormalsSource{ nullptr, 0 }; // identity only
-  std::vector<std::pair<const void*, std::size_t>> Keys;              // what Normals was read for
+  using Key = std::tuple<const void*, std::size_t, std::uint64_t>;    // points, polygons, version
+  std::vector<Key> Keys;                                              // what Normals was read for
   facet::QualityStats Stats;
   double RenderSeconds = 0.0;
 };

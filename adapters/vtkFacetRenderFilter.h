@@ -325,9 +325,12 @@ public:
 
   ///@{
   /**
-   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Point scalars are mapped to
-   * colors at the points; flat shading shows their average per polygon, Gouraud and Phong
-   * interpolate the colors (off's meaning; on is not rendered yet and behaves as off).
+   * vtkMapper's InterpolateScalarsBeforeMapping (default: off). Off: point scalars are
+   * mapped to colors at the points; Gouraud and Phong interpolate the colors. On: Gouraud and
+   * Phong interpolate the scalars and map them per pixel through the lookup table, as VTK's
+   * OpenGL mapper does with its color texture (where vtkMapper would use one: not for cell
+   * scalars, an indexed table or direct colors). Flat shading shows one color per polygon,
+   * the average of its points' mapped colors, either way.
    */
   void SetInterpolateScalarsBeforeMapping(vtkTypeBool interpolate);
   vtkTypeBool GetInterpolateScalarsBeforeMapping();

@@ -9,6 +9,7 @@
 #include "vtkFacetActorConverter.h"
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
+#include "vtkFacetQuality.h"
 #include "vtkFacetSceneConverter.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -21,6 +22,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPropCollection.h"
+#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
@@ -143,6 +145,14 @@ void WarnAboutUnrendered(vtkActor* actor, vtkFacetMessages& messages)
   }
 }
 
+// How VTK's OpenGL mapper shades an actor's polygons: as its property's Interpolation says
+// when its data has point normals; without them with the face normal (the shaders take it
+// from the screen-space derivatives of the position), flat whatever the interpolation.
+int InterpolationOf(vtkProperty* property, const facet::SceneMesh& mesh)
+{
+  return mesh.mesh.pointNormals.count > 0 ? property->GetInterpolation() : VTK_FLAT;
+}
+
 // The byte VTK's gradient background quad gives row y of `height`: its corner colors are
 // truncated to bytes, interpolated at the pixel center and rounded to the framebuffer's.
 unsigned char GradientByte(double bottom, double top, int y, int height)
@@ -165,6 +175,8 @@ public:
   };
 
   vtkFacetImageRenderer Image;
+  vtkFacetQuality Quality;            // shading modes and supersampling
+  std::vector<int> MeshInterpolation; // per scene mesh, its actor's property's
   vtkFacetMessages Messages;
   std::vector<std::unique_ptr<Leaf>> Leaves; // kept between executions, by position
   std::vector<std::int64_t> LeafStarts;      // their first polygons, for the id lookup
@@ -295,6 +307,7 @@ void vtkFacetRendererToImageFilter::vtkInternals::AddActors(vtkRenderer* rendere
   std::set<std::string> skipped;
   std::size_t count = 0;
   std::int64_t polygons = 0;
+  this->MeshInterpolation.clear();
   ForEachActor(
     renderer,
     [&](int propIndex, vtkActor* prop, vtkMatrix4x4* matrix) {
@@ -315,9 +328,15 @@ void vtkFacetRendererToImageFilter::vtkInternals::AddActors(vtkRenderer* rendere
       WarnAboutUnrendered(prop, this->Messages);
       leaf.PropIndex = propIndex;
       leaf.FirstPolygon = polygons;
+      actor.RendersInterpolation = true;
       if (leaf.Converter.Update(actor, detectClosedSurfaces, this->Messages))
       {
+        const std::size_t first = scene.meshes.size();
         leaf.Converter.AddTo(scene);
+        for (std::size_t m = first; m < scene.meshes.size(); ++m)
+        {
+          this->MeshInterpolation.push_back(InterpolationOf(actor.Property, scene.meshes[m]));
+        }
         polygons += leaf.Converter.GetNumberOfPolygons();
       }
     },
@@ -531,6 +550,15 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
   settings.BackgroundAlpha =
     window && window->GetAlphaBitPlanes() ? renderer->GetBackgroundAlpha() : 1.0;
 
+  // Each actor's interpolation, the samples and the budget (vtkFacetQuality).
+  vtkFacetQuality::Settings quality;
+  quality.SamplesPerPixel = this->SamplesPerPixel;
+  quality.MaximumError = this->MaximumError;
+  quality.EstimateError = false;
+  quality.MeshInterpolation = internals.MeshInterpolation;
+  settings.RenderWith = internals.Quality.Prepare(
+    scene, nullptr, quality, internals.NumberOfConversions() > 0, messages);
+
   // Render straight into the output's arrays; polygon ids become actor and cell ids.
   internals.Image.Render(
     scene,
@@ -557,4 +585,6 @@ void vtkFacetRendererToImageFilter::PrintSelf(ostream& os, vtkIndent indent)
      << " x " << size[1] << ")\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "DetectClosedSurfaces: " << this->DetectClosedSurfaces << "\n";
+  os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
+  os << indent << "MaximumError: " << this->MaximumError << "\n";
 }

@@ -20,10 +20,9 @@
  *   Static). Each actor renders under its full matrix (position, orientation, scale,
  *   origin, user matrix, user transform; an assembly's too), with its vtkProperty and its
  *   mapper's coloring by data (scalar visibility, scalar mode, color mode, array, component,
- *   lookup table, scalar range, UseLookupTableScalarRange; InterpolateScalarsBeforeMapping
- *   is read, but flat shading shows one color per polygon). Other props (volumes, 2D
- *   actors, text, images, glyph mappers...) are skipped, with one warning naming their
- *   classes. Per-block display attributes of a vtkCompositePolyDataMapper2 (block colors,
+ *   lookup table, scalar range, UseLookupTableScalarRange, InterpolateScalarsBeforeMapping). Other
+ * props (volumes, 2D actors, text, images, glyph mappers...) are skipped, with one warning naming
+ * their classes. Per-block display attributes of a vtkCompositePolyDataMapper2 (block colors,
  *   visibilities) live in VTK's OpenGL module and are not read.
  * - The active camera, for this image's aspect: view angle or parallel scale, window center,
  *   clipping range as given. What Facet's camera cannot do yet (view shear, off-axis
@@ -38,9 +37,15 @@
  *   TwoSidedLighting. Shadows, a textured background, SSAO and image-based lighting are not
  *   rendered yet (a warning, said once).
  *
- * Shading is flat, everything is opaque, as with vtkFacetRenderFilter: a warning, said once
- * per actor, names what an actor's property asks for beyond that (the default Gouraud
- * interpolation among them), and an actor's texture or backface property. Errors and warnings of an
+ * Shading follows each actor's property Interpolation as VTK's OpenGL mapper does: for data
+ * with point normals (in world coordinates under the actor's matrix), VTK_GOURAUD
+ * (vtkProperty's default) lights the corners and interpolates, VTK_PHONG lights every pixel,
+ * VTK_FLAT one color per polygon; data without point normals is shaded flat whatever the
+ * interpolation, as VTK shows it (its shaders then take the face normal). Point scalars are
+ * interpolated as the mapper's InterpolateScalarsBeforeMapping says. SamplesPerPixel
+ * supersamples and MaximumError shades adaptively (facet's QualityRenderer.h). Everything is
+ * opaque: a warning, said once per actor, names what an actor's property asks for beyond
+ * that, and an actor's texture or backface property. Errors and warnings of an
  * execution are reported at its end, one vtkErrorMacro and one vtkWarningMacro. Long renders report
  * progress and stop when AbortExecute is set.
  *
@@ -123,6 +128,27 @@ public:
   vtkBooleanMacro(DetectClosedSurfaces, vtkTypeBool);
   ///@}
 
+  ///@{
+  /**
+   * Samples per pixel: 1, 4 or 16, on an ordered 2 × 2 or 4 × 4 grid, averaged, as
+   * vtkFacetRenderFilter's (default: 1). Depth, CellId and ActorId come from one fixed
+   * sample nearest the pixel center. Other values are an error at execution.
+   */
+  vtkSetMacro(SamplesPerPixel, int);
+  vtkGetMacro(SamplesPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Adaptive quality, as vtkFacetRenderFilter's: an error budget in 8-bit units. Polygons
+   * whose flat-shading error bound is within it stay flat, the others are shaded per pixel
+   * (Phong), whatever their actor's interpolation. 0 turns it off and each actor's property
+   * Interpolation decides (default: 0). Negative values are an error at execution.
+   */
+  vtkSetMacro(MaximumError, double);
+  vtkGetMacro(MaximumError, double);
+  ///@}
+
   /**
    * What the last render did and left out, a few lines of text (empty before the first).
    */
@@ -148,6 +174,8 @@ protected:
   int Size[2] = { 0, 0 };
   int NumberOfThreads = 0;
   vtkTypeBool DetectClosedSurfaces = 1;
+  int SamplesPerPixel = 1;
+  double MaximumError = 0.0;
 
 private:
   vtkFacetRendererToImageFilter(const vtkFacetRendererToImageFilter&) = delete;

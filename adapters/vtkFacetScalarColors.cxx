@@ -2,14 +2,18 @@
 
 #include "vtkAbstractMapper.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFacetMessages.h"
 #include "vtkFacetPolyDataConverter.h"
 #include "vtkLookupTable.h"
 #include "vtkMapper.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkScalarsToColors.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -71,6 +75,31 @@ void AveragePerPolygon(const facet::PolygonArray& polygons,
     AveragePerPolygon<std::int64_t>(polygons, rgba, colors);
   }
 }
+
+// vtkMapper::CanUseTextureMapForColoring for point scalars: not for an indexed table, nor for
+// colors given directly.
+bool UsesTexture(const vtkFacetScalarColors::Settings& settings,
+  vtkScalarsToColors* table,
+  vtkDataArray* scalars)
+{
+  const bool direct = settings.ColorMode == VTK_COLOR_MODE_DIRECT_SCALARS ||
+    (settings.ColorMode == VTK_COLOR_MODE_DEFAULT && vtkUnsignedCharArray::SafeDownCast(scalars));
+  return settings.InterpolateScalarsBeforeMapping && !table->GetIndexedLookup() && !direct;
+}
+
+// vtkMapper's ScalarToTextureCoordinate (VTK 9.1, vtkMapper.cxx): s across the padded range,
+// clamped to ±1000 as VTK clamps it; t = 0.49 for a number, 1 (the NaN row) for NaN.
+void TextureCoordinate(double value, double paddedMin, double inverseWidth, float* st)
+{
+  if (std::isnan(value))
+  {
+    st[0] = 0.5f;
+    st[1] = 1.0f;
+    return;
+  }
+  st[0] = std::clamp(static_cast<float>((value - paddedMin) * inverseWidth), -1000.0f, 1000.0f);
+  st[1] = 0.49f;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -114,6 +143,8 @@ void vtkFacetScalarColors::Update(vtkPolyData* input,
     this->Polygon.clear();
     this->Strip.clear();
     this->Point.clear();
+    this->Coordinates.clear();
+    this->Texels.clear();
     this->Last = settings;
     this->LastTable = table;
     this->LastTableTime = tableTime;
@@ -189,6 +220,10 @@ std::string vtkFacetScalarColors::Compute(vtkDataArray* scalars,
     {
       this->Point[p] = ColorAt(rgba, p);
     }
+    if (UsesTexture(settings, table, scalars))
+    {
+      this->ComputeTexture(scalars, table, settings.ColorMode);
+    }
     return {};
   }
   // Cell (or field) data, indexed by vtkPolyData cell id.
@@ -209,4 +244,78 @@ std::string vtkFacetScalarColors::Compute(vtkDataArray* scalars,
     this->Strip[t] = ColorAt(rgba, firstStrip + mesh.StripOfTriangle(t));
   }
   return {};
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetScalarColors::ComputeTexture(vtkDataArray* scalars,
+  vtkScalarsToColors* table,
+  int colorMode)
+{
+  // vtkMapper::MapScalarsToTexture (VTK 9.1): a row of the table's colors with the below-
+  // and above-range colors at its ends (texel i at the scalar range[0] + (i - 1/2)·k), a row
+  // of the NaN color, and a texture coordinate per point over the range padded by one texel.
+  double range[2] = { table->GetRange()[0], table->GetRange()[1] };
+  const bool logScale = table->UsingLogScale() != 0;
+  if (logScale)
+  {
+    vtkLookupTable::GetLogRange(range, range);
+  }
+  const vtkIdType tableColors = table->GetNumberOfAvailableColors();
+  vtkIdType width = tableColors + 2;
+  if (width > 65538) // VTK's cap: a table of 2^24 colors would make an absurd texture
+  {
+    width = 8192;
+  }
+  const double k = (range[1] - range[0]) / static_cast<double>(width - 2);
+  vtkNew<vtkDoubleArray> ramp;
+  ramp->SetNumberOfTuples(2 * width);
+  for (vtkIdType i = 0; i < width; ++i)
+  {
+    const double value = range[0] + static_cast<double>(i) * k - k / 2.0;
+    ramp->SetValue(i, logScale ? std::pow(10.0, value) : value);
+    ramp->SetValue(width + i, vtkMath::Nan());
+  }
+  vtkSmartPointer<vtkUnsignedCharArray> texels =
+    vtk::TakeSmartPointer(table->MapScalars(ramp, colorMode, 0, VTK_RGBA));
+  if (!texels || texels->GetNumberOfComponents() != 4)
+  {
+    return; // no texture: the point colors are interpolated
+  }
+  this->Texels.resize(static_cast<std::size_t>(2 * width));
+  for (vtkIdType i = 0; i < 2 * width; ++i)
+  {
+    this->Texels[i] = ColorAt(texels->GetPointer(0), i);
+  }
+
+  const double texel = (range[1] - range[0]) / static_cast<double>(tableColors);
+  const double paddedMin = range[0] - texel, inverseWidth = 1.0 / (range[1] - range[0] + 2 * texel);
+  const int components = scalars->GetNumberOfComponents();
+  const int component = table->GetVectorMode() == vtkScalarsToColors::MAGNITUDE && components > 1
+    ? -1
+    : table->GetVectorComponent();
+  const bool magnitude = component < 0 || component >= components;
+  const double tableRange[2] = { table->GetRange()[0], table->GetRange()[1] };
+  this->Coordinates.resize(2 * static_cast<std::size_t>(this->Point.size()));
+  for (std::size_t p = 0; p < this->Point.size(); ++p)
+  {
+    double value = 0.0;
+    if (magnitude)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        value += scalars->GetComponent(static_cast<vtkIdType>(p), c) *
+          scalars->GetComponent(static_cast<vtkIdType>(p), c);
+      }
+      value = std::sqrt(value);
+    }
+    else
+    {
+      value = scalars->GetComponent(static_cast<vtkIdType>(p), component);
+    }
+    if (logScale)
+    {
+      value = vtkLookupTable::ApplyLogScale(value, tableRange, range);
+    }
+    TextureCoordinate(value, paddedMin, inverseWidth, &this->Coordinates[2 * p]);
+  }
 }

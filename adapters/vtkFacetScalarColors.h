@@ -14,8 +14,14 @@
  * UseLookupTableScalarRange. Cell scalars color each polygon (and every triangle of a strip);
  * point scalars are averaged per polygon, as flat shading shows one color per polygon
  * (VTK's OpenGL mapper interpolates them across the polygon even when flat shading), and
- * kept per point for the Gouraud and Phong modes, which interpolate them. The result is kept while
- * the input, the settings and the table are unchanged.
+ * kept per point for the Gouraud and Phong modes, which interpolate them. With
+ * InterpolateScalarsBeforeMapping on, where vtkMapper::CanUseTextureMapForColoring would
+ * (point scalars mapped through a table that is not indexed, not direct colors), those modes
+ * interpolate the scalars instead and map them per sample: the scalar texture is made as
+ * vtkMapper::MapScalarsToTexture makes its color texture (the table's colors and the
+ * below- and above-range colors in a row, the NaN color in a second; per point a texture
+ * coordinate, on a log scale when the table has one), so the bytes are VTK's. The result is
+ * kept while the input, the settings and the table are unchanged.
  */
 
 #ifndef vtkFacetScalarColors_h
@@ -26,6 +32,7 @@
 #include "vtkType.h"
 
 #include "facet/Color.h"
+#include "facet/Mesh.h"
 
 #include <span>
 #include <string>
@@ -54,7 +61,8 @@ public:
     vtkScalarsToColors* LookupTable = nullptr; // never null from Of
     double ScalarRange[2] = { 0.0, 1.0 };
     bool UseLookupTableScalarRange = false;
-    /// Kept for the shading modes: flat shading shows one color per polygon either way.
+    /// Gouraud and Phong map the interpolated scalars per sample (ScalarTexture); flat
+    /// shading shows one color per polygon either way.
     bool InterpolateScalarsBeforeMapping = false;
 
     /// The mapper's settings; creates its default lookup table if it has none, as
@@ -79,6 +87,12 @@ public:
   /// With point scalars, one color per point (mapped, then interpolated by the Gouraud and
   /// Phong modes: InterpolateScalarsBeforeMapping off); empty otherwise.
   std::span<const facet::Rgba8> PointColors() const { return this->Point; }
+  /// With point scalars to map per sample (InterpolateScalarsBeforeMapping, see above), the
+  /// texture of the Gouraud and Phong modes (facet::MeshView::scalarTexture); empty otherwise.
+  facet::ColorTexture ScalarTexture() const
+  {
+    return { this->Coordinates, this->Texels, this->Texels.size() / 2 };
+  }
   bool HasColors() const { return !this->Polygon.empty() || !this->Strip.empty(); }
 
   /// The colors' MeshView::colorVersion: when they were last computed, on VTK's clock (so
@@ -91,6 +105,7 @@ public:
 
 private:
   static vtkScalarsToColors* PrepareLookupTable(vtkDataArray* scalars, const Settings& settings);
+  void ComputeTexture(vtkDataArray* scalars, vtkScalarsToColors* table, int colorMode);
   std::string Compute(vtkDataArray* scalars,
     bool cellScalars,
     vtkScalarsToColors* table,
@@ -108,6 +123,8 @@ private:
   std::vector<facet::Rgba8> Polygon;
   std::vector<facet::Rgba8> Strip;
   std::vector<facet::Rgba8> Point;
+  std::vector<float> Coordinates;   // (s, t) per point
+  std::vector<facet::Rgba8> Texels; // width × 2
 };
 
 #endif

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
 #include "MeshAccess.h"
 #include "Validate.h"
@@ -131,6 +132,56 @@ void radixSort(std::vector<std::uint64_t>& keys) {
 }
 
 }  // namespace
+
+namespace {
+
+void requireCount(std::size_t count, std::size_t points, const char* name) {
+  if (count != 0 && count != points) {
+    detail::fail(name, "has " + std::to_string(count) + " entries for " + std::to_string(points) +
+                           " points; give one per point or none");
+  }
+}
+
+void requireTexture(const ColorTexture& texture, std::size_t points) {
+  if (texture.empty()) return;
+  requireCount(texture.coordinates.size() / 2, points, "MeshView.scalarTexture.coordinates");
+  if (texture.coordinates.size() % 2 != 0 || texture.width == 0 ||
+      texture.texels.size() != 2 * texture.width) {
+    detail::fail("MeshView.scalarTexture",
+                 "has " + std::to_string(texture.coordinates.size()) + " coordinates and " +
+                     std::to_string(texture.texels.size()) + " texels for width " +
+                     std::to_string(texture.width) +
+                     "; give (s, t) per point and width × 2 texels");
+  }
+}
+
+}  // namespace
+
+void validatePointData(const MeshView& mesh) {
+  validate(mesh);
+  requireCount(mesh.pointNormals.count, mesh.points.count, "MeshView.pointNormals");
+  requireCount(mesh.pointColors.size(), mesh.points.count, "MeshView.pointColors");
+  requireTexture(mesh.scalarTexture, mesh.points.count);
+}
+
+std::optional<Color> pointColorAt(const MeshView& mesh, const std::array<std::uint32_t, 3>& corners,
+                                  const glm::dvec3& w) {
+  if (!mesh.scalarTexture.empty()) {
+    const std::span<const float> st = mesh.scalarTexture.coordinates;
+    glm::dvec2 sum(0.0);
+    for (int k = 0; k < 3; ++k)
+      sum += w[k] * glm::dvec2(st[2 * corners[k]], st[2 * corners[k] + 1]);
+    const Rgba8 c = mesh.scalarTexture.lookup(sum.x, sum.y);
+    return Color(c.r, c.g, c.b) / 255.0f;
+  }
+  if (mesh.pointColors.empty()) return std::nullopt;
+  glm::dvec3 sum(0.0);
+  for (int k = 0; k < 3; ++k) {
+    const Rgba8 c = mesh.pointColors[corners[k]];
+    sum += w[k] * glm::dvec3(Color(c.r, c.g, c.b) / 255.0f);
+  }
+  return Color(sum);
+}
 
 bool isClosedSurface(const MeshView& mesh) {
   validate(mesh);

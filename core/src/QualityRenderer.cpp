@@ -88,6 +88,45 @@ void addCornerColors(PolygonShape& shape, std::span<const Rgba8> pointColors, st
   }
 }
 
+// With a scalar texture the colors a polygon shows are the texels its corners' coordinates
+// span (interpolation stays within their range, and the lookup is monotonic), which may lie
+// outside the corner texels. A NaN coordinate interpolates to NaN, which looks up (0, 0).
+template <class IdAt>
+void addTextureColors(PolygonShape& shape, const ColorTexture& texture, std::size_t count,
+                      const IdAt& idAt) {
+  shape.pointColors = true;
+  std::size_t columns[2] = {SIZE_MAX, 0}, rows[2] = {SIZE_MAX, 0};
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t id = idAt(k);
+    const double s = texture.coordinates[2 * id], t = texture.coordinates[2 * id + 1];
+    const bool nan = std::isnan(s) || std::isnan(t);
+    columns[0] = std::min(columns[0], nan ? 0 : texture.column(s));
+    columns[1] = std::max(columns[1], texture.column(s));
+    rows[0] = std::min(rows[0], nan ? 0 : ColorTexture::row(t));
+    rows[1] = std::max(rows[1], ColorTexture::row(t));
+  }
+  shape.cornerColorLow = Color(1.0f);
+  shape.cornerColorHigh = Color(0.0f);
+  for (std::size_t row = rows[0]; row <= rows[1]; ++row) {
+    for (std::size_t column = columns[0]; column <= columns[1]; ++column) {
+      const Color c = toColor(texture.texels[row * texture.width + column]);
+      shape.cornerColorLow = glm::min(shape.cornerColorLow, c);
+      shape.cornerColorHigh = glm::max(shape.cornerColorHigh, c);
+    }
+  }
+}
+
+// The colors a polygon's corners can show: the texels of a scalar texture, else the point
+// colors; nothing without either.
+template <class IdAt>
+void addColors(PolygonShape& shape, const MeshView& mesh, std::size_t count, const IdAt& idAt) {
+  if (!mesh.scalarTexture.empty()) {
+    addTextureColors(shape, mesh.scalarTexture, count, idAt);
+  } else if (!mesh.pointColors.empty()) {
+    addCornerColors(shape, mesh.pointColors, count, idAt);
+  }
+}
+
 // One polygon's corners: points, point ids and, when asked, corner normals (scratch space,
 // reused from polygon to polygon).
 struct Corners {
@@ -116,10 +155,7 @@ PolygonShape polygonShape(const MeshView& mesh, std::size_t p, const VertexNorma
   readCorners(mesh, p, normals, corners);
   if (corners.points.size() < 3) return {};
   PolygonShape shape = shapeOf(corners.points, corners.normals);
-  if (!mesh.pointColors.empty()) {
-    addCornerColors(shape, mesh.pointColors, corners.ids.size(),
-                    [&](std::size_t k) { return corners.ids[k]; });
-  }
+  addColors(shape, mesh, corners.ids.size(), [&](std::size_t k) { return corners.ids[k]; });
   return shape;
 }
 
@@ -132,10 +168,7 @@ void addCenterAndColors(const MeshView& mesh, std::size_t p, PolygonShape& shape
     for (std::size_t k = 0; k < n; ++k)
       sum += points[polygons.pointId(p, k)];
     shape.center = sum / static_cast<double>(n);
-    if (!mesh.pointColors.empty()) {
-      addCornerColors(shape, mesh.pointColors, n,
-                      [&](std::size_t k) { return polygons.pointId(p, k); });
-    }
+    addColors(shape, mesh, n, [&](std::size_t k) { return polygons.pointId(p, k); });
   });
 }
 
@@ -154,12 +187,6 @@ double cosineOfSpread(float sine) {
   return sine >= 1.0f ? 0.0 : std::sqrt(1.0 - static_cast<double>(sine) * sine);
 }
 
-void requireCount(std::size_t count, std::size_t points, const char* name) {
-  if (count != 0 && count != points) {
-    detail::fail(name, "has " + std::to_string(count) + " entries for " + std::to_string(points) +
-                           " points; give one per point or none");
-  }
-}
 
 // Barycentric weights of the ray's intersection with triangle abc (Möller & Trumbore 1997),
 // relative to the ray origin, in double; (1/3, 1/3, 1/3) when the ray runs in its plane.
@@ -197,9 +224,7 @@ const char* toString(Shading shading) {
 }
 
 ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options) {
-  validate(mesh);
-  requireCount(mesh.pointNormals.count, mesh.points.count, "MeshView.pointNormals");
-  requireCount(mesh.pointColors.size(), mesh.points.count, "MeshView.pointColors");
+  validatePointData(mesh);
   triangles = triangulateMesh(mesh);
   normals = mesh.pointNormals.count > 0 ? fromPointNormals(mesh, mesh.pointNormals)
                                         : computeVertexNormals(mesh, options);
@@ -225,6 +250,17 @@ void validate(const QualitySettings& settings) {
   }
 }
 
+namespace {
+// Whether the settings shade any sample again (adaptive, or a mesh not flat).
+bool reshadesAny(const QualitySettings& settings) {
+  const auto smooth = [](Shading s) { return s != Shading::Flat; };
+  return settings.maximumError.has_value() ||
+         (settings.meshShading.empty()
+              ? smooth(settings.shading)
+              : std::any_of(settings.meshShading.begin(), settings.meshShading.end(), smooth));
+}
+}  // namespace
+
 // One render's shared, read-only state for the passes.
 struct QualityRenderer::Frame {
   const Scene& scene;
@@ -240,6 +276,7 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
   std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
+  bool reshading;  // some sample may be shaded again (reshadesAny)
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
         const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
@@ -251,7 +288,8 @@ struct QualityRenderer::Frame {
         rays(camera, sampleGrid.width, sampleGrid.height),
         bounds(s.lights, camera, twoSidedLighting),
         shader(s.lights),
-        twoSided(twoSidedLighting) {
+        twoSided(twoSidedLighting),
+        reshading(reshadesAny(q)) {
     std::size_t polygons = 0, corners = 0;
     for (const SceneMesh& mesh : s.meshes) {
       firstPolygon.push_back(polygons);
@@ -264,9 +302,19 @@ struct QualityRenderer::Frame {
   }
 
   bool adaptive() const { return settings.maximumError.has_value(); }
-  bool reshades() const { return adaptive() || settings.shading != Shading::Flat; }
+  Shading shadingOf(std::size_t mesh) const {
+    return settings.meshShading.empty() ? settings.shading : settings.meshShading[mesh];
+  }
+  bool gouraud(std::size_t mesh) const {
+    return !adaptive() && shadingOf(mesh) == Shading::Gouraud;
+  }
+  bool reshades() const { return reshading; }
   // Adaptive: a polygon whose bound, plus the rounding of its flat color, is within budget.
   bool keepsFlat(float bound) const { return adaptive() && bound + 0.5 <= *settings.maximumError; }
+  // Whether a visible polygon of `mesh` (with that bound, when adaptive) is shaded again.
+  bool reshadesPolygon(std::size_t mesh, float bound) const {
+    return adaptive() ? !keepsFlat(bound) : shadingOf(mesh) != Shading::Flat;
+  }
 
   // (mesh, polygon within it) of a polygon id.
   std::pair<std::size_t, std::size_t> locate(std::size_t id) const {
@@ -314,12 +362,19 @@ struct QualityRenderer::Frame {
   };
   Hit hit(std::size_t mesh, std::size_t polygon, const Ray& ray) const;
   Color phong(std::size_t mesh, std::size_t polygon, const Hit& hit, const Ray& ray) const;
-  void lightCorners(std::size_t mesh, std::size_t polygon, std::span<Color> out) const;
-  Color shadeSample(std::size_t index, int x, int y, std::span<const Color> cornerColors) const;
+  void lightCorners(std::size_t mesh, std::size_t polygon, std::span<Color> out,
+                    std::span<Color> bright) const;
+  Color gouraud(std::size_t mesh, const Hit& hit, std::span<const Color> cornerColors,
+                std::span<const Color> cornerBright) const;
+  Color shadeSample(std::size_t index, int x, int y, std::span<const Color> cornerColors,
+                    std::span<const Color> cornerBright) const;
 };
 
-void QualityRenderer::Frame::lightCorners(std::size_t m, std::size_t polygon,
-                                          std::span<Color> out) const {
+// Gouraud: every corner of the polygon lit with its normal and color; with a scalar texture
+// (the color known per sample only) lit for a black surface into `out` and a white one into
+// `bright` (QualityRenderer.h).
+void QualityRenderer::Frame::lightCorners(std::size_t m, std::size_t polygon, std::span<Color> out,
+                                          std::span<Color> bright) const {
   const MeshView& mesh = scene.meshes[m].mesh;
   const ShadingMesh& shading = meshes[m];
   const PolygonShape& shape = shading.shapes[polygon];
@@ -332,8 +387,16 @@ void QualityRenderer::Frame::lightCorners(std::size_t m, std::size_t polygon,
       sample.normal = facing(shape, shading.normals.normals[shading.normals.cornerNormal[corner]],
                              sample.position);
       sample.toViewer = bounds.toViewer(sample.position);
+      const std::size_t index = firstCorner[m] + corner;
+      if (!mesh.scalarTexture.empty()) {
+        sample.color = Color(0.0f);
+        out[index] = shader.shade(sample, materials[m]);
+        sample.color = Color(1.0f);
+        bright[index] = shader.shade(sample, materials[m]);
+        continue;
+      }
       sample.color = mesh.pointColors.empty() ? flatColor : toColor(mesh.pointColors[point]);
-      out[firstCorner[m] + corner] = shader.shade(sample, materials[m]);
+      out[index] = shader.shade(sample, materials[m]);
     }
   });
 }
@@ -364,36 +427,44 @@ Color QualityRenderer::Frame::phong(std::size_t m, std::size_t polygon, const Hi
   const MeshView& mesh = scene.meshes[m].mesh;
   const VertexNormals& normals = meshes[m].normals;
   SurfaceSample sample;
-  glm::dvec3 normal(0.0), color(0.0);
+  glm::dvec3 normal(0.0);
   for (int k = 0; k < 3; ++k) {
     sample.position += hit.weights[k] * hit.corners[k];
     normal += hit.weights[k] * normals.normals[normals.cornerNormal[hit.triangle->corner[k]]];
-    if (!mesh.pointColors.empty())
-      color += hit.weights[k] * glm::dvec3(toColor(mesh.pointColors[hit.triangle->point[k]]));
   }
   const PolygonShape& shape = meshes[m].shapes[polygon];
   const double length = glm::length(normal);
   normal = length > 0.0 && std::isfinite(length) ? normal / length : shape.normal;
   sample.normal = facing(shape, normal, sample.position);
   sample.toViewer = CameraRays::toViewer(ray);
-  sample.color = mesh.pointColors.empty() ? polygonColor(m, polygon) : Color(color);
+  sample.color =
+      pointColorAt(mesh, hit.triangle->point, hit.weights).value_or(polygonColor(m, polygon));
   return shader.shade(sample, materials[m]);
 }
 
+Color QualityRenderer::Frame::gouraud(std::size_t m, const Hit& hit,
+                                      std::span<const Color> cornerColors,
+                                      std::span<const Color> cornerBright) const {
+  glm::dvec3 dark(0.0), bright(0.0);
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t corner = firstCorner[m] + hit.triangle->corner[k];
+    dark += hit.weights[k] * glm::dvec3(cornerColors[corner]);
+    if (!cornerBright.empty()) bright += hit.weights[k] * glm::dvec3(cornerBright[corner]);
+  }
+  const MeshView& mesh = scene.meshes[m].mesh;
+  if (mesh.scalarTexture.empty()) return Color(dark);
+  const glm::dvec3 cd(*pointColorAt(mesh, hit.triangle->point, hit.weights));
+  return Color(dark + cd * (bright - dark));
+}
+
 Color QualityRenderer::Frame::shadeSample(std::size_t index, int x, int y,
-                                          std::span<const Color> cornerColors) const {
+                                          std::span<const Color> cornerColors,
+                                          std::span<const Color> cornerBright) const {
   const auto [m, polygon] = locate(static_cast<std::size_t>(samples.polygonId[index]));
   const Ray ray = rays.through({x + 0.5, y + 0.5});
   const Hit found = hit(m, polygon, ray);
   if (!found.triangle) return toColor(samples.color[index]);  // no triangle: as painted
-  if (settings.shading == Shading::Gouraud && !adaptive()) {
-    glm::dvec3 sum(0.0);
-    for (int k = 0; k < 3; ++k)
-      sum +=
-          found.weights[k] * glm::dvec3(cornerColors[firstCorner[m] + found.triangle->corner[k]]);
-    return Color(sum);
-  }
-  return phong(m, polygon, found, ray);
+  return gouraud(m) ? gouraud(m, found, cornerColors, cornerBright) : phong(m, polygon, found, ray);
 }
 
 namespace {
@@ -473,11 +544,16 @@ void QualityRenderer::markVisible(const Frame& frame) {
 std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bool corners) {
   const std::size_t polygons = frame.firstPolygon.back();
   polygonBounds_.assign(bounds ? polygons : 0, 0.0f);
+  cornerBright_.clear();
   if (corners) {
     std::size_t total = 0;
-    for (const SceneMesh& mesh : frame.scene.meshes)
+    bool textured = false;
+    for (const SceneMesh& mesh : frame.scene.meshes) {
       total += mesh.mesh.polygons.connectivitySize;
+      textured = textured || !mesh.mesh.scalarTexture.empty();
+    }
     cornerColors_.resize(total);
+    cornerBright_.resize(textured ? total : 0);
   }
   const std::size_t blocks = (polygons + kPolygonsPerTask - 1) / kPolygonsPerTask;
   std::vector<std::size_t> reshaded(blocks, 0);
@@ -487,8 +563,8 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
       if (!shown_[id].load(std::memory_order_relaxed)) continue;
       const auto [m, polygon] = frame.locate(id);
       if (bounds) polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
-      if (corners) frame.lightCorners(m, polygon, cornerColors_);
-      count += !frame.keepsFlat(bounds ? polygonBounds_[id] : 0.0f);
+      if (corners && frame.gouraud(m)) frame.lightCorners(m, polygon, cornerColors_, cornerBright_);
+      count += frame.reshadesPolygon(m, bounds ? polygonBounds_[id] : 0.0f);
     }
     reshaded[begin / kPolygonsPerTask] = count;
   });
@@ -571,9 +647,10 @@ void QualityRenderer::shadeAndResolve(const Frame& frame, const FramebufferView&
           const std::int32_t id = grid.polygonId[index];
           const Rgba8 painted = grid.color[index];
           const bool keep = id < 0 || !frame.reshades() ||
-                            (frame.adaptive() && frame.keepsFlat(polygonBounds_[id]));
+                            !frame.reshadesPolygon(frame.locate(static_cast<std::size_t>(id)).first,
+                                                   frame.adaptive() ? polygonBounds_[id] : 0.0f);
           if (!keep) {
-            sum += glm::vec4(frame.shadeSample(index, sx, sy, cornerColors_), 1.0f);
+            sum += glm::vec4(frame.shadeSample(index, sx, sy, cornerColors_, cornerBright_), 1.0f);
             ++rowReshaded[y];
           } else {
             sum += glm::vec4(toColor(painted), painted.a / 255.0f);
@@ -600,8 +677,13 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
                                      const QualitySettings& settings) {
   const Clock::time_point start = Clock::now();
   validate(settings);
+  if (!settings.meshShading.empty() && settings.meshShading.size() != scene.meshes.size()) {
+    throw Error("QualitySettings.meshShading has " + std::to_string(settings.meshShading.size()) +
+                " entries for " + std::to_string(scene.meshes.size()) + " scene meshes");
+  }
   QualityStats stats;
-  const bool reshades = settings.maximumError || settings.shading != Shading::Flat;
+  estimate_.clear();
+  const bool reshades = reshadesAny(settings);
   const int g = gridSide(settings.samplesPerPixel);
   const int estimatedGrid = std::exchange(estimatedGrid_, 0);  // until this render's is made
   if (!settings.estimateError) estimate_.clear();
@@ -640,12 +722,13 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
       estimatedGrid == g &&
       estimate_.size() == static_cast<std::size_t>(target.width) * target.height;
   const bool bounds = (settings.estimateError && !keepEstimate) || frame.adaptive();
-  const bool corners = settings.shading == Shading::Gouraud && !frame.adaptive();
+  bool corners = false;  // some mesh is Gouraud-shaded: its corners are lit first
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    corners = corners || frame.gouraud(m);
   if (bounds || corners || frame.reshades()) {
     markVisible(frame);
     stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
   }
-  if (!frame.reshades()) stats.polygonsReshaded = 0;
   if (keepEstimate) {
     stats.predictedRmse = estimated_.predictedRmse;
     stats.predictedMaxError = estimated_.predictedMaxError;
@@ -716,8 +799,7 @@ void QualityRenderer::updateExtents(const Scene& scene) {
     MeshExtents& extents = extents_[m];
     if (key.version != 0 && extents.key == key) continue;
     extents = {};  // a mesh that throws leaves nothing behind that claims to be its
-    requireCount(mesh.pointNormals.count, mesh.points.count, "MeshView.pointNormals");
-    requireCount(mesh.pointColors.size(), mesh.points.count, "MeshView.pointColors");
+    validatePointData(mesh);
     const VertexNormals normals = mesh.pointNormals.count > 0
                                       ? fromPointNormals(mesh, mesh.pointNormals)
                                       : computeVertexNormals(mesh);

@@ -47,7 +47,8 @@ struct TracedMesh {
     return faceLength > 0.0 ? face / faceLength : glm::dvec3(0.0, 0.0, 1.0);
   }
 
-  // The surface color, as the rasterizer takes it: the polygon's, else the material's.
+  // The polygon's color, as the rasterizer takes it: its own, else the material's (point
+  // colors and scalars, interpolated, win over it: pointColorAt).
   Color colorOf(std::uint32_t polygon) const {
     const auto& colors = source->mesh.polygonColors;
     if (colors.empty()) return source->material.color;
@@ -83,6 +84,7 @@ std::size_t cornerCount(const std::vector<MeshTriangle>& triangles) {
 TracedMesh prepare(const SceneMesh& source, const glm::dvec3& eye, const VertexNormals* given,
                    const VertexNormalOptions& normalOptions, std::size_t i) {
   validate(source.material);
+  validatePointData(source.mesh);  // pointColorAt reads the per-point arrays
   TracedMesh mesh;
   mesh.source = &source;
   mesh.material = PreparedMaterial(source.material);
@@ -196,7 +198,9 @@ std::optional<Color> MeshTracer::Impl::shade(const Ray& ray, const glm::dvec3& o
   const bool seenFromBack = glm::dot(face, ray.direction) > 0.0;
   sample.normal = seenFromBack && twoSidedLighting ? -normal : normal;
   sample.toViewer = CameraRays::toViewer(ray);
-  sample.color = mesh.colorOf(mesh.triangles[hit.hit.primID].polygon);
+  const MeshTriangle& triangle = mesh.triangles[hit.hit.primID];
+  sample.color = pointColorAt(mesh.source->mesh, triangle.point, weights)
+                     .value_or(mesh.colorOf(triangle.polygon));
   return shader.shade(sample, mesh.material);
 }
 

@@ -21,6 +21,7 @@
 #include "vtkLookupTable.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
@@ -34,6 +35,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <set>
 #include <string>
 
 using namespace facet_test;
@@ -505,14 +507,125 @@ TEST(Warnings, UnrenderablePropsAndFeaturesAreNamedOnce)
          "actor 3",
          "a backface property",
          "without a mapper",
-         "Gouraud interpolation and opacity 0.5" })
+         "opacity 0.5" })
   {
     EXPECT_NE(warnings.Last.find(named), std::string::npos) << named << " in " << warnings.Last;
   }
+  EXPECT_EQ(warnings.Last.find("Gouraud"), std::string::npos) << "rendered, not named";
   EXPECT_EQ(ActorIdAt(grab->GetOutput(), 30, 30), 3);
   grab->Modified();
   grab->Update();
   EXPECT_EQ(warnings.Count, 1) << "said once: " << warnings.Last;
+}
+
+//------------------------------------------------------------------------------
+// Each actor's interpolation, as VTK's OpenGL mapper shades it: with point normals (a
+// vtkSphereSource makes them, turned with the actor) Phong and Gouraud shade smoothly;
+// without, flat whatever the interpolation. SamplesPerPixel blends the silhouettes; bad settings
+// are errors.
+namespace {
+struct QualityScene
+{
+  vtkSmartPointer<vtkRenderer> Renderer = vtkSmartPointer<vtkRenderer>::New();
+  vtkSmartPointer<vtkActor> Smooth; // left, with point normals
+  vtkSmartPointer<vtkActor> Bare;   // right, without
+  QualityScene()
+  {
+    this->Renderer->SetActiveCamera(PixelCamera(Width, Height));
+    this->Smooth = ActorOf(Sphere(35.0, 12));
+    this->Smooth->SetPosition(40.0, 60.0, 0.0);
+    vtkNew<vtkPolyData> bare;
+    bare->ShallowCopy(Sphere(35.0, 12));
+    bare->GetPointData()->SetNormals(nullptr);
+    this->Bare = ActorOf(bare);
+    this->Bare->SetPosition(120.0, 60.0, 0.0);
+    this->Renderer->AddActor(this->Smooth);
+    this->Renderer->AddActor(this->Bare);
+  }
+  // Distinct colors an actor shows, and its pixels' bytes.
+  static std::pair<std::size_t, std::vector<int>> Pixels(vtkImageData* image, int actor)
+  {
+    std::set<std::array<int, 4>> colors;
+    std::vector<int> bytes;
+    for (int y = 0; y < Height; ++y)
+    {
+      for (int x = 0; x < Width; ++x)
+      {
+        if (ActorIdAt(image, x, y) == actor)
+        {
+          colors.insert(RgbaAt(image, x, y));
+          bytes.insert(bytes.end(), { x, y, RgbaAt(image, x, y)[0], RgbaAt(image, x, y)[1] });
+        }
+      }
+    }
+    return { colors.size(), bytes };
+  }
+};
+}
+
+TEST(Quality, EachActorsInterpolationAsVtkShadesIt)
+{
+  QualityScene scene;
+  vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(scene.Renderer);
+  grab->Update();
+  const auto [flatColors, flatSmooth] = QualityScene::Pixels(grab->GetOutput(), 0);
+  const auto [bareColors, flatBare] = QualityScene::Pixels(grab->GetOutput(), 1);
+  for (const int interpolation : { VTK_GOURAUD, VTK_PHONG })
+  {
+    scene.Smooth->GetProperty()->SetInterpolation(interpolation);
+    scene.Bare->GetProperty()->SetInterpolation(interpolation);
+    grab->Update();
+    const auto [colors, smooth] = QualityScene::Pixels(grab->GetOutput(), 0);
+    EXPECT_GT(colors, 3 * flatColors) << interpolation << ": smooth shading, many colors";
+    EXPECT_EQ(QualityScene::Pixels(grab->GetOutput(), 1).second, flatBare)
+      << interpolation << ": without point normals, flat as VTK shows it";
+  }
+  EXPECT_NE(QualityScene::Pixels(grab->GetOutput(), 0).second, flatSmooth);
+
+  // Turning an actor turns its normals: the image is a fresh filter's, not the last shading.
+  scene.Smooth->RotateX(90.0);
+  grab->Update();
+  vtkSmartPointer<vtkFacetRendererToImageFilter> fresh = Grab(scene.Renderer);
+  fresh->Update();
+  ExpectSameArray(grab->GetOutput(), fresh->GetOutput(), "RGBA");
+}
+
+TEST(Quality, SamplesPerPixelBlendTheSilhouettesAndBadSettingsAreErrors)
+{
+  QualityScene scene;
+  vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(scene.Renderer);
+  for (const int samples : { 1, 16 })
+  {
+    grab->SetSamplesPerPixel(samples);
+    grab->Update();
+    long blended = 0; // background pixels (no actor at their center sample) not black
+    for (int y = 0; y < Height; ++y)
+    {
+      for (int x = 0; x < Width; ++x)
+      {
+        const std::array<int, 4> rgba = RgbaAt(grab->GetOutput(), x, y);
+        blended += ActorIdAt(grab->GetOutput(), x, y) < 0 && rgba[0] + rgba[1] + rgba[2] > 0;
+      }
+    }
+    std::printf("%d samples: %ld background pixels blended\n", samples, blended);
+    EXPECT_EQ(blended > 50, samples == 16) << samples;
+  }
+  grab->SetMaximumError(2.0);
+  grab->Update();
+  EXPECT_GT(Covered(grab->GetOutput()), 0);
+  MessageCounter errors(grab, vtkCommand::ErrorEvent);
+  for (const auto& [samples, error] : { std::pair{ 3, 0.0 }, std::pair{ 1, -1.0 } })
+  {
+    const int before = errors.Count;
+    grab->SetSamplesPerPixel(samples);
+    grab->SetMaximumError(error);
+    grab->Update();
+    EXPECT_EQ(errors.Count, before + 1) << samples << " " << error;
+    EXPECT_NE(errors.Last.find(samples == 3 ? "SamplesPerPixel is 3" : "MaximumError is -1"),
+      std::string::npos)
+      << errors.Last;
+    EXPECT_EQ(grab->GetOutput()->GetNumberOfPoints(), 0) << "empty and valid";
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -304,6 +304,117 @@ TEST(QualityRenderer, AdaptiveStaysWithinItsBudgetOfPhongAndKeepsFlatFacesFlat) 
   }
 }
 
+// A square facing the camera whose scalars run from s = 0 on its left edge to s = 1 on its
+// right, mapped per sample through a four-entry table (InterpolateScalarsBeforeMapping): each
+// pixel shows the entry its own s falls in — the bands, not a blend of the corner colors.
+// Unlit (C = Cd) and under a half-intensity headlight (C = Cd / 2: Gouraud's black and white
+// corner lighting, interpolated, is exact for every Cd).
+TEST(QualityRenderer, ScalarsMappedPerSampleShowTheTableEntryOfTheirValue) {
+  Mesh square;
+  for (const auto& [x, y] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}})
+    square.addPoint({x, y, 0.0});
+  square.addPolygon({0, 1, 2, 3});
+  const std::vector<float> st = {0.0f, 0.49f, 1.0f, 0.49f, 1.0f, 0.49f, 0.0f, 0.49f};
+  const std::vector<Rgba8> texels = {
+      {255, 0, 0, 255},     {0, 255, 0, 255},     {0, 0, 255, 255},     {255, 255, 255, 255},
+      {128, 128, 128, 255}, {128, 128, 128, 255}, {128, 128, 128, 255}, {128, 128, 128, 255}};
+  MeshView view = square.view();
+  view.scalarTexture = {st, texels, 4};
+  view.pointColors = std::vector<Rgba8>(4, Rgba8{9, 9, 9, 255});  // the texture wins
+  LightSet unlit;
+  unlit.ambient = {Color(1.0f), 1.0};
+  LightSet headlight;
+  headlight.ambient = {Color(0.0f), 0.0};
+  headlight.lights.push_back(DirectionalLight{{0, 0, -1}, Color(1.0f), 0.5});
+  Camera camera;
+  camera.position = {0.0, 0.0, 2.0};
+  camera.viewAngleDegrees = 70.0;
+  const int width = 101, height = 64;
+  const CameraRays rays(camera, width, height);
+  for (const auto& [lights, scale] : {std::pair{unlit, 1.0f}, {headlight, 0.5f}}) {
+    const Scene scene = testing::oneMeshScene(view, Material{}, lights);
+    for (const Shading shading : {Shading::Gouraud, Shading::Phong}) {
+      const Output out = renderQuality(scene, camera, width, height, {.shading = shading});
+      int checked = 0, wrong = 0;
+      std::vector<int> seen(4, 0);
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+          if (out.framebuffer.polygonIdAt(x, y) < 0) continue;
+          const Ray ray = rays.through({x + 0.5, y + 0.5});
+          const double s =
+              (ray.origin.x - ray.direction.x * ray.origin.z / ray.direction.z + 1) / 2;
+          const double texel = 4.0 * s;
+          if (std::abs(texel - std::round(texel)) < 1e-6 || s < 0.0 || s > 1.0) continue;
+          const std::size_t entry = std::min<std::size_t>(3, static_cast<std::size_t>(texel));
+          const Rgba8 t = texels[entry];
+          const Rgba8 expected = toRgba8(scale * Color(t.r, t.g, t.b) / 255.0f);
+          const Rgba8 got = out.framebuffer.colorAt(x, y);
+          if (channelDifference(got, expected) > (scale == 1.0f ? 0 : 1)) {
+            if (wrong++ < 5) {
+              std::printf("%s (%d, %d): s %.4f, got %d %d %d, expected %d %d %d\n",
+                          toString(shading), x, y, s, got.r, got.g, got.b, expected.r, expected.g,
+                          expected.b);
+            }
+          }
+          ++seen[entry];
+          ++checked;
+        }
+      }
+      EXPECT_GT(checked, 2000) << toString(shading);
+      EXPECT_EQ(wrong, 0) << toString(shading) << " light scale " << scale;
+      for (const int count : seen)
+        EXPECT_GT(count, 300) << toString(shading);
+    }
+  }
+}
+
+// The flat-shading bound sees every color a polygon's scalars can map to: a table black at
+// both ends and white in the middle gives a polygon whose corners are black the whole range.
+TEST(QualityRenderer, ShadingMeshColorRangeSpansTheTexelsBetweenTheCorners) {
+  Mesh triangle;
+  triangle.addPoint({0, 0, 0});
+  triangle.addPoint({1, 0, 0});
+  triangle.addPoint({0, 1, 0});
+  triangle.addPolygon({0, 1, 2});
+  const std::vector<float> st = {0.1f, 0.49f, 0.9f, 0.49f, 0.1f, 0.49f};
+  const std::vector<Rgba8> texels = {{0, 0, 0, 255},   {255, 255, 255, 255}, {0, 0, 0, 255},
+                                     {255, 0, 0, 255}, {255, 0, 0, 255},     {255, 0, 0, 255}};
+  MeshView view = triangle.view();
+  view.scalarTexture = {st, texels, 3};
+  const ShadingMesh shading(view);
+  EXPECT_TRUE(shading.shapes[0].pointColors);
+  EXPECT_EQ(shading.shapes[0].cornerColorLow, Color(0.0f));
+  EXPECT_EQ(shading.shapes[0].cornerColorHigh, Color(1.0f));  // the middle texel, not a corner's
+}
+
+// Each mesh with its own shading (a VTK scene's actors): the flat mesh's pixels are the
+// Renderer's, the Phong mesh's are those of an all-Phong render.
+TEST(QualityRenderer, EachMeshCanHaveItsOwnShading) {
+  const Mesh sphere = makeUvSphere(20, 11);
+  const Mesh other = testing::makeBox({-1.6, -1.2, -0.5}, {-0.9, 1.2, 0.4});
+  Scene scene = sphereScene(sphere);
+  scene.meshes.push_back({other.view(), testing::shinyMaterial()});
+  const Camera camera = sphereCamera();
+  const Output flat = renderQuality(scene, camera, 80, 60, {});
+  const Output phong = renderQuality(scene, camera, 80, 60, {.shading = Shading::Phong});
+  const Output mixed =
+      renderQuality(scene, camera, 80, 60, {.meshShading = {Shading::Phong, Shading::Flat}});
+  const auto sphereIds = static_cast<std::int32_t>(sphere.polygonCount());
+  int differ = 0;
+  for (std::size_t i = 0; i < mixed.framebuffer.pixelCount(); ++i) {
+    const std::int32_t id = mixed.framebuffer.polygonId()[i];
+    const Output& expected = id < sphereIds ? phong : flat;
+    EXPECT_EQ(mixed.framebuffer.color()[i], expected.framebuffer.color()[i]) << i << " id " << id;
+    differ += !(flat.framebuffer.color()[i] == phong.framebuffer.color()[i]);
+  }
+  EXPECT_GT(differ, 100);  // the two modes differ, so the test tells them apart
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(16, 16);
+  EXPECT_THROW(quality.render(scene, {}, camera, framebuffer, {.meshShading = {Shading::Phong}}),
+               Error);
+}
+
 TEST(QualityRenderer, BadSettingsAndMismatchedMeshesAreNamed) {
   const Mesh sphere = makeUvSphere(8, 5);
   const Scene scene = sphereScene(sphere);
@@ -331,6 +442,15 @@ TEST(QualityRenderer, BadSettingsAndMismatchedMeshesAreNamed) {
   const std::vector<Rgba8> three(3);
   badColors.pointColors = three;
   EXPECT_THROW(ShadingMesh{badColors}, Error);
+  MeshView badTexture = sphere.view();
+  const std::vector<float> coordinates(2 * sphere.points.size(), 0.5f);
+  badTexture.scalarTexture = {coordinates, three, 2};  // 3 texels for a 2 × 2 table
+  try {
+    ShadingMesh{badTexture};
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scalarTexture"), std::string::npos) << e.what();
+  }
 }
 
 // Flat shading with the estimate keeps per mesh version only each polygon's normal, extent and

@@ -1,5 +1,5 @@
 """The Facet Render filter in ParaView (run with pvbatch): its proxy and Python names, the
-camera, lights and coloring its properties set, progress and abort.
+camera, lights, coloring and quality its properties set, progress and abort.
 
 Most checks are closed forms on small images: what a parallel camera covers, a light's
 inverse-square falloff, the exact bytes of the lookup table.
@@ -214,6 +214,72 @@ class Rendering(unittest.TestCase):
         one = Image(render).rgba.copy()
         render.NumberOfThreads = 2
         numpy.testing.assert_array_equal(Image(render).rgba, one)
+
+
+class Quality(unittest.TestCase):
+    """Shading, Samples Per Pixel, Maximum Error and Compute Error, as the panel sets them."""
+
+    def render(self, **settings):
+        return FacetRender(Input=sphere(16), Size=[W, H], **settings)
+
+    @staticmethod
+    def colors(image):
+        covered = image.rgba[image.covered()][:, :3]
+        return len({tuple(c) for c in covered})
+
+    def test_names_and_shading_entries(self):
+        render = self.render()
+        for name in ["Shading", "SamplesPerPixel", "MaximumError", "ComputeError",
+                     "InterpolateScalarsBeforeMapping"]:
+            self.assertIn(name, render.ListProperties())
+        self.assertEqual(render.GetProperty("Shading").Available, ["Flat", "Gouraud", "Phong"])
+        self.assertEqual(render.Shading, "Flat")
+        self.assertEqual(render.SamplesPerPixel, "1")  # an enumeration: its entry text
+
+    def test_shading_changes_the_image(self):
+        render = self.render()
+        flat = Image(render)
+        flat_rgba, flat_colors = flat.rgba.copy(), self.colors(flat)
+        render.Shading = "Gouraud"
+        gouraud = Image(render)
+        gouraud_rgba, gouraud_colors = gouraud.rgba.copy(), self.colors(gouraud)
+        render.Shading = "Phong"
+        phong = Image(render)
+        # Flat shows one color per visible facet of the 16 x 8 sphere; smooth shading many.
+        self.assertLess(flat_colors, 16 * 8)
+        self.assertGreater(gouraud_colors, 3 * flat_colors)
+        self.assertGreater(self.colors(phong), 3 * flat_colors)
+        self.assertFalse(numpy.array_equal(gouraud_rgba, flat_rgba))
+        self.assertFalse(numpy.array_equal(phong.rgba, gouraud_rgba))
+        # Same silhouette: only the colors change.
+        numpy.testing.assert_array_equal(phong.covered(), flat.covered())
+
+    def test_samples_per_pixel_blend_the_silhouette(self):
+        # One sample: a pixel the sphere does not own is the black background. Sixteen: the
+        # pixels its edge crosses mix in some of it.
+        for samples, blended in ((1, False), (16, True)):
+            image = Image(self.render(SamplesPerPixel=samples))
+            background = image.rgba[~image.covered()][:, :3]
+            self.assertEqual(bool((background > 0).any()), blended, samples)
+
+    def test_maximum_error_stays_within_its_budget_of_phong(self):
+        phong = Image(self.render(Shading="Phong")).rgba.astype(int)
+        flat = Image(self.render()).rgba.astype(int)
+        adaptive = Image(self.render(MaximumError=2.0)).rgba.astype(int)
+        self.assertGreater(numpy.abs(flat - phong).max(), 10)
+        self.assertLessEqual(numpy.abs(adaptive - phong).max(), 2)
+        # A budget above any polygon's bound keeps everything flat.
+        numpy.testing.assert_array_equal(Image(self.render(MaximumError=255.0)).rgba, flat)
+
+    def test_compute_error_reports_phong_closer_to_the_reference_than_flat(self):
+        rmse = {}
+        for shading in ("Flat", "Phong"):
+            image = Image(self.render(Shading=shading, ComputeError=1))
+            error = image.data.GetFieldData().GetArray("FacetError")
+            names = [error.GetComponentName(c) for c in range(error.GetNumberOfComponents())]
+            self.assertIn("Error", image.arrays)
+            rmse[shading] = error.GetComponent(0, names.index("RMSE"))
+        self.assertLess(rmse["Phong"], rmse["Flat"] / 2, rmse)
 
 
 class LeavingOutWork(unittest.TestCase):

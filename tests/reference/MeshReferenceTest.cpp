@@ -76,6 +76,58 @@ TEST(MeshReference, ParallelogramIsTheAnalyticPlane) {
   EXPECT_GT(interior, 500u);
 }
 
+// The surface color is the quality modes' (pointColorAt): point colors interpolated, or
+// point scalars mapped per sample. Unlit (C = Cd), a rectangle over the whole image whose
+// left points are red and right points blue shows, per pixel, the blend at its center
+// (the average of a linear function, to the sample pattern); with scalars s from 0 to 1 left to
+// right through a 4-entry table, a pixel inside one entry's band shows that entry exactly.
+TEST(MeshReference, PointColorsAndScalarsAreTheQualityModes) {
+  const int width = 48, height = 32;
+  Mesh rectangle;
+  rectangle.addPolygon({rectangle.addPoint({-1, -1, 0}), rectangle.addPoint({49, -1, 0}),
+                        rectangle.addPoint({49, 33, 0}), rectangle.addPoint({-1, 33, 0})});
+  const std::vector<Rgba8> colors = {
+      {255, 0, 0, 255}, {0, 0, 255, 255}, {0, 0, 255, 255}, {255, 0, 0, 255}};
+  const std::vector<float> st = {0.0f, 0.49f, 1.0f, 0.49f, 1.0f, 0.49f, 0.0f, 0.49f};
+  const std::vector<Rgba8> texels = {{255, 0, 0, 255},   {0, 255, 0, 255}, {0, 0, 255, 255},
+                                     {255, 255, 0, 255}, {9, 9, 9, 255},   {9, 9, 9, 255},
+                                     {9, 9, 9, 255},     {9, 9, 9, 255}};
+  LightSet unlit;
+  unlit.ambient = {Color(1.0f), 1.0};
+  const ReferenceOptions options{.samplesPerPixel = 16};
+  for (const bool scalars : {false, true}) {
+    Scene scene = sceneOf(rectangle, Material{}, unlit);
+    scene.meshes[0].mesh.pointColors = colors;
+    if (scalars) scene.meshes[0].mesh.scalarTexture = {st, texels, 4};
+    const FloatImage image =
+        renderMeshReference(scene, pixelCamera(width, height), width, height, options).image;
+    int checked = 0;
+    double worst = 0.0;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const double s0 = (x + 1.0) / 50.0, s1 = (x + 2.0) / 50.0;  // across the pixel
+        Color expected((1.0 - (s0 + s1) / 2), 0.0f, (s0 + s1) / 2);
+        if (scalars) {
+          const int band = static_cast<int>(4.0 * s0);
+          if (static_cast<int>(4.0 * s1) != band && 4.0 * s1 != band + 1) continue;
+          const Rgba8 t = texels[band];
+          expected = Color(t.r, t.g, t.b) / 255.0f;
+        }
+        worst = std::max(
+            worst, static_cast<double>(glm::length(image.color[image.indexOf(x, y)] - expected)));
+        ++checked;
+      }
+    }
+    std::printf("%s: %d pixels, largest difference %.2g\n", scalars ? "scalars" : "colors", checked,
+                worst);
+    EXPECT_GT(checked, 1000);
+    // The blend is linear, so a pixel shows its value at the mean of its 16 sample offsets,
+    // each in its own sixteenth of the pixel's width: within 1/32 pixel of the center, so
+    // within (1/32)/50 per channel (two channels vary). The bands are exact.
+    EXPECT_LT(worst, scalars ? 1e-6 : std::sqrt(2.0) / 32.0 / 50.0);
+  }
+}
+
 TEST(MeshReference, FineSphereConvergesToTheAnalyticSphere) {
   AnalyticScene analytic;
   analytic.spheres.push_back({{0, 0, 0}, 1.0, shinyMaterial()});

@@ -6,9 +6,12 @@
 /// connectivity in 32- or 64-bit integers), so an adapter can hand its arrays over without
 /// copying. `Mesh` is a small owning mesh for callers that build geometry themselves.
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -63,6 +66,37 @@ struct PolygonArray {
   }
 };
 
+/// Point scalars mapped per sample through a color table, as VTK's OpenGL mapper does with
+/// vtkMapper's InterpolateScalarsBeforeMapping on (vtkMapper::MapScalarsToTexture): each
+/// point has a texture coordinate (s, t), the Gouraud and Phong modes interpolate it across
+/// the polygon, and each sample takes the texel nearest the interpolated coordinate, edges
+/// clamped (OpenGL's GL_NEAREST and GL_CLAMP_TO_EDGE, VTK's color texture defaults). So a
+/// polygon whose scalars span several table entries shows each entry's color in bands, where
+/// interpolating mapped colors would blend the corner colors.
+struct ColorTexture {
+  /// Two per point, (s, t): s runs along the table (0 to 1 over its width), t picks the row.
+  std::span<const float> coordinates{};
+  /// `width` × 2 texels, row 0 first: VTK puts the table's colors in row 0 (with the below-
+  /// and above-range colors at its ends) and the NaN color all along row 1, and gives
+  /// points t = 0.49 (a number) or 1 (NaN), so NaN spreads almost up to its neighbours.
+  std::span<const Rgba8> texels{};
+  std::size_t width = 0;
+
+  bool empty() const { return coordinates.empty(); }
+  /// The texel nearest (s, t) with the edges clamped; NaN counts as 0.
+  Rgba8 lookup(double s, double t) const { return texels[row(t) * width + column(s)]; }
+  /// The column of s and the row of t: texel i covers [i, i + 1) / size, edges clamped.
+  std::size_t column(double s) const { return nearest(s, width); }
+  static std::size_t row(double t) { return nearest(t, 2); }
+
+ private:
+  static std::size_t nearest(double u, std::size_t size) {
+    const double scaled = u * static_cast<double>(size);
+    return scaled > 0.0 ? std::min(static_cast<std::size_t>(std::min(scaled, 1e18)), size - 1)
+                        : std::size_t{0};
+  }
+};
+
 /// A mesh to render: points, polygons, and optionally one color per polygon (which replaces
 /// the material color; alpha is ignored for now, everything renders opaque).
 struct MeshView {
@@ -99,7 +133,24 @@ struct MeshView {
   /// Phong modes (QualityRenderer.h); they win over polygonColors there. Alpha is ignored.
   /// The flat Renderer ignores them (give it polygonColors). (default: empty)
   std::span<const Rgba8> pointColors{};
+  /// Optional point scalars to map per sample (vtkMapper's InterpolateScalarsBeforeMapping
+  /// on): the Gouraud and Phong modes interpolate them and look the color up in the table;
+  /// they win over pointColors there. The flat Renderer ignores them. (default: empty)
+  ColorTexture scalarTexture{};
 };
+
+/// validate(mesh), and the arrays per point: pointNormals, pointColors and the
+/// scalarTexture's coordinates hold one entry per point or none, and a scalarTexture has
+/// width × 2 texels (throws facet::Error naming the array).
+void validatePointData(const MeshView& mesh);
+
+/// The color the Gouraud and Phong modes (and the mesh reference) give a point of a triangle
+/// whose corners are the mesh's points `corners`, at weights `w` (barycentric, summing to 1):
+/// the scalars interpolated and looked up when the mesh has a scalarTexture, else the
+/// pointColors interpolated; empty when it has neither (the polygon's color then holds).
+/// The mesh must have passed validatePointData.
+std::optional<Color> pointColorAt(const MeshView& mesh, const std::array<std::uint32_t, 3>& corners,
+                                  const glm::dvec3& w);
 
 /// An owning mesh with 64-bit indices, for building geometry by hand (examples, tests).
 struct Mesh {

@@ -14,9 +14,14 @@
 /// normal, point and color) and interpolates the colors; Phong interpolates the normal (and
 /// the point color) and lights the sample. Both use the one formula of Lighting.h and light
 /// a polygon seen from its back with its normals turned toward the viewer, as flat does.
-/// Colors: MeshView::pointColors interpolated (vtkMapper's InterpolateScalarsBeforeMapping
-/// off: colors mapped at the points, then interpolated), else the polygon's color, else the
-/// material's.
+/// Colors: MeshView::scalarTexture, the scalars interpolated and looked up per sample
+/// (vtkMapper's InterpolateScalarsBeforeMapping on); else MeshView::pointColors interpolated
+/// (off: colors mapped at the points, then interpolated); else the polygon's color, else the
+/// material's (pointColorAt, Mesh.h). Gouraud with a scalarTexture lights every corner twice,
+/// for a black and a white surface, interpolates both and takes the sample's table color Cd
+/// between them: dark + Cd ⊙ (bright − dark). The formula of Lighting.h is affine in Cd, so
+/// that is the corner lighting of the sample's own color wherever no corner saturates — as
+/// OpenGL's Gouraud shading of a textured surface (GL_MODULATE, separate specular color).
 ///
 /// Supersampling: 4 or 16 samples per pixel on an ordered 2 × 2 or 4 × 4 grid (the Renderer
 /// paints a 2× or 4× larger image), averaged with equal weights (a box filter) before the
@@ -57,8 +62,9 @@ const char* toString(Shading shading);
 /// else computeVertexNormals) and the shape of every polygon for the error bound.
 struct ShadingMesh {
   ShadingMesh() = default;
-  /// Validates the mesh (throws facet::Error, naming the problem: also point normals or
-  /// point colors whose count is not the point count).
+  /// Validates the mesh (throws facet::Error, naming the problem: also point normals, point
+  /// colors or scalar texture coordinates whose count is not the point count, or a scalar
+  /// texture whose texels are not width × 2).
   explicit ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options = {});
 
   std::vector<MeshTriangle> triangles;       ///< in polygon order
@@ -80,10 +86,14 @@ struct QualitySettings {
   /// Compute the flat-shading error estimate (QualityStats::predicted*, and the per-pixel
   /// image errorEstimate()). (default: off)
   bool estimateError = false;
+  /// One shading per scene mesh, in place of `shading` (a VTK scene's actors each have their
+  /// property's interpolation); empty: `shading` for every mesh. (default: empty)
+  std::vector<Shading> meshShading{};
 };
 
 /// Throws facet::Error naming a bad value: samples other than 1, 4 or 16, a maximum error
-/// that is negative or not finite.
+/// that is negative or not finite. (meshShading's length is checked against the scene by
+/// QualityRenderer::render.)
 void validate(const QualitySettings& settings);
 
 struct QualityStats {
@@ -180,6 +190,7 @@ class QualityRenderer {
   std::vector<float> sampleBounds_;   // per sample: its polygon's bound; −1: background
   std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
   std::vector<Color> cornerColors_;   // Gouraud: per corner of every mesh
+  std::vector<Color> cornerBright_;   // Gouraud with a scalarTexture: the corners lit white
   std::unique_ptr<std::atomic<std::uint8_t>[]> shown_;  // per polygon id: some sample shows it
   std::size_t shownSize_ = 0;
 };

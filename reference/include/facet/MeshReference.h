@@ -6,7 +6,9 @@
 /// Embree 3, and the hit is then recomputed in double precision: the point and the
 /// barycentric coordinates (Möller–Trumbore on that triangle), the normal interpolated from
 /// the corner normals (VertexNormals.h) — Phong shading — and lit by the renderer's own
-/// formula (Shader::shade, Lighting.h). See Reference.h for what a reference image is.
+/// formula (Shader::shade, Lighting.h) with the color the quality modes give the point
+/// (pointColorAt, Mesh.h: point scalars mapped per sample, else point colors interpolated,
+/// else the polygon's). See Reference.h for what a reference image is.
 ///
 /// The triangles are the rasterizer's (triangulateMesh), stored for Embree in float relative
 /// to the eye, so data far from the origin loses nothing a view of it shows; the double
