@@ -216,12 +216,7 @@ TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
   bunnyCamera.nearClip *= 1.3;  // the clipper runs too (DeterminismTest)
   const Mesh dots = confetti(4000, 5);
   const Mesh floor = makeFloorGrid(40, 20.0);  // WatertightTest, ClippedByTheNearPlane
-  Camera floorCamera;
-  floorCamera.position = {0.3, 0.1, 1.0};
-  floorCamera.focalPoint = {0.3, 1.1, 0.0};
-  floorCamera.viewUp = {0.0, 0.0, 1.0};
-  floorCamera.nearClip = 1.2;
-  floorCamera.farClip = 100.0;
+  const Camera floorCamera = nearClippedFloorCamera();
   Material culled;
   culled.backfaceCulling = true;
   std::vector<SceneCase> cases;

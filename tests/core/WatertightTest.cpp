@@ -151,13 +151,7 @@ TEST(Watertight, BeyondTheGuardBand) {
 TEST(Watertight, ClippedByTheNearPlane) {
   const double extent = 20.0;
   const Mesh floor = makeFloorGrid(40, extent);
-  Camera camera;
-  camera.position = {0.3, 0.1, 1.0};
-  camera.focalPoint = {0.3, 1.1, 0.0};
-  camera.viewUp = {0.0, 0.0, 1.0};
-  camera.viewAngleDegrees = 60.0;
-  camera.nearClip = 1.2;
-  camera.farClip = 100.0;
+  const Camera camera = nearClippedFloorCamera();
   const Rendered rendered =
       renderScene(oneMeshScene(floor.view()), camera, kWidth, kHeight, painterOptions());
   EXPECT_GT(rendered.stats.trianglesClipped, 0u);

@@ -90,6 +90,17 @@ Mesh makeFloorGrid(int cells, double extent) {
   return floor;
 }
 
+Camera nearClippedFloorCamera() {
+  Camera camera;
+  camera.position = {0.3, 0.1, 1.0};
+  camera.focalPoint = {0.3, 1.1, 0.0};
+  camera.viewUp = {0.0, 0.0, 1.0};
+  camera.viewAngleDegrees = 60.0;
+  camera.nearClip = 1.2;
+  camera.farClip = 100.0;
+  return camera;
+}
+
 Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high) {
   Mesh mesh;
   for (int i = 0; i < 8; ++i) {

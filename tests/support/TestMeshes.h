@@ -32,6 +32,10 @@ Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high);
 // triangles.
 Mesh makeFloorGrid(int cells, double extent);
 
+// A low camera looking down at makeFloorGrid's floor from just above it: the near plane cuts
+// through the visible floor, so the front triangles are clipped in homogeneous space.
+Camera nearClippedFloorCamera();
+
 // Deep occlusion: `layers` squares [−1, 1]² stacked along −z, 0.1 apart, each a grid of
 // cells × cells quads, listed nearest first (front to back) or farthest first.
 Mesh makeStackedSquares(int layers, int cells, bool frontToBack);
