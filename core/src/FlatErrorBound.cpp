@@ -209,7 +209,9 @@ double FlatErrorBound::bound(const PolygonShape& polygon, const PreparedMaterial
     const double eyeDistance = glm::length(offset);
     viewer = eyeDistance > 1e-150 && eyeDistance < 1e150 ? offset / eyeDistance
                                                          : toViewer(polygon.center);
-    viewerAngle = Angle::ofConeSine(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
+    // The viewer's cone enters the specular term only.
+    if (m.specular > 0.0)
+      viewerAngle = Angle::ofConeSine(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
   }
   glm::dvec3 normal = polygon.normal;
   if (twoSided_ && glm::dot(normal, viewer) < 0.0) normal = -normal;
