@@ -202,17 +202,22 @@ glm::dvec3 FlatErrorBound::toViewer(const glm::dvec3& point) const {
 double FlatErrorBound::bound(const PolygonShape& polygon, const PreparedMaterial& m,
                              const Color& surface) const {
   if (polygon.normal == glm::dvec3(0.0)) return 255.0;  // no plane: nothing to say
-  const glm::dvec3 viewer = toViewer(polygon.center);
+  glm::dvec3 viewer = -viewDirection_;
+  Angle viewerAngle;
+  if (!parallel_) {  // toViewer, with the eye's distance kept for the viewer's cone
+    const glm::dvec3 offset = eye_ - polygon.center;
+    const double eyeDistance = glm::length(offset);
+    viewer = eyeDistance > 1e-150 && eyeDistance < 1e150 ? offset / eyeDistance
+                                                         : toViewer(polygon.center);
+    // The viewer's cone enters the specular term only.
+    if (m.specular > 0.0)
+      viewerAngle = Angle::ofConeSine(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
+  }
   glm::dvec3 normal = polygon.normal;
   if (twoSided_ && glm::dot(normal, viewer) < 0.0) normal = -normal;
   // Beyond 90° the cone of corner normals is not convex: no bound on the normal's angle.
   const Angle normalAngle =
       polygon.cosNormalSpread > 0.0 ? Angle::ofCosine(polygon.cosNormalSpread) : Angle::straight();
-  Angle viewerAngle;
-  if (!parallel_) {
-    const double eyeDistance = glm::length(eye_ - polygon.center);
-    viewerAngle = Angle::ofConeSine(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
-  }
 
   LightTerms sum;
   for (const Light& light : lights_.lights) {

@@ -159,16 +159,11 @@ PolygonShape polygonShape(const MeshView& mesh, std::size_t p, const VertexNorma
   return shape;
 }
 
-// The part of a polygon's shape that its PolygonExtent leaves out: its center (kept in double
-// for data far from the origin) and, with point colors, its corners' color range.
-void addCenterAndColors(const MeshView& mesh, std::size_t p, PolygonShape& shape) {
-  detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
-    const std::size_t n = polygons.size(p);
-    glm::dvec3 sum(0.0);
-    for (std::size_t k = 0; k < n; ++k)
-      sum += points[polygons.pointId(p, k)];
-    shape.center = sum / static_cast<double>(n);
-    addColors(shape, mesh, n, [&](std::size_t k) { return polygons.pointId(p, k); });
+// The part of a polygon's shape that its PolygonExtent leaves out: the colors its corners can
+// show (point colors or a scalar texture's texels).
+void addCornerColors(const MeshView& mesh, std::size_t p, PolygonShape& shape) {
+  detail::withTypedMesh(mesh, [&](auto, auto polygons) {
+    addColors(shape, mesh, polygons.size(p), [&](std::size_t k) { return polygons.pointId(p, k); });
   });
 }
 
@@ -337,8 +332,11 @@ struct QualityRenderer::Frame {
     if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
     shape.normal = glm::dvec3(extent.normal);
     shape.radius = extent.radius;
+    shape.center = extent.center;
     shape.cosNormalSpread = cosineOfSpread(extent.sinNormalSpread);
-    addCenterAndColors(scene.meshes[mesh].mesh, polygon, shape);
+    const MeshView& view = scene.meshes[mesh].mesh;
+    if (!view.pointColors.empty() || !view.scalarTexture.empty())
+      addCornerColors(view, polygon, shape);
     return shape;
   }
 
@@ -484,8 +482,8 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
 // whose part of the neighbourhood the 3 × 3 samples around it see: |c_p − Phong_q(x)| ≤
 // |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
 // one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
-// `bounds`: per sample, the bound of its polygon, negative for the background (which adds
-// 0, as no polygon). Neighbour by neighbour over the row's covered span: branch-free
+// `bounds`: per sample, the bound of its polygon, −∞ for the background (which adds nothing,
+// as no polygon). Neighbour by neighbour over the row's covered span: branch-free
 // loops, rather than nine scattered reads per sample.
 void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float* out) {
   const int width = grid.width;
@@ -508,9 +506,9 @@ void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float
       for (int x = std::max(first, -dx); x < std::min(last + 1, width - dx); ++x) {
         const int r = std::abs(c[4 * x] - p[4 * x]), g = std::abs(c[4 * x + 1] - p[4 * x + 1]),
                   bl = std::abs(c[4 * x + 2] - p[4 * x + 2]);
-        const float difference = static_cast<float>(std::max(std::max(r, g), bl));
-        // Background (b < 0): 0, by a multiply the loop vectorizes rather than a branch.
-        const float v = (difference + b[x]) * static_cast<float>(b[x] >= 0.0f);
+        // Background (b = −∞) gives −∞, no term: no compare, which would keep GCC from
+        // vectorizing the loop (a float compare may trap).
+        const float v = static_cast<float>(std::max(std::max(r, g), bl)) + b[x];
         out[x] = out[x] > v ? out[x] : v;
       }
     }
@@ -540,10 +538,25 @@ void QualityRenderer::markVisible(const Frame& frame) {
   });
 }
 
+// Per sample, its polygon's bound (−∞: background), in one pass over the sample grid: the
+// 3 × 3 neighbourhoods of estimate() then read them in image order rather than the polygons'
+// bounds nine times at random. (The bounds themselves are found in polygon order,
+// preparePolygons, not here in image order: that would read the polygons' extents at random,
+// a cache miss each.)
+void QualityRenderer::gatherBounds(const Frame& frame) {
+  const FramebufferView& grid = frame.samples;
+  sampleBounds_.resize(static_cast<std::size_t>(grid.width) * grid.height);
+  forRows(renderer_, grid.height, [&](int y) {
+    const std::size_t row = static_cast<std::size_t>(y) * grid.width;
+    for (std::size_t i = row; i < row + grid.width; ++i)
+      sampleBounds_[i] = grid.polygonId[i] < 0 ? -INFINITY : polygonBounds_[grid.polygonId[i]];
+  });
+}
+
 // Per visible polygon: its bound (estimate, adaptive) and, for Gouraud, its lit corners.
 std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bool corners) {
   const std::size_t polygons = frame.firstPolygon.back();
-  polygonBounds_.assign(bounds ? polygons : 0, 0.0f);
+  polygonBounds_.resize(bounds ? polygons : 0);  // only the visible ones are set and read
   cornerBright_.clear();
   if (corners) {
     std::size_t total = 0;
@@ -576,20 +589,13 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
 
 // Per sample (rowEstimates), then per pixel the mean of its samples' (the pixel's error
 // is the mean of its samples' against their parts of the pixel), plus 0.5 for rounding that
-// mean; 0 where the pixel shows no polygon. Then the statistics over covered pixels. The
-// samples' bounds are gathered first, in one pass: the 3 × 3 neighbourhoods then read them
-// in image order rather than the polygons' bounds nine times at random.
+// mean; 0 where the pixel shows no polygon. Then the statistics over covered pixels. Reads
+// the samples' bounds gatherBounds left.
 void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target,
                                QualityStats& stats) {
   const FramebufferView& grid = frame.samples;
   const int g = frame.grid;
-  sampleBounds_.resize(static_cast<std::size_t>(grid.width) * grid.height);
-  forRows(renderer_, grid.height, [&](int y) {
-    const std::size_t row = static_cast<std::size_t>(y) * grid.width;
-    for (std::size_t i = row; i < row + grid.width; ++i)
-      sampleBounds_[i] = grid.polygonId[i] < 0 ? -1.0f : polygonBounds_[grid.polygonId[i]];
-  });
-  estimate_.assign(static_cast<std::size_t>(target.width) * target.height, 0.0f);
+  estimate_.resize(static_cast<std::size_t>(target.width) * target.height);  // every pixel set
   std::vector<double> rowSquares(static_cast<std::size_t>(target.height), 0.0);
   std::vector<float> rowLargest(static_cast<std::size_t>(target.height), 0.0f);
   std::vector<std::size_t> rowCovered(static_cast<std::size_t>(target.height), 0);
@@ -599,24 +605,37 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
     for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
       for (int j = 0; j < g; ++j)
         rowEstimates(grid, sampleBounds_.data(), y * g + j, rows.data() + j * rowSize);
+      const float* own = sampleBounds_.data() + static_cast<std::size_t>(y) * g * rowSize;
+      float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
+      double squares = 0.0;  // in registers, not in the shared row arrays
+      float largest = 0.0f;
+      std::size_t count = 0;
       for (int x = 0; x < target.width; ++x) {
-        float sum = 0.0f;
-        bool covered = false;
-        for (int j = 0; j < g; ++j) {
-          for (int i = 0; i < g; ++i) {
-            const int sx = x * g + i, sy = y * g + j;
-            if (sampleBounds_[static_cast<std::size_t>(sy) * rowSize + sx] < 0.0f) continue;
-            covered = true;
-            sum += rows[j * rowSize + sx];
+        float e;
+        if (g == 1) {  // the sample's own estimate (a separate loop after unswitching)
+          e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x]);
+        } else {
+          float sum = 0.0f;
+          bool covered = false;
+          for (int j = 0; j < g; ++j) {
+            for (int i = 0; i < g; ++i) {
+              const int sx = x * g + i;
+              if (own[j * rowSize + sx] < 0.0f) continue;
+              covered = true;
+              sum += rows[j * rowSize + sx];
+            }
           }
+          e = covered ? std::min(255.0f, sum / static_cast<float>(g * g) + 0.5f) : 0.0f;
         }
-        if (!covered) continue;
-        const float e = std::min(255.0f, g > 1 ? sum / static_cast<float>(g * g) + 0.5f : sum);
-        estimate_[target.width * static_cast<std::size_t>(y) + x] = e;
-        rowSquares[y] += static_cast<double>(e) * e;
-        rowLargest[y] = std::max(rowLargest[y], e);
-        ++rowCovered[y];
+        out[x] = e;
+        if (e == 0.0f) continue;  // no polygon (a covered pixel's estimate is at least 0.5)
+        squares += static_cast<double>(e) * e;
+        largest = std::max(largest, e);
+        ++count;
       }
+      rowSquares[y] = squares;
+      rowLargest[y] = largest;
+      rowCovered[y] = count;
     }
   });
   double squares = 0.0;
@@ -733,6 +752,7 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     stats.predictedRmse = estimated_.predictedRmse;
     stats.predictedMaxError = estimated_.predictedMaxError;
   } else if (settings.estimateError) {
+    gatherBounds(frame);
     estimate(frame, target, stats);
     estimated_ = stats;
   }
@@ -813,7 +833,7 @@ void QualityRenderer::updateExtents(const Scene& scene) {
             // The spread about the normal flat shading lights by: the rounded one.
             const glm::vec3 rounded(shape.normal);
             const double c = smallestCosine(glm::normalize(glm::dvec3(rounded)), corners.normals);
-            extents.polygons[p] = {rounded, roundedUp(shape.radius), sineOfSpread(c)};
+            extents.polygons[p] = {shape.center, rounded, roundedUp(shape.radius), sineOfSpread(c)};
           }
         });
     extents.key = key;

@@ -151,6 +151,7 @@ class QualityRenderer {
                                           bool reshades, bool estimates);
   void markVisible(const Frame& frame);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
+  void gatherBounds(const Frame& frame);
   void estimate(const Frame& frame, const FramebufferView& target, QualityStats& stats);
   void updateExtents(const Scene& scene);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
@@ -162,11 +163,12 @@ class QualityRenderer {
   QualityStats estimated_;  // predicted* of estimate_, for a render that keeps it
   int estimatedGrid_ = 0;   // the sample grid side estimate_ was made on; 0: none
 
-  // Per scene mesh, the estimate's camera-independent part (a PolygonShape but its center)
-  // for the arrays and version in `key`: 20 bytes per polygon in place of a ShadingMesh's
-  // ~250. The normal is flat shading's, rounded to float as the Renderer's, and the spread
-  // is taken about it; the radius and the spread's sine are rounded up, so the bound stays a
-  // bound.
+  // Per scene mesh, the estimate's camera-independent part (a PolygonShape but its point
+  // colors) for the arrays and version in `key`: 48 bytes per polygon in place of a
+  // ShadingMesh's ~250. The center is kept (in double, for data far from the origin) so a
+  // frame reads no corners. The normal is flat shading's, rounded to float as the Renderer's, and
+  // the spread is taken about it; the radius and the spread's sine are rounded up, so the bound
+  // stays a bound.
   struct SpreadKey {
     const void* points = nullptr;
     const void* offsets = nullptr;
@@ -178,6 +180,7 @@ class QualityRenderer {
     friend bool operator==(const SpreadKey&, const SpreadKey&) = default;
   };
   struct PolygonExtent {
+    glm::dvec3 center{0.0};
     glm::vec3 normal{0.0f};  // zero: degenerate
     float radius = 0.0f;
     float sinNormalSpread = 0.0f;  // 2: 90° or more
@@ -187,7 +190,7 @@ class QualityRenderer {
     std::vector<PolygonExtent> polygons;
   };
   std::vector<MeshExtents> extents_;
-  std::vector<float> sampleBounds_;   // per sample: its polygon's bound; −1: background
+  std::vector<float> sampleBounds_;   // per sample: its polygon's bound; −∞: background
   std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
   std::vector<Color> cornerColors_;   // Gouraud: per corner of every mesh
   std::vector<Color> cornerBright_;   // Gouraud with a scalarTexture: the corners lit white
