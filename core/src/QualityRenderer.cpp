@@ -161,7 +161,7 @@ PolygonShape polygonShape(const MeshView& mesh, std::size_t p, const VertexNorma
 
 // The part of a polygon's shape that its PolygonExtent leaves out: the colors its corners can
 // show (point colors or a scalar texture's texels).
-void addCornerColors(const MeshView& mesh, std::size_t p, PolygonShape& shape) {
+void addPolygonColors(const MeshView& mesh, std::size_t p, PolygonShape& shape) {
   detail::withTypedMesh(mesh, [&](auto, auto polygons) {
     addColors(shape, mesh, polygons.size(p), [&](std::size_t k) { return polygons.pointId(p, k); });
   });
@@ -181,7 +181,6 @@ float sineOfSpread(double c) {
 double cosineOfSpread(float sine) {
   return sine >= 1.0f ? 0.0 : std::sqrt(1.0 - static_cast<double>(sine) * sine);
 }
-
 
 // Barycentric weights of the ray's intersection with triangle abc (Möller & Trumbore 1997),
 // relative to the ray origin, in double; (1/3, 1/3, 1/3) when the ray runs in its plane.
@@ -271,7 +270,7 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
   std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
-  bool reshading;  // some sample may be shaded again (reshadesAny)
+  bool reshading;                        // some sample may be shaded again (reshadesAny)
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
         const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
@@ -336,7 +335,7 @@ struct QualityRenderer::Frame {
     shape.cosNormalSpread = cosineOfSpread(extent.sinNormalSpread);
     const MeshView& view = scene.meshes[mesh].mesh;
     if (!view.pointColors.empty() || !view.scalarTexture.empty())
-      addCornerColors(view, polygon, shape);
+      addPolygonColors(view, polygon, shape);
     return shape;
   }
 
