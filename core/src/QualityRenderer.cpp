@@ -21,6 +21,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "Validate.h"
 #include "facet/Conventions.h"
@@ -203,6 +204,17 @@ glm::dvec3 clampedOnto(glm::dvec3 weights) {
   return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
 }
 
+// Lane `to` of a bound batch set to lane `from`'s polygon.
+void copyLane(detail::BoundBatch& batch, std::size_t from, std::size_t to) {
+  for (int k = 0; k < 3; ++k) {
+    batch.center[k][to] = batch.center[k][from];
+    batch.normal[k][to] = batch.normal[k][from];
+    batch.surface[k][to] = batch.surface[k][from];
+  }
+  batch.radius[to] = batch.radius[from];
+  batch.sinNormalSpread[to] = batch.sinNormalSpread[from];
+}
+
 }  // namespace
 
 const char* toString(Shading shading) {
@@ -270,7 +282,10 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
   std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
-  bool reshading;                        // some sample may be shaded again (reshadesAny)
+  // Per mesh, when `meshes` is empty: the lighting its polygons are bounded in batches by,
+  // or nothing (point colors, a spot light, a specular material: one by one).
+  std::vector<std::optional<detail::BatchLighting>> batchLighting;
+  bool reshading;  // some sample may be shaded again (reshadesAny)
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
         const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
@@ -569,6 +584,12 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   }
   const std::size_t blocks = (polygons + kPolygonsPerTask - 1) / kPolygonsPerTask;
   std::vector<std::size_t> reshaded(blocks, 0);
+  if (bounds && frame.meshes.empty()) {  // flat, one bound per visible polygon and no more
+    renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
+      boundInBatches(frame, begin, end);
+    });
+    return 0;
+  }
   renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
     std::size_t count = 0;
     for (std::size_t id = begin; id < end; ++id) {
@@ -584,6 +605,52 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   for (std::size_t count : reshaded)
     total += count;
   return total;
+}
+
+// The bounds of the visible polygons among ids [begin, end), from the kept extents: in SIMD
+// batches (FlatErrorBoundBatch.h) where the mesh's lighting allows, else one by one.
+void QualityRenderer::boundInBatches(const Frame& frame, std::size_t begin, std::size_t end) {
+  detail::BoundBatch batch;
+  std::size_t ids[detail::kBoundBatchSize];
+  for (std::size_t m = 0; m < frame.extents.size(); ++m) {
+    const std::size_t first = std::max(begin, frame.firstPolygon[m]),
+                      last = std::min(end, frame.firstPolygon[m + 1]);
+    const std::optional<detail::BatchLighting>& lighting = frame.batchLighting[m];
+    std::size_t lanes = 0;
+    const auto flush = [&] {
+      for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
+        copyLane(batch, lanes - 1, lane);  // unused lanes: a copy, no stale values
+      detail::boundBatch(*lighting, batch, detail::kBoundBatchSize);
+      for (std::size_t lane = 0; lane < lanes; ++lane) {
+        const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
+        polygonBounds_[ids[lane]] = static_cast<float>(
+            std::isnan(bound) ? frame.boundOf(m, ids[lane] - frame.firstPolygon[m]) : bound);
+      }
+      lanes = 0;
+    };
+    for (std::size_t id = first; id < last; ++id) {
+      if (!shown_[id].load(std::memory_order_relaxed)) continue;
+      const std::size_t polygon = id - frame.firstPolygon[m];
+      const PolygonExtent& extent = frame.extents[m].polygons[polygon];
+      if (!lighting || extent.normal == glm::vec3(0.0f)) {
+        polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
+        continue;
+      }
+      // As shapeAt and FlatErrorBound::bound read them.
+      const glm::dvec3 surface =
+          glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
+      for (int k = 0; k < 3; ++k) {
+        batch.center[k][lanes] = extent.center[k];
+        batch.normal[k][lanes] = extent.normal[k];
+        batch.surface[k][lanes] = surface[k];
+      }
+      batch.radius[lanes] = extent.radius;
+      batch.sinNormalSpread[lanes] = extent.sinNormalSpread;
+      ids[lanes++] = id;
+      if (lanes == detail::kBoundBatchSize) flush();
+    }
+    if (lanes > 0) flush();
+  }
 }
 
 // Per sample (rowEstimates), then per pixel the mean of its samples' (the pixel's error
@@ -732,6 +799,15 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   }
   Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
   frame.extents = extents_;
+  if (shading.empty()) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      const MeshView& mesh = scene.meshes[m].mesh;
+      frame.batchLighting.push_back(
+          mesh.pointColors.empty() && mesh.scalarTexture.empty()
+              ? detail::batchLighting(scene.lights, camera, frame.twoSided, frame.materials[m])
+              : std::nullopt);
+    }
+  }
   Clock::time_point phase = Clock::now();
   // Only the background changed since this object's last render: same polygons, same flat
   // colors where any polygon shows, so the same estimate (it ignores the background).

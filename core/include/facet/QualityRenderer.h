@@ -151,6 +151,7 @@ class QualityRenderer {
                                           bool reshades, bool estimates);
   void markVisible(const Frame& frame);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
+  void boundInBatches(const Frame& frame, std::size_t begin, std::size_t end);
   void gatherBounds(const Frame& frame);
   void estimate(const Frame& frame, const FramebufferView& target, QualityStats& stats);
   void updateExtents(const Scene& scene);
