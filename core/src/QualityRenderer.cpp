@@ -21,6 +21,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "Validate.h"
@@ -514,17 +515,8 @@ void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float
     const float* rowBounds = bounds + static_cast<std::size_t>(ny) * width;
     const Rgba8* rowColors = grid.color + static_cast<std::size_t>(ny) * width;
     for (int dx = -1; dx <= 1; ++dx) {
-      const std::uint8_t* c = &rowColors[dx].r;  // the neighbours' channels, 4 per sample
-      const std::uint8_t* p = &center[0].r;
-      const float* b = rowBounds + dx;
-      for (int x = std::max(first, -dx); x < std::min(last + 1, width - dx); ++x) {
-        const int r = std::abs(c[4 * x] - p[4 * x]), g = std::abs(c[4 * x + 1] - p[4 * x + 1]),
-                  bl = std::abs(c[4 * x + 2] - p[4 * x + 2]);
-        // Background (b = −∞) gives −∞, no term: no compare, which would keep GCC from
-        // vectorizing the loop (a float compare may trap).
-        const float v = static_cast<float>(std::max(std::max(r, g), bl)) + b[x];
-        out[x] = out[x] > v ? out[x] : v;
-      }
+      detail::neighbourMaxima(center, rowColors + dx, rowBounds + dx, std::max(first, -dx),
+                              std::min(last + 1, width - dx), out);
     }
   }
   for (int x = first; x <= last; ++x)
@@ -632,6 +624,7 @@ void QualityRenderer::boundInBatches(const Frame& frame, std::size_t begin, std:
       if (!shown_[id].load(std::memory_order_relaxed)) continue;
       const std::size_t polygon = id - frame.firstPolygon[m];
       const PolygonExtent& extent = frame.extents[m].polygons[polygon];
+      __builtin_prefetch(&extent + 12);
       if (!lighting || extent.normal == glm::vec3(0.0f)) {
         polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
         continue;
@@ -673,7 +666,9 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
         rowEstimates(grid, sampleBounds_.data(), y * g + j, rows.data() + j * rowSize);
       const float* own = sampleBounds_.data() + static_cast<std::size_t>(y) * g * rowSize;
       float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
-      double squares = 0.0;  // in registers, not in the shared row arrays
+      // In registers, not in the shared row arrays; four partial sums, so that one addition
+      // need not wait for the one before (a fixed order: the same bytes for any threads).
+      double squares[4] = {0.0, 0.0, 0.0, 0.0};
       float largest = 0.0f;
       std::size_t count = 0;
       for (int x = 0; x < target.width; ++x) {
@@ -695,11 +690,11 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
         }
         out[x] = e;
         if (e == 0.0f) continue;  // no polygon (a covered pixel's estimate is at least 0.5)
-        squares += static_cast<double>(e) * e;
+        squares[x & 3] += static_cast<double>(e) * e;
         largest = std::max(largest, e);
         ++count;
       }
-      rowSquares[y] = squares;
+      rowSquares[y] = (squares[0] + squares[1]) + (squares[2] + squares[3]);
       rowLargest[y] = largest;
       rowCovered[y] = count;
     }

@@ -1,7 +1,8 @@
-// The error bound's SIMD batch (FlatErrorBoundBatch.h) on every instruction set this CPU
-// has: each lane is the scalar FlatErrorBound::bound to the last bit, over random polygons
-// and every light and material the batch takes; lanes the scalar bound treats apart are
-// NaN; and a flat render's estimate is the same bytes on every instruction set.
+// The error estimate's SIMD parts on every instruction set this CPU has: each lane of the
+// bound's batch (FlatErrorBoundBatch.h) is the scalar FlatErrorBound::bound to the last bit,
+// over random polygons and every light and material the batch takes, and lanes the scalar
+// bound treats apart are NaN; the pass over a row (EstimateRows.h) is its one-sample
+// definition to the last bit; a flat render's estimate is the same bytes on every one.
 
 #include <cmath>
 #include <random>
@@ -13,6 +14,7 @@
 #include "../support/ReferenceScenes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
 #include "SetupBatch.h"
 #include "facet/FlatErrorBound.h"
@@ -148,6 +150,43 @@ TEST_F(BoundBatches, NotTakenForSpotLightsOrSpecularMaterials) {
   Material shiny;
   shiny.specular = 0.5;
   EXPECT_FALSE(detail::batchLighting(LightSet{}, Camera{}, true, PreparedMaterial(shiny)));
+}
+
+TEST_F(BoundBatches, NeighbourMaximaAreTheirDefinitionOnEveryInstructionSet) {
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> channel(0, 255);
+  std::uniform_real_distribution<float> bound(0.0f, 300.0f);
+  const int width = 203;  // not a multiple of any vector's lanes
+  std::vector<Rgba8> center(width), neighbours(width);
+  std::vector<float> bounds(width), start(width);
+  for (int x = 0; x < width; ++x) {
+    const auto byte = [&] { return static_cast<std::uint8_t>(channel(random)); };
+    center[x] = {byte(), byte(), byte(), byte()};
+    neighbours[x] = {byte(), byte(), byte(), byte()};
+    bounds[x] = x % 7 == 0 ? -INFINITY : bound(random);  // some background
+    start[x] = x % 3 == 0 ? 0.0f : bound(random);
+  }
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    detail::useSimdTarget(target.bits);
+    for (const auto& [begin, end] : {std::pair{0, width}, std::pair{5, 190}, std::pair{9, 9}}) {
+      std::vector<float> out = start;
+      detail::neighbourMaxima(center.data(), neighbours.data(), bounds.data(), begin, end,
+                              out.data());
+      for (int x = 0; x < width; ++x) {
+        float expected = start[x];
+        if (x >= begin && x < end) {
+          int largest = 0;
+          for (int k = 0; k < 3; ++k) {
+            const auto* c = &neighbours[x].r;
+            const auto* p = &center[x].r;
+            largest = std::max(largest, std::abs(c[k] - p[k]));  // alpha left out
+          }
+          expected = std::max(expected, static_cast<float>(largest) + bounds[x]);
+        }
+        ASSERT_EQ(out[x], expected) << target.name << ", sample " << x;
+      }
+    }
+  }
 }
 
 // A flat render's estimate (bounds in batches from the kept extents) on every instruction set.
