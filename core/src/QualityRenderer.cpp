@@ -498,19 +498,20 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
 // |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
 // one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
 // `bounds`: per sample, the bound of its polygon, −∞ for the background (which adds nothing,
-// as no polygon). Neighbour by neighbour over the row's covered span: branch-free
-// loops, rather than nine scattered reads per sample.
+// as no polygon). Neighbour by neighbour over the row's covered span (EstimateRows.h), rather
+// than nine scattered reads per sample. `out` is set on that span only, and without the 0.5,
+// which estimate() adds where it reads a covered sample's.
 void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float* out) {
   const int width = grid.width;
   const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;
-  std::fill(out, out + width, 0.0f);
-  // Only the span of the row's covered samples: the others are not estimated.
+  // Only the span of the row's covered samples: the others are not estimated (nor read).
   const float* own = bounds + static_cast<std::size_t>(y) * width;
   int first = 0, last = width - 1;
   while (first <= last && own[first] < 0.0f)
     ++first;
   while (last >= first && own[last] < 0.0f)
     --last;
+  std::fill(out + first, out + last + 1, 0.0f);
   for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
     const float* rowBounds = bounds + static_cast<std::size_t>(ny) * width;
     const Rgba8* rowColors = grid.color + static_cast<std::size_t>(ny) * width;
@@ -519,8 +520,6 @@ void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float
                               std::min(last + 1, width - dx), out);
     }
   }
-  for (int x = first; x <= last; ++x)
-    out[x] += 0.5f;
 }
 
 }  // namespace
@@ -604,10 +603,19 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
 void QualityRenderer::boundInBatches(const Frame& frame, std::size_t begin, std::size_t end) {
   detail::BoundBatch batch;
   std::size_t ids[detail::kBoundBatchSize];
+  std::vector<std::uint32_t> visible(end - begin);  // offsets from `begin`
   for (std::size_t m = 0; m < frame.extents.size(); ++m) {
     const std::size_t first = std::max(begin, frame.firstPolygon[m]),
                       last = std::min(end, frame.firstPolygon[m + 1]);
+    // The visible ids first, without a branch per id (whether one is shown is a coin toss
+    // along a silhouette).
+    std::size_t count = 0;
+    for (std::size_t id = first; id < last; ++id) {
+      visible[count] = static_cast<std::uint32_t>(id - begin);
+      count += shown_[id].load(std::memory_order_relaxed);
+    }
     const std::optional<detail::BatchLighting>& lighting = frame.batchLighting[m];
+    const std::span<const PolygonExtent> extents = frame.extents[m].polygons;
     std::size_t lanes = 0;
     const auto flush = [&] {
       for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
@@ -620,11 +628,11 @@ void QualityRenderer::boundInBatches(const Frame& frame, std::size_t begin, std:
       }
       lanes = 0;
     };
-    for (std::size_t id = first; id < last; ++id) {
-      if (!shown_[id].load(std::memory_order_relaxed)) continue;
-      const std::size_t polygon = id - frame.firstPolygon[m];
-      const PolygonExtent& extent = frame.extents[m].polygons[polygon];
-      __builtin_prefetch(&extent + 12);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t id = begin + visible[i], polygon = id - frame.firstPolygon[m];
+      if (i + 8 < count)
+        __builtin_prefetch(&extents[begin + visible[i + 8] - frame.firstPolygon[m]]);
+      const PolygonExtent& extent = extents[polygon];
       if (!lighting || extent.normal == glm::vec3(0.0f)) {
         polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
         continue;
@@ -674,7 +682,7 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
       for (int x = 0; x < target.width; ++x) {
         float e;
         if (g == 1) {  // the sample's own estimate (a separate loop after unswitching)
-          e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x]);
+          e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x] + 0.5f);
         } else {
           float sum = 0.0f;
           bool covered = false;
@@ -683,7 +691,7 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
               const int sx = x * g + i;
               if (own[j * rowSize + sx] < 0.0f) continue;
               covered = true;
-              sum += rows[j * rowSize + sx];
+              sum += rows[j * rowSize + sx] + 0.5f;
             }
           }
           e = covered ? std::min(255.0f, sum / static_cast<float>(g * g) + 0.5f) : 0.0f;
