@@ -501,16 +501,12 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
 // as no polygon). Neighbour by neighbour over the row's covered span (EstimateRows.h), rather
 // than nine scattered reads per sample. `out` is set on that span only, and without the 0.5,
 // which estimate() adds where it reads a covered sample's.
-void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float* out) {
+void rowEstimates(const FramebufferView& grid, const float* bounds, int y, std::array<int, 2> span,
+                  float* out) {
   const int width = grid.width;
   const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;
   // Only the span of the row's covered samples: the others are not estimated (nor read).
-  const float* own = bounds + static_cast<std::size_t>(y) * width;
-  int first = 0, last = width - 1;
-  while (first <= last && own[first] < 0.0f)
-    ++first;
-  while (last >= first && own[last] < 0.0f)
-    --last;
+  const auto [first, last] = span;
   std::fill(out + first, out + last + 1, 0.0f);
   for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
     const float* rowBounds = bounds + static_cast<std::size_t>(ny) * width;
@@ -551,10 +547,18 @@ void QualityRenderer::markVisible(const Frame& frame) {
 void QualityRenderer::gatherBounds(const Frame& frame) {
   const FramebufferView& grid = frame.samples;
   sampleBounds_.resize(static_cast<std::size_t>(grid.width) * grid.height);
+  rowSpans_.resize(static_cast<std::size_t>(grid.height));
   forRows(renderer_, grid.height, [&](int y) {
     const std::size_t row = static_cast<std::size_t>(y) * grid.width;
     for (std::size_t i = row; i < row + grid.width; ++i)
       sampleBounds_[i] = grid.polygonId[i] < 0 ? -INFINITY : polygonBounds_[grid.polygonId[i]];
+    const std::int32_t* ids = grid.polygonId + row;
+    int first = 0, last = grid.width - 1;
+    while (first <= last && ids[first] < 0)
+      ++first;
+    while (last >= first && ids[last] < 0)
+      --last;
+    rowSpans_[y] = {first, last};
   });
 }
 
@@ -671,7 +675,8 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
     std::vector<float> rows(g * rowSize);  // the estimates of a pixel row's sample rows
     for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
       for (int j = 0; j < g; ++j)
-        rowEstimates(grid, sampleBounds_.data(), y * g + j, rows.data() + j * rowSize);
+        rowEstimates(grid, sampleBounds_.data(), y * g + j, rowSpans_[y * g + j],
+                     rows.data() + j * rowSize);
       const float* own = sampleBounds_.data() + static_cast<std::size_t>(y) * g * rowSize;
       float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
       // In registers, not in the shared row arrays; four partial sums, so that one addition
@@ -679,7 +684,11 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
       double squares[4] = {0.0, 0.0, 0.0, 0.0};
       float largest = 0.0f;
       std::size_t count = 0;
-      for (int x = 0; x < target.width; ++x) {
+      // One sample: the pixels outside the row's covered span show no polygon.
+      const auto [first, last] = g == 1 ? rowSpans_[y] : std::array<int, 2>{0, target.width - 1};
+      std::fill(out, out + std::max(first, 0), 0.0f);
+      std::fill(out + std::max(last + 1, first), out + target.width, 0.0f);
+      for (int x = first; x <= last; ++x) {
         float e;
         if (g == 1) {  // the sample's own estimate (a separate loop after unswitching)
           e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x] + 0.5f);
