@@ -552,13 +552,11 @@ void QualityRenderer::gatherBounds(const Frame& frame) {
     const std::size_t row = static_cast<std::size_t>(y) * grid.width;
     for (std::size_t i = row; i < row + grid.width; ++i)
       sampleBounds_[i] = grid.polygonId[i] < 0 ? -INFINITY : polygonBounds_[grid.polygonId[i]];
-    const std::int32_t* ids = grid.polygonId + row;
-    int first = 0, last = grid.width - 1;
-    while (first <= last && ids[first] < 0)
-      ++first;
-    while (last >= first && ids[last] < 0)
-      --last;
-    rowSpans_[y] = {first, last};
+    const std::span<const std::int32_t> ids(grid.polygonId + row, grid.width);
+    const auto covered = [](std::int32_t id) { return id >= 0; };
+    const auto first = std::find_if(ids.begin(), ids.end(), covered) - ids.begin();
+    const auto last = ids.rend() - std::find_if(ids.rbegin(), ids.rend(), covered) - 1;
+    rowSpans_[y] = {static_cast<int>(first), static_cast<int>(std::max(last, first - 1))};
   });
 }
 
