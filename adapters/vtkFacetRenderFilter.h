@@ -470,11 +470,13 @@ public:
    * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
    * cost). Once per mesh version (not per frame) it computes the vertex normals and keeps
    * each polygon's normal, extent, normal spread and center (48 bytes); per render it bounds
-   * the polygons that won a pixel and takes one pass over the pixels; a new background alone
-   * keeps the last estimate. Not free: on spheres of 0.5M and 2M triangles at 1920 x 1080
-   * it adds about 27 % and 39 % of CPU to a turning-camera Update() and, once, about as much
-   * as the conversion to the first (README, "Leaving out work"), so it stays off; off, a
-   * flat one-sample render is the plain rasterizer (default: off).
+   * the polygons that won a pixel (in SIMD batches for point and directional lights and a
+   * material without specular) and takes one pass over the pixels; a new background alone
+   * keeps the last estimate. Not free yet: on spheres of 0.5M and 2M triangles at
+   * 1920 x 1080 it adds about 14 % and 12 % of CPU to a turning-camera Update() (was 27 % and
+   * 39 %; measured on a loaded machine, README, "Measuring error") and, once, about as much
+   * as the conversion to the first, so it stays off; off, a flat one-sample render is the
+   * plain rasterizer (default: off).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);
   vtkGetMacro(EstimateError, vtkTypeBool);

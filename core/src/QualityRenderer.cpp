@@ -21,6 +21,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "EstimateRows.h"
+#include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "Validate.h"
 #include "facet/Conventions.h"
@@ -203,6 +205,17 @@ glm::dvec3 clampedOnto(glm::dvec3 weights) {
   return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
 }
 
+// Lane `to` of a bound batch set to lane `from`'s polygon.
+void copyLane(detail::BoundBatch& batch, std::size_t from, std::size_t to) {
+  for (int k = 0; k < 3; ++k) {
+    batch.center[k][to] = batch.center[k][from];
+    batch.normal[k][to] = batch.normal[k][from];
+    batch.surface[k][to] = batch.surface[k][from];
+  }
+  batch.radius[to] = batch.radius[from];
+  batch.sinNormalSpread[to] = batch.sinNormalSpread[from];
+}
+
 }  // namespace
 
 const char* toString(Shading shading) {
@@ -270,7 +283,10 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
   std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
-  bool reshading;                        // some sample may be shaded again (reshadesAny)
+  // Per mesh, when `meshes` is empty: the lighting its polygons are bounded in batches by,
+  // or nothing (point colors, a spot light, a specular material: one by one).
+  std::vector<std::optional<detail::BatchLighting>> batchLighting;
+  bool reshading;  // some sample may be shaded again (reshadesAny)
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
         const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
@@ -482,38 +498,24 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
 // |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
 // one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
 // `bounds`: per sample, the bound of its polygon, −∞ for the background (which adds nothing,
-// as no polygon). Neighbour by neighbour over the row's covered span: branch-free
-// loops, rather than nine scattered reads per sample.
-void rowEstimates(const FramebufferView& grid, const float* bounds, int y, float* out) {
+// as no polygon). Neighbour by neighbour over the row's covered span (EstimateRows.h), rather
+// than nine scattered reads per sample. `out` is set on that span only, and without the 0.5,
+// which estimate() adds where it reads a covered sample's.
+void rowEstimates(const FramebufferView& grid, const float* bounds, int y, std::array<int, 2> span,
+                  float* out) {
   const int width = grid.width;
   const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;
-  std::fill(out, out + width, 0.0f);
-  // Only the span of the row's covered samples: the others are not estimated.
-  const float* own = bounds + static_cast<std::size_t>(y) * width;
-  int first = 0, last = width - 1;
-  while (first <= last && own[first] < 0.0f)
-    ++first;
-  while (last >= first && own[last] < 0.0f)
-    --last;
+  // Only the span of the row's covered samples: the others are not estimated (nor read).
+  const auto [first, last] = span;
+  std::fill(out + first, out + last + 1, 0.0f);
   for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
     const float* rowBounds = bounds + static_cast<std::size_t>(ny) * width;
     const Rgba8* rowColors = grid.color + static_cast<std::size_t>(ny) * width;
     for (int dx = -1; dx <= 1; ++dx) {
-      const std::uint8_t* c = &rowColors[dx].r;  // the neighbours' channels, 4 per sample
-      const std::uint8_t* p = &center[0].r;
-      const float* b = rowBounds + dx;
-      for (int x = std::max(first, -dx); x < std::min(last + 1, width - dx); ++x) {
-        const int r = std::abs(c[4 * x] - p[4 * x]), g = std::abs(c[4 * x + 1] - p[4 * x + 1]),
-                  bl = std::abs(c[4 * x + 2] - p[4 * x + 2]);
-        // Background (b = −∞) gives −∞, no term: no compare, which would keep GCC from
-        // vectorizing the loop (a float compare may trap).
-        const float v = static_cast<float>(std::max(std::max(r, g), bl)) + b[x];
-        out[x] = out[x] > v ? out[x] : v;
-      }
+      detail::neighbourMaxima(center, rowColors + dx, rowBounds + dx, std::max(first, -dx),
+                              std::min(last + 1, width - dx), out);
     }
   }
-  for (int x = first; x <= last; ++x)
-    out[x] += 0.5f;
 }
 
 }  // namespace
@@ -545,10 +547,16 @@ void QualityRenderer::markVisible(const Frame& frame) {
 void QualityRenderer::gatherBounds(const Frame& frame) {
   const FramebufferView& grid = frame.samples;
   sampleBounds_.resize(static_cast<std::size_t>(grid.width) * grid.height);
+  rowSpans_.resize(static_cast<std::size_t>(grid.height));
   forRows(renderer_, grid.height, [&](int y) {
     const std::size_t row = static_cast<std::size_t>(y) * grid.width;
     for (std::size_t i = row; i < row + grid.width; ++i)
       sampleBounds_[i] = grid.polygonId[i] < 0 ? -INFINITY : polygonBounds_[grid.polygonId[i]];
+    const std::span<const std::int32_t> ids(grid.polygonId + row, grid.width);
+    const auto covered = [](std::int32_t id) { return id >= 0; };
+    const auto first = std::find_if(ids.begin(), ids.end(), covered) - ids.begin();
+    const auto last = ids.rend() - std::find_if(ids.rbegin(), ids.rend(), covered) - 1;
+    rowSpans_[y] = {static_cast<int>(first), static_cast<int>(std::max(last, first - 1))};
   });
 }
 
@@ -569,6 +577,12 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   }
   const std::size_t blocks = (polygons + kPolygonsPerTask - 1) / kPolygonsPerTask;
   std::vector<std::size_t> reshaded(blocks, 0);
+  if (bounds && frame.meshes.empty()) {  // flat, one bound per visible polygon and no more
+    renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
+      boundInBatches(frame, begin, end);
+    });
+    return 0;
+  }
   renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
     std::size_t count = 0;
     for (std::size_t id = begin; id < end; ++id) {
@@ -584,6 +598,62 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   for (std::size_t count : reshaded)
     total += count;
   return total;
+}
+
+// The bounds of the visible polygons among ids [begin, end), from the kept extents: in SIMD
+// batches (FlatErrorBoundBatch.h) where the mesh's lighting allows, else one by one.
+void QualityRenderer::boundInBatches(const Frame& frame, std::size_t begin, std::size_t end) {
+  detail::BoundBatch batch;
+  std::size_t ids[detail::kBoundBatchSize];
+  std::vector<std::uint32_t> visible(end - begin);  // offsets from `begin`
+  for (std::size_t m = 0; m < frame.extents.size(); ++m) {
+    const std::size_t first = std::max(begin, frame.firstPolygon[m]),
+                      last = std::min(end, frame.firstPolygon[m + 1]);
+    // The visible ids first, without a branch per id (whether one is shown is a coin toss
+    // along a silhouette).
+    std::size_t count = 0;
+    for (std::size_t id = first; id < last; ++id) {
+      visible[count] = static_cast<std::uint32_t>(id - begin);
+      count += shown_[id].load(std::memory_order_relaxed);
+    }
+    const std::optional<detail::BatchLighting>& lighting = frame.batchLighting[m];
+    const std::span<const PolygonExtent> extents = frame.extents[m].polygons;
+    std::size_t lanes = 0;
+    const auto flush = [&] {
+      for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
+        copyLane(batch, lanes - 1, lane);  // unused lanes: a copy, no stale values
+      detail::boundBatch(*lighting, batch, detail::kBoundBatchSize);
+      for (std::size_t lane = 0; lane < lanes; ++lane) {
+        const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
+        polygonBounds_[ids[lane]] = static_cast<float>(
+            std::isnan(bound) ? frame.boundOf(m, ids[lane] - frame.firstPolygon[m]) : bound);
+      }
+      lanes = 0;
+    };
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t id = begin + visible[i], polygon = id - frame.firstPolygon[m];
+      if (i + 8 < count)
+        __builtin_prefetch(&extents[begin + visible[i + 8] - frame.firstPolygon[m]]);
+      const PolygonExtent& extent = extents[polygon];
+      if (!lighting || extent.normal == glm::vec3(0.0f)) {
+        polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
+        continue;
+      }
+      // As shapeAt and FlatErrorBound::bound read them.
+      const glm::dvec3 surface =
+          glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
+      for (int k = 0; k < 3; ++k) {
+        batch.center[k][lanes] = extent.center[k];
+        batch.normal[k][lanes] = extent.normal[k];
+        batch.surface[k][lanes] = surface[k];
+      }
+      batch.radius[lanes] = extent.radius;
+      batch.sinNormalSpread[lanes] = extent.sinNormalSpread;
+      ids[lanes++] = id;
+      if (lanes == detail::kBoundBatchSize) flush();
+    }
+    if (lanes > 0) flush();
+  }
 }
 
 // Per sample (rowEstimates), then per pixel the mean of its samples' (the pixel's error
@@ -603,16 +673,23 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
     std::vector<float> rows(g * rowSize);  // the estimates of a pixel row's sample rows
     for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
       for (int j = 0; j < g; ++j)
-        rowEstimates(grid, sampleBounds_.data(), y * g + j, rows.data() + j * rowSize);
+        rowEstimates(grid, sampleBounds_.data(), y * g + j, rowSpans_[y * g + j],
+                     rows.data() + j * rowSize);
       const float* own = sampleBounds_.data() + static_cast<std::size_t>(y) * g * rowSize;
       float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
-      double squares = 0.0;  // in registers, not in the shared row arrays
+      // In registers, not in the shared row arrays; four partial sums, so that one addition
+      // need not wait for the one before (a fixed order: the same bytes for any threads).
+      double squares[4] = {0.0, 0.0, 0.0, 0.0};
       float largest = 0.0f;
       std::size_t count = 0;
-      for (int x = 0; x < target.width; ++x) {
+      // One sample: the pixels outside the row's covered span show no polygon.
+      const auto [first, last] = g == 1 ? rowSpans_[y] : std::array<int, 2>{0, target.width - 1};
+      std::fill(out, out + std::max(first, 0), 0.0f);
+      std::fill(out + std::max(last + 1, first), out + target.width, 0.0f);
+      for (int x = first; x <= last; ++x) {
         float e;
         if (g == 1) {  // the sample's own estimate (a separate loop after unswitching)
-          e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x]);
+          e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x] + 0.5f);
         } else {
           float sum = 0.0f;
           bool covered = false;
@@ -621,18 +698,18 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
               const int sx = x * g + i;
               if (own[j * rowSize + sx] < 0.0f) continue;
               covered = true;
-              sum += rows[j * rowSize + sx];
+              sum += rows[j * rowSize + sx] + 0.5f;
             }
           }
           e = covered ? std::min(255.0f, sum / static_cast<float>(g * g) + 0.5f) : 0.0f;
         }
         out[x] = e;
         if (e == 0.0f) continue;  // no polygon (a covered pixel's estimate is at least 0.5)
-        squares += static_cast<double>(e) * e;
+        squares[x & 3] += static_cast<double>(e) * e;
         largest = std::max(largest, e);
         ++count;
       }
-      rowSquares[y] = squares;
+      rowSquares[y] = (squares[0] + squares[1]) + (squares[2] + squares[3]);
       rowLargest[y] = largest;
       rowCovered[y] = count;
     }
@@ -732,6 +809,15 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   }
   Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
   frame.extents = extents_;
+  if (shading.empty()) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      const MeshView& mesh = scene.meshes[m].mesh;
+      frame.batchLighting.push_back(
+          mesh.pointColors.empty() && mesh.scalarTexture.empty()
+              ? detail::batchLighting(scene.lights, camera, frame.twoSided, frame.materials[m])
+              : std::nullopt);
+    }
+  }
   Clock::time_point phase = Clock::now();
   // Only the background changed since this object's last render: same polygons, same flat
   // colors where any polygon shows, so the same estimate (it ignores the background).

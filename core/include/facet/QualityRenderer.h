@@ -33,6 +33,7 @@
 /// Flat shading with one sample and no estimate is the Renderer itself, unchanged: same
 /// bytes, same cost. Every mode gives the same bytes for any thread count.
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -151,6 +152,7 @@ class QualityRenderer {
                                           bool reshades, bool estimates);
   void markVisible(const Frame& frame);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
+  void boundInBatches(const Frame& frame, std::size_t begin, std::size_t end);
   void gatherBounds(const Frame& frame);
   void estimate(const Frame& frame, const FramebufferView& target, QualityStats& stats);
   void updateExtents(const Scene& scene);
@@ -190,10 +192,11 @@ class QualityRenderer {
     std::vector<PolygonExtent> polygons;
   };
   std::vector<MeshExtents> extents_;
-  std::vector<float> sampleBounds_;   // per sample: its polygon's bound; −∞: background
-  std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
-  std::vector<Color> cornerColors_;   // Gouraud: per corner of every mesh
-  std::vector<Color> cornerBright_;   // Gouraud with a scalarTexture: the corners lit white
+  std::vector<float> sampleBounds_;           // per sample: its polygon's bound; −∞: background
+  std::vector<std::array<int, 2>> rowSpans_;  // per sample row: first, last covered sample
+  std::vector<float> polygonBounds_;          // per polygon id, 8-bit units (visible ones only)
+  std::vector<Color> cornerColors_;           // Gouraud: per corner of every mesh
+  std::vector<Color> cornerBright_;           // Gouraud with a scalarTexture: the corners lit white
   std::unique_ptr<std::atomic<std::uint8_t>[]> shown_;  // per polygon id: some sample shows it
   std::size_t shownSize_ = 0;
 };

@@ -1,0 +1,253 @@
+// FlatErrorBoundBatch.h: FlatErrorBound::bound (FlatErrorBound.cpp, which has the derivation)
+// in SIMD lanes, compiled once per instruction set by Highway's foreach_target (this file
+// includes itself) and dispatched at run time. Every operation below is the scalar bound's
+// operation on the same double operands in the same order — IEEE addition, multiplication,
+// division and square root are correctly rounded on every instruction set, and the file is
+// compiled without contraction into fused multiply-adds — so a lane gives the scalar bound's
+// bytes. Comparisons take the scalar code's branches as masks.
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "FlatErrorBoundBatch.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "FlatErrorBoundBatch.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace facet::detail::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<double>;
+using V = hn::Vec<D>;
+using M = hn::Mask<D>;
+
+// FlatErrorBound.cpp's Angle: a cosine and a sine.
+struct Angles {
+  V cos, sin;
+};
+
+Angles straight(D d) {
+  return {hn::Set(d, -1.0), hn::Zero(d)};
+}
+
+Angles select(M where, const Angles& yes, const Angles& no) {
+  return {hn::IfThenElse(where, yes.cos, no.cos), hn::IfThenElse(where, yes.sin, no.sin)};
+}
+
+// Angle::ofCosine (the lanes hold no NaN: finite inputs).
+Angles ofCosine(D d, V c) {
+  c = hn::Min(hn::Max(c, hn::Set(d, -1.0)), hn::Set(d, 1.0));
+  return {c, hn::Sqrt(hn::Max(hn::Zero(d), hn::Set(d, 1.0) - c * c))};
+}
+
+// Angle::ofConeSine.
+Angles ofConeSine(D d, V s) {
+  const M inside = s < hn::Set(d, 1.0);
+  const Angles cone{hn::Sqrt(hn::Set(d, 1.0) - s * s), s};
+  return select(inside, cone, straight(d));
+}
+
+// Angle::operator+.
+Angles add(D d, const Angles& a, const Angles& b) {
+  const V minusOne = hn::Set(d, -1.0);
+  const Angles sum{a.cos * b.cos - a.sin * b.sin, a.sin * b.cos + a.cos * b.sin};
+  const M past = hn::Or(hn::Or(a.cos <= minusOne, b.cos <= minusOne),
+                        hn::Or(sum.sin < hn::Zero(d), hn::Not(sum.cos > minusOne)));
+  return select(past, straight(d), sum);
+}
+
+// cosineRange: the cosines of θ + Δ and θ − Δ clamped to [0, π].
+struct Range {
+  V lo, hi;
+};
+Range cosineRange(D d, const Angles& theta, const Angles& spread) {
+  const V one = hn::Set(d, 1.0);
+  const V hi =
+      hn::IfThenElse(theta.cos >= spread.cos, one, theta.cos * spread.cos + theta.sin * spread.sin);
+  return {add(d, theta, spread).cos, hn::Min(hi, one)};
+}
+
+// attenuationFactor at distances ≥ 0.
+V attenuation(D d, const BatchLighting::Source& light, V distance) {
+  using Falloff = BatchLighting::Source::Falloff;
+  switch (light.falloff) {
+    case Falloff::None:
+      return hn::Set(d, 1.0);
+    case Falloff::Quadratic: {
+      const V linearTerm = light.linear == 0.0 ? hn::Zero(d) : hn::Set(d, light.linear) * distance;
+      const V quadraticTerm =
+          light.quadratic == 0.0 ? hn::Zero(d) : hn::Set(d, light.quadratic) * distance * distance;
+      const V denominator = hn::Set(d, light.constant) + linearTerm + quadraticTerm;
+      const V factor = hn::Set(d, 1.0) / hn::Max(denominator, hn::Set(d, 1.0 / kMaxAttenuation));
+      return hn::IfThenZeroElse(hn::IsNaN(denominator), factor);
+    }
+    case Falloff::Distance: {
+      const V far = hn::Set(d, light.distance) / distance;
+      const V factor = hn::IfThenElseZero(far > hn::Zero(d), far);
+      return hn::IfThenElse(distance <= hn::Set(d, light.distance), hn::Set(d, 1.0), factor);
+    }
+  }
+  return hn::Set(d, 1.0);
+}
+
+V diffuseOf(D d, const BatchLighting& lighting, V cosine) {
+  const V lit = hn::Min(hn::Max(cosine, hn::Zero(d)), hn::Set(d, 1.0));
+  if (!lighting.lerp) return lit;
+  return hn::Set(d, lighting.lerpAmbient) +
+         hn::Set(d, lighting.lerpFull - lighting.lerpAmbient) * lit;
+}
+
+// The lanes [lane, lane + Lanes(d)) of the batch.
+void boundLanes(D d, const BatchLighting& lighting, BoundBatch& batch, std::size_t lane) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const V cx = hn::Load(d, batch.center[0] + lane), cy = hn::Load(d, batch.center[1] + lane),
+          cz = hn::Load(d, batch.center[2] + lane);
+  V nx = hn::Load(d, batch.normal[0] + lane), ny = hn::Load(d, batch.normal[1] + lane),
+    nz = hn::Load(d, batch.normal[2] + lane);
+  const V radius = hn::Load(d, batch.radius + lane);
+  M bounded = hn::FirstN(d, hn::Lanes(d));
+
+  // The viewer, as FlatErrorBound::bound finds it (its cone enters the specular term only).
+  V vx = hn::Set(d, lighting.viewer.x), vy = hn::Set(d, lighting.viewer.y),
+    vz = hn::Set(d, lighting.viewer.z);
+  if (!lighting.parallel) {
+    const V ox = hn::Set(d, lighting.eye.x) - cx, oy = hn::Set(d, lighting.eye.y) - cy,
+            oz = hn::Set(d, lighting.eye.z) - cz;
+    const V length = hn::Sqrt(ox * ox + oy * oy + oz * oz);
+    bounded = hn::And(bounded, hn::And(length > hn::Set(d, 1e-150), length < hn::Set(d, 1e150)));
+    vx = ox / length, vy = oy / length, vz = oz / length;
+  }
+  if (lighting.twoSided) {
+    const M back = nx * vx + ny * vy + nz * vz < zero;
+    nx = hn::IfThenElse(back, hn::Neg(nx), nx);
+    ny = hn::IfThenElse(back, hn::Neg(ny), ny);
+    nz = hn::IfThenElse(back, hn::Neg(nz), nz);
+  }
+  // The normal's cone: the kept sine as a cosine (cosineOfSpread), then as an Angle.
+  const V sine = hn::Load(d, batch.sinNormalSpread + lane);
+  const V cosSpread = hn::IfThenZeroElse(sine >= one, hn::Sqrt(one - sine * sine));
+  const Angles normalAngle = select(cosSpread > zero, ofCosine(d, cosSpread), straight(d));
+
+  V sum[3] = {zero, zero, zero};
+  for (const BatchLighting::Source& light : lighting.lights) {
+    V lx = hn::Set(d, light.position.x), ly = hn::Set(d, light.position.y),
+      lz = hn::Set(d, light.position.z);
+    Angles lightAngle{one, zero};
+    V factorLo = one, factorFlat = one, factorHi = one;
+    if (!light.directional) {
+      const V ox = lx - cx, oy = ly - cy, oz = lz - cz;
+      const V distance = hn::Sqrt(ox * ox + oy * oy + oz * oz);
+      // Not finite or zero: the scalar bound lights by the normal then (FlatErrorBound.cpp).
+      bounded = hn::And(bounded, hn::And(distance > zero, distance < hn::Inf(d)));
+      lx = ox / distance, ly = oy / distance, lz = oz / distance;
+      lightAngle = ofConeSine(d, radius / distance);
+      const V near = hn::Max(zero, distance - radius), far = distance + radius;
+      factorLo = attenuation(d, light, far);
+      factorFlat = attenuation(d, light, distance);
+      factorHi = attenuation(d, light, near);
+    }
+    const V cosine = nx * lx + ny * ly + nz * lz;
+    const Range lit = cosineRange(d, ofCosine(d, cosine), add(d, normalAngle, lightAngle));
+    const V diffuseLo = diffuseOf(d, lighting, lit.lo), diffuseHi = diffuseOf(d, lighting, lit.hi);
+    const V low = hn::Min(diffuseLo, diffuseHi), flat = diffuseOf(d, lighting, cosine),
+            high = hn::Max(diffuseLo, diffuseHi);
+    const double radiance[3] = {light.radiance.x, light.radiance.y, light.radiance.z};
+    for (int c = 0; c < 3; ++c) {
+      const V r = hn::Set(d, radiance[c]);
+      const V eLo = r * factorLo, eFlat = r * factorFlat, eHi = r * factorHi;
+      const V hi = eHi * high, f = eFlat * flat, lo = eLo * low;
+      sum[c] = sum[c] + hn::Max(hn::Max(hi - f, f - lo), zero);
+    }
+  }
+  // No specular and one color per polygon: the total is Kd·Cd ⊙ Σ deviations, capped at 1.
+  const V kd = hn::Set(d, lighting.diffuse);
+  V largest = zero;
+  for (int c = 0; c < 3; ++c) {
+    const V total = hn::Min(kd * hn::Load(d, batch.surface[c] + lane) * sum[c], one);
+    largest = c == 0 ? total : hn::Max(largest, total);
+  }
+  const V bound =
+      hn::IfThenElse(hn::IsFinite(largest), hn::Set(d, 255.0) * largest, hn::Set(d, 255.0));
+  hn::Store(hn::IfThenElse(bounded, bound, hn::NaN(d)), d, batch.bound + lane);
+}
+
+void BoundBatchLanes(const BatchLighting& lighting, BoundBatch& batch, std::size_t count) {
+  const D d;
+  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d))
+    boundLanes(d, lighting, batch, lane);
+}
+
+}  // namespace facet::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include <glm/geometric.hpp>
+
+#include "Overloaded.h"
+
+namespace facet::detail {
+
+HWY_EXPORT(BoundBatchLanes);
+
+void boundBatch(const BatchLighting& lighting, BoundBatch& batch, std::size_t count) {
+  HWY_DYNAMIC_DISPATCH(BoundBatchLanes)(lighting, batch, count);
+}
+
+namespace {
+glm::dvec3 radianceOf(const Color& color, double intensity) {  // as FlatErrorBound.cpp's
+  const double i = std::max(intensity, 0.0);
+  return glm::min(glm::dvec3(color) * i, glm::dvec3(kMaxRadiance));
+}
+
+void setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
+  using Falloff = BatchLighting::Source::Falloff;
+  std::visit(Overloaded{
+                 [&](const NoAttenuation&) { source.falloff = Falloff::None; },
+                 [&](const QuadraticAttenuation& q) {
+                   source.falloff = Falloff::Quadratic;
+                   source.constant = q.constant;
+                   source.linear = q.linear;
+                   source.quadratic = q.quadratic;
+                 },
+                 [&](const FalloffDistanceAttenuation& f) {
+                   source.falloff = Falloff::Distance;
+                   source.distance = f.distance;
+                 },
+             },
+             attenuation);
+}
+}  // namespace
+
+std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
+                                           bool twoSidedLighting,
+                                           const PreparedMaterial& material) {
+  if (material.specular > 0.0) return std::nullopt;
+  BatchLighting lighting;
+  lighting.eye = camera.position;
+  lighting.viewer = -glm::normalize(camera.focalPoint - camera.position);
+  lighting.parallel = camera.parallelProjection;
+  lighting.twoSided = twoSidedLighting;
+  lighting.diffuse = material.diffuse;
+  lighting.lerp = material.material.diffuseModel != DiffuseModel::Lambert;
+  lighting.lerpAmbient = material.lerpAmbient;
+  lighting.lerpFull = material.lerpFull;
+  for (const Light& light : lights.lights) {
+    if (std::holds_alternative<SpotLight>(light)) return std::nullopt;
+    BatchLighting::Source source;
+    if (const auto* directional = std::get_if<DirectionalLight>(&light)) {
+      source.directional = true;
+      source.position = -glm::normalize(directional->direction);
+      source.radiance = radianceOf(directional->color, directional->intensity);
+    } else {
+      const PointLight& point = std::get<PointLight>(light);
+      source.position = point.position;
+      source.radiance = radianceOf(point.color, point.intensity);
+      setFalloff(source, point.attenuation);
+    }
+    lighting.lights.push_back(source);
+  }
+  return lighting;
+}
+
+}  // namespace facet::detail
+#endif  // HWY_ONCE

@@ -1,0 +1,65 @@
+#pragma once
+
+// FlatErrorBound::bound for many polygons at once, in SIMD lanes (Google Highway, the
+// instruction set chosen at run time), for the common case a frame of the flat render with
+// the estimate meets: directional and point lights (no spot cone), a material without
+// specular, one color per polygon. It is the same double-precision arithmetic in the same
+// order as FlatErrorBound.cpp (no fused multiply-add: the file is compiled with
+// -ffp-contract=off), so every lane gives the bytes the scalar bound gives, on any
+// instruction set (tested). Lanes the scalar bound treats apart (an eye or light at or near
+// the polygon's center, or astronomically far) come out NaN, for the caller to bound one by
+// one.
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "facet/Camera.h"
+#include "facet/Light.h"
+#include "facet/Lighting.h"
+
+namespace facet::detail {
+
+// Lanes per batch: two AVX-512 vectors of doubles, four of AVX2, eight of SSE4.
+inline constexpr std::size_t kBoundBatchSize = 16;
+
+// What the bound of one frame and one material needs: the camera, the lights and the
+// material's diffuse terms, prepared once per frame.
+struct BatchLighting {
+  struct Source {
+    bool directional = false;
+    glm::dvec3 position{0.0};  // point light; a directional light's unit direction toward it
+    glm::dvec3 radiance{0.0};  // color × intensity, capped as FlatErrorBound.cpp's
+    enum class Falloff { None, Quadratic, Distance } falloff = Falloff::None;
+    double constant = 0.0, linear = 0.0, quadratic = 0.0;  // Quadratic
+    double distance = 0.0;                                 // Distance
+  };
+  std::vector<Source> lights;
+  glm::dvec3 eye{0.0}, viewer{0.0, 0.0, 1.0};  // viewer: toward it under parallel projection
+  bool parallel = false, twoSided = true;
+  double diffuse = 1.0;  // Kd
+  bool lerp = false;     // DiffuseModel::Lerp, with its two ends
+  double lerpAmbient = 0.0, lerpFull = 1.0;
+};
+
+// The lighting of the batch, or nothing when the frame or material is one the batch leaves
+// to the scalar bound (a spot light, a specular material).
+std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
+                                           bool twoSidedLighting, const PreparedMaterial& material);
+
+// Polygons in lanes (the fields of PolygonShape that the batch reads), and their bounds.
+struct BoundBatch {
+  alignas(64) double center[3][kBoundBatchSize];
+  alignas(64) double normal[3][kBoundBatchSize];  // unit, not zero
+  alignas(64) double radius[kBoundBatchSize];
+  alignas(64) double sinNormalSpread[kBoundBatchSize];  // ≥ 1: 90° or more
+  alignas(64) double surface[3][kBoundBatchSize];       // Cd, capped at kMaxRadiance
+  alignas(64) double bound[kBoundBatchSize];            // out: 8-bit units; NaN: not bounded
+};
+
+// Fills `bound` of lanes [0, count) (the others are left to any value).
+void boundBatch(const BatchLighting& lighting, BoundBatch& batch, std::size_t count);
+
+}  // namespace facet::detail

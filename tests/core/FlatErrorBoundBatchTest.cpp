@@ -1,0 +1,215 @@
+// The error estimate's SIMD parts on every instruction set this CPU has: each lane of the
+// bound's batch (FlatErrorBoundBatch.h) is the scalar FlatErrorBound::bound to the last bit,
+// over random polygons and every light and material the batch takes, and lanes the scalar
+// bound treats apart are NaN; the pass over a row (EstimateRows.h) is its one-sample
+// definition to the last bit; a flat render's estimate is the same bytes on every one.
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/ReferenceScenes.h"
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+#include "EstimateRows.h"
+#include "FlatErrorBoundBatch.h"
+#include "SetupBatch.h"
+#include "facet/FlatErrorBound.h"
+#include "facet/QualityRenderer.h"
+
+namespace facet::testing {
+namespace {
+
+using detail::kBoundBatchSize;
+
+class BoundBatches : public ::testing::Test {
+ protected:
+  void TearDown() override { detail::useSimdTarget(0); }
+};
+
+struct Case {
+  std::string name;
+  LightSet lights;
+  Camera camera;
+  bool twoSided;
+  Material material;
+};
+
+std::vector<Case> cases() {
+  LightSet mixed;
+  mixed.lights.push_back(DirectionalLight{{-1, -2, -3}, Color(0.9f, 0.7f, 0.5f)});
+  mixed.lights.push_back(
+      PointLight{{3, 2, 4}, Color(0.8f), 1.5, QuadraticAttenuation{1, 0.1, 0.02}});
+  mixed.lights.push_back(PointLight{{-2, 5, 1}, Color(0.3f, 0.9f, 0.6f), 0.7, NoAttenuation{}});
+  mixed.lights.push_back(
+      PointLight{{0.5, -3, 2}, Color(1.0f), 2.0, FalloffDistanceAttenuation{2.5}});
+  LightSet onePoint;
+  onePoint.lights.push_back(PointLight{{0, 0, 5}, Color(1.0f), 1.0, QuadraticAttenuation{}});
+  Camera perspective;
+  perspective.position = {0.3, 0.4, 6.0};
+  Camera parallel = perspective;
+  parallel.parallelProjection = true;
+  Material lambert;
+  lambert.diffuse = 0.8;
+  lambert.color = Color(0.9f, 0.5f, 0.2f);
+  Material lerp = lambert;
+  lerp.diffuseModel = DiffuseModel::Lerp;
+  return {{"mixed lights, perspective, two-sided", mixed, perspective, true, lambert},
+          {"mixed lights, parallel, one-sided", mixed, parallel, false, lambert},
+          {"one point light, Lerp", onePoint, perspective, true, lerp},
+          {"no lights", LightSet{}, perspective, true, lambert}};
+}
+
+// Random polygons near the origin, some with the eye or a light at their center.
+struct Polygons {
+  std::vector<PolygonShape> shapes;
+  std::vector<float> sines;
+  std::vector<Color> colors;
+};
+
+Polygons randomPolygons(const Case& c, std::size_t count) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), positive(0.0, 1.0);
+  Polygons p;
+  for (std::size_t i = 0; i < count; ++i) {
+    PolygonShape shape;
+    shape.center = {2 * unit(random), 2 * unit(random), 2 * unit(random)};
+    if (i % 37 == 5) shape.center = c.camera.position;
+    if (i % 41 == 7 && !c.lights.lights.empty()) {
+      if (const auto* point = std::get_if<PointLight>(&c.lights.lights.back()))
+        shape.center = point->position;
+    }
+    shape.normal = glm::normalize(glm::dvec3(unit(random), unit(random), unit(random)));
+    shape.normal = glm::dvec3(glm::vec3(shape.normal));  // as kept: float
+    shape.radius = static_cast<float>(i % 5 == 0 ? 3.0 * positive(random) : 0.1 * positive(random));
+    // Spreads from none to beyond 90° (a sine of 2), as kept: float.
+    const float sine = i % 11 == 0 ? 2.0f : static_cast<float>(std::pow(positive(random), 3));
+    shape.cosNormalSpread = sine >= 1.0f ? 0.0 : std::sqrt(1.0 - double(sine) * sine);
+    p.shapes.push_back(shape);
+    p.sines.push_back(sine);
+    p.colors.push_back(Color(positive(random), positive(random), positive(random)));
+  }
+  return p;
+}
+
+TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  ASSERT_GE(targets.size(), 2u) << "at least one SIMD target and the portable one";
+  for (const Case& c : cases()) {
+    const PreparedMaterial material(c.material);
+    const FlatErrorBound scalar(c.lights, c.camera, c.twoSided);
+    const auto lighting = detail::batchLighting(c.lights, c.camera, c.twoSided, material);
+    ASSERT_TRUE(lighting) << c.name;
+    const Polygons polygons = randomPolygons(c, 64 * kBoundBatchSize);
+    for (const detail::SimdTarget& target : targets) {
+      detail::useSimdTarget(target.bits);
+      std::size_t compared = 0, apart = 0;
+      for (std::size_t first = 0; first < polygons.shapes.size(); first += kBoundBatchSize) {
+        detail::BoundBatch batch;
+        for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane) {
+          const PolygonShape& shape = polygons.shapes[first + lane];
+          for (int k = 0; k < 3; ++k) {
+            batch.center[k][lane] = shape.center[k];
+            batch.normal[k][lane] = shape.normal[k];
+            batch.surface[k][lane] = polygons.colors[first + lane][k];
+          }
+          batch.radius[lane] = shape.radius;
+          batch.sinNormalSpread[lane] = polygons.sines[first + lane];
+        }
+        detail::boundBatch(*lighting, batch, kBoundBatchSize);
+        for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane) {
+          const PolygonShape& shape = polygons.shapes[first + lane];
+          if (std::isnan(batch.bound[lane])) {  // the eye or a light at its center
+            EXPECT_TRUE(shape.center == c.camera.position ||
+                        (shape.center == glm::dvec3(-2, 5, 1) ||
+                         shape.center == glm::dvec3(0.5, -3, 2) ||
+                         shape.center == glm::dvec3(0, 0, 5)))
+                << c.name << ", " << target.name << ", polygon " << first + lane;
+            ++apart;
+            continue;
+          }
+          const double expected = scalar.bound(shape, material, polygons.colors[first + lane]);
+          ASSERT_EQ(batch.bound[lane], expected)
+              << c.name << ", " << target.name << ", polygon " << first + lane;
+          ++compared;
+        }
+      }
+      EXPECT_GT(compared, 900u) << c.name << ", " << target.name;
+      EXPECT_GT(apart, 0u) << c.name << ", " << target.name;  // the eye at a center
+    }
+  }
+}
+
+TEST_F(BoundBatches, NotTakenForSpotLightsOrSpecularMaterials) {
+  LightSet spot;
+  spot.lights.push_back(SpotLight{});
+  EXPECT_FALSE(detail::batchLighting(spot, Camera{}, true, PreparedMaterial(Material{})));
+  Material shiny;
+  shiny.specular = 0.5;
+  EXPECT_FALSE(detail::batchLighting(LightSet{}, Camera{}, true, PreparedMaterial(shiny)));
+}
+
+TEST_F(BoundBatches, NeighbourMaximaAreTheirDefinitionOnEveryInstructionSet) {
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> channel(0, 255);
+  std::uniform_real_distribution<float> bound(0.0f, 300.0f);
+  const int width = 203;  // not a multiple of any vector's lanes
+  std::vector<Rgba8> center(width), neighbours(width);
+  std::vector<float> bounds(width), start(width);
+  for (int x = 0; x < width; ++x) {
+    const auto byte = [&] { return static_cast<std::uint8_t>(channel(random)); };
+    center[x] = {byte(), byte(), byte(), byte()};
+    neighbours[x] = {byte(), byte(), byte(), byte()};
+    bounds[x] = x % 7 == 0 ? -INFINITY : bound(random);  // some background
+    start[x] = x % 3 == 0 ? 0.0f : bound(random);
+  }
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    detail::useSimdTarget(target.bits);
+    for (const auto& [begin, end] : {std::pair{0, width}, std::pair{5, 190}, std::pair{9, 9}}) {
+      std::vector<float> out = start;
+      detail::neighbourMaxima(center.data(), neighbours.data(), bounds.data(), begin, end,
+                              out.data());
+      for (int x = 0; x < width; ++x) {
+        float expected = start[x];
+        if (x >= begin && x < end) {
+          int largest = 0;
+          for (int k = 0; k < 3; ++k) {
+            const auto* c = &neighbours[x].r;
+            const auto* p = &center[x].r;
+            largest = std::max(largest, std::abs(c[k] - p[k]));  // alpha left out
+          }
+          expected = std::max(expected, static_cast<float>(largest) + bounds[x]);
+        }
+        ASSERT_EQ(out[x], expected) << target.name << ", sample " << x;
+      }
+    }
+  }
+}
+
+// A flat render's estimate (bounds in batches from the kept extents) on every instruction set.
+TEST_F(BoundBatches, TheEstimateIsTheSameBytesOnEveryInstructionSet) {
+  const Mesh sphere = makeUvSphere(48, 25);
+  Material matte;
+  matte.diffuse = 0.9;
+  Scene scene = oneMeshScene(sphere.view(), matte, twoLights());
+  const Camera camera = fitCamera(sphere, {0.2, -0.3, -1});
+  std::vector<float> first;
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    detail::useSimdTarget(target.bits);
+    Renderer renderer;
+    QualityRenderer quality(renderer);
+    Framebuffer image(96, 72);
+    const QualityStats stats = quality.render(scene, {}, camera, image, {.estimateError = true});
+    EXPECT_GT(stats.predictedMaxError, 1.0) << target.name;
+    const std::vector<float> estimate(quality.errorEstimate().begin(),
+                                      quality.errorEstimate().end());
+    if (first.empty()) first = estimate;
+    EXPECT_EQ(estimate, first) << target.name;
+  }
+}
+
+}  // namespace
+}  // namespace facet::testing
