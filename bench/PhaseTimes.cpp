@@ -2,15 +2,18 @@
 // positional light at the eye, float points and 64-bit cells as VTK hands them over), over a
 // fixed number of frames: the best of each phase, for comparing two builds phase by phase.
 // A fixed frame count also makes the program's instruction count comparable between builds
-// (valgrind --tool=callgrind), which the load of a shared machine does not change.
+// (valgrind --tool=callgrind), which the load of a shared machine does not change. TURN > 0
+// turns the camera (and the light at its eye) that many degrees about the sphere's axis
+// every frame, as an interactive view does: each frame then bins a little differently.
 //
-//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS]
+//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
 // an older tree (bench/full_render_speed.md).
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -32,14 +35,22 @@ struct Phases {
   }
 };
 
-int run(int triangles, bool closed, int frames, int threads) {
+// The camera turned by `degrees` about the y axis through its focal point.
+Camera turned(Camera camera, double degrees) {
+  const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
+  const glm::dvec3 r = camera.position - camera.focalPoint;
+  camera.position = camera.focalPoint + glm::dvec3(c * r.x + s * r.z, r.y, -s * r.x + c * r.z);
+  return camera;
+}
+
+int run(int triangles, bool closed, int frames, int threads, double turn) {
   // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles.
   const int theta = triangles == 20000 ? 100 : triangles == 500000 ? 500 : 1000;
   const Mesh sphere = testing::makeUvSphere(theta, theta + 2);
   std::vector<float> xyz;
   for (const auto& p : sphere.points)
     xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
-  const Camera camera = testing::fitCamera(sphere);
+  Camera camera = testing::fitCamera(sphere);
   const MeshView view{
       PointArray::ofXyz(xyz), PolygonArray::of(sphere.offsets, sphere.connectivity), {}, closed};
   Scene scene;
@@ -52,13 +63,18 @@ int run(int triangles, bool closed, int frames, int threads) {
   Framebuffer framebuffer(1920, 1080);
   renderer.render(scene, camera, framebuffer);  // warm: buffers grow
   Phases best;
-  for (int i = 0; i < frames; ++i)
+  for (int i = 0; i < frames; ++i) {
+    if (turn != 0.0) {
+      camera = turned(camera, turn);
+      std::get<PointLight>(scene.lights.lights[0]).position = camera.position;
+    }
     best.keepBest(renderer.render(scene, camera, framebuffer));
+  }
   const double* s = best.seconds;
   std::printf(
-      "%d triangles, closed %d, %d threads, best of %d frames, ms: validate %.3f transform "
-      "%.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f\n",
-      triangles, int(closed), threads, frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
+      "%d triangles, closed %d, %d threads, turn %g, best of %d frames, ms: validate %.3f "
+      "transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f\n",
+      triangles, int(closed), threads, turn, frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
       s[4] * 1e3, s[5] * 1e3);
   return 0;
 }
@@ -69,10 +85,11 @@ int main(int argc, char** argv) {
   const int triangles = argc < 3 ? 0 : std::atoi(argv[1]);
   if (triangles != 20000 && triangles != 500000 && triangles != 2000000) {
     std::fprintf(stderr,
-                 "usage: %s TRIANGLES(20000|500000|2000000) CLOSED(0|1) [FRAMES] [THREADS]\n",
+                 "usage: %s TRIANGLES(20000|500000|2000000) CLOSED(0|1) [FRAMES] [THREADS] "
+                 "[TURN degrees per frame]\n",
                  argv[0]);
     return 2;
   }
   return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
-             argc > 4 ? std::atoi(argv[4]) : 2);
+             argc > 4 ? std::atoi(argv[4]) : 2, argc > 5 ? std::atof(argv[5]) : 0.0);
 }

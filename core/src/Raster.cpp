@@ -17,6 +17,26 @@ void clearTile(const RasterContext& context, const PixelBounds& tile) {
   }
 }
 
+// A bin's triangles lie scattered through their chunk's array (a tile meets many rows of a
+// mesh), and their vertices through the frame's: read in bin order, nearly every triangle
+// waited for memory twice (perf annotate: half of paintTile's cycles on the load of its first
+// vertex reference). So the triangle kPrefetchTriangle places ahead is fetched, and the
+// vertices of the one kPrefetchVertices ahead, whose record arrived meanwhile.
+constexpr std::size_t kPrefetchTriangle = 8;
+constexpr std::size_t kPrefetchVertices = 4;
+
+[[gnu::always_inline]] inline void prefetchAhead(const WindowVertex* vertices, const Chunk& chunk,
+                                                 const std::vector<std::uint32_t>& bin,
+                                                 std::size_t k) {
+  if (k + kPrefetchTriangle < bin.size())
+    __builtin_prefetch(&chunk.triangles[bin[k + kPrefetchTriangle]]);
+  if (k + kPrefetchVertices < bin.size()) {
+    const BinnedTriangle& ahead = chunk.triangles[bin[k + kPrefetchVertices]];
+    for (const std::uint32_t reference : ahead.vertex)
+      __builtin_prefetch(&vertexOf(vertices, chunk, reference));
+  }
+}
+
 // kCoarse: with the tile's coarse depth (Rule::HiddenGeometry, depth test only).
 template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
@@ -26,7 +46,10 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   PaintCounts counts;
   CoarseDepth coarse(tile);
   for (const Chunk& chunk : context.chunks) {
-    for (const std::uint32_t index : chunk.bins[t]) {
+    const std::vector<std::uint32_t>& bin = chunk.bins[t];
+    for (std::size_t k = 0; k < bin.size(); ++k) {
+      prefetchAhead(context.vertices, chunk, bin, k);
+      const std::uint32_t index = bin[k];
       const BinnedTriangle& tri = chunk.triangles[index];
       const WindowVertex& a = vertexOf(context.vertices, chunk, tri.vertex[0]);
       const WindowVertex& b = vertexOf(context.vertices, chunk, tri.vertex[1]);
