@@ -161,9 +161,14 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
   // rendering). It is the output's Depth array until somebody else holds that array (ParaView's
   // representations do) or a compositor writes into it; from then on it is a plane of this
   // class's own, copied into Depth.
+  // The output's own references go first: vtkImageData::PrepareForNewData keeps the last
+  // execution's scalars in it (for image filters that allocate alike), and that reference
+  // alone must not make RGBA look held by somebody else (a new 8 MB plane at 1080p, zeroed by
+  // the kernel page by page, at every execution).
+  vtkPointData* pointData = output->GetPointData();
+  pointData->Initialize();
   this->OwnDepthPlane = this->OwnDepthPlane || settings.Composited ||
     (this->Depth && this->Depth->GetReferenceCount() > 1);
-  vtkPointData* pointData = output->GetPointData();
   pointData->SetScalars(OutputArray(this->Rgba, "RGBA", 4, pixels));
   // An array not asked for is released, not kept.
   const auto add = [&](auto& kept, bool wanted, const char* name) {
