@@ -5,9 +5,10 @@
 // camera and light) into a facet::Framebuffer, frame by frame in turn. Per side: the median
 // wall and CPU time (all threads of the process) per frame, and the page faults per frame.
 //
-//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES]
+//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
 //   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
 //   build/bin/facet_filter_overhead 1000 1 1 20     # 2M triangles, closed, one thread
+//   build/bin/facet_filter_overhead 500 1 2 10 3840 2160   # at 4K
 //
 // (THETA: vtkSphereSource's theta resolution, phi = theta + 2: 2·theta² triangles.)
 
@@ -40,8 +41,6 @@
 #include <vector>
 
 namespace {
-constexpr int kWidth = 1920, kHeight = 1080;
-
 struct Sample {
   double wall = 0.0, cpu = 0.0, faults = 0.0;
 };
@@ -91,13 +90,15 @@ facet::Camera cameraOf(vtkCamera* camera) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s THETA CLOSED [THREADS] [FRAMES]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]\n", argv[0]);
     return 2;
   }
   const int theta = std::atoi(argv[1]);
   const bool closed = std::atoi(argv[2]) != 0;
   const int threads = argc > 3 ? std::atoi(argv[3]) : 2;
   const int frames = argc > 4 ? std::atoi(argv[4]) : 20;
+  const int width = argc > 6 ? std::atoi(argv[5]) : 1920;
+  const int height = argc > 6 ? std::atoi(argv[6]) : 1080;
 
   vtkNew<vtkSphereSource> source;
   source->SetThetaResolution(theta);
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
 
   // bench/filter_speed.py's scene: the camera fitted by vtkRenderer, a positional light at it.
   vtkNew<vtkRenderer> fit;
-  fit->SetAspect(double(kWidth) / kHeight, 1.0);
+  fit->SetAspect(double(width) / height, 1.0);
   vtkCamera* camera = fit->GetActiveCamera();
   fit->ResetCamera(sphere->GetBounds());
   vtkNew<vtkLight> light;
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
 
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputConnection(source->GetOutputPort());
-  filter->SetSize(kWidth, kHeight);
+  filter->SetSize(width, height);
   filter->SetCamera(camera);
   filter->AddLight(light);
   filter->SetAmbientLightColor(0, 0, 0);
@@ -145,7 +146,7 @@ int main(int argc, char** argv) {
   scene.lights.ambient.intensity = 0.0;
   facet::Renderer renderer;
   renderer.setThreadCount(threads);
-  facet::Framebuffer framebuffer(kWidth, kHeight);
+  facet::Framebuffer framebuffer(width, height);
 
   const auto renderCore = [&] {
     const facet::Camera view = cameraOf(camera);
@@ -166,11 +167,11 @@ int main(int argc, char** argv) {
   const Sample c{median(cores, &Sample::wall), median(cores, &Sample::cpu),
                  median(cores, &Sample::faults)};
   std::printf(
-      "%d triangles, %s, %d threads, median of %d frames in turn: Update() %.1f ms "
+      "%d triangles, %d x %d, %s, %d threads, median of %d frames in turn: Update() %.1f ms "
       "(CPU %.1f ms, %.0f page faults), core %.1f ms (CPU %.1f ms, %.0f page faults); "
       "Update/core wall %.3f, CPU %.3f; first Update() %.3f s\n",
-      2 * theta * theta, closed ? "closed" : "every face", threads, frames, 1e3 * u.wall,
-      1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall, u.cpu / c.cpu,
-      firstUpdate.wall);
+      2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
+      1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
+      u.cpu / c.cpu, firstUpdate.wall);
   return 0;
 }
