@@ -157,13 +157,18 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
   output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
   output->SetOrigin(0.0, 0.0, 0.0);
+  // The output's own references go first: vtkImageData::PrepareForNewData keeps the last
+  // execution's scalars in it (for image filters that allocate alike), and that reference
+  // alone must not make RGBA look held by somebody else (a new 8 MB plane at 1080p at every
+  // execution, faulted in and zeroed by the kernel).
+  vtkPointData* pointData = output->GetPointData();
+  pointData->Initialize();
   // The renderer's depth plane must stay as the last render left it (incremental
   // rendering). It is the output's Depth array until somebody else holds that array (ParaView's
   // representations do) or a compositor writes into it; from then on it is a plane of this
   // class's own, copied into Depth.
   this->OwnDepthPlane = this->OwnDepthPlane || settings.Composited ||
     (this->Depth && this->Depth->GetReferenceCount() > 1);
-  vtkPointData* pointData = output->GetPointData();
   pointData->SetScalars(OutputArray(this->Rgba, "RGBA", 4, pixels));
   // An array not asked for is released, not kept.
   const auto add = [&](auto& kept, bool wanted, const char* name) {

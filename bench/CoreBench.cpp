@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <ctime>
 #include <deque>
@@ -70,7 +71,7 @@ struct SphereCase {
 // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles. The
 // double-precision generator mesh is freed on return: a VTK user holds only the float one.
 SphereCase sphereWithTriangles(std::int64_t triangles) {
-  const int theta = triangles == 20000 ? 100 : triangles == 500000 ? 500 : 1000;
+  const int theta = static_cast<int>(std::lround(std::sqrt(triangles / 2.0)));
   const Mesh sphere = testing::makeUvSphere(theta, theta + 2);
   return {toVtkLike(sphere), testing::fitCamera(sphere)};
 }
@@ -122,6 +123,26 @@ void BM_Sphere(benchmark::State& state) {
 BENCHMARK(BM_Sphere)
     ->ArgNames({"triangles", "threads", "closed"})
     ->ArgsProduct({{20000, 500000, 2000000}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(1.0);
+
+// The closed-surface check (isClosedSurface), which the VTK filter runs once per input on
+// its first Update(): the spheres as VTK hands them over (bench/closed_surface.md).
+//
+//   build/bin/facet_bench --benchmark_filter=ClosedSurface
+void BM_ClosedSurface(benchmark::State& state) {
+  const SphereCase sphere = sphereWithTriangles(state.range(0));
+  bool closed = false;
+  for (auto _ : state)
+    closed = isClosedSurface(sphere.mesh.view());
+  if (!closed) state.SkipWithError("sphere not closed");
+}
+BENCHMARK(BM_ClosedSurface)
+    ->ArgNames({"triangles"})
+    ->Arg(500000)
+    ->Arg(2000000)
+    ->Arg(8000000)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);

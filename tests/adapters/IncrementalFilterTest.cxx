@@ -346,6 +346,39 @@ TEST_F(Incremental, HeldOutputArraysAreLeftAlone)
   EXPECT_NE(held[0]->GetPointData()->GetArray("RGBA"), held[1]->GetPointData()->GetArray("RGBA"));
 }
 
+// Output arrays nobody else holds are written again in place: a turning camera allocates no
+// new plane (vtkImageData keeps its scalars across the executive's PrepareForNewData; that
+// reference is the output's own, not somebody else's). One held array alone is replaced.
+TEST_F(Incremental, OutputArraysNobodyHoldsAreReused)
+{
+  Rig kept(this->Input);
+  const auto arrays = [](vtkImageData* image) {
+    std::vector<vtkDataArray*> found;
+    for (const char* name : { "RGBA", "Depth", "CellId" })
+    {
+      found.push_back(image->GetPointData()->GetArray(name));
+    }
+    return found;
+  };
+  const std::vector<vtkDataArray*> first = arrays(kept.Render(Settings()));
+  Settings turned;
+  turned.Azimuth = 35.0;
+  vtkImageData* again = kept.Render(turned);
+  EXPECT_EQ(PathOf(again), Full);
+  EXPECT_EQ(arrays(again), first) << "RGBA, Depth and CellId written in place";
+  Rig fresh(this->Input);
+  ExpectSameImage(again, fresh.Render(turned));
+
+  const vtkSmartPointer<vtkDataArray> heldRgba = again->GetPointData()->GetArray("RGBA");
+  const std::string heldBytes = Bytes(again, "RGBA");
+  turned.Azimuth = 50.0;
+  const std::vector<vtkDataArray*> third = arrays(kept.Render(turned));
+  EXPECT_NE(third[0], heldRgba.Get()) << "the held RGBA is not written again";
+  EXPECT_EQ(third[1], first[1]);
+  EXPECT_EQ(third[2], first[2]);
+  EXPECT_TRUE(std::memcmp(heldRgba->GetVoidPointer(0), heldBytes.data(), heldBytes.size()) == 0);
+}
+
 //------------------------------------------------------------------------------
 TEST_F(Incremental, OutputsNobodyAskedForAreLeftOut)
 {

@@ -1,6 +1,10 @@
 // Depth buffer vs painter's order, and back-face culling.
 
 #include <algorithm>
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -172,6 +176,182 @@ TEST(ClosedSurface, DetectsClosedOutwardMeshes) {
   Mesh flipped = makeBox({0, 0, 0}, {1, 1, 1});
   std::reverse(flipped.connectivity.begin(), flipped.connectivity.begin() + 4);
   EXPECT_FALSE(isClosedSurface(flipped.view())) << "one face wound the other way";
+}
+
+// The definition, written the plain way: every polygon has 3 points or more, every directed
+// edge a -> b is no loop, appears once, and so does b -> a; and the signed volume is positive.
+bool closedByDefinition(const Mesh& mesh) {
+  std::map<std::pair<std::int64_t, std::int64_t>, int> directed;
+  double volume = 0.0;
+  glm::dvec3 center(0.0);
+  for (const glm::dvec3& p : mesh.points)
+    center += p / static_cast<double>(mesh.points.size());
+  for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
+    const std::int64_t* ids = mesh.connectivity.data() + mesh.offsets[p];
+    const std::int64_t n = mesh.offsets[p + 1] - mesh.offsets[p];
+    if (n < 3) return false;
+    for (std::int64_t k = 0; k < n; ++k)
+      ++directed[{ids[k], ids[(k + 1) % n]}];
+    for (std::int64_t k = 1; k + 1 < n; ++k) {
+      volume +=
+          glm::dot(mesh.points[ids[0]] - center,
+                   glm::cross(mesh.points[ids[k]] - center, mesh.points[ids[k + 1]] - center));
+    }
+  }
+  for (const auto& [edge, count] : directed) {
+    const auto twin = directed.find({edge.second, edge.first});
+    if (edge.first == edge.second || count != 1 || twin == directed.end() || twin->second != 1)
+      return false;
+  }
+  return !mesh.connectivity.empty() && volume > 0.0;
+}
+
+Mesh withPolygons(const Mesh& mesh, const std::vector<std::vector<std::int64_t>>& polygons) {
+  Mesh out;
+  out.points = mesh.points;
+  for (const auto& polygon : polygons)
+    out.addPolygon(polygon);
+  return out;
+}
+
+std::vector<std::vector<std::int64_t>> polygonsOf(const Mesh& mesh) {
+  std::vector<std::vector<std::int64_t>> polygons;
+  for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
+    polygons.emplace_back(mesh.connectivity.begin() + mesh.offsets[p],
+                          mesh.connectivity.begin() + mesh.offsets[p + 1]);
+  }
+  return polygons;
+}
+
+TEST(ClosedSurface, NonManifoldAndDegenerateMeshes) {
+  // Outward tetrahedra: (0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), points 0 to 3, and
+  // a second one (a) beside it, (b) moved by (1, 0, 0) to touch it at point 1 only (a pinched
+  // surface: every edge still has its two faces) and (c) turned 180 degrees about the first's
+  // edge 0-3 (four faces at that edge).
+  const std::vector<std::vector<std::int64_t>> faces{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  const auto twoTetrahedra = [&](const std::vector<glm::dvec3>& second,
+                                 const std::vector<std::int64_t>& secondIds) {
+    Mesh mesh;
+    for (glm::dvec3 p : {glm::dvec3{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}})
+      mesh.addPoint(p);
+    for (glm::dvec3 p : second)
+      mesh.addPoint(p);
+    for (const auto& face : faces)
+      mesh.addPolygon(face);
+    for (const auto& face : faces)
+      mesh.addPolygon({secondIds[face[0]], secondIds[face[1]], secondIds[face[2]]});
+    return mesh;
+  };
+  const Mesh apart = twoTetrahedra({{3, 0, 0}, {4, 0, 0}, {3, 1, 0}, {3, 0, 1}}, {4, 5, 6, 7});
+  const Mesh pinched = twoTetrahedra({{2, 0, 0}, {1, 1, 0}, {1, 0, 1}}, {1, 4, 5, 6});
+  const Mesh fourFacesAtAnEdge = twoTetrahedra({{-1, 0, 0}, {0, -1, 0}}, {0, 4, 5, 3});
+  EXPECT_TRUE(isClosedSurface(apart.view()));
+  EXPECT_TRUE(isClosedSurface(pinched.view())) << "pinched at a point, closed edge by edge";
+  EXPECT_FALSE(isClosedSurface(fourFacesAtAnEdge.view()));
+  for (const Mesh* mesh : {&apart, &pinched, &fourFacesAtAnEdge})
+    EXPECT_EQ(isClosedSurface(mesh->view()), closedByDefinition(*mesh));
+
+  const Mesh box = makeBox({0, 0, 0}, {1, 1, 1});
+  const auto boxFaces = polygonsOf(box);
+  auto twice = boxFaces;
+  twice.push_back(boxFaces[0]);
+  EXPECT_FALSE(isClosedSurface(withPolygons(box, twice).view())) << "a face drawn twice";
+  auto sliver = boxFaces;
+  sliver.push_back({boxFaces[0].rbegin(), boxFaces[0].rend()});
+  sliver.push_back(boxFaces[0]);
+  EXPECT_FALSE(isClosedSurface(withPolygons(box, sliver).view())) << "a two-sided sliver added";
+  auto loop = boxFaces;
+  loop[0] = {loop[0][0], loop[0][0], loop[0][1], loop[0][2]};
+  EXPECT_FALSE(isClosedSurface(withPolygons(box, loop).view())) << "a repeated corner";
+  auto line = boxFaces;
+  line.push_back({0, 1});
+  EXPECT_FALSE(isClosedSurface(withPolygons(box, line).view())) << "a 2-point polygon";
+  EXPECT_FALSE(isClosedSurface(withPolygons(box, {}).view())) << "no polygons";
+}
+
+// Triangle strips as the VTK filter hands them over (vtkTriangleStrip::DecomposeStrip: odd
+// triangles swap their first two points): a sphere's bands as strips, its caps as triangles,
+// is closed; without its last strip triangle it is not.
+TEST(ClosedSurface, StripTrianglesOfASphere) {
+  const int theta = 12, rings = 6;
+  const Mesh sphere = makeUvSphere(theta, rings + 2);
+  const auto at = [&](int ring, int i) -> std::int64_t { return 2 + ring * theta + i % theta; };
+  std::vector<std::vector<std::int64_t>> triangles;
+  for (int i = 0; i < theta; ++i) {
+    triangles.push_back({0, at(0, i), at(0, i + 1)});
+    triangles.push_back({1, at(rings - 1, i + 1), at(rings - 1, i)});
+  }
+  for (int ring = 0; ring + 1 < rings; ++ring) {
+    std::vector<std::int64_t> strip;
+    for (int i = 0; i <= theta; ++i)
+      strip.insert(strip.end(), {at(ring, i), at(ring + 1, i)});
+    for (std::size_t k = 0; k + 2 < strip.size(); ++k) {
+      const bool odd = k % 2 == 1;
+      triangles.push_back(
+          {odd ? strip[k + 1] : strip[k], odd ? strip[k] : strip[k + 1], strip[k + 2]});
+    }
+  }
+  const Mesh strips = withPolygons(sphere, triangles);
+  EXPECT_TRUE(isClosedSurface(strips.view()));
+  EXPECT_TRUE(closedByDefinition(strips));
+  triangles.pop_back();
+  EXPECT_FALSE(isClosedSurface(withPolygons(sphere, triangles).view()));
+}
+
+// Random edits of closed meshes (a face flipped, dropped, doubled or split off, points merged,
+// corners rotated, faces shuffled): the check agrees with the definition every time, with
+// 64- and 32-bit connectivity.
+TEST(ClosedSurface, AgreesWithTheDefinitionOnRandomEdits) {
+  std::mt19937 random(11);
+  const Mesh sphere = makeUvSphere(9, 7), box = makeBox({0, 0, 0}, {1, 2, 3});
+  const Mesh spot = readObj(sharedMeshPath("spot.obj"));  // 5856 triangles: one trial in ten
+  int closedSeen = 0, openSeen = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Mesh& base = trial % 10 == 9 ? spot : trial % 2 == 0 ? sphere : box;
+    auto faces = polygonsOf(base);
+    const auto pick = [&](std::size_t n) {
+      return std::uniform_int_distribution<std::size_t>(0, n - 1)(random);
+    };
+    const std::size_t f = pick(faces.size());
+    switch (trial / 2 % 7) {
+      case 0:
+        std::reverse(faces[f].begin(), faces[f].end());
+        break;
+      case 1:
+        faces.erase(faces.begin() + static_cast<std::ptrdiff_t>(f));
+        break;
+      case 2:
+        faces.push_back(faces[f]);
+        break;
+      case 3:
+        faces[f][pick(faces[f].size())] = faces[f][pick(faces[f].size())];
+        break;
+      case 4: {
+        const std::int64_t from = static_cast<std::int64_t>(pick(base.points.size()));
+        const std::int64_t to = static_cast<std::int64_t>(pick(base.points.size()));
+        for (auto& face : faces)
+          std::replace(face.begin(), face.end(), from, to);
+        break;
+      }
+      case 5:
+        std::rotate(faces[f].begin(), faces[f].begin() + 1, faces[f].end());
+        break;
+      default:
+        std::shuffle(faces.begin(), faces.end(), random);
+        break;
+    }
+    const Mesh edited = withPolygons(base, faces);
+    const bool expected = closedByDefinition(edited);
+    (expected ? closedSeen : openSeen) += 1;
+    ASSERT_EQ(isClosedSurface(edited.view()), expected) << "trial " << trial;
+    const std::vector<std::int32_t> offsets(edited.offsets.begin(), edited.offsets.end());
+    const std::vector<std::int32_t> ids(edited.connectivity.begin(), edited.connectivity.end());
+    MeshView narrow = edited.view();
+    narrow.polygons = PolygonArray::of(offsets, ids);
+    ASSERT_EQ(isClosedSurface(narrow), expected) << "trial " << trial << ", 32-bit ids";
+  }
+  EXPECT_GT(closedSeen, 50);  // both answers exercised
+  EXPECT_GT(openSeen, 50);
 }
 
 TEST(ClosedSurface, SkippingHiddenBackFacesChangesNoPixel) {

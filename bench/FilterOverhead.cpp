@@ -1,0 +1,177 @@
+// What vtkFacetRenderFilter::Update() costs beyond the core's frame, measured in one process
+// so that the machine's load falls on both alike: the filter renders vtkSphereSource's sphere
+// at 1920 × 1080 with a camera turning every frame (RGBA + Depth + CellId output), and a bare
+// facet::Renderer renders the same arrays (float points, VTK's 64-bit cells, the same
+// camera and light) into a facet::Framebuffer, frame by frame in turn. Per side: the median
+// wall and CPU time (all threads of the process) per frame, and the page faults per frame.
+//
+//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
+//   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
+//   build/bin/facet_filter_overhead 1000 1 1 20     # 2M triangles, closed, one thread
+//   build/bin/facet_filter_overhead 500 1 2 10 3840 2160   # at 4K
+//
+// (THETA: vtkSphereSource's theta resolution, phi = theta + 2: 2·theta² triangles.)
+
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkFacetRenderFilter.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+#include "vtkTypeInt64Array.h"
+
+#include "facet/Framebuffer.h"
+#include "facet/Renderer.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <span>
+#include <vector>
+
+namespace {
+struct Sample {
+  double wall = 0.0, cpu = 0.0, faults = 0.0;
+};
+
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double minorFaults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_minflt + usage.ru_majflt);
+}
+
+template <class Work>
+Sample timed(Work&& work) {
+  const auto wall = std::chrono::steady_clock::now();
+  const double cpu = processCpuSeconds(), faults = minorFaults();
+  work();
+  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count(),
+          processCpuSeconds() - cpu, minorFaults() - faults};
+}
+
+double median(std::vector<Sample>& samples, double Sample::*field) {
+  std::vector<double> values;
+  for (const Sample& s : samples)
+    values.push_back(s.*field);
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+// The filter's camera conversion for a plain perspective vtkCamera (vtkFacetSceneConverter).
+facet::Camera cameraOf(vtkCamera* camera) {
+  const auto vec = [](const double* v) { return glm::dvec3(v[0], v[1], v[2]); };
+  facet::Camera c;
+  c.position = vec(camera->GetPosition());
+  c.focalPoint = vec(camera->GetFocalPoint());
+  c.viewUp = vec(camera->GetViewUp());
+  c.viewAngleDegrees = camera->GetViewAngle();
+  c.nearClip = camera->GetClippingRange()[0];
+  c.farClip = camera->GetClippingRange()[1];
+  return c;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]\n", argv[0]);
+    return 2;
+  }
+  const int theta = std::atoi(argv[1]);
+  const bool closed = std::atoi(argv[2]) != 0;
+  const int threads = argc > 3 ? std::atoi(argv[3]) : 2;
+  const int frames = argc > 4 ? std::atoi(argv[4]) : 20;
+  const int width = argc > 6 ? std::atoi(argv[5]) : 1920;
+  const int height = argc > 6 ? std::atoi(argv[6]) : 1080;
+
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(theta);
+  source->SetPhiResolution(theta + 2);
+  source->Update();
+  vtkPolyData* sphere = source->GetOutput();
+
+  // bench/filter_speed.py's scene: the camera fitted by vtkRenderer, a positional light at it.
+  vtkNew<vtkRenderer> fit;
+  fit->SetAspect(double(width) / height, 1.0);
+  vtkCamera* camera = fit->GetActiveCamera();
+  fit->ResetCamera(sphere->GetBounds());
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetConeAngle(180);
+  light->SetPosition(camera->GetPosition());
+  light->SetFocalPoint(camera->GetFocalPoint());
+
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputConnection(source->GetOutputPort());
+  filter->SetSize(width, height);
+  filter->SetCamera(camera);
+  filter->AddLight(light);
+  filter->SetAmbientLightColor(0, 0, 0);
+  filter->SetNumberOfThreads(threads);
+  filter->SetDetectClosedSurfaces(closed);
+
+  // The same arrays, straight into the core: a versioned mesh, as the filter's.
+  facet::MeshView mesh;
+  auto* points = vtkFloatArray::SafeDownCast(sphere->GetPoints()->GetData());
+  mesh.points = facet::PointArray::ofXyz(
+      std::span<const float>(points->GetPointer(0), 3 * points->GetNumberOfTuples()));
+  vtkCellArray* polys = sphere->GetPolys();
+  const auto int64s = [](auto* array) {
+    return std::span<const std::int64_t>(
+        reinterpret_cast<const std::int64_t*>(array->GetPointer(0)),
+        static_cast<std::size_t>(array->GetNumberOfValues()));
+  };
+  mesh.polygons = facet::PolygonArray::of(int64s(polys->GetOffsetsArray64()),
+                                          int64s(polys->GetConnectivityArray64()));
+  mesh.version = 1;
+  mesh.closedSurface = closed && facet::isClosedSurface(mesh);
+  facet::Scene scene;
+  scene.meshes.push_back({mesh, facet::Material{}});
+  scene.lights.ambient.intensity = 0.0;
+  facet::Renderer renderer;
+  renderer.setThreadCount(threads);
+  facet::Framebuffer framebuffer(width, height);
+
+  const auto renderCore = [&] {
+    const facet::Camera view = cameraOf(camera);
+    scene.lights.lights = {facet::PointLight{view.position, facet::Color(1.0f), 1.0,
+                                             facet::QuadraticAttenuation{1.0, 0.0, 0.0}}};
+    renderer.render(scene, view, framebuffer);
+  };
+  const Sample firstUpdate = timed([&] { filter->Update(); });
+  renderCore();
+  std::vector<Sample> updates, cores;
+  for (int f = 0; f < frames; ++f) {
+    camera->Azimuth(0.5);
+    updates.push_back(timed([&] { filter->Update(); }));
+    cores.push_back(timed(renderCore));
+  }
+  const Sample u{median(updates, &Sample::wall), median(updates, &Sample::cpu),
+                 median(updates, &Sample::faults)};
+  const Sample c{median(cores, &Sample::wall), median(cores, &Sample::cpu),
+                 median(cores, &Sample::faults)};
+  std::printf(
+      "%d triangles, %d x %d, %s, %d threads, median of %d frames in turn: Update() %.1f ms "
+      "(CPU %.1f ms, %.0f page faults), core %.1f ms (CPU %.1f ms, %.0f page faults); "
+      "Update/core wall %.3f, CPU %.3f; first Update() %.3f s\n",
+      2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
+      1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
+      u.cpu / c.cpu, firstUpdate.wall);
+  return 0;
+}
