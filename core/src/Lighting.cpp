@@ -138,6 +138,15 @@ detail::LightLoop loopFor(const std::vector<PreparedLight>& lights) {
   return LightLoop::Mixed;
 }
 
+// VTK's point and spot lights all carry (1, 0, 0): a factor of exactly 1 at every distance the
+// shading reaches (towardLight gives a distance ≥ 0 or no light). Named as no attenuation they take
+// the loop without a per-polygon attenuation call; the pixels are the same bytes.
+Attenuation simplest(const Attenuation& attenuation) {
+  const auto* quadratic = std::get_if<QuadraticAttenuation>(&attenuation);
+  const bool none = quadratic != nullptr && *quadratic == QuadraticAttenuation{1.0, 0.0, 0.0};
+  return none ? Attenuation{NoAttenuation{}} : attenuation;
+}
+
 PreparedLight prepare(const Light& light) {
   PreparedLight prepared;
   std::visit(detail::Overloaded{
@@ -149,14 +158,14 @@ PreparedLight prepare(const Light& light) {
                    prepared.kind = PreparedLight::Kind::Point;
                    prepared.position = l.position;
                    prepared.radiance = radianceOf(l.color, l.intensity);
-                   prepared.attenuation = l.attenuation;
+                   prepared.attenuation = simplest(l.attenuation);
                  },
                  [&](const SpotLight& l) {
                    prepared.kind = PreparedLight::Kind::Spot;
                    prepared.position = l.position;
                    prepared.direction = detail::normalizeRobust(l.direction)->unit;
                    prepared.radiance = radianceOf(l.color, l.intensity);
-                   prepared.attenuation = l.attenuation;
+                   prepared.attenuation = simplest(l.attenuation);
                    prepared.cone = l.cone;
                  },
              },
