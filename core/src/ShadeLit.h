@@ -56,7 +56,7 @@ Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess:
   return toRgba8(shade(context.shader, sample, mesh.material));
 }
 
-// Flattened: with this file's many instantiations, GCC's unit-growth limit would otherwise
+// Flattened: with these many instantiations, GCC's unit-growth limit would otherwise
 // leave the per-polygon helpers (normal, corners, toRgba8) as calls, ~25 % of the phase.
 // Not under AddressSanitizer: flattening 48 instrumented instantiations takes GCC 12 more
 // than half an hour, and a sanitizer build measures no speed.
