@@ -2,9 +2,7 @@
 
 #include <array>
 
-#include "FaceNormal.h"
-#include "MeshAccess.h"
-#include "ShaderAccess.h"
+#include "ShadeLit.h"
 
 namespace facet::detail {
 namespace {
@@ -27,81 +25,6 @@ std::size_t forEachShown(const ShadeContext& context, const FrameMesh& mesh, std
   return shaded;
 }
 
-// Where a polygon's surface color comes from: the material, the mesh's per-polygon
-// colors, or either, tested per polygon (the routine when Rule::OneColor is off).
-enum class ColorSource { Material, PerPolygon, Either };
-
-Color polygonColor(const FrameMesh& mesh, std::size_t polygon) {
-  const Rgba8 c = mesh.mesh().polygonColors[polygon];
-  return Color(c.r, c.g, c.b) / 255.0f;
-}
-
-template <ColorSource kSource>
-Color surfaceColor(const FrameMesh& mesh, std::size_t polygon) {
-  if constexpr (kSource == ColorSource::PerPolygon) {
-    return polygonColor(mesh, polygon);
-  } else if constexpr (kSource == ColorSource::Either) {
-    if (!mesh.mesh().polygonColors.empty()) return polygonColor(mesh, polygon);
-  }
-  return mesh.source->material.color;
-}
-
-// The flat-shaded color of one polygon under direct light, at its center.
-template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
-Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess::Routine shade,
-               PointsT points, PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
-  SurfaceSample sample;
-  sample.color = surfaceColor<kColors>(mesh, polygon);
-  const std::size_t n = polygons.size(polygon);
-  const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
-  const glm::vec3 normal = mesh.faceNormals ? mesh.faceNormals[polygon] : faceNormalOf(n, corner);
-  if constexpr (kCenters) {
-    glm::dvec3 sum(0.0);
-    for (std::size_t k = 0; k < n; ++k)
-      sum += corner(k);
-    sample.position = sum / static_cast<double>(n);
-  }
-  if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
-  // A polygon with area on screen but none in 3D (pathological input only) faces the viewer.
-  sample.normal =
-      normal != glm::vec3(0.0f) ? glm::dvec3(normal) : context.transform.toViewer(corner(0));
-  if (seenFromBack && context.twoSidedLighting) sample.normal = -sample.normal;
-  return toRgba8(shade(context.shader, sample, mesh.material));
-}
-
-// Flattened: with this file's many instantiations, GCC's unit-growth limit would otherwise
-// leave the per-polygon helpers (normal, corners, toRgba8) as calls, ~25 % of the phase.
-// Not under AddressSanitizer: flattening 48 instrumented instantiations takes GCC 12 more
-// than half an hour, and a sanitizer build measures no speed.
-#if defined(__SANITIZE_ADDRESS__)
-#define FACET_FLATTEN
-#else
-#define FACET_FLATTEN [[gnu::flatten]]
-#endif
-template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
-FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const FrameMesh& mesh,
-                                        PointsT points, PolygonsT polygons, std::size_t begin,
-                                        std::size_t end) {
-  const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
-  std::size_t shaded = 0;
-  for (std::size_t polygon = begin; polygon < end; ++polygon) {
-    const std::size_t id = mesh.firstPolygon + polygon;
-    if (!context.shown[id]) continue;
-    ++shaded;
-    context.colors[id] = litColor<kCenters, kSpecular, kColors>(
-        context, mesh, shade, points, polygons, polygon, context.backFacing[id]);
-  }
-  return shaded;
-}
-
-template <bool kCenters, bool kSpecular, ColorSource kColors>
-std::size_t shadeLit(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
-                     std::size_t end) {
-  return withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
-    return shadeLitTyped<kCenters, kSpecular, kColors>(context, mesh, points, polygons, begin, end);
-  });
-}
-
 // Without direct light a polygon's color does not depend on its orientation, and a mesh
 // without its own colors has one color for all its polygons: shaded once.
 std::size_t shadeAmbientOneColor(const ShadeContext& context, const FrameMesh& mesh,
@@ -117,7 +40,7 @@ std::size_t shadeAmbientPolygonColors(const ShadeContext& context, const FrameMe
                                       std::size_t begin, std::size_t end) {
   return forEachShown(context, mesh, begin, end, [&](std::size_t, std::size_t polygon) {
     SurfaceSample sample;
-    sample.color = polygonColor(mesh, polygon);
+    sample.color = shading::polygonColor(mesh, polygon);
     return toRgba8(context.shader.shade(sample, mesh.material));
   });
 }
@@ -143,31 +66,6 @@ std::size_t shadeAmbientTable(const ShadeContext& context, const FrameMesh& mesh
 // Below this many polygons a mesh's table would cost more shades than its polygons.
 constexpr std::size_t kPolygonsForTable = 1024;
 
-// The routines under direct light (or without Rule::AmbientOnly), by [centers][specular]
-// and color source.
-template <bool kCenters, bool kSpecular>
-ShadeRoutineChoice litRoutine(ColorSource colors) {
-  static constexpr const char* kNames[2][2][3] = {
-      {{"lit by directions, diffuse, one color", "lit by directions, diffuse, per-polygon colors",
-        "lit by directions, diffuse, colors tested per polygon"},
-       {"lit by directions, specular, one color", "lit by directions, specular, per-polygon colors",
-        "lit by directions, specular, colors tested per polygon"}},
-      {{"lit at centers, diffuse, one color", "lit at centers, diffuse, per-polygon colors",
-        "lit at centers, diffuse, colors tested per polygon"},
-       {"lit at centers, specular, one color", "lit at centers, specular, per-polygon colors",
-        "lit at centers, specular, colors tested per polygon"}}};
-  const char* name = kNames[kCenters][kSpecular][static_cast<int>(colors)];
-  switch (colors) {
-    case ColorSource::Material:
-      return {shadeLit<kCenters, kSpecular, ColorSource::Material>, name, false, true};
-    case ColorSource::PerPolygon:
-      return {shadeLit<kCenters, kSpecular, ColorSource::PerPolygon>, name};
-    case ColorSource::Either:
-      break;
-  }
-  return {shadeLit<kCenters, kSpecular, ColorSource::Either>, name};
-}
-
 ShadeRoutineChoice ambientRoutine(const ShadeNeeds& needs) {
   if (!needs.polygonColors) return {shadeAmbientOneColor, "ambient, one color", true, true};
   if (needs.polygons < kPolygonsForTable) {
@@ -180,6 +78,7 @@ ShadeRoutineChoice ambientRoutine(const ShadeNeeds& needs) {
 
 ShadeRoutineChoice chooseShadeRoutine(const ShadeNeeds& needs) {
   if (!needs.directLighting && needs.ambientOnlyRule) return ambientRoutine(needs);
+  using shading::ColorSource, shading::litRoutine;
   const ColorSource colors = needs.polygonColors  ? ColorSource::PerPolygon
                              : needs.oneColorRule ? ColorSource::Material
                                                   : ColorSource::Either;

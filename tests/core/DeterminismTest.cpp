@@ -1,7 +1,5 @@
 // The same bytes for any thread count, on a real mesh.
 
-#include <cstring>
-
 #include <gtest/gtest.h>
 
 #include "../support/TestMeshes.h"
@@ -9,13 +7,6 @@
 
 namespace facet::testing {
 namespace {
-
-bool sameBytes(const Framebuffer& a, const Framebuffer& b) {
-  return a.pixelCount() == b.pixelCount() &&
-         std::memcmp(a.color().data(), b.color().data(), a.color().size_bytes()) == 0 &&
-         std::memcmp(a.depth().data(), b.depth().data(), a.depth().size_bytes()) == 0 &&
-         std::memcmp(a.polygonId().data(), b.polygonId().data(), a.polygonId().size_bytes()) == 0;
-}
 
 class Determinism : public ::testing::TestWithParam<Visibility> {};
 

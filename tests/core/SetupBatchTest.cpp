@@ -2,7 +2,6 @@
 // against the exact per-triangle decisions, and whole renders byte for byte against the
 // set-up without batches.
 
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -143,13 +142,6 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
       EXPECT_GT(decided, triangles / 3) << "the batch should drop most of these";
     }
   }
-}
-
-bool sameBytes(const Framebuffer& a, const Framebuffer& b) {
-  return a.pixelCount() == b.pixelCount() &&
-         std::memcmp(a.color().data(), b.color().data(), a.color().size_bytes()) == 0 &&
-         std::memcmp(a.depth().data(), b.depth().data(), a.depth().size_bytes()) == 0 &&
-         std::memcmp(a.polygonId().data(), b.polygonId().data(), a.polygonId().size_bytes()) == 0;
 }
 
 struct SceneCase {

@@ -17,7 +17,7 @@
 namespace facet::testing {
 namespace {
 
-constexpr int kWidth = 160, kHeight = 120;
+constexpr int kFrameWidth = 160, kFrameHeight = 120;
 
 RenderOptions painterOptions(int threads = 2) {
   RenderOptions options;
@@ -68,8 +68,9 @@ void checkFan(glm::dvec2 center, double radius, int triangles, double rotation, 
   }
   for (int i = 0; i < triangles; ++i)
     mesh.addPolygon({0, 1 + i, 1 + (i + 1) % triangles});
-  const Rendered rendered = renderScene(oneMeshScene(mesh.view()), pixelCamera(kWidth, kHeight),
-                                        kWidth, kHeight, painterOptions());
+  const Rendered rendered =
+      renderScene(oneMeshScene(mesh.view()), pixelCamera(kFrameWidth, kFrameHeight), kFrameWidth,
+                  kFrameHeight, painterOptions());
   SCOPED_TRACE("fan center (" + std::to_string(center.x) + ", " + std::to_string(center.y) +
                ") radius " + std::to_string(radius));
   expectCoverageMatchesOutline(rendered, outline);
@@ -113,8 +114,9 @@ void checkGrid(glm::dvec2 origin, double cell, int cells, double rotation) {
     outline.push_back(toFixed(gridPoint(i, cells).x, gridPoint(i, cells).y));
   for (int j = cells; j > 0; --j)
     outline.push_back(toFixed(gridPoint(0, j).x, gridPoint(0, j).y));
-  const Rendered rendered = renderScene(oneMeshScene(mesh.view()), pixelCamera(kWidth, kHeight),
-                                        kWidth, kHeight, painterOptions());
+  const Rendered rendered =
+      renderScene(oneMeshScene(mesh.view()), pixelCamera(kFrameWidth, kFrameHeight), kFrameWidth,
+                  kFrameHeight, painterOptions());
   SCOPED_TRACE("grid rotation " + std::to_string(rotation));
   expectCoverageMatchesOutline(rendered, outline);
 }
@@ -153,7 +155,7 @@ TEST(Watertight, ClippedByTheNearPlane) {
   const Mesh floor = makeFloorGrid(40, extent);
   const Camera camera = nearClippedFloorCamera();
   const Rendered rendered =
-      renderScene(oneMeshScene(floor.view()), camera, kWidth, kHeight, painterOptions());
+      renderScene(oneMeshScene(floor.view()), camera, kFrameWidth, kFrameHeight, painterOptions());
   EXPECT_GT(rendered.stats.trianglesClipped, 0u);
   EXPECT_EQ(rendered.stats.fragmentsWritten, rendered.stats.pixelsCovered)
       << "some pixel was painted more than once";
@@ -164,9 +166,9 @@ TEST(Watertight, ClippedByTheNearPlane) {
   const glm::dvec3 forward = glm::normalize(camera.focalPoint - camera.position);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.viewUp));
   const glm::dvec3 up = glm::cross(right, forward);
-  const double tanHalf = std::tan(M_PI / 6.0), aspect = double(kWidth) / kHeight;
+  const double tanHalf = std::tan(M_PI / 6.0), aspect = double(kFrameWidth) / kFrameHeight;
   auto covers = [&](double wx, double wy) {
-    const double nx = 2.0 * wx / kWidth - 1.0, ny = 2.0 * wy / kHeight - 1.0;
+    const double nx = 2.0 * wx / kFrameWidth - 1.0, ny = 2.0 * wy / kFrameHeight - 1.0;
     const glm::dvec3 ray = forward + nx * tanHalf * aspect * right + ny * tanHalf * up;
     if (ray.z >= 0.0) return false;
     const double t = -camera.position.z / ray.z;  // depth along forward equals t
@@ -175,8 +177,8 @@ TEST(Watertight, ClippedByTheNearPlane) {
            std::abs(hit.y) <= extent;
   };
   int checked = 0, mismatches = 0;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
       const bool expected = covers(x + 0.5, y + 0.5);
       bool boundary = false;
       for (double dx : {0.0, 1.0}) {
@@ -193,7 +195,7 @@ TEST(Watertight, ClippedByTheNearPlane) {
     }
   }
   EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(checked, kWidth * kHeight / 2);
+  EXPECT_GT(checked, kFrameWidth * kFrameHeight / 2);
 }
 
 TEST(FillRule, SamplesOnASharedDiagonalBelongToExactlyOneTriangle) {

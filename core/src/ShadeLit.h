@@ -1,0 +1,124 @@
+#pragma once
+
+// Shade.cpp's routines under direct light: by [centers][specular] and color source, each for
+// the four typed meshes (float or double points, 32- or 64-bit ids), 48 instantiations.
+// Defined here and instantiated in four translation units, one per [centers][specular]
+// (ShadeLit*.cpp): in one file they were the core's longest compile, which a build's other
+// cores waited for.
+
+#include "FaceNormal.h"
+#include "MeshAccess.h"
+#include "Shade.h"
+#include "ShaderAccess.h"
+
+namespace facet::detail {
+namespace shading {
+
+// Where a polygon's surface color comes from: the material, the mesh's per-polygon
+// colors, or either, tested per polygon (the routine when Rule::OneColor is off).
+enum class ColorSource { Material, PerPolygon, Either };
+
+inline Color polygonColor(const FrameMesh& mesh, std::size_t polygon) {
+  const Rgba8 c = mesh.mesh().polygonColors[polygon];
+  return Color(c.r, c.g, c.b) / 255.0f;
+}
+
+template <ColorSource kSource>
+Color surfaceColor(const FrameMesh& mesh, std::size_t polygon) {
+  if constexpr (kSource == ColorSource::PerPolygon) {
+    return polygonColor(mesh, polygon);
+  } else if constexpr (kSource == ColorSource::Either) {
+    if (!mesh.mesh().polygonColors.empty()) return polygonColor(mesh, polygon);
+  }
+  return mesh.source->material.color;
+}
+
+// The flat-shaded color of one polygon under direct light, at its center.
+template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
+Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess::Routine shade,
+               PointsT points, PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+  SurfaceSample sample;
+  sample.color = surfaceColor<kColors>(mesh, polygon);
+  const std::size_t n = polygons.size(polygon);
+  const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
+  const glm::vec3 normal = mesh.faceNormals ? mesh.faceNormals[polygon] : faceNormalOf(n, corner);
+  if constexpr (kCenters) {
+    glm::dvec3 sum(0.0);
+    for (std::size_t k = 0; k < n; ++k)
+      sum += corner(k);
+    sample.position = sum / static_cast<double>(n);
+  }
+  if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
+  // A polygon with area on screen but none in 3D (pathological input only) faces the viewer.
+  sample.normal =
+      normal != glm::vec3(0.0f) ? glm::dvec3(normal) : context.transform.toViewer(corner(0));
+  if (seenFromBack && context.twoSidedLighting) sample.normal = -sample.normal;
+  return toRgba8(shade(context.shader, sample, mesh.material));
+}
+
+// Flattened: with these many instantiations, GCC's unit-growth limit would otherwise
+// leave the per-polygon helpers (normal, corners, toRgba8) as calls, ~25 % of the phase.
+// Not under AddressSanitizer: flattening 48 instrumented instantiations takes GCC 12 more
+// than half an hour, and a sanitizer build measures no speed.
+#if defined(__SANITIZE_ADDRESS__)
+#define FACET_FLATTEN
+#else
+#define FACET_FLATTEN [[gnu::flatten]]
+#endif
+template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
+FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const FrameMesh& mesh,
+                                        PointsT points, PolygonsT polygons, std::size_t begin,
+                                        std::size_t end) {
+  const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
+  std::size_t shaded = 0;
+  for (std::size_t polygon = begin; polygon < end; ++polygon) {
+    const std::size_t id = mesh.firstPolygon + polygon;
+    if (!context.shown[id]) continue;
+    ++shaded;
+    context.colors[id] = litColor<kCenters, kSpecular, kColors>(
+        context, mesh, shade, points, polygons, polygon, context.backFacing[id]);
+  }
+  return shaded;
+}
+
+template <bool kCenters, bool kSpecular, ColorSource kColors>
+std::size_t shadeLit(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
+                     std::size_t end) {
+  return withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
+    return shadeLitTyped<kCenters, kSpecular, kColors>(context, mesh, points, polygons, begin, end);
+  });
+}
+
+// The routines under direct light (or without Rule::AmbientOnly), by [centers][specular]
+// and color source.
+template <bool kCenters, bool kSpecular>
+ShadeRoutineChoice litRoutine(ColorSource colors) {
+  static constexpr const char* kNames[2][2][3] = {
+      {{"lit by directions, diffuse, one color", "lit by directions, diffuse, per-polygon colors",
+        "lit by directions, diffuse, colors tested per polygon"},
+       {"lit by directions, specular, one color", "lit by directions, specular, per-polygon colors",
+        "lit by directions, specular, colors tested per polygon"}},
+      {{"lit at centers, diffuse, one color", "lit at centers, diffuse, per-polygon colors",
+        "lit at centers, diffuse, colors tested per polygon"},
+       {"lit at centers, specular, one color", "lit at centers, specular, per-polygon colors",
+        "lit at centers, specular, colors tested per polygon"}}};
+  const char* name = kNames[kCenters][kSpecular][static_cast<int>(colors)];
+  switch (colors) {
+    case ColorSource::Material:
+      return {shadeLit<kCenters, kSpecular, ColorSource::Material>, name, false, true};
+    case ColorSource::PerPolygon:
+      return {shadeLit<kCenters, kSpecular, ColorSource::PerPolygon>, name};
+    case ColorSource::Either:
+      break;
+  }
+  return {shadeLit<kCenters, kSpecular, ColorSource::Either>, name};
+}
+
+}  // namespace shading
+
+extern template ShadeRoutineChoice shading::litRoutine<false, false>(shading::ColorSource);
+extern template ShadeRoutineChoice shading::litRoutine<false, true>(shading::ColorSource);
+extern template ShadeRoutineChoice shading::litRoutine<true, false>(shading::ColorSource);
+extern template ShadeRoutineChoice shading::litRoutine<true, true>(shading::ColorSource);
+
+}  // namespace facet::detail
