@@ -26,8 +26,11 @@ CMAKE_FLAGS ?=
 # runtimes for the sanitized builds and the fuzz targets; Embree for the mesh reference
 # (reference/); scikit-image and Pillow to cross-check the image metrics; NumPy for the
 # stability catalogue (tests/stability/); matplotlib for facet-render --report's plot; Google
-# Highway for the core's SIMD set-up (runtime dispatch).
-PACKAGES := cmake ninja-build g++ libglm-dev libhwy-dev libgtest-dev libbenchmark-dev libpng-dev \
+# Highway for the core's SIMD set-up (runtime dispatch); ccache, because the ParaView plugin
+# compiles the VTK-free core and reference with the main build's exact commands (the CMake
+# files use ccache when they find it; a fresh machine's empty cache still saves that second
+# compile of make test).
+PACKAGES := cmake ninja-build ccache g++ libglm-dev libhwy-dev libgtest-dev libbenchmark-dev libpng-dev \
             libvtk9-dev python3-vtk9 python3-dev xvfb xauth clang libclang-rt-14-dev \
             libembree-dev python3-skimage python3-pil python3-numpy python3-matplotlib
 # The ParaView plugin (a separate configure against ParaView's own VTK 9.2). paraview-dev
