@@ -128,7 +128,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     }
   }
   // Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps each
-  // polygon's normal, extent and normal spread per mesh version, 20 bytes per polygon.
+  // polygon's normal, extent, normal spread and center per mesh version, 48 bytes per polygon.
   const bool shading = reshades || settings.ComputeError;
   if (!shading)
   {

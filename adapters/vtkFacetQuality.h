@@ -9,9 +9,9 @@
  * need the ShadingMesh of every scene mesh (triangles, vertex normals: the input's point normals
  * when it has them, else vtkPolyDataNormals' meaning), kept while the meshes and the normals are
  * unchanged. Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps,
- * per mesh version, each polygon's normal, extent and normal spread (20 bytes), and per render
- * bounds only the polygons that won a pixel (a new background alone keeps the last estimate).
- * AddOutputs puts the estimate in the field data (`FacetErrorEstimate`: PredictedRMSE,
+ * per mesh version, each polygon's normal, extent, normal spread and center (48 bytes), and per
+ * render bounds only the polygons that won a pixel (a new background alone keeps the last
+ * estimate). AddOutputs puts the estimate in the field data (`FacetErrorEstimate`: PredictedRMSE,
  * PredictedMax, 8-bit units, and Seconds, what it took) and, on request, as the point-data
  * array `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
  * reference and adds `FacetError` (RMSE, Max, PSNR, SSIM, SilhouetteFraction,

@@ -42,6 +42,7 @@
 #include <cmath>
 
 #include "Overloaded.h"
+#include "Radiance.h"
 #include "Vector.h"
 #include "facet/Error.h"
 
@@ -82,11 +83,6 @@ CosineRange cosineRange(const Angle& theta, const Angle& spread) {
   return {(theta + spread).cos, std::min(hi, 1.0)};
 }
 
-glm::dvec3 radianceOf(const Color& color, double intensity) {
-  const double i = std::max(intensity, 0.0);
-  return glm::min(glm::dvec3(color) * i, glm::dvec3(kMaxRadiance));
-}
-
 double diffuseOf(const PreparedMaterial& m, double cosine) {
   const double lit = std::clamp(cosine, 0.0, 1.0);
   if (m.material.diffuseModel == DiffuseModel::Lambert) return lit;
@@ -123,10 +119,10 @@ LightTerms lightTerms(const Light& light, const PolygonShape& polygon, const glm
       detail::Overloaded{
           [&](const DirectionalLight& l) {
             toLight = -glm::normalize(l.direction);
-            radiance = radianceOf(l.color, l.intensity);
+            radiance = detail::boundRadianceOf(l.color, l.intensity);
           },
           [&](const auto& l) {  // point and spot lights
-            radiance = radianceOf(l.color, l.intensity);
+            radiance = detail::boundRadianceOf(l.color, l.intensity);
             const glm::dvec3 offset = l.position - polygon.center;
             const double d = glm::length(offset);
             if (d > 0.0 && std::isfinite(d)) toLight = offset / d;
@@ -184,7 +180,7 @@ FlatErrorBound::FlatErrorBound(const LightSet& lights, const Camera& camera, boo
     : lights_(lights), twoSided_(twoSidedLighting) {
   validate(lights);
   validate(camera);
-  ambient_ = radianceOf(lights.ambient.color, lights.ambient.intensity);
+  ambient_ = detail::boundRadianceOf(lights.ambient.color, lights.ambient.intensity);
   eye_ = camera.position;
   viewDirection_ = glm::normalize(camera.focalPoint - camera.position);
   parallel_ = camera.parallelProjection;

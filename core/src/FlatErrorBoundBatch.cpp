@@ -184,6 +184,7 @@ HWY_AFTER_NAMESPACE();
 #include <glm/geometric.hpp>
 
 #include "Overloaded.h"
+#include "Radiance.h"
 
 namespace facet::detail {
 
@@ -194,11 +195,6 @@ void boundBatch(const BatchLighting& lighting, BoundBatch& batch, std::size_t co
 }
 
 namespace {
-glm::dvec3 radianceOf(const Color& color, double intensity) {  // as FlatErrorBound.cpp's
-  const double i = std::max(intensity, 0.0);
-  return glm::min(glm::dvec3(color) * i, glm::dvec3(kMaxRadiance));
-}
-
 void setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
   using Falloff = BatchLighting::Source::Falloff;
   std::visit(Overloaded{
@@ -237,11 +233,11 @@ std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera&
     if (const auto* directional = std::get_if<DirectionalLight>(&light)) {
       source.directional = true;
       source.position = -glm::normalize(directional->direction);
-      source.radiance = radianceOf(directional->color, directional->intensity);
+      source.radiance = boundRadianceOf(directional->color, directional->intensity);
     } else {
       const PointLight& point = std::get<PointLight>(light);
       source.position = point.position;
-      source.radiance = radianceOf(point.color, point.intensity);
+      source.radiance = boundRadianceOf(point.color, point.intensity);
       setFalloff(source, point.attenuation);
     }
     lighting.lights.push_back(source);

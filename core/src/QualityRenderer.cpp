@@ -777,7 +777,6 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
                 " entries for " + std::to_string(scene.meshes.size()) + " scene meshes");
   }
   QualityStats stats;
-  estimate_.clear();
   const bool reshades = reshadesAny(settings);
   const int g = gridSide(settings.samplesPerPixel);
   const int estimatedGrid = std::exchange(estimatedGrid_, 0);  // until this render's is made

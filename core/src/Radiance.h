@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 #include "facet/Color.h"
@@ -25,6 +26,13 @@ inline glm::dvec3 capped(const Color& c) {
 inline glm::dvec3 radianceOf(const Color& color, double intensity) {
   const double i = std::max(intensity, 0.0);
   return {capped(color.r * i), capped(color.g * i), capped(color.b * i)};
+}
+
+// The error bound's radiance (FlatErrorBound.cpp and its SIMD batches, which must agree to the
+// bit): color × max(0, intensity), each channel at most kMaxRadiance.
+inline glm::dvec3 boundRadianceOf(const Color& color, double intensity) {
+  const double i = std::max(intensity, 0.0);
+  return glm::min(glm::dvec3(color) * i, glm::dvec3(kMaxRadiance));
 }
 
 }  // namespace facet::detail

@@ -127,7 +127,7 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Pixe
   const M live = hn::AndNot(hn::Or(culled, zeroArea), tested);
   const M noSample = hn::And(live, hn::Or(empty, hn::AndNot(covers, sampled)));
   verdicts.culled |= laneBits(d, culled) << lane;
-  verdicts.zeroArea |= laneBits(d, hn::AndNot(culled, zeroArea)) << lane;
+  verdicts.zeroArea |= laneBits(d, zeroArea) << lane;  // never culled: area == 0, not < 0
   verdicts.coversNoSample |= laneBits(d, noSample) << lane;
 }
 

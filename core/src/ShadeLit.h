@@ -114,6 +114,8 @@ ShadeRoutineChoice litRoutine(ColorSource colors) {
   return {shadeLit<kCenters, kSpecular, ColorSource::Either>, name};
 }
 
+#undef FACET_FLATTEN
+
 }  // namespace shading
 
 extern template ShadeRoutineChoice shading::litRoutine<false, false>(shading::ColorSource);

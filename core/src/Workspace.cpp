@@ -70,8 +70,8 @@ void Renderer::Workspace::prepareMeshes(const Scene& scene) {
   std::size_t firstVertex = 0, firstPolygon = 0;
   for (const SceneMesh& mesh : scene.meshes) {
     meshes.push_back({&mesh, PreparedMaterial(mesh.material), firstVertex, firstPolygon});
-    if (cache[meshes.size() - 1].measured)
-      meshes.back().faceNormals = cache[meshes.size() - 1].faceNormals.data();
+    const detail::MeshFacts& facts = cache[meshes.size() - 1];
+    if (facts.measured) meshes.back().faceNormals = facts.faceNormals.data();
     firstVertex += mesh.mesh.points.count;
     firstPolygon += mesh.mesh.polygons.count;
   }

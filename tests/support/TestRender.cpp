@@ -19,13 +19,6 @@ Rendered renderScene(const Scene& scene, const Camera& camera, int width, int he
   return result;
 }
 
-bool sameBytes(const Framebuffer& a, const Framebuffer& b) {
-  return a.pixelCount() == b.pixelCount() &&
-         std::memcmp(a.color().data(), b.color().data(), a.color().size_bytes()) == 0 &&
-         std::memcmp(a.depth().data(), b.depth().data(), a.depth().size_bytes()) == 0 &&
-         std::memcmp(a.polygonId().data(), b.polygonId().data(), a.polygonId().size_bytes()) == 0;
-}
-
 std::size_t differingPixels(const Framebuffer& a, const Framebuffer& b) {
   if (a.pixelCount() != b.pixelCount()) return std::max(a.pixelCount(), b.pixelCount());
   std::size_t count = 0;

@@ -25,8 +25,6 @@ struct Rendered {
 Rendered renderScene(const Scene& scene, const Camera& camera, int width, int height,
                      const RenderOptions& options = {});
 
-// Whether two images hold the same bytes: color, depth and polygon id.
-bool sameBytes(const Framebuffer& a, const Framebuffer& b);
 // How many pixels differ in color, depth or polygon id (0: the same bytes).
 std::size_t differingPixels(const Framebuffer& a, const Framebuffer& b);
 // The largest difference of a color channel between two images of one size, in 8-bit steps.
