@@ -229,8 +229,7 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
   vtkImageData* output)
 {
   const int conversions = this->Actor.GetNumberOfConversions();
-  settings.RenderWith =
-    this->Quality.Prepare(scene, input, QualityOf(filter), conversions > 0, this->Messages);
+  settings.RenderWith = this->Quality.Prepare(QualityOf(filter), this->Messages);
   if (!this->Image.Render(scene,
         camera,
         settings,

@@ -556,8 +556,7 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
   quality.MaximumError = this->MaximumError;
   quality.EstimateError = false;
   quality.MeshInterpolation = internals.MeshInterpolation;
-  settings.RenderWith = internals.Quality.Prepare(
-    scene, nullptr, quality, internals.NumberOfConversions() > 0, messages);
+  settings.RenderWith = internals.Quality.Prepare(quality, messages);
 
   // Render straight into the output's arrays; polygon ids become actor and cell ids.
   internals.Image.Render(

@@ -21,7 +21,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <ostream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace facet_test;
@@ -462,3 +464,135 @@ TEST_F(Incremental, LightCullingToleranceStaysWithinItsBound)
   }
   EXPECT_LE(largest, bound8) << "bound " << bound;
 }
+
+//------------------------------------------------------------------------------
+// The quality modes keep per mesh what they derive from it between renders (vertex normals,
+// each polygon's shape and the range of its corners' colors, which the estimate and the
+// error budget bound by). A change of an attribute alone — the scalars' values, the lookup
+// table's range, the point normals — must reach them: the image, the estimate and the
+// measured error are a fresh filter's.
+namespace {
+struct QualityMode
+{
+  const char* Name;
+  int Interpolation;
+  double MaximumError;
+};
+
+struct AttributeChange
+{
+  const char* Name;
+  void (*Input)(vtkPolyData* input);            // made to the shared input once
+  void (*Filter)(vtkFacetRenderFilter* filter); // made to each filter
+};
+
+void NegateScalars(vtkPolyData* input)
+{
+  vtkDataArray* scalars = input->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    scalars->SetComponent(i, 0, -0.7 * scalars->GetComponent(i, 0) + 0.1);
+  }
+  scalars->Modified();
+}
+
+void TiltNormals(vtkPolyData* input)
+{
+  vtkDataArray* normals = input->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    double n[3];
+    normals->GetTuple(i, n);
+    n[0] += 0.3;
+    vtkMath::Normalize(n);
+    normals->SetTuple(i, n);
+  }
+  normals->Modified();
+}
+
+const QualityMode QualityModes[] = { { "FlatWithinTwo", VTK_FLAT, 2.0 },
+  { "Gouraud", VTK_GOURAUD, 0.0 },
+  { "Phong", VTK_PHONG, 0.0 } };
+const AttributeChange AttributeChanges[] = {
+  { "Scalars", NegateScalars, [](vtkFacetRenderFilter*) {} },
+  { "TableRange",
+    [](vtkPolyData*) {},
+    [](vtkFacetRenderFilter* filter) { filter->SetScalarRange(-0.2, 0.9); } },
+  { "PointNormals", TiltNormals, [](vtkFacetRenderFilter*) {} },
+};
+
+void PrintTo(const QualityMode& mode, std::ostream* out)
+{
+  *out << mode.Name;
+}
+
+void PrintTo(const AttributeChange& change, std::ostream* out)
+{
+  *out << change.Name;
+}
+
+class IncrementalQuality
+  : public Incremental
+  , public ::testing::WithParamInterface<std::tuple<QualityMode, AttributeChange>>
+{
+};
+
+std::vector<double> Estimates(vtkImageData* image)
+{
+  std::vector<double> values;
+  for (const char* name : { "PredictedRMSE", "PredictedMax" })
+  {
+    values.push_back(FieldValue(image, "FacetErrorEstimate", name));
+  }
+  if (image->GetFieldData()->GetArray("FacetError"))
+  {
+    for (const char* name : { "RMSE", "Max", "SSIM", "SilhouetteFraction" })
+    {
+      values.push_back(FieldValue(image, "FacetError", name));
+    }
+  }
+  return values;
+}
+}
+
+TEST_P(IncrementalQuality, AnAttributeChangeReachesWhatTheModesKeep)
+{
+  const auto& [mode, change] = this->GetParam();
+  const auto configure = [&, change = change](Rig& rig) {
+    rig.Filter->SetMaximumError(mode.MaximumError);
+    rig.Filter->EstimateErrorOn();
+    rig.Filter->ErrorEstimateArrayOn();
+    // The measured error reads the kept vertex normals (the mesh reference shades by them);
+    // once is enough (it renders a 128-sample reference).
+    rig.Filter->SetComputeError(change.Input == TiltNormals && mode.Interpolation == VTK_PHONG);
+  };
+  Settings settings;
+  settings.Interpolation = mode.Interpolation;
+  Rig kept(this->Input);
+  configure(kept);
+  vtkNew<vtkImageData> before;
+  before->DeepCopy(kept.Render(settings));
+  change.Input(this->Input);
+  change.Filter(kept.Filter);
+  vtkImageData* again = kept.Render(settings);
+  EXPECT_EQ(FieldValue(again, "FacetMeshConverted", "Converted"), 0.0);
+  EXPECT_TRUE(Bytes(again, "ErrorEstimate") != Bytes(before, "ErrorEstimate"))
+    << "the change shows in the estimate";
+
+  Rig fresh(this->Input);
+  configure(fresh);
+  change.Filter(fresh.Filter);
+  vtkImageData* expected = fresh.Render(settings);
+  ExpectSameImage(again, expected);
+  const std::string estimate = Bytes(again, "ErrorEstimate");
+  EXPECT_TRUE(estimate == Bytes(expected, "ErrorEstimate"))
+    << "ErrorEstimate differs: " << FirstDifference(estimate, Bytes(expected, "ErrorEstimate"), 4);
+  EXPECT_EQ(Estimates(again), Estimates(expected));
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes,
+  IncrementalQuality,
+  ::testing::Combine(::testing::ValuesIn(QualityModes), ::testing::ValuesIn(AttributeChanges)),
+  [](const auto& info) {
+    return std::string(std::get<0>(info.param).Name) + "_" + std::get<1>(info.param).Name;
+  });
