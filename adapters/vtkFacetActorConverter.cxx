@@ -63,12 +63,11 @@ bool vtkFacetActorConverter::Update(const Actor& actor,
     messages.AddWarning("skipped data of type " +
       vtkFacetMessages::List({ skipped.begin(), skipped.end() }) + ": Facet renders vtkPolyData");
   }
-  const std::string unrendered =
-    vtkFacetPropertyConverter::Unrendered(actor.Property, actor.RendersInterpolation);
+  const std::string unrendered = vtkFacetPropertyConverter::Unrendered(actor.Property);
   if (!unrendered.empty())
   {
     messages.AddWarningOnce("the property asks for " + unrendered +
-      ", which Facet does not render yet: it renders opaque, flat-shaded surfaces (said once)");
+      ", which Facet does not render yet: it renders opaque surfaces (said once)");
   }
   while (this->Parts.size() < data.size())
   {

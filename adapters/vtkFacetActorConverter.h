@@ -51,9 +51,6 @@ public:
     /// What lights the scene (vtkFacetSceneConverter::LightingOf): without a light VTK
     /// shows every surface unlit, as with the property's Lighting off.
     vtkFacetSceneConverter::Lighting Lighting = vtkFacetSceneConverter::Lighting::Lights;
-    /// The front end renders the property's Gouraud and Phong interpolation (not named in
-    /// the warning about what is not rendered).
-    bool RendersInterpolation = false;
   };
 
   /**

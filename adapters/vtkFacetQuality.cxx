@@ -63,6 +63,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const Settings& setting
   }
   this->Current = settings;
   this->Stats = {};
+  this->Built = 0;
   const auto smooth = [](int interpolation) {
     return interpolation == VTK_GOURAUD || interpolation == VTK_PHONG;
   };
@@ -146,6 +147,7 @@ void vtkFacetQuality::UpdateShading(const facet::Scene& scene)
       this->Keys[m] = {}; // a ShadingMesh that throws leaves nothing that claims to be its
       this->Shading[m] = facet::ShadingMesh(mesh);
       this->Keys[m] = key;
+      ++this->Built;
     }
   }
 }
@@ -160,6 +162,13 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   vtkImageData* output,
   vtkFacetMessages& messages)
 {
+  if (!this->Shading.empty())
+  {
+    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
+      "FacetShadingMeshes",
+      { { "Built", static_cast<double>(this->Built) },
+        { "Kept", static_cast<double>(this->Shading.size() - this->Built) } });
+  }
   if (this->Current.EstimateError || this->Current.ErrorEstimateArray)
   {
     vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),

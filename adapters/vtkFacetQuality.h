@@ -13,7 +13,9 @@
  * polygon's normal, extent, normal spread and center (48 bytes), and per render bounds only the
  * polygons that won a pixel (a new background alone keeps the last estimate). AddOutputs puts the
  * estimate in the field data (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and
- * Seconds, what it took) and, on request, as the point-data array `ErrorEstimate`. With
+ * Seconds, what it took) and, on request, as the point-data array `ErrorEstimate`; with
+ * ShadingMeshes, how many the render built and how many it kept (`FacetShadingMeshes`: Built,
+ * Kept). With
  * ComputeError it renders the converged Phong mesh reference and adds `FacetError` (RMSE, Max,
  * PSNR, SSIM, SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the per-pixel `Error` array
  * (ImageMetrics.h).
@@ -93,6 +95,7 @@ private:
   const facet::Renderer* QualityOf = nullptr;      // the renderer it renders through
   std::vector<facet::ShadingMesh> Shading;         // only for shading beyond flat and ComputeError
   std::vector<Key> Keys;                           // what each of Shading was made of
+  std::size_t Built = 0;                           // by the last render
   facet::QualityStats Stats;
   double RenderSeconds = 0.0;
 };

@@ -138,7 +138,6 @@ vtkFacetActorConverter::Actor vtkFacetRenderFilter::vtkInternals::ActorOf(
   actor.Coloring = this->ColoringOf(filter);
   actor.Property = filter->GetProperty();
   actor.Lighting = vtkFacetSceneConverter::LightingOf(filter->Lights, LightOptionsOf(filter));
-  actor.RendersInterpolation = true;
   // Without a light the filter's surfaces are lit by nothing but the ambient light, as they
   // always have been, not shown unlit.
   if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)

@@ -328,7 +328,6 @@ void vtkFacetRendererToImageFilter::vtkInternals::AddActors(vtkRenderer* rendere
       WarnAboutUnrendered(prop, this->Messages);
       leaf.PropIndex = propIndex;
       leaf.FirstPolygon = polygons;
-      actor.RendersInterpolation = true;
       if (leaf.Converter.Update(actor, detectClosedSurfaces, this->Messages))
       {
         const std::size_t first = scene.meshes.size();

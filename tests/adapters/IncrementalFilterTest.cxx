@@ -24,6 +24,7 @@
 #include <ostream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 using namespace facet_test;
@@ -576,6 +577,7 @@ TEST_P(IncrementalQuality, AnAttributeChangeReachesWhatTheModesKeep)
   change.Filter(kept.Filter);
   vtkImageData* again = kept.Render(settings);
   EXPECT_EQ(FieldValue(again, "FacetMeshConverted", "Converted"), 0.0);
+  EXPECT_EQ(FieldValue(again, "FacetShadingMeshes", "Built"), 1.0) << "the sphere's one mesh";
   EXPECT_TRUE(Bytes(again, "ErrorEstimate") != Bytes(before, "ErrorEstimate"))
     << "the change shows in the estimate";
 
@@ -596,3 +598,34 @@ INSTANTIATE_TEST_SUITE_P(Modes,
   [](const auto& info) {
     return std::string(std::get<0>(info.param).Name) + "_" + std::get<1>(info.param).Name;
   });
+
+// What the quality modes keep is built again only for what changed: a new camera, light or
+// background builds nothing, nor do new scalars where they give no point colors.
+TEST_F(Incremental, TheShadingMeshIsBuiltOnlyWhenItsMeshChanged)
+{
+  Settings settings;
+  settings.Interpolation = VTK_PHONG;
+  Rig kept(this->Input);
+  kept.Filter->EstimateErrorOn();
+  const auto built = [](vtkImageData* image) {
+    return std::pair{ FieldValue(image, "FacetShadingMeshes", "Built"),
+      FieldValue(image, "FacetShadingMeshes", "Kept") };
+  };
+  EXPECT_EQ(built(kept.Render(settings)), std::pair(1.0, 0.0));
+  Settings changed = settings;
+  changed.Azimuth = 50.0;
+  changed.LightIntensity = 0.6;
+  changed.Background[0] = 0.7;
+  EXPECT_EQ(built(kept.Render(changed)), std::pair(0.0, 1.0)) << "camera, light, background";
+  changed.ColorByScalars = false;
+  kept.Render(changed); // the point colors gone: built again, without them
+  NegateScalars(this->Input);
+  vtkImageData* again = kept.Render(changed);
+  EXPECT_EQ(built(again), std::pair(0.0, 1.0)) << "scalars that color nothing";
+  Rig fresh(this->Input);
+  fresh.Filter->EstimateErrorOn();
+  vtkImageData* expected = fresh.Render(changed);
+  ExpectSameImage(again, expected);
+  EXPECT_EQ(FieldValue(again, "FacetErrorEstimate", "PredictedRMSE"),
+    FieldValue(expected, "FacetErrorEstimate", "PredictedRMSE"));
+}
