@@ -10,7 +10,6 @@
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
 #include "vtkLookupTable.h"
-#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
@@ -288,17 +287,7 @@ TEST_F(Incremental, TheEstimateFollowsNewPointNormals)
   Rig kept(this->Input);
   kept.Filter->EstimateErrorOn();
   const double before = predicted(kept.Render(Settings()));
-  vtkDataArray* normals = this->Input->GetPointData()->GetNormals();
-  ASSERT_NE(normals, nullptr);
-  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
-  {
-    double n[3];
-    normals->GetTuple(i, n);
-    n[0] += 0.3;
-    vtkMath::Normalize(n);
-    normals->SetTuple(i, n);
-  }
-  normals->Modified();
+  TiltPointNormals(this->Input, 0.3);
   vtkImageData* again = kept.Render(Settings());
   EXPECT_EQ(FieldValue(again, "FacetMeshConverted", "Converted"), 0.0);
   const double after = predicted(again);
@@ -499,16 +488,7 @@ void NegateScalars(vtkPolyData* input)
 
 void TiltNormals(vtkPolyData* input)
 {
-  vtkDataArray* normals = input->GetPointData()->GetNormals();
-  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
-  {
-    double n[3];
-    normals->GetTuple(i, n);
-    n[0] += 0.3;
-    vtkMath::Normalize(n);
-    normals->SetTuple(i, n);
-  }
-  normals->Modified();
+  TiltPointNormals(input, 0.3);
 }
 
 const QualityMode QualityModes[] = { { "FlatWithinTwo", VTK_FLAT, 2.0 },

@@ -19,7 +19,6 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkLookupTable.h"
-#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkPointData.h"
@@ -820,16 +819,7 @@ TEST(Quality, AnAttributeChangeAloneReachesWhatTheModesKeep)
       [](AttributeScene& scene) {
         for (vtkPolyData* data : scene.Data)
         {
-          vtkDataArray* normals = data->GetPointData()->GetNormals();
-          for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
-          {
-            double n[3];
-            normals->GetTuple(i, n);
-            n[0] += 0.4;
-            vtkMath::Normalize(n);
-            normals->SetTuple(i, n);
-          }
-          normals->Modified();
+          TiltPointNormals(data, 0.4);
         }
       } },
   };
