@@ -15,10 +15,9 @@
  * estimate in the field data (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and
  * Seconds, what it took) and, on request, as the point-data array `ErrorEstimate`; with
  * ShadingMeshes, how many the render built and how many it kept (`FacetShadingMeshes`: Built,
- * Kept). With
- * ComputeError it renders the converged Phong mesh reference and adds `FacetError` (RMSE, Max,
- * PSNR, SSIM, SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the per-pixel `Error` array
- * (ImageMetrics.h).
+ * Kept). With ComputeError it renders the converged Phong mesh reference and adds `FacetError`
+ * (RMSE, Max, PSNR, SSIM, SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the per-pixel
+ * `Error` array (ImageMetrics.h).
  */
 
 #ifndef vtkFacetQuality_h
