@@ -538,8 +538,10 @@ std::vector<double> Estimates(vtkImageData* image)
 
 TEST_P(IncrementalQuality, AnAttributeChangeReachesWhatTheModesKeep)
 {
-  const auto& [mode, change] = this->GetParam();
-  const auto configure = [&, change = change](Rig& rig) {
+  // Named, not bound: clang 14 does not capture structured bindings in lambdas (C++20 P1091).
+  const QualityMode& mode = std::get<0>(this->GetParam());
+  const AttributeChange& change = std::get<1>(this->GetParam());
+  const auto configure = [&](Rig& rig) {
     rig.Filter->SetMaximumError(mode.MaximumError);
     rig.Filter->EstimateErrorOn();
     rig.Filter->ErrorEstimateArrayOn();
