@@ -63,12 +63,11 @@ bool vtkFacetActorConverter::Update(const Actor& actor,
     messages.AddWarning("skipped data of type " +
       vtkFacetMessages::List({ skipped.begin(), skipped.end() }) + ": Facet renders vtkPolyData");
   }
-  const std::string unrendered =
-    vtkFacetPropertyConverter::Unrendered(actor.Property, actor.RendersInterpolation);
+  const std::string unrendered = vtkFacetPropertyConverter::Unrendered(actor.Property);
   if (!unrendered.empty())
   {
     messages.AddWarningOnce("the property asks for " + unrendered +
-      ", which Facet does not render yet: it renders opaque, flat-shaded surfaces (said once)");
+      ", which Facet does not render yet: it renders opaque surfaces (said once)");
   }
   while (this->Parts.size() < data.size())
   {
@@ -104,13 +103,14 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
   part.Colors.Update(data, part.Geometry, actor.Coloring, messages);
   const facet::PointArray world = part.Transform.Update(
     part.Geometry.Polygons().points, part.Geometry.ConvertedLastUpdate(), actor.Matrix);
-  const facet::PointArray normals = part.WorldNormals(data, actor.Matrix);
+  const vtkMTimeType version = part.VersionOf(part.Geometry.Polygons().version, data);
+  const facet::PointArray normals = part.WorldNormals(data, actor.Matrix, version);
   const facet::Material material =
     vtkFacetPropertyConverter::Convert(actor.Property, part.Colors.HasColors(), actor.Lighting);
   const auto place =
     [&](facet::SceneMesh& placed, facet::MeshView mesh, std::span<const facet::Rgba8> colors) {
       mesh.points = world;
-      mesh.version = part.Transform.Version(mesh.version);
+      mesh.version = part.VersionOf(mesh.version, data);
       mesh.polygonColors = colors;
       mesh.colorVersion = part.Colors.GetVersion();
       mesh.pointColors = part.Colors.PointColors();
@@ -125,8 +125,24 @@ bool vtkFacetActorConverter::UpdatePart(Part& part,
 }
 
 //------------------------------------------------------------------------------
+vtkMTimeType vtkFacetActorConverter::Part::VersionOf(vtkMTimeType geometry, vtkPolyData* data)
+{
+  vtkDataArray* normals = data->GetPointData()->GetNormals();
+  const vtkMTimeType time = normals ? normals->GetMTime() : 0;
+  if (normals != this->NormalsSource || time != this->NormalsSourceTime)
+  {
+    this->NormalsSource = normals;
+    this->NormalsSourceTime = time;
+    this->NormalsChanged.Modified();
+  }
+  // VTK's clock only moves forward: a stamp taken now is later than any version before.
+  return std::max(this->Transform.Version(geometry), this->NormalsChanged.GetMTime());
+}
+
+//------------------------------------------------------------------------------
 facet::PointArray vtkFacetActorConverter::Part::WorldNormals(vtkPolyData* data,
-  vtkMatrix4x4* matrix)
+  vtkMatrix4x4* matrix,
+  vtkMTimeType version)
 {
   vtkDataArray* normals = data->GetPointData()->GetNormals();
   if (!normals || normals->GetNumberOfComponents() != 3 ||
@@ -150,8 +166,6 @@ facet::PointArray vtkFacetActorConverter::Part::WorldNormals(vtkPolyData* data,
   // Normals transform by the inverse transpose of the matrix's linear part; the core
   // normalizes them (VertexNormals.h: fromPointNormals). Kept while neither the normals nor
   // the world points change.
-  const vtkMTimeType version =
-    std::max(normals->GetMTime(), this->Transform.Version(this->Geometry.Polygons().version));
   if (version == this->NormalsVersion &&
     this->Normals.size() == 3 * static_cast<std::size_t>(normals->GetNumberOfTuples()))
   {

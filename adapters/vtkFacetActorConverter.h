@@ -24,6 +24,7 @@
 #include "vtkFacetPolyDataConverter.h"
 #include "vtkFacetScalarColors.h"
 #include "vtkFacetSceneConverter.h"
+#include "vtkTimeStamp.h"
 
 #include "facet/Scene.h"
 
@@ -31,6 +32,7 @@
 #include <memory>
 #include <vector>
 
+class vtkDataArray;
 class vtkDataObject;
 class vtkFacetMessages;
 class vtkMatrix4x4;
@@ -49,9 +51,6 @@ public:
     /// What lights the scene (vtkFacetSceneConverter::LightingOf): without a light VTK
     /// shows every surface unlit, as with the property's Lighting off.
     vtkFacetSceneConverter::Lighting Lighting = vtkFacetSceneConverter::Lighting::Lights;
-    /// The front end renders the property's Gouraud and Phong interpolation (not named in
-    /// the warning about what is not rendered).
-    bool RendersInterpolation = false;
   };
 
   /**
@@ -96,12 +95,22 @@ private:
     facet::SceneMesh Polys;  // world points, colors and material, ready to render
     facet::SceneMesh Strips; // the strip triangles, likewise
     std::int64_t FirstPolygon = 0;
-    std::vector<double> Normals; // world point normals, for a matrix other than the identity
-    vtkMTimeType NormalsVersion = 0;
+    std::vector<double> Normals;     // world point normals, for a matrix other than the identity
+    vtkMTimeType NormalsVersion = 0; // the version Normals were made for
+    // The data's point normals as last seen (identity only, and MTime), and when they last
+    // changed: an attribute, so no new conversion, yet the meshes' vertex normals.
+    vtkDataArray* NormalsSource = nullptr;
+    vtkMTimeType NormalsSourceTime = 0;
+    vtkTimeStamp NormalsChanged;
 
+    // The MeshView::version of the part's meshes for geometry of version `geometry`: the
+    // world points' (vtkFacetActorTransform::Version), or later when the point normals
+    // changed since (what is kept per version then follows them: the quality modes' vertex
+    // normals, the estimate's normal spreads, Normals here).
+    vtkMTimeType VersionOf(vtkMTimeType geometry, vtkPolyData* data);
     // The data's point normals (3 components, one per point) in world coordinates, for the
-    // shading modes (MeshView::pointNormals); none without them.
-    facet::PointArray WorldNormals(vtkPolyData* data, vtkMatrix4x4* matrix);
+    // shading modes (MeshView::pointNormals), kept while `version` is; none without them.
+    facet::PointArray WorldNormals(vtkPolyData* data, vtkMatrix4x4* matrix, vtkMTimeType version);
   };
   bool UpdatePart(Part& part,
     vtkPolyData* data,

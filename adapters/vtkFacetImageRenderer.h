@@ -36,6 +36,8 @@
 #define vtkFacetImageRenderer_h
 
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h" // the members below: complete for the implicit destructor
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -53,10 +55,8 @@
 class vtkAlgorithm;
 class vtkFacetMessages;
 class vtkFloatArray;
-class vtkIdTypeArray;
 class vtkImageData;
 class vtkInformation;
-class vtkIntArray;
 class vtkObject;
 class vtkUnsignedCharArray;
 

@@ -75,14 +75,15 @@ bool vtkFacetPolyDataConverter::Update(vtkPolyData* input,
   bool detectClosedSurfaces,
   vtkFacetMessages& messages)
 {
+  const bool sameInput = input == this->Input && input->GetMTime() == this->InputTime;
   this->Converted = false;
-  this->InputChanged = !(input == this->Input && input->GetMTime() == this->InputTime);
   if (!(input == this->Input && GeometryTimeOf(input) == this->GeometryTime &&
         detectClosedSurfaces == this->DetectedClosedSurfaces) &&
     !this->Convert(input, detectClosedSurfaces, messages))
   {
     return false;
   }
+  this->InputChanged = this->Converted || !sameInput;
   this->InputTime = input->GetMTime();
   if (this->NumberOfVerts + this->NumberOfLines > 0)
   {
@@ -150,7 +151,7 @@ bool vtkFacetPolyDataConverter::Convert(vtkPolyData* input,
   this->Input = input;
   this->GeometryTime = GeometryTimeOf(input);
   this->DetectedClosedSurfaces = detectClosedSurfaces;
-  this->Converted = this->InputChanged = true;
+  this->Converted = true;
   return true;
 }
 

@@ -62,13 +62,13 @@ facet::Material vtkFacetPropertyConverter::Convert(vtkProperty* property,
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFacetPropertyConverter::Unrendered(vtkProperty* property, bool interpolation)
+std::string vtkFacetPropertyConverter::Unrendered(vtkProperty* property)
 {
   std::vector<std::string> asks;
-  if (property->GetInterpolation() != VTK_FLAT &&
-    !(interpolation && property->GetInterpolation() != VTK_PBR))
+  if (property->GetInterpolation() == VTK_PBR)
   {
-    asks.push_back(std::string(property->GetInterpolationAsString()) + " interpolation");
+    asks.push_back(
+      std::string(property->GetInterpolationAsString()) + " interpolation (shown flat)");
   }
   if (property->GetOpacity() < 1.0)
   {

@@ -13,9 +13,9 @@
  * Blinn-Phong's (N·H)^power, H being V when the light is at the eye; the material then asks
  * for Blinn-Phong (under other lights VTK's, and the material's, is Phong's).
  *
- * Not rendered yet, and named by Unrendered: Gouraud, Phong and PBR interpolation (rendered
- * flat), opacity below 1 (opaque), the wireframe and points representations and edge
- * visibility (rendered as surfaces), textures.
+ * Not rendered yet, and named by Unrendered: PBR interpolation (rendered flat; Gouraud and
+ * Phong are rendered, vtkFacetQuality), opacity below 1 (opaque), the wireframe and points
+ * representations and edge visibility (rendered as surfaces), textures.
  */
 
 #ifndef vtkFacetPropertyConverter_h
@@ -37,12 +37,11 @@ public:
     vtkFacetSceneConverter::Lighting lighting);
 
   /**
-   * What the property asks for that Facet does not render yet, as a phrase ("Gouraud
-   * interpolation and opacity 0.5"); empty when it asks for nothing of the kind. A front end
-   * that renders Gouraud and Phong (vtkFacetQuality) passes `interpolation` true: then only
-   * PBR interpolation is named.
+   * What the property asks for that Facet does not render yet, as a phrase ("Physically
+   * based rendering interpolation and opacity 0.5"); empty when it asks for nothing of the
+   * kind.
    */
-  static std::string Unrendered(vtkProperty* property, bool interpolation = false);
+  static std::string Unrendered(vtkProperty* property);
 };
 
 #endif

@@ -1,6 +1,5 @@
 #include "vtkFacetQuality.h"
 
-#include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
@@ -9,7 +8,6 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -23,7 +21,6 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <utility>
 
 namespace {
 // Samples per pixel of the mesh reference: converged (a change below 0.25/255 RMSE when
@@ -46,30 +43,10 @@ facet::Shading ShadingOf(int interpolation)
     : interpolation == VTK_GOURAUD  ? facet::Shading::Gouraud
                                     : facet::Shading::Flat;
 }
-
-// The input's point normals as xyz doubles, or nothing (none, or not 3 components).
-std::vector<double> NormalsOf(vtkPolyData* input)
-{
-  vtkDataArray* normals = input ? input->GetPointData()->GetNormals() : nullptr;
-  if (!normals || normals->GetNumberOfComponents() != 3 ||
-    normals->GetNumberOfTuples() != input->GetNumberOfPoints())
-  {
-    return {};
-  }
-  std::vector<double> xyz(3 * static_cast<std::size_t>(normals->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
-  {
-    normals->GetTuple(i, xyz.data() + 3 * i);
-  }
-  return xyz;
-}
 }
 
 //------------------------------------------------------------------------------
-vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& scene,
-  vtkPolyData* input,
-  const Settings& settings,
-  bool converted,
+vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const Settings& settings,
   vtkFacetMessages& messages)
 {
   const int samples = settings.SamplesPerPixel;
@@ -86,6 +63,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
   }
   this->Current = settings;
   this->Stats = {};
+  this->Built = 0;
   const auto smooth = [](int interpolation) {
     return interpolation == VTK_GOURAUD || interpolation == VTK_PHONG;
   };
@@ -103,62 +81,22 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
     this->Quality.reset();
     return {};
   }
-  std::vector<Key> keys;
-  for (const facet::SceneMesh& mesh : scene.meshes)
-  {
-    // The version too: an actor's world points move in place when its matrix changes.
-    keys.emplace_back(mesh.mesh.points.data, mesh.mesh.polygons.count, mesh.mesh.version);
-  }
-  // The input's normals are attributes: new ones come without a new conversion.
-  vtkDataArray* normalsArray = input ? input->GetPointData()->GetNormals() : nullptr;
-  const std::pair<vtkDataArray*, vtkMTimeType> normalsSource{ normalsArray,
-    normalsArray ? normalsArray->GetMTime() : 0 };
-  if (converted || keys != this->Keys || normalsSource != this->NormalsSource)
-  {
-    this->NormalsSource = normalsSource;
-    this->Keys.clear(); // a ShadingMesh that throws leaves nothing half-made behind
-    this->Shading.clear();
-    // New normals only when they differ: the quality renderer keeps what it derives from
-    // them per mesh version, which their time joins below.
-    std::vector<double> normals = NormalsOf(input);
-    if (normals != this->Normals)
-    {
-      this->Normals.swap(normals);
-      this->NormalsTime.Modified();
-    }
-  }
   // Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps each
   // polygon's normal, extent, normal spread and center per mesh version, 48 bytes per polygon.
   const bool shading = reshades || settings.ComputeError;
   if (!shading)
   {
+    this->Keys.clear();
     this->Shading.clear();
   }
-  return [this, shading, keys](facet::Renderer& renderer,
-           const facet::Scene& given,
+  return [this, shading](facet::Renderer& renderer,
+           const facet::Scene& scene,
            const facet::Camera& camera,
            const facet::FramebufferView& target) {
-    facet::Scene scene = given; // views only: cheap
-    const std::size_t pointCount = this->Normals.size() / 3;
-    for (facet::SceneMesh& mesh : scene.meshes)
+    if (shading)
     {
-      if (pointCount > 0 && mesh.mesh.points.count == pointCount)
-      {
-        mesh.mesh.pointNormals = facet::PointArray::ofXyz(std::span<const double>(this->Normals));
-        if (mesh.mesh.version != 0)
-        {
-          mesh.mesh.version = std::max<std::uint64_t>(mesh.mesh.version, this->NormalsTime);
-        }
-      }
+      this->UpdateShading(scene);
     }
-    if (shading && this->Shading.empty())
-    {
-      for (const facet::SceneMesh& mesh : scene.meshes)
-      {
-        this->Shading.emplace_back(mesh.mesh);
-      }
-    }
-    this->Keys = keys;
     facet::QualitySettings quality;
     quality.shading = ShadingOf(this->Current.Interpolation);
     for (const int interpolation : this->Current.MeshInterpolation)
@@ -183,6 +121,38 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const facet::Scene& sce
 }
 
 //------------------------------------------------------------------------------
+vtkFacetQuality::Key vtkFacetQuality::KeyOf(const facet::MeshView& mesh)
+{
+  // The version covers the points, the polygons and the point normals (the actor converter
+  // gives a mesh a new one when its normals change); the color version matters only to the
+  // corner color ranges, which exist with point colors or a scalar texture.
+  const bool cornerColors = !mesh.pointColors.empty() || !mesh.scalarTexture.empty();
+  return {
+    mesh.points.data, mesh.polygons.count, mesh.version, cornerColors ? mesh.colorVersion : 0
+  };
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetQuality::UpdateShading(const facet::Scene& scene)
+{
+  const std::size_t meshes = scene.meshes.size();
+  this->Shading.resize(meshes);
+  this->Keys.resize(meshes);
+  for (std::size_t m = 0; m < meshes; ++m)
+  {
+    const facet::MeshView& mesh = scene.meshes[m].mesh;
+    const Key key = KeyOf(mesh);
+    if (key != this->Keys[m] || mesh.version == 0)
+    {
+      this->Keys[m] = {}; // a ShadingMesh that throws leaves nothing that claims to be its
+      this->Shading[m] = facet::ShadingMesh(mesh);
+      this->Keys[m] = key;
+      ++this->Built;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   const facet::Camera& camera,
   const std::int32_t* polygonIds,
@@ -192,6 +162,13 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   vtkImageData* output,
   vtkFacetMessages& messages)
 {
+  if (!this->Shading.empty())
+  {
+    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
+      "FacetShadingMeshes",
+      { { "Built", static_cast<double>(this->Built) },
+        { "Kept", static_cast<double>(this->Shading.size() - this->Built) } });
+  }
   if (this->Current.EstimateError || this->Current.ErrorEstimateArray)
   {
     vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),

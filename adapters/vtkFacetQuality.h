@@ -6,22 +6,23 @@
  * The property's Interpolation picks the shading (VTK_FLAT flat, VTK_GOURAUD Gouraud,
  * VTK_PHONG Phong; per mesh for vtkFacetRendererToImageFilter, each actor's own); SamplesPerPixel
  * supersamples; a MaximumError above 0 shades adaptively. Shading beyond flat and ComputeError
- * need the ShadingMesh of every scene mesh (triangles, vertex normals: the input's point normals
- * when it has them, else vtkPolyDataNormals' meaning), kept while the meshes and the normals are
- * unchanged. Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps,
- * per mesh version, each polygon's normal, extent, normal spread and center (48 bytes), and per
- * render bounds only the polygons that won a pixel (a new background alone keeps the last
- * estimate). AddOutputs puts the estimate in the field data (`FacetErrorEstimate`: PredictedRMSE,
- * PredictedMax, 8-bit units, and Seconds, what it took) and, on request, as the point-data
- * array `ErrorEstimate`. With ComputeError it renders the converged Phong mesh
- * reference and adds `FacetError` (RMSE, Max, PSNR, SSIM, SilhouetteFraction,
- * ReferenceSeconds, RenderSeconds) and the per-pixel `Error` array (ImageMetrics.h).
+ * need the ShadingMesh of every scene mesh (triangles, vertex normals: the data's point normals
+ * when it has them, else vtkPolyDataNormals' meaning; the range of each polygon's corner colors),
+ * kept per mesh while its points, polygons, normals and point colors are unchanged. Flat shading
+ * with the estimate needs no ShadingMesh: the quality renderer keeps, per mesh version, each
+ * polygon's normal, extent, normal spread and center (48 bytes), and per render bounds only the
+ * polygons that won a pixel (a new background alone keeps the last estimate). AddOutputs puts the
+ * estimate in the field data (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and
+ * Seconds, what it took) and, on request, as the point-data array `ErrorEstimate`; with
+ * ShadingMeshes, how many the render built and how many it kept (`FacetShadingMeshes`: Built,
+ * Kept). With ComputeError it renders the converged Phong mesh reference and adds `FacetError`
+ * (RMSE, Max, PSNR, SSIM, SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the per-pixel
+ * `Error` array (ImageMetrics.h).
  */
 
 #ifndef vtkFacetQuality_h
 #define vtkFacetQuality_h
 
-#include "vtkTimeStamp.h"
 #include "vtkType.h"
 
 #include "facet/QualityRenderer.h"
@@ -29,13 +30,10 @@
 #include <functional>
 #include <memory>
 #include <tuple>
-#include <utility>
 #include <vector>
 
-class vtkDataArray;
 class vtkFacetMessages;
 class vtkImageData;
-class vtkPolyData;
 
 class vtkFacetQuality
 {
@@ -59,19 +57,14 @@ public:
     const facet::FramebufferView&)>;
 
   /**
-   * Prepares a render of `scene` (for vtkFacetRenderFilter, whose first mesh holds the
-   * input's polygons, the second its strip triangles, both on the input's points, whose point
-   * normals are then used; `input` may be null: normals are computed): checks the settings (an
-   * error in `messages` for samples other than 1, 4 or 16 or a negative maximum error) and prepares
-   * the shading meshes if the scene's meshes changed (`converted`). Returns the function
-   * that renders, or an empty one after an error or when the plain Renderer does all that is
-   * asked (flat, one sample, no estimate, no error measurement).
+   * Prepares a render: checks the settings (an error in `messages` for samples other than 1, 4
+   * or 16 or a negative maximum error). Returns the function that renders a scene (meshes
+   * from vtkFacetActorConverter, whose versions cover their point normals), first building
+   * the ShadingMesh of every mesh whose points, polygons, normals or corner colors changed;
+   * or an empty one after an error or when the plain Renderer does all that is asked (flat,
+   * one sample, no estimate, no error measurement).
    */
-  RenderFunction Prepare(const facet::Scene& scene,
-    vtkPolyData* input,
-    const Settings& settings,
-    bool converted,
-    vtkFacetMessages& messages);
+  RenderFunction Prepare(const Settings& settings, vtkFacetMessages& messages);
 
   /**
    * After the render: the estimate and, with ComputeError, the measured error (the mesh
@@ -88,15 +81,20 @@ public:
     vtkFacetMessages& messages);
 
 private:
+  // What a mesh's ShadingMesh is made of: points, polygon count, version (points, polygons
+  // and point normals) and, with point colors or a scalar texture, the color version (the
+  // polygons' corner color ranges).
+  using Key = std::tuple<const void*, std::size_t, std::uint64_t, std::uint64_t>;
+  static Key KeyOf(const facet::MeshView& mesh);
+  // The ShadingMesh of every mesh whose key changed (every render for an unversioned mesh).
+  void UpdateShading(const facet::Scene& scene);
+
   Settings Current;
   std::unique_ptr<facet::QualityRenderer> Quality; // its buffers kept between renders
   const facet::Renderer* QualityOf = nullptr;      // the renderer it renders through
   std::vector<facet::ShadingMesh> Shading;         // only for shading beyond flat and ComputeError
-  std::vector<double> Normals;                     // the input's point normals, xyz in double
-  vtkTimeStamp NormalsTime;                        // when Normals last changed
-  std::pair<vtkDataArray*, vtkMTimeType> NormalsSource{ nullptr, 0 }; // identity only
-  using Key = std::tuple<const void*, std::size_t, std::uint64_t>;    // points, polygons, version
-  std::vector<Key> Keys;                                              // what Normals was read for
+  std::vector<Key> Keys;                           // what each of Shading was made of
+  std::size_t Built = 0;                           // by the last render
   facet::QualityStats Stats;
   double RenderSeconds = 0.0;
 };

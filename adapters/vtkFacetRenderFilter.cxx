@@ -138,7 +138,6 @@ vtkFacetActorConverter::Actor vtkFacetRenderFilter::vtkInternals::ActorOf(
   actor.Coloring = this->ColoringOf(filter);
   actor.Property = filter->GetProperty();
   actor.Lighting = vtkFacetSceneConverter::LightingOf(filter->Lights, LightOptionsOf(filter));
-  actor.RendersInterpolation = true;
   // Without a light the filter's surfaces are lit by nothing but the ambient light, as they
   // always have been, not shown unlit.
   if (actor.Lighting == vtkFacetSceneConverter::Lighting::Unlit)
@@ -229,8 +228,7 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
   vtkImageData* output)
 {
   const int conversions = this->Actor.GetNumberOfConversions();
-  settings.RenderWith =
-    this->Quality.Prepare(scene, input, QualityOf(filter), conversions > 0, this->Messages);
+  settings.RenderWith = this->Quality.Prepare(QualityOf(filter), this->Messages);
   if (!this->Image.Render(scene,
         camera,
         settings,

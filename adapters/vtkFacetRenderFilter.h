@@ -16,7 +16,9 @@
  * Its field data holds `FacetRenderSeconds` (total), `FacetPhaseSeconds` (named components
  * per phase), `FacetCounts` (named components: polygons drawn, shaded, culled, pixels...),
  * `FacetMeshConverted` (1 when this execution converted the input, 0 when it reused the
- * conversion kept from the last one), `FacetRenderPlan` (text: what the render did, left out
+ * conversion kept from the last one), `FacetShadingMeshes` (with Gouraud, Phong, MaximumError
+ * or ComputeError: Built, the meshes whose triangles, vertex normals and corner color ranges
+ * this execution made again, and Kept), `FacetRenderPlan` (text: what the render did, left out
  * and why, counted and cost) and the plan in numbers: `FacetRenderPath` (0 full, 1 re-shade,
  * 2 resolve), `FacetRenderPlanRulesAllowed`, `FacetRenderPlanRulesFired` and
  * `FacetRenderPlanRulesSkipped` (one component per rule, named LightsThatReachNothing,

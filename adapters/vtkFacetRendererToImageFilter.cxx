@@ -328,7 +328,6 @@ void vtkFacetRendererToImageFilter::vtkInternals::AddActors(vtkRenderer* rendere
       WarnAboutUnrendered(prop, this->Messages);
       leaf.PropIndex = propIndex;
       leaf.FirstPolygon = polygons;
-      actor.RendersInterpolation = true;
       if (leaf.Converter.Update(actor, detectClosedSurfaces, this->Messages))
       {
         const std::size_t first = scene.meshes.size();
@@ -556,8 +555,7 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
   quality.MaximumError = this->MaximumError;
   quality.EstimateError = false;
   quality.MeshInterpolation = internals.MeshInterpolation;
-  settings.RenderWith = internals.Quality.Prepare(
-    scene, nullptr, quality, internals.NumberOfConversions() > 0, messages);
+  settings.RenderWith = internals.Quality.Prepare(quality, messages);
 
   // Render straight into the output's arrays; polygon ids become actor and cell ids.
   internals.Image.Render(

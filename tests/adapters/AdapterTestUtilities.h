@@ -11,6 +11,7 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -114,6 +115,23 @@ inline vtkSmartPointer<vtkPolyData> PolyData(vtkPoints* points, vtkCellArray* po
   data->SetPoints(points);
   data->SetPolys(polys);
   return data;
+}
+
+// Turns every point normal of `data` toward +x (x += dx, normalized) in place and marks the
+// normals modified: new normals on the same points, as a user edits them.
+inline void TiltPointNormals(vtkPolyData* data, double dx)
+{
+  vtkDataArray* normals = data->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    double n[3];
+    normals->GetTuple(i, n);
+    n[0] += dx;
+    vtkMath::Normalize(n);
+    normals->SetTuple(i, n);
+  }
+  normals->Modified();
 }
 
 // Counts the messages of one kind (vtkCommand::ErrorEvent or WarningEvent) and keeps the

@@ -719,3 +719,133 @@ TEST(Progress, ReportedAndAbortable)
   ExpectProgressReportedAndAbortable(
     grab, 400, 300, [&] { renderer->GetActiveCamera()->Azimuth(10.0); });
 }
+
+//------------------------------------------------------------------------------
+// What the shading modes keep per actor between executions (vertex normals, each polygon's
+// corner color range, which the error budget bounds by) follows a change of an attribute
+// alone — the scalars' values, the lookup table's range, the point normals — for an actor
+// in place and one moved by its matrix (whose normals are turned into a copy): the image is a
+// fresh filter's.
+namespace {
+struct AttributeScene
+{
+  vtkSmartPointer<vtkRenderer> Renderer = vtkSmartPointer<vtkRenderer>::New();
+  std::vector<vtkSmartPointer<vtkActor>> Actors;
+  std::vector<vtkSmartPointer<vtkPolyData>> Data;
+
+  explicit AttributeScene(int interpolation)
+  {
+    this->Renderer->SetActiveCamera(PixelCamera(Width, Height));
+    for (const double x : { 45.0, 0.0 })
+    {
+      vtkNew<vtkSphereSource> sphere; // with point normals
+      sphere->SetThetaResolution(16);
+      sphere->SetPhiResolution(12);
+      sphere->SetRadius(32.0);
+      sphere->SetCenter(x, x == 0.0 ? 0.0 : 60.0, 0.0);
+      sphere->Update();
+      auto data = vtkSmartPointer<vtkPolyData>::New();
+      data->DeepCopy(sphere->GetOutput());
+      vtkNew<vtkDoubleArray> height;
+      height->SetNumberOfTuples(data->GetNumberOfPoints());
+      for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+      {
+        height->SetValue(i, data->GetPoint(i)[1] - sphere->GetCenter()[1]);
+      }
+      data->GetPointData()->SetScalars(height);
+      vtkSmartPointer<vtkActor> actor = ActorOf(data);
+      actor->GetMapper()->SetScalarRange(-32.0, 32.0);
+      actor->GetProperty()->SetInterpolation(interpolation);
+      actor->GetProperty()->SetSpecular(0.3);
+      if (x == 0.0)
+      {
+        actor->SetPosition(115.0, 60.0, 0.0);
+      }
+      this->Renderer->AddActor(actor);
+      this->Actors.push_back(actor);
+      this->Data.push_back(data);
+    }
+  }
+};
+
+std::string RgbaBytes(vtkImageData* image)
+{
+  vtkDataArray* rgba = image->GetPointData()->GetScalars();
+  const auto* begin = static_cast<const char*>(rgba->GetVoidPointer(0));
+  return { begin, begin + rgba->GetNumberOfValues() };
+}
+
+long DifferingPixels(const std::string& a, const std::string& b)
+{
+  long differing = 0;
+  for (std::size_t i = 0; i + 4 <= std::min(a.size(), b.size()); i += 4)
+  {
+    differing += a.compare(i, 4, b, i, 4) != 0;
+  }
+  return differing;
+}
+}
+
+TEST(Quality, AnAttributeChangeAloneReachesWhatTheModesKeep)
+{
+  struct Mode
+  {
+    const char* Name;
+    int Interpolation;
+    double MaximumError;
+  };
+  const std::pair<const char*, std::function<void(AttributeScene&)>> changes[] = {
+    { "scalars",
+      [](AttributeScene& scene) {
+        for (vtkPolyData* data : scene.Data)
+        {
+          vtkDataArray* scalars = data->GetPointData()->GetScalars();
+          for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+          {
+            scalars->SetComponent(
+              i, 0, 0.4 * scalars->GetComponent(i, 0) * scalars->GetComponent(i, 0) - 20.0);
+          }
+          scalars->Modified();
+        }
+      } },
+    { "table range",
+      [](AttributeScene& scene) {
+        for (vtkActor* actor : scene.Actors)
+        {
+          actor->GetMapper()->SetScalarRange(-10.0, 60.0);
+        }
+      } },
+    { "point normals",
+      [](AttributeScene& scene) {
+        for (vtkPolyData* data : scene.Data)
+        {
+          TiltPointNormals(data, 0.4);
+        }
+      } },
+  };
+  for (const Mode mode : { Mode{ "flat within 2", VTK_FLAT, 2.0 },
+         { "Gouraud", VTK_GOURAUD, 0.0 },
+         { "Phong", VTK_PHONG, 0.0 } })
+  {
+    for (const auto& [what, change] : changes)
+    {
+      AttributeScene scene(mode.Interpolation);
+      vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(scene.Renderer);
+      grab->SetMaximumError(mode.MaximumError);
+      grab->Update();
+      const std::string before = RgbaBytes(grab->GetOutput());
+      change(scene);
+      grab->Update();
+      EXPECT_EQ(FieldValue(grab->GetOutput(), "FacetMeshConverted", "Converted"), 0.0);
+      vtkSmartPointer<vtkFacetRendererToImageFilter> fresh = Grab(scene.Renderer);
+      fresh->SetMaximumError(mode.MaximumError);
+      fresh->Update();
+      const std::string again = RgbaBytes(grab->GetOutput()),
+                        expected = RgbaBytes(fresh->GetOutput());
+      EXPECT_NE(expected, before) << mode.Name << ", " << what << ": the change shows";
+      EXPECT_TRUE(again == expected)
+        << mode.Name << ", " << what << ": " << DifferingPixels(again, expected)
+        << " pixels differ from a fresh filter's";
+    }
+  }
+}
