@@ -202,6 +202,9 @@ class FrameTransform {
     const double depth = depthFromKeyOffset_ + depthFromKeyScale_ * key;
     return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
   }
+  // Its terms, for windowDepth in SIMD lanes (Resolve.cpp).
+  double depthFromKeyOffset() const { return depthFromKeyOffset_; }
+  double depthFromKeyScale() const { return depthFromKeyScale_; }
 
   // View-space depth (−Z, so larger is farther) for painter's sort.
   double viewDistance(const glm::dvec3& world) const;

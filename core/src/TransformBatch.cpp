@@ -48,27 +48,27 @@ struct Constants {
 };
 
 // Points i .. i + lanes − 1 as doubles (a float converts exactly).
-void loadPoints(D d, const double* xyz, std::size_t i, V (&p)[3]) {
+HWY_INLINE void loadPoints(D d, const double* xyz, std::size_t i, V (&p)[3]) {
   hn::LoadInterleaved3(d, xyz + 3 * i, p[0], p[1], p[2]);
 }
-void loadPoints(D d, const float* xyz, std::size_t i, V (&p)[3]) {
+HWY_INLINE void loadPoints(D d, const float* xyz, std::size_t i, V (&p)[3]) {
   const DF df;
   hn::Vec<DF> x, y, z;
   hn::LoadInterleaved3(df, xyz + 3 * i, x, y, z);
   p[0] = hn::PromoteTo(d, x), p[1] = hn::PromoteTo(d, y), p[2] = hn::PromoteTo(d, z);
 }
 
-V dot3(const V (&a)[3], const V (&b)[3]) {
+HWY_INLINE V dot3(const V (&a)[3], const V (&b)[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 // clampToGuard, NaN to the upper bound.
-V clampToGuard(V ndc, V guard) {
+HWY_INLINE V clampToGuard(V ndc, V guard) {
   return hn::IfThenElse(ndc < guard, hn::IfThenElse(ndc > hn::Neg(guard), ndc, hn::Neg(guard)),
                         guard);
 }
 
-V roundToNearest(D d, V x) {
+HWY_INLINE V roundToNearest(D d, V x) {
   const V shift = hn::Set(d, 6755399441055744.0);  // 1.5 · 2^52, as FrameTransform.h
   return (x + shift) - shift;
 }
@@ -77,7 +77,7 @@ V roundToNearest(D d, V x) {
 struct Snapped {
   V fixed, residue;
 };
-Snapped snap(D d, V clip, V inverseW, V guard, V half) {
+HWY_INLINE Snapped snap(D d, V clip, V inverseW, V guard, V half) {
   const V window = (clampToGuard(clip * inverseW, guard) + hn::Set(d, 1.0)) * half;
   const V fixed = window * hn::Set(d, kSubpixelScale);
   const V snapped = roundToNearest(d, fixed);
@@ -86,13 +86,14 @@ Snapped snap(D d, V clip, V inverseW, V guard, V half) {
 }
 
 // The bit `code` where `m` holds, as a double (outcodes are sums of distinct bits).
-V bitWhere(D d, M m, std::uint32_t code) {
+HWY_INLINE V bitWhere(D d, M m, std::uint32_t code) {
   return hn::IfThenElseZero(m, hn::Set(d, static_cast<double>(code)));
 }
 
 // One group of lanes whose points are all within kLargeCoordinate of the eye (h = 1): stores
 // their vertices and returns their outcodes.
-hn::Vec<DI> projectLanes(D d, const Constants& k, const V (&relative)[3], WindowVertex* vertices) {
+HWY_INLINE hn::Vec<DI> projectLanes(D d, const Constants& k, const V (&relative)[3],
+                                    WindowVertex* vertices) {
   // toClip with h = 1: clip x = (cx0·vx + cx1·vy) + (cx2·vz + cx3·1).
   const V view[3] = {dot3(k.right, relative), dot3(k.up, relative), dot3(k.back, relative)};
   const V x = (k.clipX[0] * view[0] + k.clipX[1] * view[1]) + (k.clipX[2] * view[2] + k.clipX[3]);
