@@ -6,6 +6,7 @@
 // is compiled without contraction into fused multiply-adds, core/CMakeLists.txt), so every
 // target gives the scalar conversion's bytes.
 
+#include <algorithm>
 #include <cstring>
 
 #undef HWY_TARGET_INCLUDE
@@ -32,7 +33,7 @@ HWY_INLINE std::uint32_t wordOf(Rgba8 color) {
   return word;
 }
 
-// What resolveTile keeps in registers for a tile.
+// What resolvePixels keeps in registers for its pixels.
 struct TileConstants {
   const std::uint32_t* colors;  // per polygon id, Rgba8 as words
   hn::Vec<DU> background;
@@ -69,24 +70,24 @@ HWY_INLINE void resolveGroup(const TileConstants& k, const std::int32_t* ids, st
 }
 
 template <bool kDepth>
-void resolveTile(const ResolveContext& context, const PixelBounds& tile,
-                 const FrameTransform& transform) {
+void resolvePixels(const ResolveContext& context, const PixelBounds& pixels,
+                   const FrameTransform& transform) {
   const D d;
   const std::size_t lanes = hn::Lanes(d);
   const TileConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
                         hn::Set(DU(), wordOf(context.background)),
                         hn::Set(d, transform.depthFromKeyOffset()),
                         hn::Set(d, transform.depthFromKeyScale())};
-  const std::size_t width = static_cast<std::size_t>(tile.x1 - tile.x0 + 1);
-  for (int y = tile.y0; y <= tile.y1; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y) * context.width + tile.x0;
+  const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
+  for (int y = pixels.y0; y <= pixels.y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * context.width + pixels.x0;
     const std::int32_t* ids = context.polygonId + row;
     auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
     float* depth = context.depth + row;
     std::size_t x = 0;
     for (; x + lanes <= width; x += lanes)
       resolveGroup<kDepth>(k, ids + x, color + x, depth + x);
-    for (; x < width; ++x) {  // a tile at the right edge narrower than a group
+    for (; x < width; ++x) {  // a width that is no multiple of a group
       const std::int32_t id = ids[x];
       color[x] = id < 0 ? wordOf(context.background) : k.colors[id];
       if constexpr (kDepth) depth[x] = id < 0 ? 1.0f : transform.windowDepth(depth[x]);
@@ -94,21 +95,19 @@ void resolveTile(const ResolveContext& context, const PixelBounds& tile,
   }
 }
 
-void ResolveColorsAndDepths(const ResolveContext& context, const PixelBounds& tile,
+void ResolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
                             const FrameTransform& transform) {
-  resolveTile<true>(context, tile, transform);
+  resolvePixels<true>(context, pixels, transform);
 }
-void ResolveColors(const ResolveContext& context, const PixelBounds& tile,
+void ResolveColors(const ResolveContext& context, const PixelBounds& pixels,
                    const FrameTransform& transform) {
-  resolveTile<false>(context, tile, transform);
+  resolvePixels<false>(context, pixels, transform);
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include <algorithm>
-
 namespace facet::detail {
 namespace {
 
@@ -120,13 +119,13 @@ constexpr int kRowsPerTask = 8;
 HWY_EXPORT(ResolveColorsAndDepths);
 HWY_EXPORT(ResolveColors);
 
-void resolveColorsAndDepths(const ResolveContext& context, const PixelBounds& tile,
+void resolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
                             const FrameTransform& transform) {
-  HWY_DYNAMIC_DISPATCH(ResolveColorsAndDepths)(context, tile, transform);
+  HWY_DYNAMIC_DISPATCH(ResolveColorsAndDepths)(context, pixels, transform);
 }
-void resolveColors(const ResolveContext& context, const PixelBounds& tile,
+void resolveColors(const ResolveContext& context, const PixelBounds& pixels,
                    const FrameTransform& transform) {
-  HWY_DYNAMIC_DISPATCH(ResolveColors)(context, tile, transform);
+  HWY_DYNAMIC_DISPATCH(ResolveColors)(context, pixels, transform);
 }
 
 }  // namespace

@@ -123,8 +123,8 @@ HWY_INLINE hn::Vec<DI> projectLanes(D d, const Constants& k, const V (&relative)
       key < largest, hn::IfThenElse(key > hn::Neg(largest), key, hn::Neg(largest)), largest);
 
   // Lanes not inside are zeroed before they narrow (a conversion out of range saturates on
-  // some targets, is undefined in C++); their key is set as bits (the portable target's
-  // narrowing to float saturates −∞ to −FLT_MAX).
+  // some targets, is undefined in C++); their key is set as bits (Highway's SCALAR target
+  // narrows −∞ to −FLT_MAX).
   const DI di;
   const DU du;
   const auto narrow = [&](V v) {
