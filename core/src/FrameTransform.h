@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -71,6 +72,10 @@ struct WindowVertex {
   std::int8_t residueX = 0;
   std::int8_t residueY = 0;
 };
+// 16 bytes, the last four (outcode and residues) one little-endian word: TransformBatch.cpp
+// stores vertices as four 32-bit words.
+static_assert(sizeof(WindowVertex) == 16 && offsetof(WindowVertex, outcode) == 12 &&
+              offsetof(WindowVertex, residueX) == 14 && offsetof(WindowVertex, residueY) == 15);
 inline constexpr int kResidueBits = 8;
 inline constexpr int kResidueScale = 1 << kResidueBits;
 
@@ -101,9 +106,22 @@ inline std::int32_t roundToInteger(double x) {
 inline constexpr double kLargeCoordinate = 0x1p500;
 inline constexpr double kShrink = 0x1p-520;
 
+// FrameTransform's numbers, for project() in SIMD lanes (TransformBatch.cpp).
+struct ProjectionConstants {
+  glm::dvec3 eye, right, up, back;
+  glm::dvec4 clipX, clipY;
+  bool parallel;
+  double near, far, halfWidth, halfHeight, guardX, guardY;
+};
+
 class FrameTransform {
  public:
   FrameTransform(const Camera& camera, int width, int height);
+
+  ProjectionConstants constants() const {
+    return {eye_,  right_, up_,        back_,       clipX_,  clipY_, parallel_,
+            near_, far_,   halfWidth_, halfHeight_, guardX_, guardY_};
+  }
 
   // Inline: these run once per point of every mesh.
   ClipPoint toClip(const glm::dvec3& world) const {
@@ -184,6 +202,9 @@ class FrameTransform {
     const double depth = depthFromKeyOffset_ + depthFromKeyScale_ * key;
     return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
   }
+  // Its terms, for windowDepth in SIMD lanes (Resolve.cpp).
+  double depthFromKeyOffset() const { return depthFromKeyOffset_; }
+  double depthFromKeyScale() const { return depthFromKeyScale_; }
 
   // View-space depth (−Z, so larger is farther) for painter's sort.
   double viewDistance(const glm::dvec3& world) const;

@@ -1,42 +1,150 @@
+// Resolve.h, in SIMD lanes: compiled once per instruction set by Highway's foreach_target
+// (this file includes itself) and dispatched at run time, as SetupBatch.cpp. A group of
+// pixels all showing the background (most of a frame's, around a small object) is two plain
+// stores; any other group gathers its polygons' colors and converts its depth keys with
+// FrameTransform::windowDepth's operations on the same doubles in the same order (the file
+// is compiled without contraction into fused multiply-adds, core/CMakeLists.txt), so every
+// target gives the scalar conversion's bytes.
+
+#include <algorithm>
+#include <cstring>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "Resolve.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
 #include "Resolve.h"
 
+HWY_BEFORE_NAMESPACE();
+namespace facet::detail::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// A group of pixels: as many as doubles fit in a vector (the depth conversion's width); ids,
+// colors (as 32-bit words) and depths in half vectors of the same lane count.
+using D = hn::ScalableTag<double>;
+using DI = hn::Rebind<std::int32_t, D>;
+using DU = hn::Rebind<std::uint32_t, D>;
+using DF = hn::Rebind<float, D>;
+
+HWY_INLINE std::uint32_t wordOf(Rgba8 color) {
+  std::uint32_t word;
+  std::memcpy(&word, &color, sizeof word);
+  return word;
+}
+
+// What resolvePixels keeps in registers for its pixels.
+struct TileConstants {
+  const std::uint32_t* colors;  // per polygon id, Rgba8 as words
+  hn::Vec<DU> background;
+  hn::Vec<D> depthOffset, depthScale;
+};
+
+// Pixels [x, x + lanes) of a row.
+template <bool kDepth>
+HWY_INLINE void resolveGroup(const TileConstants& k, const std::int32_t* ids, std::uint32_t* color,
+                             float* depth) {
+  const D d;
+  const DI di;
+  const DU du;
+  const DF df;
+  const hn::Vec<DI> id = hn::LoadU(di, ids);
+  const hn::Mask<DI> background = id < hn::Zero(di);
+  if (hn::AllTrue(di, background)) {
+    hn::StoreU(k.background, du, color);
+    if constexpr (kDepth) hn::StoreU(hn::Set(df, 1.0f), df, depth);
+    return;
+  }
+  const hn::Vec<DU> shown = hn::GatherIndex(du, k.colors, hn::IfThenZeroElse(background, id));
+  hn::StoreU(hn::IfThenElse(hn::RebindMask(du, background), k.background, shown), du, color);
+  if constexpr (kDepth) {
+    // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
+    const hn::Vec<D> window = k.depthOffset + k.depthScale * hn::PromoteTo(d, hn::LoadU(df, depth));
+    const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
+    const hn::Vec<D> clamped =
+        hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
+    const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
+    hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
+               depth);
+  }
+}
+
+template <bool kDepth>
+void resolvePixels(const ResolveContext& context, const PixelBounds& pixels,
+                   const FrameTransform& transform) {
+  const D d;
+  const std::size_t lanes = hn::Lanes(d);
+  const TileConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
+                        hn::Set(DU(), wordOf(context.background)),
+                        hn::Set(d, transform.depthFromKeyOffset()),
+                        hn::Set(d, transform.depthFromKeyScale())};
+  const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
+  for (int y = pixels.y0; y <= pixels.y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * context.width + pixels.x0;
+    const std::int32_t* ids = context.polygonId + row;
+    auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
+    float* depth = context.depth + row;
+    std::size_t x = 0;
+    for (; x + lanes <= width; x += lanes)
+      resolveGroup<kDepth>(k, ids + x, color + x, depth + x);
+    for (; x < width; ++x) {  // a width that is no multiple of a group
+      const std::int32_t id = ids[x];
+      color[x] = id < 0 ? wordOf(context.background) : k.colors[id];
+      if constexpr (kDepth) depth[x] = id < 0 ? 1.0f : transform.windowDepth(depth[x]);
+    }
+  }
+}
+
+void ResolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
+                            const FrameTransform& transform) {
+  resolvePixels<true>(context, pixels, transform);
+}
+void ResolveColors(const ResolveContext& context, const PixelBounds& pixels,
+                   const FrameTransform& transform) {
+  resolvePixels<false>(context, pixels, transform);
+}
+
+}  // namespace facet::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
 namespace facet::detail {
 namespace {
 
-template <bool kDepth>
-void resolveTile(const ResolveContext& context, const PixelBounds& tile,
-                 const FrameTransform& frameTransform) {
-  // Locals: the color stores (bytes) may alias anything, which would reload these per pixel.
-  const FrameTransform transform = frameTransform;
-  const Rgba8* colors = context.colors;
-  const Rgba8 background = context.background;
-  for (int y = tile.y0; y <= tile.y1; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y) * context.width;
-    const std::int32_t* ids = context.polygonId + row;
-    Rgba8* color = context.color + row;
-    float* depth = context.depth + row;
-    for (int x = tile.x0; x <= tile.x1; ++x) {
-      const std::int32_t id = ids[x];
-      color[x] = id < 0 ? background : colors[static_cast<std::size_t>(id)];
-    }
-    if constexpr (kDepth) {
-      for (int x = tile.x0; x <= tile.x1; ++x)
-        depth[x] = ids[x] < 0 ? 1.0f : transform.windowDepth(depth[x]);
-    }
-  }
+// Rows per resolve task: whole rows, not tiles. The pass is bound by memory, and a tile's
+// rows are 256 bytes of each plane, each in a page of its own (a 1080p row of ids is 7.5
+// KiB), which the hardware prefetchers do not follow; a band of whole rows streams.
+constexpr int kRowsPerTask = 8;
+
+HWY_EXPORT(ResolveColorsAndDepths);
+HWY_EXPORT(ResolveColors);
+
+void resolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
+                            const FrameTransform& transform) {
+  HWY_DYNAMIC_DISPATCH(ResolveColorsAndDepths)(context, pixels, transform);
+}
+void resolveColors(const ResolveContext& context, const PixelBounds& pixels,
+                   const FrameTransform& transform) {
+  HWY_DYNAMIC_DISPATCH(ResolveColors)(context, pixels, transform);
 }
 
 }  // namespace
 
 ResolveRoutineChoice chooseResolveRoutine(bool depth) {
-  if (depth) return {resolveTile<true>, "colors and window depths"};
-  return {resolveTile<false>, "colors"};
+  if (depth) return {resolveColorsAndDepths, "colors and window depths"};
+  return {resolveColors, "colors"};
 }
 
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
                   ResolveRoutine routine, const FrameTransform& transform) {
-  return runner.run(Phase::Resolve, grid.count(),
-                    [&](std::size_t t) { routine(context, grid.bounds(t), transform); });
+  const PixelBounds viewport = grid.viewport();
+  const int bands = (viewport.y1 + kRowsPerTask) / kRowsPerTask;
+  return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
+    const int y0 = static_cast<int>(b) * kRowsPerTask;
+    routine(context, {viewport.x0, y0, viewport.x1, std::min(viewport.y1, y0 + kRowsPerTask - 1)},
+            transform);
+  });
 }
 
 }  // namespace facet::detail
+#endif  // HWY_ONCE

@@ -1,7 +1,7 @@
 #pragma once
 
 // Phase 5: resolve. Every pixel takes its polygon's color (or the background's), and its
-// depth key becomes window depth (Conventions.h, "Depth"), tile by tile.
+// depth key becomes window depth (Conventions.h, "Depth"), in bands of whole rows.
 
 #include <cstdint>
 
@@ -21,9 +21,10 @@ struct ResolveContext {
   int width;
 };
 
-// One tile's resolve, chosen once per render: colors and window depths, or colors only (no
-// depth output, or depths already resolved by the frame an incremental render reuses).
-using ResolveRoutine = void (*)(const ResolveContext& context, const PixelBounds& tile,
+// The resolve of a box of pixels, chosen once per render: colors and window depths, or colors
+// only (no depth output, or depths already resolved by the frame an incremental render
+// reuses).
+using ResolveRoutine = void (*)(const ResolveContext& context, const PixelBounds& pixels,
                                 const FrameTransform& transform);
 struct ResolveRoutineChoice {
   ResolveRoutine resolve;
@@ -31,7 +32,9 @@ struct ResolveRoutineChoice {
 };
 ResolveRoutineChoice chooseResolveRoutine(bool depth);
 
-// Resolves every tile with the routine, turning depth keys into window depths by `transform`.
+// Resolves every pixel of the grid's viewport with the routine, a band of whole rows per task
+// (Resolve.cpp says why not tile by tile), turning depth keys into window depths by
+// `transform`.
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
                   ResolveRoutine routine, const FrameTransform& transform);
 

@@ -16,12 +16,11 @@ template <class ColorOf>
 std::size_t forEachShown(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
                          std::size_t end, const ColorOf& colorOf) {
   std::size_t shaded = 0;
-  for (std::size_t polygon = begin; polygon < end; ++polygon) {
+  forEachShownPolygon(context.shown, mesh, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
-    if (!context.shown[id]) continue;
     ++shaded;
     context.colors[id] = colorOf(id, polygon);
-  }
+  });
   return shaded;
 }
 

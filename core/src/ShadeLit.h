@@ -71,13 +71,12 @@ FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const Frame
                                         std::size_t end) {
   const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
   std::size_t shaded = 0;
-  for (std::size_t polygon = begin; polygon < end; ++polygon) {
+  forEachShownPolygon(context.shown, mesh, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
-    if (!context.shown[id]) continue;
     ++shaded;
     context.colors[id] = litColor<kCenters, kSpecular, kColors>(
         context, mesh, shade, points, polygons, polygon, context.backFacing[id]);
-  }
+  });
   return shaded;
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "MeshAccess.h"
+#include "TransformBatch.h"
 
 namespace facet::detail {
 namespace {
@@ -20,13 +21,8 @@ bool needed(const FrameMesh& mesh, const MeshRange& range) {
 void transformRange(const FrameMesh& mesh, const FrameTransform& transform, const MeshRange& r,
                     WindowVertex* vertices, std::uint32_t& outcodes) {
   withTypedMesh(mesh.mesh(), [&](auto points, auto) {
-    std::uint32_t any = 0;
-    for (std::size_t p = r.begin; p < r.end; ++p) {
-      const WindowVertex v = transform.project(points[p]);
-      vertices[mesh.firstVertex + p] = v;
-      any |= v.outcode;
-    }
-    outcodes = any;
+    outcodes = projectPoints(transform, points.xyz + 3 * r.begin, r.end - r.begin,
+                             vertices + mesh.firstVertex + r.begin);
   });
 }
 

@@ -1,0 +1,106 @@
+// The resolve (Resolve.h, SIMD lanes) against its definition pixel by pixel, on every
+// instruction set this CPU has: the polygon's color or the background's, and
+// FrameTransform::windowDepth of the key (1 for the background), for perspective and
+// parallel cameras, keys of every magnitude, images whose width is no multiple of a group.
+
+#include <cmath>
+#include <cstring>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "FrameTransform.h"
+#include "PhaseRunner.h"
+#include "Resolve.h"
+#include "SetupBatch.h"
+#include "ThreadPool.h"
+#include "facet/Camera.h"
+
+namespace facet::testing {
+namespace {
+
+struct Planes {
+  std::vector<Rgba8> color;
+  std::vector<float> depth;
+  std::vector<std::int32_t> ids;
+};
+
+// Every fourth pixel shows a polygon, in runs, so that groups are all background, all shown
+// or mixed; keys from the near plane's 1 to far beyond the far plane, and the stiff ones.
+Planes randomPlanes(int width, int height, int polygons, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> id(0, polygons - 1), run(1, 40);
+  std::uniform_real_distribution<float> exponent(-30.0f, 2.0f);
+  const float stiff[] = {0.0f,
+                         -0.0f,
+                         1.0f,
+                         std::numeric_limits<float>::max(),
+                         -std::numeric_limits<float>::max(),
+                         std::numeric_limits<float>::denorm_min()};
+  Planes p;
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  p.color.assign(pixels, Rgba8{1, 2, 3, 4});  // overwritten everywhere
+  for (std::size_t i = 0; i < pixels;) {
+    const bool shown = random() % 4 == 0;
+    for (int k = run(random); k > 0 && i < pixels; --k, ++i) {
+      p.ids.push_back(shown ? id(random) : -1);
+      p.depth.push_back(random() % 16 == 0 ? stiff[random() % std::size(stiff)]
+                                           : std::exp2(exponent(random)));
+    }
+  }
+  return p;
+}
+
+TEST(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
+  Camera perspective;
+  perspective.nearClip = 0.01, perspective.farClip = 1e4;
+  Camera parallel = perspective;
+  parallel.parallelProjection = true;
+  std::vector<Rgba8> colors(500);
+  for (std::size_t i = 0; i < colors.size(); ++i)
+    colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
+  const Rgba8 background{9, 8, 7, 0};
+  detail::ThreadPool pool(2);
+  const detail::PhaseRunner::ProgressCallback noProgress;
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    SCOPED_TRACE(target.name);
+    detail::useSimdTarget(target.bits);
+    for (const Camera& camera : {perspective, parallel}) {
+      for (const auto& [width, height] : {std::pair{200, 70}, std::pair{131, 67}}) {
+        const detail::FrameTransform transform(camera, width, height);
+        const Planes before = randomPlanes(width, height, 500, 7);
+        for (const bool depths : {true, false}) {
+          Planes after = before;
+          const detail::ResolveContext context{colors.data(),      background,
+                                               after.color.data(), after.depth.data(),
+                                               after.ids.data(),   width};
+          detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
+          ASSERT_TRUE(detail::resolveTiles(runner, detail::TileGrid(width, height), context,
+                                           detail::chooseResolveRoutine(depths).resolve,
+                                           transform));
+          std::size_t differing = 0;
+          for (std::size_t i = 0; i < before.ids.size(); ++i) {
+            const std::int32_t id = before.ids[i];
+            const Rgba8 color = id < 0 ? background : colors[id];
+            const float key = before.depth[i];
+            const float depth = !depths ? key : id < 0 ? 1.0f : transform.windowDepth(key);
+            const bool same =
+                after.color[i] == color && std::memcmp(&after.depth[i], &depth, sizeof depth) == 0;
+            if (!same && ++differing <= 5) {
+              ADD_FAILURE() << "pixel " << i << ", id " << id << ", key " << key << ": depth "
+                            << after.depth[i] << ", expected " << depth;
+            }
+          }
+          EXPECT_EQ(differing, 0u) << width << " x " << height << ", depths " << depths;
+        }
+      }
+    }
+  }
+  detail::useSimdTarget(0);
+}
+
+}  // namespace
+}  // namespace facet::testing
