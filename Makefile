@@ -15,7 +15,7 @@ BUILD_DIR ?= build
 # before, each its own piece); the main build composites.
 SANITIZE_BUILD_DIR ?= build-sanitize
 # Its fuzz targets run their seed corpora only: no coverage instrumentation (a call on every
-# comparison: ~40 % of the sanitized suite's run time). Of Highway's SIMD targets it compiles
+# comparison: ~37 % of the sanitized core tests' run time). Of Highway's SIMD targets it compiles
 # one per vector width: EMU128 (the 128-bit baseline, as SSSE3 and SSE4), AVX2 and AVX3, each
 # under AddressSanitizer; the main build checks the rest byte for byte.
 SANITIZE_SIMD_TARGETS := AVX2;AVX3
