@@ -14,10 +14,20 @@ BUILD_DIR ?= build
 # It is also the build without IceT (tests/parallel check there that MPI ranks render as
 # before, each its own piece); the main build composites.
 SANITIZE_BUILD_DIR ?= build-sanitize
+# Its fuzz targets run their seed corpora only: no coverage instrumentation (a call on every
+# comparison: ~37 % of the sanitized core tests' run time). Of Highway's SIMD targets it compiles
+# one per vector width: EMU128 (the 128-bit baseline, as SSSE3 and SSE4), AVX2 and AVX3, each
+# under AddressSanitizer; the main build checks the rest byte for byte.
+SANITIZE_SIMD_TARGETS := AVX2;AVX3
 # The core alone, without VTK (it must build and test where VTK is absent), under
 # ThreadSanitizer: the thread pool and the parallel phases. The allocation test is left out
 # (it replaces operator new, as TSan's runtime does).
 TSAN_BUILD_DIR ?= build-tsan
+# ThreadSanitizer checks threads, not instruction sets: the baseline and AVX2 only (runtime
+# dispatch still chooses between two); the main and sanitized builds cover the other targets.
+TSAN_SIMD_TARGETS := AVX2
+# make fuzz: the sanitized build with libFuzzer's coverage feedback in everything.
+FUZZ_BUILD_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
@@ -101,10 +111,19 @@ build: deps $(BUILD_DIR)/build.ninja
 test-main: deps-parallel build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-$(SANITIZE_BUILD_DIR)/build.ninja:
-	CC=clang CXX=clang++ cmake -S . -B $(SANITIZE_BUILD_DIR) -G Ninja \
+# $(call configure-sanitized,DIR,FLAGS): the clang build under AddressSanitizer and UBSan.
+define configure-sanitized
+CC=clang CXX=clang++ cmake -S . -B $(1) -G Ninja \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_SANITIZE=address,undefined -DFACET_FUZZ=ON \
-	  -DFACET_BUILD_BENCHMARKS=OFF -DFACET_ENABLE_ICET=OFF
+	  -DFACET_BUILD_BENCHMARKS=OFF -DFACET_ENABLE_ICET=OFF $(2)
+endef
+
+$(SANITIZE_BUILD_DIR)/build.ninja:
+	$(call configure-sanitized,$(SANITIZE_BUILD_DIR),-DFACET_FUZZ_COVERAGE=OFF \
+	  '-DFACET_SIMD_TARGETS=$(SANITIZE_SIMD_TARGETS)')
+
+$(FUZZ_BUILD_DIR)/build.ninja:
+	$(call configure-sanitized,$(FUZZ_BUILD_DIR),-DFACET_BUILD_TESTS=OFF)
 
 # python3-paraview, the same version as the installed ParaView, unpacked (not installed).
 $(PARAVIEW_PYTHON_ROOT)/.unpacked: | deps-plugin
@@ -126,8 +145,8 @@ test-plugin: plugin
 	cd $(PLUGIN_BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 
-fuzz-build: deps $(SANITIZE_BUILD_DIR)/build.ninja
-	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
+fuzz-build: deps $(FUZZ_BUILD_DIR)/build.ninja
+	cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
 
 # Convergence checks of the references and the error estimate: minutes under AddressSanitizer
 # (ray casting at up to 128 samples a pixel) for code the other sanitized tests run in small;
@@ -148,7 +167,7 @@ test-sanitized: deps-parallel $(SANITIZE_BUILD_DIR)/build.ninja
 test-thread-sanitized: deps
 	CC=clang CXX=clang++ cmake -S . -B $(TSAN_BUILD_DIR) -G Ninja \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_CORE_ONLY=ON -DCMAKE_DISABLE_FIND_PACKAGE_VTK=ON \
-	  -DFACET_SANITIZE=thread -DFACET_BUILD_BENCHMARKS=OFF
+	  -DFACET_SANITIZE=thread -DFACET_BUILD_BENCHMARKS=OFF '-DFACET_SIMD_TARGETS=$(TSAN_SIMD_TARGETS)'
 	cmake --build $(TSAN_BUILD_DIR) -j $(JOBS) --target facet_core_tests facet-core-demo
 	$(SANITIZER_ENV) $(TSAN_BUILD_DIR)/tests/core/facet_core_tests
 
@@ -156,14 +175,14 @@ test: test-main test-sanitized test-thread-sanitized test-plugin
 	@echo "All test suites passed."
 
 # Each target fuzzes for FUZZ_SECONDS from its seed corpus (fuzz/corpus/, read only) and what
-# earlier runs found ($(SANITIZE_BUILD_DIR)/fuzzing/corpus/). A crash, hang or failed check
-# leaves its input in $(SANITIZE_BUILD_DIR)/fuzzing/crashes/ and fails the target.
+# earlier runs found ($(FUZZ_BUILD_DIR)/fuzzing/corpus/). A crash, hang or failed check
+# leaves its input in $(FUZZ_BUILD_DIR)/fuzzing/crashes/ and fails the target.
 fuzz: fuzz-build
 	@failed=""; \
 	for target in $(FUZZ_TARGETS); do \
-	  work=$(SANITIZE_BUILD_DIR)/fuzzing; mkdir -p $$work/corpus/$$target $$work/crashes; \
+	  work=$(FUZZ_BUILD_DIR)/fuzzing; mkdir -p $$work/corpus/$$target $$work/crashes; \
 	  echo "== $$target: fuzzing for $(FUZZ_SECONDS) s (log: $$work/$$target.log)"; \
-	  if $(SANITIZER_ENV) $(SANITIZE_BUILD_DIR)/bin/$$target $(FUZZ_FLAGS) \
+	  if $(SANITIZER_ENV) $(FUZZ_BUILD_DIR)/bin/$$target $(FUZZ_FLAGS) \
 	       -max_total_time=$(FUZZ_SECONDS) -artifact_prefix=$$work/crashes/$$target- \
 	       $$work/corpus/$$target fuzz/corpus/$$target > $$work/$$target.log 2>&1; then \
 	    grep -E '^(Done|stat::number_of_executed_units|stat::peak_rss_mb)' $$work/$$target.log; \
@@ -211,4 +230,4 @@ report: build
 	$(BUILD_DIR)/bin/facet-render --report -o $(REPORT_PREFIX) --progress | tee $(REPORT_PREFIX).md
 
 clean:
-	rm -rf $(BUILD_DIR) $(SANITIZE_BUILD_DIR) $(TSAN_BUILD_DIR) $(PLUGIN_BUILD_DIR)
+	rm -rf $(BUILD_DIR) $(SANITIZE_BUILD_DIR) $(TSAN_BUILD_DIR) $(FUZZ_BUILD_DIR) $(PLUGIN_BUILD_DIR)

@@ -6,7 +6,8 @@
 # passes the regression run in make test.
 #
 # Usage: fuzz/make_corpus.sh FUZZER [RUNS [CORPUS_DIR...]]
-#   e.g. fuzz/make_corpus.sh build-sanitize/bin/facet_fuzz_core 5000 build-sanitize/fuzzing/corpus/facet_fuzz_core
+#   e.g. fuzz/make_corpus.sh build-fuzz/bin/facet_fuzz_core 5000 build-fuzz/fuzzing/corpus/facet_fuzz_core
+#   (a build with coverage feedback: make fuzz-build, not make test's build-sanitize)
 set -euo pipefail
 fuzzer="$1"
 runs="${2:-5000}"

@@ -22,7 +22,7 @@
 using namespace facet_test;
 
 namespace {
-constexpr int Width = 160, Height = 120;
+constexpr int ViewWidth = 160, ViewHeight = 120;
 
 // Every parameter vtkRenderer::ResetCamera sets, and the view up it keeps.
 std::vector<double> CameraValues(vtkCamera* camera)
@@ -105,7 +105,7 @@ bool AllFinite(const std::vector<double>& values)
 TEST(AutomaticCamera, IsVtkRenderersResetCameraToTheBit)
 {
   vtkSmartPointer<vtkPolyData> sphere = Sphere();
-  for (const auto& [width, height] : { std::pair{ Width, Height }, std::pair{ 90, 300 } })
+  for (const auto& [width, height] : { std::pair{ ViewWidth, ViewHeight }, std::pair{ 90, 300 } })
   {
     vtkSmartPointer<vtkFacetRenderFilter> filter = Render(sphere, width, height);
     const std::vector<double> ours = CameraValues(filter->GetActiveCamera());
@@ -125,29 +125,29 @@ TEST(AutomaticCamera, LeavesNonFinitePointsOutOfTheBounds)
   vtkSmartPointer<vtkPolyData> spoiled =
     SphereWith({ { inf, 0.0, 0.0 }, { 1000.0, -inf, 3.0 }, { nan, 1.0, 2.0 } });
   spoiled->GetPoints()->InsertNextPoint(inf, inf, inf); // used by no cell
-  vtkSmartPointer<vtkFacetRenderFilter> clean = Render(sphere, Width, Height);
+  vtkSmartPointer<vtkFacetRenderFilter> clean = Render(sphere, ViewWidth, ViewHeight);
   auto filter = vtkSmartPointer<vtkFacetRenderFilter>::New();
   filter->SetInputData(spoiled);
-  filter->SetSize(Width, Height);
+  filter->SetSize(ViewWidth, ViewHeight);
   MessageCounter errors(filter, vtkCommand::ErrorEvent);
   MessageCounter warnings(filter, vtkCommand::WarningEvent);
   filter->Update();
   EXPECT_EQ(errors.Count, 0) << errors.Last;
   EXPECT_EQ(warnings.Count, 1) << "the skipped cells: " << warnings.Last;
   const std::vector<double> ours = CameraValues(filter->GetActiveCamera());
-  const std::vector<double> theirs = VtkResetCamera(sphere->GetBounds(), Width, Height);
+  const std::vector<double> theirs = VtkResetCamera(sphere->GetBounds(), ViewWidth, ViewHeight);
   EXPECT_EQ(ours, theirs) << "\nours   " << Describe(ours) << "\ntheirs " << Describe(theirs);
   int covered = 0;
-  for (int y = 0; y < Height; ++y)
+  for (int y = 0; y < ViewHeight; ++y)
   {
-    for (int x = 0; x < Width; ++x)
+    for (int x = 0; x < ViewWidth; ++x)
     {
       ASSERT_EQ(RgbaAt(filter->GetOutput(), x, y), RgbaAt(clean->GetOutput(), x, y))
         << "the sphere renders as without the spoiled cells, at " << x << ", " << y;
       covered += CellIdAt(filter->GetOutput(), x, y) >= 0;
     }
   }
-  EXPECT_GT(covered, Width * Height / 10);
+  EXPECT_GT(covered, ViewWidth * ViewHeight / 10);
 }
 
 //------------------------------------------------------------------------------
@@ -164,7 +164,8 @@ TEST(AutomaticCamera, HugeBoundsGiveAFiniteCameraThatShowsTheData)
     vtkNew<vtkCellArray> polys;
     AddSquare(points, polys, -corner, -corner, corner, corner);
     AddSquare(points, polys, -5e99, -5e99, 5e99, 5e99, 1e99);
-    vtkSmartPointer<vtkFacetRenderFilter> filter = Render(PolyData(points, polys), Width, Height);
+    vtkSmartPointer<vtkFacetRenderFilter> filter =
+      Render(PolyData(points, polys), ViewWidth, ViewHeight);
     vtkCamera* camera = filter->GetActiveCamera();
     const std::vector<double> values = CameraValues(camera);
     EXPECT_TRUE(AllFinite(values)) << Describe(values);
@@ -172,8 +173,8 @@ TEST(AutomaticCamera, HugeBoundsGiveAFiniteCameraThatShowsTheData)
     EXPECT_GT(camera->GetDistance(), 0.0);
     const double* direction = camera->GetDirectionOfProjection();
     EXPECT_EQ(direction[2], -1.0) << "VTK's default direction, kept";
-    EXPECT_EQ(CellIdAt(filter->GetOutput(), Width / 2, Height / 2), 1);
-    EXPECT_EQ(CellIdAt(filter->GetOutput(), Width / 2 + 10, Height / 2 - 10), 1);
+    EXPECT_EQ(CellIdAt(filter->GetOutput(), ViewWidth / 2, ViewHeight / 2), 1);
+    EXPECT_EQ(CellIdAt(filter->GetOutput(), ViewWidth / 2 + 10, ViewHeight / 2 - 10), 1);
   }
 }
 
@@ -186,11 +187,12 @@ TEST(AutomaticCamera, DataTooSmallForItsPositionStillGetsAUsableCamera)
   points->SetDataTypeToDouble();
   vtkNew<vtkCellArray> polys;
   AddSquare(points, polys, 1e20, 1e20, 1e20 + 1e-10, 1e20 + 1e-10, 1e20);
-  vtkSmartPointer<vtkFacetRenderFilter> filter = Render(PolyData(points, polys), Width, Height);
+  vtkSmartPointer<vtkFacetRenderFilter> filter =
+    Render(PolyData(points, polys), ViewWidth, ViewHeight);
   vtkCamera* camera = filter->GetActiveCamera();
   EXPECT_GT(camera->GetDistance(), 0.0);
   EXPECT_TRUE(AllFinite(CameraValues(camera))) << Describe(CameraValues(camera));
-  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), Width * Height);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), ViewWidth * ViewHeight);
 }
 
 //------------------------------------------------------------------------------
@@ -200,7 +202,7 @@ TEST(AutomaticCamera, GetActiveCameraIsTheUsersOrTheFittedOne)
   vtkNew<vtkFacetRenderFilter> filter;
   ASSERT_NE(filter->GetActiveCamera(), nullptr) << "never null, even before an Update";
   filter->SetInputData(sphere);
-  filter->SetSize(Width, Height);
+  filter->SetSize(ViewWidth, ViewHeight);
   filter->Update();
   vtkCamera* fitted = filter->GetActiveCamera();
   ASSERT_NE(fitted, nullptr);
@@ -210,11 +212,11 @@ TEST(AutomaticCamera, GetActiveCameraIsTheUsersOrTheFittedOne)
   vtkNew<vtkCamera> orbit;
   orbit->DeepCopy(fitted);
   orbit->Azimuth(90.0);
-  vtkFacetRenderFilter::ResetCamera(orbit, sphere, Width, Height);
+  vtkFacetRenderFilter::ResetCamera(orbit, sphere, ViewWidth, ViewHeight);
   filter->SetCamera(orbit);
   EXPECT_EQ(filter->GetActiveCamera(), orbit.Get());
   filter->Update();
-  EXPECT_NE(CellIdAt(filter->GetOutput(), Width / 2, Height / 2), -1);
+  EXPECT_NE(CellIdAt(filter->GetOutput(), ViewWidth / 2, ViewHeight / 2), -1);
   // Turned 90 degrees about the view up (+y): the camera looks along -x.
   const double* direction = orbit->GetDirectionOfProjection();
   EXPECT_NEAR(direction[0], -1.0, 1e-12);
@@ -227,14 +229,14 @@ TEST(AutomaticCamera, GetActiveCameraIsTheUsersOrTheFittedOne)
   EXPECT_NEAR(orbit->GetDistance(), fitted->GetDistance(), 1e-12 * fitted->GetDistance());
 
   // A copy of the fitted camera renders what the automatic camera rendered.
-  vtkSmartPointer<vtkFacetRenderFilter> automatic = Render(sphere, Width, Height);
+  vtkSmartPointer<vtkFacetRenderFilter> automatic = Render(sphere, ViewWidth, ViewHeight);
   vtkNew<vtkCamera> copy;
   copy->DeepCopy(automatic->GetActiveCamera());
   filter->SetCamera(copy);
   filter->Update();
-  for (int y = 0; y < Height; ++y)
+  for (int y = 0; y < ViewHeight; ++y)
   {
-    for (int x = 0; x < Width; ++x)
+    for (int x = 0; x < ViewWidth; ++x)
     {
       ASSERT_EQ(RgbaAt(filter->GetOutput(), x, y), RgbaAt(automatic->GetOutput(), x, y));
     }

@@ -31,11 +31,11 @@
 using namespace facet_test;
 
 namespace {
-constexpr int Width = 160, Height = 120;
+constexpr int FilterWidth = 160, FilterHeight = 120;
 
 vtkSmartPointer<vtkCamera> PixelCamera()
 {
-  return facet_test::PixelCamera(Width, Height);
+  return facet_test::PixelCamera(FilterWidth, FilterHeight);
 }
 
 // A filter showing exactly the surface colors: Ka = 1 with the ambient color being the
@@ -44,7 +44,7 @@ vtkSmartPointer<vtkFacetRenderFilter> UnlitFilter(vtkPolyData* input)
 {
   auto filter = vtkSmartPointer<vtkFacetRenderFilter>::New();
   filter->SetInputData(input);
-  filter->SetSize(Width, Height);
+  filter->SetSize(FilterWidth, FilterHeight);
   filter->SetCamera(PixelCamera());
   filter->AutomaticLightCreationOff();
   filter->SetAmbientLightColor(0.0, 0.0, 0.0);
@@ -82,7 +82,7 @@ TEST(Conversion, StripsRenderWithTheWindingVtkGivesThem)
   const auto render = [](vtkPolyData* input) {
     auto filter = vtkSmartPointer<vtkFacetRenderFilter>::New();
     filter->SetInputData(input);
-    filter->SetSize(Width, Height);
+    filter->SetSize(FilterWidth, FilterHeight);
     filter->SetCamera(PixelCamera());
     filter->TwoSidedLightingOff();
     filter->GetProperty()->BackfaceCullingOn();
@@ -92,9 +92,9 @@ TEST(Conversion, StripsRenderWithTheWindingVtkGivesThem)
   vtkSmartPointer<vtkImageData> fromStrips = render(strips);
   vtkSmartPointer<vtkImageData> fromTriangles = render(triangles->GetOutput());
   int covered = 0;
-  for (int y = 0; y < Height; ++y)
+  for (int y = 0; y < FilterHeight; ++y)
   {
-    for (int x = 0; x < Width; ++x)
+    for (int x = 0; x < FilterWidth; ++x)
     {
       ASSERT_EQ(RgbaAt(fromStrips, x, y), RgbaAt(fromTriangles, x, y)) << x << ", " << y;
       covered += CellIdAt(fromStrips, x, y) >= 0;
@@ -171,27 +171,27 @@ TEST(Conversion, CellIdsSurviveNearPlaneClipping)
   EXPECT_GT(FieldValue(image, "FacetCounts", "TrianglesClipped"), 0.0);
   // Up the middle column: clipped away (background) at the bottom, then the floor.
   int clipRow = 0;
-  while (clipRow < Height && CellIdAt(image, Width / 2, clipRow) == -1)
+  while (clipRow < FilterHeight && CellIdAt(image, FilterWidth / 2, clipRow) == -1)
   {
     ++clipRow;
   }
   EXPECT_GT(clipRow, 5) << "the near plane removes the closest part of the floor";
-  EXPECT_LT(clipRow, Height / 2);
+  EXPECT_LT(clipRow, FilterHeight / 2);
   for (int y = clipRow; y < clipRow + 10; ++y)
   {
-    EXPECT_EQ(CellIdAt(image, Width / 2, y), 0) << "row " << y;
+    EXPECT_EQ(CellIdAt(image, FilterWidth / 2, y), 0) << "row " << y;
   }
   int floor = 0;
-  for (int y = 0; y < Height; ++y)
+  for (int y = 0; y < FilterHeight; ++y)
   {
-    for (int x = 0; x < Width; ++x)
+    for (int x = 0; x < FilterWidth; ++x)
     {
       const vtkIdType id = CellIdAt(image, x, y);
       ASSERT_TRUE(id == -1 || id == 0 || id == 1) << id;
       floor += id == 0;
     }
   }
-  EXPECT_GT(floor, Width * Height / 4);
+  EXPECT_GT(floor, FilterWidth * FilterHeight / 4);
 }
 
 //------------------------------------------------------------------------------
@@ -282,9 +282,9 @@ TEST(Coloring, TheDefaultLookupTableMapsAsVtksOwn)
   second->Update();
   double ours[3] = { 0, 0, 0 }, theirs[3] = { 0, 0, 0 };
   int covered = 0, mismatches = 0, lowestRed = 255, highestRed = 0;
-  for (int y = 0; y < Height; ++y)
+  for (int y = 0; y < FilterHeight; ++y)
   {
-    for (int x = 0; x < Width; ++x)
+    for (int x = 0; x < FilterWidth; ++x)
     {
       ASSERT_EQ(RgbaAt(first->GetOutput(), x, y), RgbaAt(second->GetOutput(), x, y))
         << "two runs differ at " << x << ", " << y;
@@ -418,7 +418,7 @@ TEST(Camera, PointsLandWhereVtkCameraProjectsThem)
     random->Next();
     return random->GetRangeValue(low, high);
   };
-  const double aspect = static_cast<double>(Width) / Height;
+  const double aspect = static_cast<double>(FilterWidth) / FilterHeight;
   for (int trial = 0; trial < 40; ++trial)
   {
     vtkNew<vtkCamera> camera;
@@ -433,12 +433,13 @@ TEST(Camera, PointsLandWhereVtkCameraProjectsThem)
     camera->SetClippingRange(1.0, 100.0);
 
     // The world point on the focal plane that VTK maps to the center of pixel (px, py).
-    const int px = static_cast<int>(uniform(0, Width - 1)),
-              py = static_cast<int>(uniform(0, Height - 1));
+    const int px = static_cast<int>(uniform(0, FilterWidth - 1)),
+              py = static_cast<int>(uniform(0, FilterHeight - 1));
     vtkNew<vtkMatrix4x4> inverse;
     vtkMatrix4x4::Invert(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1), inverse);
     const auto unproject = [&](double wx, double wy, double ndcZ) {
-      double ndc[4] = { 2.0 * wx / Width - 1.0, 2.0 * wy / Height - 1.0, ndcZ, 1.0 }, world[4];
+      double ndc[4] = { 2.0 * wx / FilterWidth - 1.0, 2.0 * wy / FilterHeight - 1.0, ndcZ, 1.0 },
+             world[4];
       inverse->MultiplyPoint(ndc, world);
       return std::array<double, 3>{ world[0] / world[3], world[1] / world[3], world[2] / world[3] };
     };
@@ -474,13 +475,14 @@ TEST(Camera, WithoutACameraTheViewIsResetToTheBounds)
   sphere->SetRadius(0.01);
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputConnection(sphere->GetOutputPort());
-  filter->SetSize(Width, Height);
+  filter->SetSize(FilterWidth, FilterHeight);
   filter->Update();
   vtkImageData* image = filter->GetOutput();
-  EXPECT_NE(CellIdAt(image, Width / 2, Height / 2), -1) << "the sphere is in the middle";
+  EXPECT_NE(CellIdAt(image, FilterWidth / 2, FilterHeight / 2), -1)
+    << "the sphere is in the middle";
   EXPECT_EQ(CellIdAt(image, 2, 2), -1);
   const double covered = FieldValue(image, "FacetCounts", "PixelsCovered");
-  EXPECT_GT(covered, 0.1 * Width * Height) << "and fills a good part of the view";
+  EXPECT_GT(covered, 0.1 * FilterWidth * FilterHeight) << "and fills a good part of the view";
 }
 
 //------------------------------------------------------------------------------
@@ -494,15 +496,15 @@ TEST(Camera, FitCameraToInputKeepsTheCamerasDirection)
   vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputData(input);
-  filter->SetSize(Width, Height);
+  filter->SetSize(FilterWidth, FilterHeight);
   filter->FitCameraToInputOn();
   vtkNew<vtkCamera> camera;
   camera->SetPosition(0.0, 0.0, 5.0);
   filter->SetCamera(camera);
   filter->Update();
   const double facing = FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered");
-  EXPECT_GT(facing, 0.2 * Width * Height);
-  EXPECT_NE(CellIdAt(filter->GetOutput(), Width / 2, Height / 2), -1);
+  EXPECT_GT(facing, 0.2 * FilterWidth * FilterHeight);
+  EXPECT_NE(CellIdAt(filter->GetOutput(), FilterWidth / 2, FilterHeight / 2), -1);
   const double* position = camera->GetPosition();
   EXPECT_TRUE(position[0] == 0.0 && position[1] == 0.0 && position[2] == 5.0)
     << "the camera set was moved to " << position[0] << ", " << position[1] << ", " << position[2];
@@ -527,7 +529,7 @@ TEST(Lights, HeadlightByDefaultAndNoneWhenTurnedOff)
   vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputData(input);
-  filter->SetSize(Width, Height);
+  filter->SetSize(FilterWidth, FilterHeight);
   filter->SetCamera(PixelCamera());
   filter->SetAmbientLightColor(0.0, 0.0, 0.0);
   filter->Update();
@@ -545,7 +547,7 @@ TEST(Lights, FacetLightLinearSpotFalloff)
   vtkNew<vtkCellArray> polys;
   for (int i = 0; i < 80; ++i) // strips of 1 unit, so each shades at its own distance
   {
-    AddSquare(points, polys, i, 0.0, i + 1.0, Height);
+    AddSquare(points, polys, i, 0.0, i + 1.0, FilterHeight);
   }
   vtkSmartPointer<vtkPolyData> input = PolyData(points, polys);
   vtkNew<vtkFacetLight> spot;
@@ -692,7 +694,7 @@ TEST(Errors, EmptyInputGivesTheBackground)
   filter->SetBackground(0.2, 0.4, 0.6);
   filter->Update();
   vtkImageData* image = filter->GetOutput();
-  EXPECT_EQ(image->GetNumberOfPoints(), Width * Height);
+  EXPECT_EQ(image->GetNumberOfPoints(), FilterWidth * FilterHeight);
   EXPECT_EQ(RgbaAt(image, 3, 3), (std::array<int, 4>{ 51, 102, 153, 255 }));
   EXPECT_EQ(CellIdAt(image, 3, 3), -1);
 }
@@ -705,7 +707,7 @@ TEST(Output, ArraysExtentAndDeterminism)
   for (vtkFacetRenderFilter* filter : { one.Get(), two.Get() })
   {
     filter->SetInputData(strips);
-    filter->SetSize(Width, Height);
+    filter->SetSize(FilterWidth, FilterHeight);
     filter->SetCamera(PixelCamera());
   }
   one->SetNumberOfThreads(1);
@@ -715,8 +717,8 @@ TEST(Output, ArraysExtentAndDeterminism)
   vtkImageData* image = one->GetOutput();
   int extent[6];
   image->GetExtent(extent);
-  EXPECT_EQ(extent[1], Width - 1);
-  EXPECT_EQ(extent[3], Height - 1);
+  EXPECT_EQ(extent[1], FilterWidth - 1);
+  EXPECT_EQ(extent[3], FilterHeight - 1);
   EXPECT_EQ(extent[5], 0);
   EXPECT_STREQ(image->GetPointData()->GetScalars()->GetName(), "RGBA");
   EXPECT_TRUE(vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Depth")));
@@ -737,7 +739,7 @@ TEST(Caching, ANewCameraReusesTheConvertedMesh)
   vtkSmartPointer<vtkPolyData> strips = StripSphere();
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputData(strips);
-  filter->SetSize(Width, Height);
+  filter->SetSize(FilterWidth, FilterHeight);
   vtkSmartPointer<vtkCamera> camera = PixelCamera();
   filter->SetCamera(camera);
   filter->Update();
@@ -764,7 +766,7 @@ TEST(Caching, PreparingTheLookupTableIsNoChangeButChangingItIs)
   vtkNew<vtkLookupTable> table; // not built; its range (0, 1) becomes (-1, 2)
   vtkNew<vtkFacetRenderFilter> filter;
   filter->SetInputConnection(elevation->GetOutputPort());
-  filter->SetSize(Width, Height);
+  filter->SetSize(FilterWidth, FilterHeight);
   filter->SetLookupTable(table);
   filter->SetScalarRange(-1.0, 2.0);
   ExecutionCounter executions(filter);
