@@ -1,20 +1,17 @@
 #include "RasterTriangle.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <iterator>
 #include <limits>
 
 #include "Assert.h"
 #include "facet/Conventions.h"
-#include "facet/Framebuffer.h"
 
 namespace facet::detail {
 namespace {
 
 constexpr std::int64_t kHalfPixel = kSubpixelScale / 2;
-constexpr std::int32_t kBackgroundPolygon = Framebuffer::kBackgroundId;
 
 // floor(value / 256) and ceil(value / 256) for any sign (C++20 >> is arithmetic).
 std::int64_t floorToPixel(std::int64_t value) {
@@ -185,22 +182,6 @@ float toDepthKey(double key) {
   return static_cast<float>(std::clamp(key, -kLargest, kLargest));
 }
 
-// Writes one fragment if it passes the depth test: strictly nearer (a larger key), so an
-// exact tie keeps the polygon drawn first.
-template <DepthMode kMode>
-void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
-                   PaintCounts& counts) {
-  if (kMode == DepthMode::Overwrite || depth > planes.depth[i]) {
-    counts.covered += planes.polygonId[i] == kBackgroundPolygon;
-    planes.depth[i] = depth;
-    planes.polygonId[i] = polygonId;
-    ++counts.written;
-    // Tiles sharing a polygon may race to store the same 1: relaxed atomics make it benign.
-    std::atomic_ref<std::uint8_t> shown(planes.shown[static_cast<std::size_t>(polygonId)]);
-    if (shown.load(std::memory_order_relaxed) == 0) shown.store(1, std::memory_order_relaxed);
-  }
-}
-
 // Most triangles of a dense mesh have a single sample in their bounding box: test it
 // exactly, skipping the edge walker's set-up. Same coverage decision (the same biased edge
 // functions) and the same depth plane.
@@ -208,15 +189,10 @@ template <DepthMode kMode>
 void paintSingleSample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                        std::int64_t area, EdgeMask boundary, int x, int y, std::int32_t polygonId,
                        const Planes& planes, PaintCounts& counts) {
-  const std::int64_t sampleX = std::int64_t{x} * kSubpixelScale + kHalfPixel;
-  const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
-  const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
-  if ((e0.value | e1.value | e2.value) < 0) return;
-  const std::int64_t snapped[3] = {e0.unbiased(e0.value), e1.unbiased(e1.value),
-                                   e2.unbiased(e2.value)};
-  const double key = TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped);
-  writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, toDepthKey(key), polygonId,
-                       planes, counts);
+  if (const std::optional<float> key = keyOfOnlySample(a, b, c, area, boundary, x, y)) {
+    writeFragment<kMode>(static_cast<std::size_t>(y) * planes.width + x, *key, polygonId, planes,
+                         counts);
+  }
 }
 
 // One triangle over one box of samples: its edge functions at the box's first sample and
@@ -323,6 +299,18 @@ float floatBelow(double key) {
 }
 
 }  // namespace
+
+std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& b,
+                                     const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                     int x, int y) {
+  const std::int64_t sampleX = std::int64_t{x} * kSubpixelScale + kHalfPixel;
+  const std::int64_t sampleY = std::int64_t{y} * kSubpixelScale + kHalfPixel;
+  const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
+  if ((e0.value | e1.value | e2.value) < 0) return std::nullopt;
+  const std::int64_t snapped[3] = {e0.unbiased(e0.value), e1.unbiased(e1.value),
+                                   e2.unbiased(e2.value)};
+  return toDepthKey(TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped));
+}
 
 PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
                                  const WindowVertex& c, const PixelBounds& clip) {
