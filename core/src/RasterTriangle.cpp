@@ -298,7 +298,41 @@ float floatBelow(double key) {
   return f > key ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
 }
 
+// Up to this many samples in its box a triangle that may be a back face is tested by
+// losesEverywhere before it is set up (reading its box's keys costs less than the set-up it
+// may save; larger ones meet the coarse depth, when it is on).
+constexpr std::size_t kSamplesForLosesEverywhere = 16;
+
 }  // namespace
+
+// losesEverywhere (RasterTriangle.h): keyRange's bound is max(vertex keys) + s·kResidueScale
+// + 1e-9·(largest + s·extent·kSubpixelScale·kResidueScale) with s = (|nx| + |ny|)/F the
+// unsnapped plane's slope (numerators nx, ny over the fine area F); multiplied by F > 0 it
+// needs no division, and its margin doubled covers this test's own rounding.
+bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                     const PixelBounds& box, const Planes& planes) {
+  float farthest = std::numeric_limits<float>::infinity();
+  for (int y = box.y0; y <= box.y1; ++y) {
+    const float* row = planes.depth + static_cast<std::size_t>(y) * planes.width;
+    for (int x = box.x0; x <= box.x1; ++x)
+      farthest = std::min(farthest, row[x]);
+  }
+  const double nearest = std::max({a.depth, b.depth, c.depth});
+  if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
+  const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
+  const double fineArea = edgeFunction(pa, pb, pc);
+  if (!(fineArea > 0.0)) return false;
+  const double dk1 = static_cast<double>(b.depth) - a.depth;
+  const double dk2 = static_cast<double>(c.depth) - a.depth;
+  const double slopeTimesArea = std::abs(dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) +
+                                std::abs(dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x));
+  const double largest = std::max({std::abs(a.depth), std::abs(b.depth), std::abs(c.depth)});
+  const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
+  const double rounding =
+      2e-9 * (largest * fineArea + slopeTimesArea * extent * kSubpixelScale * kResidueScale);
+  return (static_cast<double>(farthest) - nearest) * fineArea >=
+         slopeTimesArea * kResidueScale + rounding;
+}
 
 std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& b,
                                      const WindowVertex& c, std::int64_t area, EdgeMask boundary,
@@ -351,6 +385,12 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   if (box.empty()) return;
   if (box.x0 == box.x1 && box.y0 == box.y1) {
     paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
+    return;
+  }
+  // A mesh whose back faces are skipped passes no boundary edges (Setup.cpp): its triangles
+  // are rarely behind others of the tile, and the test would only cost.
+  if (kMode == DepthMode::Test && boundary != 0 && box.area() <= kSamplesForLosesEverywhere &&
+      losesEverywhere(a, b, c, box, planes)) {
     return;
   }
   BoxRaster raster(a, b, c, area, boundary, box);

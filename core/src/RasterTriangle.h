@@ -122,6 +122,14 @@ void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Pla
   }
 }
 
+// Whether a counter-clockwise triangle certainly loses the depth test at every pixel of `box`
+// (its samples in one tile), decided before its edges and depth plane are set up: the nearest
+// key it can give (TriangleDepth::keyRange's bound, RasterTriangle.cpp) is no nearer than the
+// farthest key written in the box. Never for a triangle that snapping turned over. Back faces
+// drawn after the front faces over them (every face drawn) are most of what it rejects.
+bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                     const PixelBounds& box, const Planes& planes);
+
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
 // (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
