@@ -72,6 +72,12 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
       if constexpr (kCoarse) {
         paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts,
                                        coarse);
+      } else if (kMode == DepthMode::Test && boundary != 0) {
+        // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
+        // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
+        // triangles would only pay for the test.
+        paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes,
+                                             counts);
       } else {
         paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
       }

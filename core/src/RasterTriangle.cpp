@@ -384,10 +384,11 @@ bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowV
   return false;
 }
 
-template <DepthMode kMode>
+template <DepthMode kMode, bool kRejectHidden>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts) {
+  static_assert(kMode == DepthMode::Test || !kRejectHidden);
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
   const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
@@ -396,9 +397,7 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
-  // A mesh whose back faces are skipped passes no boundary edges (Setup.cpp): its triangles
-  // are rarely behind others of the tile, and the test would only cost.
-  if (kMode == DepthMode::Test && boundary != 0 && box.area() <= kSamplesForLosesEverywhere &&
+  if (kRejectHidden && box.area() <= kSamplesForLosesEverywhere &&
       losesEverywhereInline(a, b, c, box, planes)) {
     return;
   }
@@ -483,11 +482,16 @@ void CoarseDepth::raise(const PixelBounds& box, float key, const Coverage& cover
   }
 }
 
-template void paintTriangle<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
-                                             const WindowVertex&, EdgeMask, std::int32_t,
-                                             const PixelBounds&, const Planes&, PaintCounts&);
-template void paintTriangle<DepthMode::Overwrite>(const WindowVertex&, const WindowVertex&,
-                                                  const WindowVertex&, EdgeMask, std::int32_t,
-                                                  const PixelBounds&, const Planes&, PaintCounts&);
+template void paintTriangle<DepthMode::Test, false>(const WindowVertex&, const WindowVertex&,
+                                                    const WindowVertex&, EdgeMask, std::int32_t,
+                                                    const PixelBounds&, const Planes&,
+                                                    PaintCounts&);
+template void paintTriangle<DepthMode::Test, true>(const WindowVertex&, const WindowVertex&,
+                                                   const WindowVertex&, EdgeMask, std::int32_t,
+                                                   const PixelBounds&, const Planes&, PaintCounts&);
+template void paintTriangle<DepthMode::Overwrite, false>(const WindowVertex&, const WindowVertex&,
+                                                         const WindowVertex&, EdgeMask,
+                                                         std::int32_t, const PixelBounds&,
+                                                         const Planes&, PaintCounts&);
 
 }  // namespace facet::detail

@@ -135,8 +135,9 @@ bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowV
 // (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
 // says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
 // fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
-// is painter's order.
-template <DepthMode kMode>
+// is painter's order. kRejectHidden (depth test only): a triangle of a few samples that
+// losesEverywhere is skipped before its set-up; the same pixels.
+template <DepthMode kMode, bool kRejectHidden = false>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);
