@@ -14,8 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <span>
 #include <vector>
 
 #include "facet/Renderer.h"
@@ -41,6 +44,20 @@ Camera turned(Camera camera, double degrees) {
   const glm::dvec3 r = camera.position - camera.focalPoint;
   camera.position = camera.focalPoint + glm::dvec3(c * r.x + s * r.z, r.y, -s * r.x + c * r.z);
   return camera;
+}
+
+// FNV-1a over the last frame's color, depth and polygon-id bytes: two builds that must give
+// the same bytes print the same number.
+std::uint64_t fingerprint(const Framebuffer& framebuffer) {
+  std::uint64_t hash = 14695981039346656037ull;
+  const auto add = [&](const auto& plane) {
+    for (const std::byte b : std::as_bytes(plane))
+      hash = (hash ^ std::to_integer<std::uint64_t>(b)) * 1099511628211ull;
+  };
+  add(framebuffer.color());
+  add(framebuffer.depth());
+  add(framebuffer.polygonId());
+  return hash;
 }
 
 int run(int triangles, bool closed, int frames, int threads, double turn) {
@@ -74,9 +91,10 @@ int run(int triangles, bool closed, int frames, int threads, double turn) {
   const double* s = best.seconds;
   std::printf(
       "%d triangles, closed %d, %d threads, turn %g, best of %d frames, ms: validate %.3f "
-      "transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f\n",
+      "transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last frame's planes "
+      "%016llx\n",
       triangles, int(closed), threads, turn, frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
-      s[4] * 1e3, s[5] * 1e3);
+      s[4] * 1e3, s[5] * 1e3, static_cast<unsigned long long>(fingerprint(framebuffer)));
   return 0;
 }
 

@@ -1,5 +1,6 @@
 #include "Binning.h"
 
+#include <optional>
 #include <utility>
 
 namespace facet::detail {
@@ -8,6 +9,21 @@ namespace {
 // Corners 1 and 2 trade places: so do the edges opposite them (bits 1 and 2).
 EdgeMask swapEdges12(EdgeMask boundary) {
   return static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
+}
+
+// A triangle whose box holds the one sample (x, y): binned as its fragment there, if it
+// covers it.
+BinOutcome binFragment(Chunk& chunk, const TileGrid& grid, const WindowVertex& a,
+                       const WindowVertex& b, const WindowVertex& c, std::int64_t area,
+                       EdgeMask boundary, int x, int y, std::int32_t polygon) {
+  const std::optional<float> key = keyOfOnlySample(a, b, c, area, boundary, x, y);
+  if (!key) return BinOutcome::CoversNoSample;
+  ++chunk.counts.boxSamples;
+  const auto index = static_cast<std::uint32_t>(chunk.fragments.size()) | kFragmentBit;
+  grid.forEachTile({x, y, x, y}, [&](std::size_t t) { chunk.bins[t].push_back(index); });
+  chunk.fragments.push_back(
+      {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), *key, polygon});
+  return BinOutcome::Binned;
 }
 
 }  // namespace
@@ -25,6 +41,10 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
     boundary = swapEdges12(boundary);
   }
   const PixelBounds bounds = samplesInBoundingBox(a, *second, *third, grid.viewport());
+  if (bounds.x0 == bounds.x1 && bounds.y0 == bounds.y1) {
+    return binFragment(chunk, grid, a, *second, *third, area < 0 ? -area : area, boundary,
+                       bounds.x0, bounds.y0, polygon);
+  }
   if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
     return BinOutcome::CoversNoSample;
   }
@@ -39,6 +59,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
 void clearBins(Chunk& chunk, const TileGrid& grid) {
   chunk.triangles.clear();
   chunk.boundaryEdges.clear();
+  chunk.fragments.clear();
   chunk.bins.resize(grid.count());
   for (auto& bin : chunk.bins)
     bin.clear();

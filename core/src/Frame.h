@@ -85,6 +85,18 @@ struct BinnedTriangle {
   std::int32_t polygon;
 };
 
+// A triangle whose box holds one sample, binned as the fragment it covers it with
+// (keyOfOnlySample, RasterTriangle.h): the tile then reads 12 bytes in place of a triangle
+// reference and its three scattered vertices, and sets nothing up. A bin entry with
+// kFragmentBit set indexes its chunk's fragments, else its triangles, so a tile still sees
+// both in draw order.
+struct BinnedFragment {
+  std::uint16_t x, y;  // below kMaxImageSide
+  float key;
+  std::int32_t polygon;
+};
+inline constexpr std::uint32_t kFragmentBit = 0x80000000u;
+
 struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
@@ -98,6 +110,7 @@ struct Chunk {
   std::size_t begin = 0, end = 0;
   HugePageVector<BinnedTriangle> triangles;
   HugePageVector<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
+  HugePageVector<BinnedFragment> fragments;
   std::vector<WindowVertex> clippedVertices;
   std::vector<std::vector<std::uint32_t>> bins;
   PolygonCounts counts;

@@ -20,19 +20,27 @@ void clearTile(const RasterContext& context, const PixelBounds& tile) {
 // A bin's triangles lie scattered through their chunk's array (a tile meets many rows of a
 // mesh), and their vertices through the frame's: read in bin order, nearly every triangle
 // waited for memory twice (perf annotate: half of paintTile's cycles on the load of its first
-// vertex reference). So the triangle kPrefetchTriangle places ahead is fetched, and the
-// vertices of the one kPrefetchVertices ahead, whose record arrived meanwhile.
+// vertex reference). So the entry kPrefetchTriangle places ahead is fetched, and the
+// vertices of the one kPrefetchVertices ahead, whose record arrived meanwhile (a fragment has
+// none).
 constexpr std::size_t kPrefetchTriangle = 8;
 constexpr std::size_t kPrefetchVertices = 4;
 
 [[gnu::always_inline]] inline void prefetchAhead(const WindowVertex* vertices, const Chunk& chunk,
                                                  const std::vector<std::uint32_t>& bin,
                                                  std::size_t k) {
-  if (k + kPrefetchTriangle < bin.size())
-    __builtin_prefetch(&chunk.triangles[bin[k + kPrefetchTriangle]]);
+  if (k + kPrefetchTriangle < bin.size()) {
+    const std::uint32_t entry = bin[k + kPrefetchTriangle];
+    if (entry & kFragmentBit) {
+      __builtin_prefetch(&chunk.fragments[entry & ~kFragmentBit]);
+    } else {
+      __builtin_prefetch(&chunk.triangles[entry]);
+    }
+  }
   if (k + kPrefetchVertices < bin.size()) {
-    const BinnedTriangle& ahead = chunk.triangles[bin[k + kPrefetchVertices]];
-    for (const std::uint32_t reference : ahead.vertex)
+    const std::uint32_t entry = bin[k + kPrefetchVertices];
+    if (entry & kFragmentBit) return;
+    for (const std::uint32_t reference : chunk.triangles[entry].vertex)
       __builtin_prefetch(&vertexOf(vertices, chunk, reference));
   }
 }
@@ -50,6 +58,12 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
     for (std::size_t k = 0; k < bin.size(); ++k) {
       prefetchAhead(context.vertices, chunk, bin, k);
       const std::uint32_t index = bin[k];
+      if (index & kFragmentBit) {
+        const BinnedFragment& f = chunk.fragments[index & ~kFragmentBit];
+        writeFragment<kMode>(static_cast<std::size_t>(f.y) * context.width + f.x, f.key, f.polygon,
+                             planes, counts);
+        continue;
+      }
       const BinnedTriangle& tri = chunk.triangles[index];
       const WindowVertex& a = vertexOf(context.vertices, chunk, tri.vertex[0]);
       const WindowVertex& b = vertexOf(context.vertices, chunk, tri.vertex[1]);
@@ -58,6 +72,12 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
       if constexpr (kCoarse) {
         paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts,
                                        coarse);
+      } else if (kMode == DepthMode::Test && boundary != 0) {
+        // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
+        // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
+        // triangles would only pay for the test.
+        paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes,
+                                             counts);
       } else {
         paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
       }

@@ -12,14 +12,22 @@
 //   two triangles sharing an edge traverse it in opposite directions, so exactly one of
 //   them owns the samples on it (D3D10 / OpenGL rasterization rules, llvmpipe's approach).
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 
 #include "FrameTransform.h"
 #include "TileGrid.h"
 #include "facet/Color.h"
+#include "facet/Framebuffer.h"
 
 namespace facet::detail {
+
+// Which edges of a triangle lie on its polygon's boundary: bit i for the edge opposite
+// corner i (a, b, c). The others are diagonals the triangulation or the clipper added.
+using EdgeMask = std::uint8_t;
+inline constexpr EdgeMask kAllEdges = 0b111;
 
 // Twice the signed area in fixed-point units²: > 0 counter-clockwise (front-facing).
 inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& b,
@@ -38,6 +46,13 @@ PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
 bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                      const PixelBounds& bounds);
 
+// The one sample (x, y) a counter-clockwise triangle's box holds: its depth key if the
+// triangle covers it, as paintTriangle would write it; nothing if it does not. Set-up decides
+// the fragment of such a triangle (most of a dense mesh's) when it bins it (Binning.cpp).
+std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& b,
+                                     const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                     int x, int y);
+
 // Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom; depth keys
 // while painting), and one flag per polygon, set when the polygon wins a pixel (it will
 // need shading).
@@ -50,11 +65,6 @@ struct Planes {
 };
 
 enum class DepthMode { Test, Overwrite };
-
-// Which edges of a triangle lie on its polygon's boundary: bit i for the edge opposite
-// corner i (a, b, c). The others are diagonals the triangulation or the clipper added.
-using EdgeMask = std::uint8_t;
-inline constexpr EdgeMask kAllEdges = 0b111;
 
 struct PaintCounts {
   std::size_t written = 0;  // pixel writes, counting overdraw
@@ -96,13 +106,38 @@ class CoarseDepth {
   Block blocks_[kBlocksPerSide * kBlocksPerSide];
 };
 
+// Writes one fragment of `polygonId` at pixel i if it passes the depth test: strictly nearer
+// (a larger key), so an exact tie keeps the polygon drawn first.
+template <DepthMode kMode>
+void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
+                   PaintCounts& counts) {
+  if (kMode == DepthMode::Overwrite || depth > planes.depth[i]) {
+    counts.covered += planes.polygonId[i] == Framebuffer::kBackgroundId;
+    planes.depth[i] = depth;
+    planes.polygonId[i] = polygonId;
+    ++counts.written;
+    // Tiles sharing a polygon may race to store the same 1: relaxed atomics make it benign.
+    std::atomic_ref<std::uint8_t> shown(planes.shown[static_cast<std::size_t>(polygonId)]);
+    if (shown.load(std::memory_order_relaxed) == 0) shown.store(1, std::memory_order_relaxed);
+  }
+}
+
+// Whether a counter-clockwise triangle certainly loses the depth test at every pixel of `box`
+// (its samples in one tile), decided before its edges and depth plane are set up: the nearest
+// key it can give (TriangleDepth::keyRange's bound, RasterTriangle.cpp) is no nearer than the
+// farthest key written in the box. Never for a triangle that snapping turned over. Back faces
+// drawn after the front faces over them (every face drawn) are most of what it rejects.
+bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                     const PixelBounds& box, const Planes& planes);
+
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
 // (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
 // says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
 // fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
-// is painter's order.
-template <DepthMode kMode>
+// is painter's order. kRejectHidden (depth test only): a triangle of a few samples that
+// losesEverywhere is skipped before its set-up; the same pixels.
+template <DepthMode kMode, bool kRejectHidden = false>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);

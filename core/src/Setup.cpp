@@ -20,9 +20,10 @@ namespace {
 constexpr std::size_t kMinPolygonsPerChunk = 1 << 10;
 constexpr std::size_t kMaxPolygonsPerChunk = 1 << 20;
 
-// Why a polygon's triangles were dropped, to count the polygon once under one reason.
+// What became of a polygon's triangles: how many were binned, and why the others were
+// dropped, to count the polygon once under one reason.
 struct Tally {
-  int zeroArea = 0, outside = 0;
+  int binned = 0, zeroArea = 0, outside = 0;
 };
 
 // The boundary edges of triangle (c0, c1, c2) of an n-corner polygon, by corner index: an
@@ -98,13 +99,13 @@ class PolygonSetup {
     batch.tested[lane] = any == kInside;
   }
 
-  // Counts the polygons of the first `lanes` lanes that the batch dropped as run() would,
-  // and runs the others, in lane order.
+  // Counts the polygons the batch dropped as run() would, and runs the others of the first
+  // `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
+    chunk_.counts.culled += static_cast<std::size_t>(verdicts.culledCount);
+    chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
+    chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
     const std::uint32_t used = (1u << lanes) - 1;
-    chunk_.counts.culled += std::popcount(verdicts.culled & used);
-    chunk_.counts.degenerate += std::popcount(verdicts.zeroArea & used);
-    chunk_.counts.outside += std::popcount(verdicts.coversNoSample & used);
     for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1)
       run(lanePolygon[std::countr_zero(rest)]);
   }
@@ -204,15 +205,14 @@ class PolygonSetup {
   // the viewer sees.
   template <class AddTriangles>
   void emit(bool back, const AddTriangles& addTriangles) {
-    const std::size_t first = chunk_.triangles.size();
     Tally tally;
     addTriangles(tally);
-    if (chunk_.triangles.size() == first) {
+    if (tally.binned == 0) {
       countDropped(tally);
       return;
     }
     context_.backFacing[static_cast<std::size_t>(polygonId_)] = back;
-    chunk_.counts.trianglesBinned += chunk_.triangles.size() - first;
+    chunk_.counts.trianglesBinned += static_cast<std::size_t>(tally.binned);
     ++chunk_.counts.drawn;
   }
 
@@ -298,6 +298,7 @@ class PolygonSetup {
         ++tally.outside;
         break;
       case BinOutcome::Binned:
+        ++tally.binned;
         break;
     }
   }
@@ -359,7 +360,10 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       if (++lanes == kBatchSize) settleBatch();
     }
   }
-  if (lanes > 0) settleBatch();  // lanes beyond hold earlier triangles: not counted
+  if (lanes > 0) {
+    std::fill(batch.tested + lanes, batch.tested + kBatchSize, 0);  // earlier triangles
+    settleBatch();
+  }
   return position;
 }
 

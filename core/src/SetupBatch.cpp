@@ -137,6 +137,9 @@ BatchVerdicts ClassifyBatch(const TriangleBatch& batch, const PixelBounds& viewp
   BatchVerdicts verdicts;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
     classifyLanes(d, batch, lane, viewport, skipBackFaces, verdicts);
+  verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
+  verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
+  verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
   return verdicts;
 }
 

@@ -32,10 +32,13 @@ struct TriangleBatch {
 
 // What a batch decided: per kind of drop, one bit per lane (bit l for lane l). Each drop is
 // counted as the per-triangle path would count it; every other lane goes on to that path.
+// The counts are the bits set in each (counted with the instruction set's POPCNT, which the
+// baseline build has not: std::popcount there is a call into libgcc).
 struct BatchVerdicts {
   std::uint32_t culled = 0;          // back-facing, and the mesh skips back faces
   std::uint32_t zeroArea = 0;        // degenerate
   std::uint32_t coversNoSample = 0;  // no pixel center inside (or in the viewport): outside
+  int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
 };
 

@@ -4,13 +4,16 @@
 // output keeps VTK's window-depth convention.
 
 #include <cmath>
+#include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "RasterTriangle.h"
 
 namespace facet::testing {
 namespace {
@@ -205,6 +208,82 @@ TEST(DepthPrecision, DepthOutputIsTheWindowDepthOfTheClosedForm) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace facet::testing
+
+namespace facet::testing {
+namespace {
+
+using detail::PixelBounds;
+using detail::WindowVertex;
+
+// One tile's planes for the raster's internals: depth keys, polygon ids, shown flags.
+struct TilePlanes {
+  static constexpr int kSide = 16;
+  std::vector<float> depth = std::vector<float>(kSide * kSide, detail::kBackgroundDepthKey);
+  std::vector<std::int32_t> ids = std::vector<std::int32_t>(kSide * kSide, -1);
+  std::vector<std::uint8_t> shown = std::vector<std::uint8_t>(1, 0);
+  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide, shown.data()}; }
+};
+
+// losesEverywhere (RasterTriangle.h) against the keys the triangle does write: random small
+// triangles (residues, steep and flat depth planes), painted first over the background to
+// learn their keys; then with every box pixel nearer than those keys it may reject (and
+// should, mostly), and with one covered pixel a float farther than the triangle's key there
+// it must not (the triangle would win that pixel).
+TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> corner(2 * 256, 10 * 256), residue(-127, 127);
+  std::uniform_real_distribution<float> key(0.25f, 0.75f), steep(-0.01f, 0.01f);
+  const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
+  std::size_t tested = 0, rejected = 0, wronglyRejected = 0;
+  for (int t = 0; t < 20000; ++t) {
+    WindowVertex v[3];
+    const float base = key(random);
+    for (WindowVertex& c : v) {
+      c.x = corner(random), c.y = corner(random);
+      c.residueX = static_cast<std::int8_t>(residue(random));
+      c.residueY = static_cast<std::int8_t>(residue(random));
+      c.depth = base + (t % 2 ? steep(random) : steep(random) * 1e-4f);
+    }
+    const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
+    if (area == 0) continue;
+    if (area < 0) std::swap(v[1], v[2]);
+    const PixelBounds box = detail::samplesInBoundingBox(v[0], v[1], v[2], tile);
+    if (box.area() < 2 || box.area() > 16) continue;
+    TilePlanes written;  // the triangle's own keys
+    detail::PaintCounts counts;
+    detail::paintTriangle<detail::DepthMode::Overwrite>(v[0], v[1], v[2], detail::kAllEdges, 0,
+                                                        tile, written.planes(), counts);
+    if (counts.written == 0) continue;
+    ++tested;
+
+    TilePlanes nearer;
+    for (std::size_t i = 0; i < nearer.depth.size(); ++i)
+      nearer.depth[i] = written.ids[i] == 0 ? written.depth[i] : 1.0f;
+    const bool tie = detail::losesEverywhere(v[0], v[1], v[2], box, nearer.planes());
+    for (float& d : nearer.depth)
+      d = d < 1.0f ? std::nextafter(d, 2.0f) + 1e-4f : d;
+    rejected += detail::losesEverywhere(v[0], v[1], v[2], box, nearer.planes()) || tie;
+
+    TilePlanes oneFarther = nearer;
+    for (std::size_t i = 0; i < oneFarther.depth.size(); ++i) {
+      if (written.ids[i] != 0) continue;
+      oneFarther.depth[i] = std::nextafter(written.depth[i], -1.0f);
+      if (detail::losesEverywhere(v[0], v[1], v[2], box, oneFarther.planes()) &&
+          ++wronglyRejected <= 5) {
+        ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << "," << v[0].depth << ") ("
+                      << v[1].x << "," << v[1].y << "," << v[1].depth << ") (" << v[2].x << ","
+                      << v[2].y << "," << v[2].depth << ") rejected, but wins pixel " << i;
+      }
+      break;
+    }
+  }
+  EXPECT_EQ(wronglyRejected, 0u);
+  EXPECT_GT(tested, 5000u);
+  EXPECT_GT(rejected, tested / 2) << "a triangle well behind should mostly be rejected";
 }
 
 }  // namespace

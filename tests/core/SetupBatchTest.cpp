@@ -2,6 +2,7 @@
 // against the exact per-triangle decisions, and whole renders byte for byte against the
 // set-up without batches.
 
+#include <bit>
 #include <random>
 #include <string>
 #include <vector>
@@ -119,6 +120,9 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
         }
         const detail::BatchVerdicts verdicts =
             detail::classifyBatch(batch, viewport, skipBackFaces);
+        EXPECT_EQ(verdicts.culledCount, std::popcount(verdicts.culled));
+        EXPECT_EQ(verdicts.zeroAreaCount, std::popcount(verdicts.zeroArea));
+        EXPECT_EQ(verdicts.coversNoSampleCount, std::popcount(verdicts.coversNoSample));
         for (int lane = 0; lane < kBatchSize; ++lane) {
           const std::int32_t verdict = verdictOf(verdicts, lane);
           const std::size_t at = 3 * (first + lane);
