@@ -101,8 +101,9 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
   for (const Case& c : cases()) {
     const PreparedMaterial material(c.material);
     const FlatErrorBound scalar(c.lights, c.camera, c.twoSided);
-    const auto lighting = detail::batchLighting(c.lights, c.camera, c.twoSided, material);
-    ASSERT_TRUE(lighting) << c.name;
+    const auto lighting = detail::batchLighting(c.lights, c.camera, c.twoSided);
+    const auto terms = detail::batchMaterial(material);
+    ASSERT_TRUE(lighting && terms) << c.name;
     const Polygons polygons = randomPolygons(c, 64 * kBoundBatchSize);
     for (const detail::SimdTarget& target : targets) {
       detail::useSimdTarget(target.bits);
@@ -119,7 +120,7 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
           batch.radius[lane] = shape.radius;
           batch.sinNormalSpread[lane] = polygons.sines[first + lane];
         }
-        detail::boundBatch(*lighting, batch, kBoundBatchSize);
+        detail::boundBatch(*lighting, *terms, batch, kBoundBatchSize);
         for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane) {
           const PolygonShape& shape = polygons.shapes[first + lane];
           if (std::isnan(batch.bound[lane])) {  // the eye or a light at its center
@@ -146,10 +147,12 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
 TEST_F(BoundBatches, NotTakenForSpotLightsOrSpecularMaterials) {
   LightSet spot;
   spot.lights.push_back(SpotLight{});
-  EXPECT_FALSE(detail::batchLighting(spot, Camera{}, true, PreparedMaterial(Material{})));
+  EXPECT_FALSE(detail::batchLighting(spot, Camera{}, true));
+  EXPECT_TRUE(detail::batchLighting(LightSet{}, Camera{}, true));
   Material shiny;
   shiny.specular = 0.5;
-  EXPECT_FALSE(detail::batchLighting(LightSet{}, Camera{}, true, PreparedMaterial(shiny)));
+  EXPECT_FALSE(detail::batchMaterial(PreparedMaterial(shiny)));
+  EXPECT_TRUE(detail::batchMaterial(PreparedMaterial(Material{})));
 }
 
 TEST_F(BoundBatches, NeighbourMaximaAreTheirDefinitionOnEveryInstructionSet) {
