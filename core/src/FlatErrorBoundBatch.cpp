@@ -74,6 +74,8 @@ HWY_INLINE V attenuation(D d, const BatchLighting::Source& light, V distance) {
   switch (light.falloff) {
     case Falloff::None:
       return hn::Set(d, 1.0);
+    case Falloff::Constant:
+      return hn::Set(d, light.factor);
     case Falloff::Quadratic: {
       const V linearTerm = light.linear == 0.0 ? hn::Zero(d) : hn::Set(d, light.linear) * distance;
       const V quadraticTerm =
@@ -204,6 +206,11 @@ void setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
   std::visit(Overloaded{
                  [&](const NoAttenuation&) { source.falloff = Falloff::None; },
                  [&](const QuadraticAttenuation& q) {
+                   if (q.linear == 0.0 && q.quadratic == 0.0) {  // distances here are ≥ 0
+                     source.falloff = Falloff::Constant;
+                     source.factor = attenuationFactor(q, 0.0);
+                     return;
+                   }
                    source.falloff = Falloff::Quadratic;
                    source.constant = q.constant;
                    source.linear = q.linear;

@@ -31,7 +31,10 @@ struct BatchLighting {
     bool directional = false;
     glm::dvec3 position{0.0};  // point light; a directional light's unit direction toward it
     glm::dvec3 radiance{0.0};  // color × intensity, capped as FlatErrorBound.cpp's
-    enum class Falloff { None, Quadratic, Distance } falloff = Falloff::None;
+    // Constant: a QuadraticAttenuation of constant term only (vtkLight's default), its factor
+    // the same at every distance.
+    enum class Falloff { None, Constant, Quadratic, Distance } falloff = Falloff::None;
+    double factor = 1.0;                                   // Constant
     double constant = 0.0, linear = 0.0, quadratic = 0.0;  // Quadratic
     double distance = 0.0;                                 // Distance
   };

@@ -43,6 +43,8 @@ std::vector<Case> cases() {
   mixed.lights.push_back(DirectionalLight{{-1, -2, -3}, Color(0.9f, 0.7f, 0.5f)});
   mixed.lights.push_back(
       PointLight{{3, 2, 4}, Color(0.8f), 1.5, QuadraticAttenuation{1, 0.1, 0.02}});
+  mixed.lights.push_back(  // a constant term only (vtkLight's default): one factor
+      PointLight{{-1.5, 2.5, 3}, Color(0.6f), 1.2, QuadraticAttenuation{0.8, 0.0, 0.0}});
   mixed.lights.push_back(PointLight{{-2, 5, 1}, Color(0.3f, 0.9f, 0.6f), 0.7, NoAttenuation{}});
   mixed.lights.push_back(
       PointLight{{0.5, -3, 2}, Color(1.0f), 2.0, FalloffDistanceAttenuation{2.5}});
