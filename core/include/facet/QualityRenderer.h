@@ -34,9 +34,7 @@
 /// bytes, same cost. Every mode gives the same bytes for any thread count.
 
 #include <array>
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
