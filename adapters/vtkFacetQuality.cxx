@@ -109,6 +109,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const Settings& setting
       quality.maximumError = this->Current.MaximumError;
     }
     quality.estimateError = this->Current.EstimateError || this->Current.ErrorEstimateArray;
+    quality.errorEstimateImage = this->Current.ErrorEstimateArray; // else the summary alone
     if (!this->Quality || this->QualityOf != &renderer)
     {
       this->Quality = std::make_unique<facet::QualityRenderer>(renderer);

@@ -472,13 +472,14 @@ public:
    * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
    * cost). Once per mesh version (not per frame) it computes the vertex normals and keeps
    * each polygon's normal, extent, normal spread and center (48 bytes); per render it bounds
-   * the polygons that won a pixel (in SIMD batches for point and directional lights and a
-   * material without specular) and takes one pass over the pixels; a new background alone
-   * keeps the last estimate. Not free yet: on spheres of 0.5M and 2M triangles at
-   * 1920 x 1080 it adds about 14 % and 12 % of CPU to a turning-camera Update() (was 27 % and
-   * 39 %; measured on a loaded machine, README, "Measuring error") and, once, about as much
-   * as the conversion to the first, so it stays off; off, a flat one-sample render is the
-   * plain rasterizer (default: off).
+   * the polygons the render lit (in SIMD batches for point and directional lights and a
+   * material without specular) and takes one pass over the pixels, writing no image unless
+   * ErrorEstimateArray asks; a new background alone keeps the last estimate. Not free yet:
+   * about half the instructions of before per frame, but on spheres of 0.5M and 2M triangles
+   * at 1920 x 1080 still about 10 % of the CPU of a turning-camera Update() (README,
+   * "Measuring error": figures of a loaded machine) and, once, about as much as the
+   * conversion to the first, so it stays off; off, a flat one-sample render is the plain
+   * rasterizer (default: off).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);
   vtkGetMacro(EstimateError, vtkTypeBool);

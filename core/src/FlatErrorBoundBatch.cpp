@@ -4,7 +4,8 @@
 // operation on the same double operands in the same order — IEEE addition, multiplication,
 // division and square root are correctly rounded on every instruction set, and the file is
 // compiled without contraction into fused multiply-adds — so a lane gives the scalar bound's
-// bytes. Comparisons take the scalar code's branches as masks.
+// bytes. Comparisons take the scalar code's branches as masks. The helpers are forced inline
+// (GCC left some as calls, their vectors passed through memory).
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "FlatErrorBoundBatch.cpp"
@@ -26,29 +27,29 @@ struct Angles {
   V cos, sin;
 };
 
-Angles straight(D d) {
+HWY_INLINE Angles straight(D d) {
   return {hn::Set(d, -1.0), hn::Zero(d)};
 }
 
-Angles select(M where, const Angles& yes, const Angles& no) {
+HWY_INLINE Angles select(M where, const Angles& yes, const Angles& no) {
   return {hn::IfThenElse(where, yes.cos, no.cos), hn::IfThenElse(where, yes.sin, no.sin)};
 }
 
 // Angle::ofCosine (the lanes hold no NaN: finite inputs).
-Angles ofCosine(D d, V c) {
+HWY_INLINE Angles ofCosine(D d, V c) {
   c = hn::Min(hn::Max(c, hn::Set(d, -1.0)), hn::Set(d, 1.0));
   return {c, hn::Sqrt(hn::Max(hn::Zero(d), hn::Set(d, 1.0) - c * c))};
 }
 
 // Angle::ofConeSine.
-Angles ofConeSine(D d, V s) {
+HWY_INLINE Angles ofConeSine(D d, V s) {
   const M inside = s < hn::Set(d, 1.0);
   const Angles cone{hn::Sqrt(hn::Set(d, 1.0) - s * s), s};
   return select(inside, cone, straight(d));
 }
 
 // Angle::operator+.
-Angles add(D d, const Angles& a, const Angles& b) {
+HWY_INLINE Angles add(D d, const Angles& a, const Angles& b) {
   const V minusOne = hn::Set(d, -1.0);
   const Angles sum{a.cos * b.cos - a.sin * b.sin, a.sin * b.cos + a.cos * b.sin};
   const M past = hn::Or(hn::Or(a.cos <= minusOne, b.cos <= minusOne),
@@ -60,7 +61,7 @@ Angles add(D d, const Angles& a, const Angles& b) {
 struct Range {
   V lo, hi;
 };
-Range cosineRange(D d, const Angles& theta, const Angles& spread) {
+HWY_INLINE Range cosineRange(D d, const Angles& theta, const Angles& spread) {
   const V one = hn::Set(d, 1.0);
   const V hi =
       hn::IfThenElse(theta.cos >= spread.cos, one, theta.cos * spread.cos + theta.sin * spread.sin);
@@ -68,11 +69,13 @@ Range cosineRange(D d, const Angles& theta, const Angles& spread) {
 }
 
 // attenuationFactor at distances ≥ 0.
-V attenuation(D d, const BatchLighting::Source& light, V distance) {
+HWY_INLINE V attenuation(D d, const BatchLighting::Source& light, V distance) {
   using Falloff = BatchLighting::Source::Falloff;
   switch (light.falloff) {
     case Falloff::None:
       return hn::Set(d, 1.0);
+    case Falloff::Constant:
+      return hn::Set(d, light.factor);
     case Falloff::Quadratic: {
       const V linearTerm = light.linear == 0.0 ? hn::Zero(d) : hn::Set(d, light.linear) * distance;
       const V quadraticTerm =
@@ -90,15 +93,16 @@ V attenuation(D d, const BatchLighting::Source& light, V distance) {
   return hn::Set(d, 1.0);
 }
 
-V diffuseOf(D d, const BatchLighting& lighting, V cosine) {
+HWY_INLINE V diffuseOf(D d, const BatchMaterial& material, V cosine) {
   const V lit = hn::Min(hn::Max(cosine, hn::Zero(d)), hn::Set(d, 1.0));
-  if (!lighting.lerp) return lit;
-  return hn::Set(d, lighting.lerpAmbient) +
-         hn::Set(d, lighting.lerpFull - lighting.lerpAmbient) * lit;
+  if (!material.lerp) return lit;
+  return hn::Set(d, material.lerpAmbient) +
+         hn::Set(d, material.lerpFull - material.lerpAmbient) * lit;
 }
 
 // The lanes [lane, lane + Lanes(d)) of the batch.
-void boundLanes(D d, const BatchLighting& lighting, BoundBatch& batch, std::size_t lane) {
+void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& material,
+                BoundBatch& batch, std::size_t lane) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const V cx = hn::Load(d, batch.center[0] + lane), cy = hn::Load(d, batch.center[1] + lane),
           cz = hn::Load(d, batch.center[2] + lane);
@@ -148,8 +152,8 @@ void boundLanes(D d, const BatchLighting& lighting, BoundBatch& batch, std::size
     }
     const V cosine = nx * lx + ny * ly + nz * lz;
     const Range lit = cosineRange(d, ofCosine(d, cosine), add(d, normalAngle, lightAngle));
-    const V diffuseLo = diffuseOf(d, lighting, lit.lo), diffuseHi = diffuseOf(d, lighting, lit.hi);
-    const V low = hn::Min(diffuseLo, diffuseHi), flat = diffuseOf(d, lighting, cosine),
+    const V diffuseLo = diffuseOf(d, material, lit.lo), diffuseHi = diffuseOf(d, material, lit.hi);
+    const V low = hn::Min(diffuseLo, diffuseHi), flat = diffuseOf(d, material, cosine),
             high = hn::Max(diffuseLo, diffuseHi);
     const double radiance[3] = {light.radiance.x, light.radiance.y, light.radiance.z};
     for (int c = 0; c < 3; ++c) {
@@ -160,7 +164,7 @@ void boundLanes(D d, const BatchLighting& lighting, BoundBatch& batch, std::size
     }
   }
   // No specular and one color per polygon: the total is Kd·Cd ⊙ Σ deviations, capped at 1.
-  const V kd = hn::Set(d, lighting.diffuse);
+  const V kd = hn::Set(d, material.diffuse);
   V largest = zero;
   for (int c = 0; c < 3; ++c) {
     const V total = hn::Min(kd * hn::Load(d, batch.surface[c] + lane) * sum[c], one);
@@ -171,10 +175,11 @@ void boundLanes(D d, const BatchLighting& lighting, BoundBatch& batch, std::size
   hn::Store(hn::IfThenElse(bounded, bound, hn::NaN(d)), d, batch.bound + lane);
 }
 
-void BoundBatchLanes(const BatchLighting& lighting, BoundBatch& batch, std::size_t count) {
+void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& material,
+                     BoundBatch& batch, std::size_t count) {
   const D d;
   for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d))
-    boundLanes(d, lighting, batch, lane);
+    boundLanes(d, lighting, material, batch, lane);
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -190,8 +195,9 @@ namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
 
-void boundBatch(const BatchLighting& lighting, BoundBatch& batch, std::size_t count) {
-  HWY_DYNAMIC_DISPATCH(BoundBatchLanes)(lighting, batch, count);
+void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
+                std::size_t count) {
+  HWY_DYNAMIC_DISPATCH(BoundBatchLanes)(lighting, material, batch, count);
 }
 
 namespace {
@@ -200,6 +206,11 @@ void setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
   std::visit(Overloaded{
                  [&](const NoAttenuation&) { source.falloff = Falloff::None; },
                  [&](const QuadraticAttenuation& q) {
+                   if (q.linear == 0.0 && q.quadratic == 0.0) {  // distances here are ≥ 0
+                     source.falloff = Falloff::Constant;
+                     source.factor = attenuationFactor(q, 0.0);
+                     return;
+                   }
                    source.falloff = Falloff::Quadratic;
                    source.constant = q.constant;
                    source.linear = q.linear;
@@ -214,19 +225,19 @@ void setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
 }
 }  // namespace
 
-std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
-                                           bool twoSidedLighting,
-                                           const PreparedMaterial& material) {
+std::optional<BatchMaterial> batchMaterial(const PreparedMaterial& material) {
   if (material.specular > 0.0) return std::nullopt;
+  return BatchMaterial{material.diffuse, material.material.diffuseModel != DiffuseModel::Lambert,
+                       material.lerpAmbient, material.lerpFull};
+}
+
+std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
+                                           bool twoSidedLighting) {
   BatchLighting lighting;
   lighting.eye = camera.position;
   lighting.viewer = -glm::normalize(camera.focalPoint - camera.position);
   lighting.parallel = camera.parallelProjection;
   lighting.twoSided = twoSidedLighting;
-  lighting.diffuse = material.diffuse;
-  lighting.lerp = material.material.diffuseModel != DiffuseModel::Lambert;
-  lighting.lerpAmbient = material.lerpAmbient;
-  lighting.lerpFull = material.lerpFull;
   for (const Light& light : lights.lights) {
     if (std::holds_alternative<SpotLight>(light)) return std::nullopt;
     BatchLighting::Source source;

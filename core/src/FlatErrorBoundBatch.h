@@ -25,29 +25,37 @@ namespace facet::detail {
 // Lanes per batch: two AVX-512 vectors of doubles, four of AVX2, eight of SSE4.
 inline constexpr std::size_t kBoundBatchSize = 16;
 
-// What the bound of one frame and one material needs: the camera, the lights and the
-// material's diffuse terms, prepared once per frame.
+// What the bound of one frame needs: the camera and the lights, prepared once per frame.
 struct BatchLighting {
   struct Source {
     bool directional = false;
     glm::dvec3 position{0.0};  // point light; a directional light's unit direction toward it
     glm::dvec3 radiance{0.0};  // color × intensity, capped as FlatErrorBound.cpp's
-    enum class Falloff { None, Quadratic, Distance } falloff = Falloff::None;
+    // Constant: a QuadraticAttenuation of constant term only (vtkLight's default), its factor
+    // the same at every distance.
+    enum class Falloff { None, Constant, Quadratic, Distance } falloff = Falloff::None;
+    double factor = 1.0;                                   // Constant
     double constant = 0.0, linear = 0.0, quadratic = 0.0;  // Quadratic
     double distance = 0.0;                                 // Distance
   };
   std::vector<Source> lights;
   glm::dvec3 eye{0.0}, viewer{0.0, 0.0, 1.0};  // viewer: toward it under parallel projection
   bool parallel = false, twoSided = true;
+};
+
+// What the bound needs of one material: its diffuse terms.
+struct BatchMaterial {
   double diffuse = 1.0;  // Kd
   bool lerp = false;     // DiffuseModel::Lerp, with its two ends
   double lerpAmbient = 0.0, lerpFull = 1.0;
 };
 
-// The lighting of the batch, or nothing when the frame or material is one the batch leaves
-// to the scalar bound (a spot light, a specular material).
+// The lighting of the batch, or nothing when the frame is one the batch leaves to the scalar
+// bound (a spot light).
 std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
-                                           bool twoSidedLighting, const PreparedMaterial& material);
+                                           bool twoSidedLighting);
+// The material's terms, or nothing for one the batch leaves to the scalar bound (specular).
+std::optional<BatchMaterial> batchMaterial(const PreparedMaterial& material);
 
 // Polygons in lanes (the fields of PolygonShape that the batch reads), and their bounds.
 struct BoundBatch {
@@ -60,6 +68,7 @@ struct BoundBatch {
 };
 
 // Fills `bound` of lanes [0, count) (the others are left to any value).
-void boundBatch(const BatchLighting& lighting, BoundBatch& batch, std::size_t count);
+void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
+                std::size_t count);
 
 }  // namespace facet::detail

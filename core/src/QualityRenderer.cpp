@@ -1,6 +1,7 @@
 // Quality modes by visibility-buffer shading (QualityRenderer.h): the Renderer paints the
 // sample grid's polygon ids; the passes below read them.
-//   1. visible polygons: which ids the samples show (atomic flags, order-free);
+//   1. visible polygons: those the Renderer lit (Renderer::shownPolygons), a superset of the
+//      ids the samples show;
 //   2. per visible polygon: its flat-shading bound (estimate, adaptive) and, for Gouraud,
 //      its lit corners;
 //   3. the estimate per sample and per pixel (it reads the flat colors, so it runs before
@@ -12,18 +13,20 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <utility>
 
 #include <glm/geometric.hpp>
 
+#include "Assert.h"
 #include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
+#include "MeshCache.h"
 #include "Validate.h"
 #include "facet/Conventions.h"
 #include "facet/Error.h"
@@ -129,44 +132,40 @@ void addColors(PolygonShape& shape, const MeshView& mesh, std::size_t count, con
   }
 }
 
-// One polygon's corners: points, point ids and, when asked, corner normals (scratch space,
-// reused from polygon to polygon).
+// One polygon's corners: points, point ids and corner normals (scratch space, reused from
+// polygon to polygon).
 struct Corners {
   std::vector<glm::dvec3> points, normals;
   std::vector<std::size_t> ids;
 };
 
-void readCorners(const MeshView& mesh, std::size_t p, const VertexNormals* normals, Corners& out) {
-  out.points.clear();
-  out.normals.clear();
-  out.ids.clear();
+// Calls each(p, corners) for the polygons p in [begin, end) with their corners read (the
+// mesh's types dispatched once, not per polygon).
+template <class Each>
+void forEachPolygon(const MeshView& mesh, const VertexNormals& normals, std::size_t begin,
+                    std::size_t end, const Each& each) {
+  Corners corners;
   detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
-    for (std::size_t k = 0; k < polygons.size(p); ++k) {
-      out.ids.push_back(polygons.pointId(p, k));
-      out.points.push_back(points[out.ids.back()]);
-      if (normals)
-        out.normals.push_back(normals->normals[normals->cornerNormal[polygons.begin(p) + k]]);
+    for (std::size_t p = begin; p < end; ++p) {
+      corners.points.clear();
+      corners.normals.clear();
+      corners.ids.clear();
+      for (std::size_t k = 0; k < polygons.size(p); ++k) {
+        corners.ids.push_back(polygons.pointId(p, k));
+        corners.points.push_back(points[corners.ids.back()]);
+        corners.normals.push_back(normals.normals[normals.cornerNormal[polygons.begin(p) + k]]);
+      }
+      each(p, corners);
     }
   });
 }
 
-// Polygon p's shape; its normal spread from `normals` (null: left at 1, for the caller to
-// fill in).
-PolygonShape polygonShape(const MeshView& mesh, std::size_t p, const VertexNormals* normals,
-                          Corners& corners) {
-  readCorners(mesh, p, normals, corners);
+// A polygon's shape from its corners.
+PolygonShape polygonShape(const MeshView& mesh, const Corners& corners) {
   if (corners.points.size() < 3) return {};
   PolygonShape shape = shapeOf(corners.points, corners.normals);
   addColors(shape, mesh, corners.ids.size(), [&](std::size_t k) { return corners.ids[k]; });
   return shape;
-}
-
-// The part of a polygon's shape that its PolygonExtent leaves out: the colors its corners can
-// show (point colors or a scalar texture's texels).
-void addPolygonColors(const MeshView& mesh, std::size_t p, PolygonShape& shape) {
-  detail::withTypedMesh(mesh, [&](auto, auto polygons) {
-    addColors(shape, mesh, polygons.size(p), [&](std::size_t k) { return polygons.pointId(p, k); });
-  });
 }
 
 float roundedUp(double value) {
@@ -205,6 +204,73 @@ glm::dvec3 clampedOnto(glm::dvec3 weights) {
   return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
 }
 
+// A polygon's part of the estimate that does not depend on the camera: a PolygonShape but
+// its point colors, 48 bytes in place of a ShadingMesh's ~250. The center is kept (in double,
+// for data far from the origin) so a frame reads no corners. The normal is flat shading's,
+// rounded to float as the Renderer's, and the spread is taken about it; the radius and the
+// spread's sine are rounded up, so the bound stays a bound.
+struct PolygonExtent {
+  glm::dvec3 center{0.0};
+  glm::vec3 normal{0.0f};  // zero: degenerate
+  float radius = 0.0f;
+  float sinNormalSpread = 0.0f;  // 2: 90° or more
+};
+
+PolygonExtent extentOf(const Corners& corners) {
+  if (corners.points.size() < 3) return {};
+  const std::span<const glm::dvec3> points = corners.points;
+  const std::optional<glm::dvec3> normal =
+      points.size() == 3 ? triangleNormal(points[0], points[1], points[2]) : polygonNormal(points);
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& c : points)
+    sum += c;
+  const glm::dvec3 center = sum / static_cast<double>(points.size());
+  double radius = 0.0;
+  for (const glm::dvec3& c : points)
+    radius = std::max(radius, glm::length(c - center));
+  if (!normal || !std::isfinite(radius)) return {};  // degenerate: the largest bound
+  // The spread about the normal flat shading lights by: the rounded one.
+  const glm::vec3 rounded(*normal);
+  const double c = smallestCosine(glm::normalize(glm::dvec3(rounded)), corners.normals);
+  return {center, rounded, roundedUp(radius), sineOfSpread(c)};
+}
+
+// A polygon's shape from its extent, without colors.
+PolygonShape shapeOf(const PolygonExtent& extent) {
+  PolygonShape shape;
+  if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
+  shape.normal = glm::dvec3(extent.normal);
+  shape.radius = extent.radius;
+  shape.center = extent.center;
+  shape.cosNormalSpread = cosineOfSpread(extent.sinNormalSpread);
+  return shape;
+}
+
+// The ids in [first, last) whose `shown` flag is set, as offsets from `base`, into `out`;
+// returns how many. Without a branch per id (whether one is shown is a coin toss along a
+// silhouette), but eight at once where none is (the far side of a closed surface, say).
+std::size_t shownAmong(const std::uint8_t* shown, std::size_t first, std::size_t last,
+                       std::size_t base, std::uint32_t* out) {
+  std::size_t count = 0;
+  const auto add = [&](std::size_t id) {
+    out[count] = static_cast<std::uint32_t>(id - base);
+    count += shown[id] != 0;
+  };
+  std::size_t id = first;
+  for (; id < last && id % 8 != 0; ++id)
+    add(id);
+  for (; id + 8 <= last; id += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, shown + id, sizeof word);
+    if (word == 0) continue;
+    for (std::size_t k = id; k < id + 8; ++k)
+      add(k);
+  }
+  for (; id < last; ++id)
+    add(id);
+  return count;
+}
+
 // Lane `to` of a bound batch set to lane `from`'s polygon.
 void copyLane(detail::BoundBatch& batch, std::size_t from, std::size_t to) {
   for (int k = 0; k < 3; ++k) {
@@ -241,10 +307,26 @@ ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& option
   for (std::size_t p = 0; p < mesh.polygons.count; ++p)
     firstTriangle[p + 1] += firstTriangle[p];
   shapes.resize(mesh.polygons.count);
-  Corners corners;
-  for (std::size_t p = 0; p < mesh.polygons.count; ++p)
-    shapes[p] = polygonShape(mesh, p, &normals, corners);
+  forEachPolygon(mesh, normals, 0, mesh.polygons.count, [&](std::size_t p, const Corners& corners) {
+    shapes[p] = polygonShape(mesh, corners);
+  });
 }
+
+// Per scene mesh, its polygons' extents for the arrays and version in `key`.
+struct QualityRenderer::MeshExtents {
+  struct Key {
+    detail::MeshIdentity geometry;
+    const void* normals = nullptr;  // MeshView::pointNormals
+    std::size_t normalCount = 0;
+    PointArray::Type normalType = PointArray::Type::Float64;
+    friend bool operator==(const Key&, const Key&) = default;
+  };
+  Key key;
+  std::vector<PolygonExtent> polygons;
+};
+
+QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
+QualityRenderer::~QualityRenderer() = default;
 
 void validate(const QualitySettings& settings) {
   const int s = settings.samplesPerPixel;
@@ -283,9 +365,11 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
   std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
-  // Per mesh, when `meshes` is empty: the lighting its polygons are bounded in batches by,
-  // or nothing (point colors, a spot light, a specular material: one by one).
-  std::vector<std::optional<detail::BatchLighting>> batchLighting;
+  // When `meshes` is empty: the lighting polygons are bounded in batches by, and per mesh
+  // its material's terms; nothing for what is bounded one by one (a spot light; point
+  // colors, a specular material).
+  std::optional<detail::BatchLighting> batchLighting;
+  std::vector<std::optional<detail::BatchMaterial>> batchMaterials;
   bool reshading;  // some sample may be shaded again (reshadesAny)
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
@@ -339,24 +423,11 @@ struct QualityRenderer::Frame {
     return colors.empty() ? scene.meshes[mesh].material.color : toColor(colors[polygon]);
   }
 
-  // A polygon's shape: its ShadingMesh's, or its kept extent with its center.
-  PolygonShape shapeAt(std::size_t mesh, std::size_t polygon) const {
-    if (!meshes.empty()) return meshes[mesh].shapes[polygon];
-    const PolygonExtent& extent = extents[mesh].polygons[polygon];
-    PolygonShape shape;
-    if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
-    shape.normal = glm::dvec3(extent.normal);
-    shape.radius = extent.radius;
-    shape.center = extent.center;
-    shape.cosNormalSpread = cosineOfSpread(extent.sinNormalSpread);
-    const MeshView& view = scene.meshes[mesh].mesh;
-    if (!view.pointColors.empty() || !view.scalarTexture.empty())
-      addPolygonColors(view, polygon, shape);
-    return shape;
+  double boundOf(std::size_t mesh, std::size_t polygon, const PolygonShape& shape) const {
+    return bounds.bound(shape, materials[mesh], polygonColor(mesh, polygon));
   }
-
   double boundOf(std::size_t mesh, std::size_t polygon) const {
-    return bounds.bound(shapeAt(mesh, polygon), materials[mesh], polygonColor(mesh, polygon));
+    return boundOf(mesh, polygon, meshes[mesh].shapes[polygon]);
   }
 
   // The normal a polygon is lit by, turned toward the viewer when its back is seen.
@@ -492,24 +563,87 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
                        });
 }
 
+// Sample rows per task of the estimate's pass: the rows just above and below a task's are
+// gathered by both tasks that read them, 2 in 18.
+constexpr int kSampleRowsPerTask = 16;
+
+// A task's rows [first, first + spans.size()) of the sample grid: per sample the bound of its
+// polygon (−∞: background), per row its covered span (first and last covered sample).
+struct BoundRows {
+  std::vector<float> bounds;
+  std::vector<std::array<int, 2>> spans;
+  int first = 0, width = 0;
+
+  const float* row(int y) const {
+    return bounds.data() + static_cast<std::size_t>(y - first) * width;
+  }
+  std::array<int, 2> span(int y) const { return spans[y - first]; }
+};
+
+// The span [first, last) of a row's covered samples (ids ≥ 0): whole blocks of background
+// skipped by the sign of their AND (negative when every id is), one branch per sixteen ids
+// where find_if takes one per id (a row of 1080p is often half background).
+constexpr int kSpanBlock = 16;
+bool allBackground(const std::int32_t* ids) {
+  std::int32_t all = -1;
+  for (int i = 0; i < kSpanBlock; ++i)
+    all &= ids[i];
+  return all < 0;
+}
+std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
+  int first = 0, last = width;
+  while (first + kSpanBlock <= width && allBackground(ids + first))
+    first += kSpanBlock;
+  while (first < width && ids[first] < 0)
+    ++first;
+  while (last - kSpanBlock >= first && allBackground(ids + last - kSpanBlock))
+    last -= kSpanBlock;
+  while (last > first && ids[last - 1] < 0)
+    --last;
+  return {first, last};
+}
+
+// Rows [first, last) of the sample grid into `out`, from the polygons' bounds: the 3 × 3
+// neighbourhoods of rowEstimates then read them in image order rather than the polygons'
+// bounds nine times at random. (The bounds themselves are found in polygon order,
+// preparePolygons, not here in image order: that would read the polygons' extents at random,
+// a cache miss each.)
+void gatherBounds(const FramebufferView& grid, const float* polygonBounds, int first, int last,
+                  BoundRows& out) {
+  const int width = grid.width;
+  out.first = first;
+  out.width = width;
+  out.bounds.resize(static_cast<std::size_t>(last - first) * width);
+  out.spans.resize(static_cast<std::size_t>(last - first));
+  for (int y = first; y < last; ++y) {
+    const std::int32_t* ids = grid.polygonId + static_cast<std::size_t>(y) * width;
+    const auto [begin, end] = coveredSpan(ids, width);
+    float* bounds = out.bounds.data() + static_cast<std::size_t>(y - first) * width;
+    std::fill(bounds, bounds + begin, -INFINITY);
+    for (int x = begin; x < end; ++x)
+      bounds[x] = ids[x] < 0 ? -INFINITY : polygonBounds[ids[x]];
+    std::fill(bounds + end, bounds + width, -INFINITY);
+    out.spans[y - first] = {begin, end - 1};
+  }
+}
+
 // The flat-shading estimate of the samples of row y (FlatErrorBound.h, extended to what a
 // pixel shows), into `out`: a sample's color c_p against the Phong color of any polygon q
 // whose part of the neighbourhood the 3 × 3 samples around it see: |c_p − Phong_q(x)| ≤
 // |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
 // one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
-// `bounds`: per sample, the bound of its polygon, −∞ for the background (which adds nothing,
-// as no polygon). Neighbour by neighbour over the row's covered span (EstimateRows.h), rather
-// than nine scattered reads per sample. `out` is set on that span only, and without the 0.5,
-// which estimate() adds where it reads a covered sample's.
-void rowEstimates(const FramebufferView& grid, const float* bounds, int y, std::array<int, 2> span,
-                  float* out) {
+// `bounds` holds rows y − 1 to y + 1 (those inside the grid); the background's −∞ adds
+// nothing, as no polygon. Neighbour by neighbour over the row's covered span
+// (EstimateRows.h), rather than nine scattered reads per sample. `out` is set on that span
+// only, and without the 0.5, which estimate() adds where it reads a covered sample's.
+void rowEstimates(const FramebufferView& grid, const BoundRows& bounds, int y, float* out) {
   const int width = grid.width;
   const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;
   // Only the span of the row's covered samples: the others are not estimated (nor read).
-  const auto [first, last] = span;
+  const auto [first, last] = bounds.span(y);
   std::fill(out + first, out + last + 1, 0.0f);
   for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
-    const float* rowBounds = bounds + static_cast<std::size_t>(ny) * width;
+    const float* rowBounds = bounds.row(ny);
     const Rgba8* rowColors = grid.color + static_cast<std::size_t>(ny) * width;
     for (int dx = -1; dx <= 1; ++dx) {
       detail::neighbourMaxima(center, rowColors + dx, rowBounds + dx, std::max(first, -dx),
@@ -520,50 +654,12 @@ void rowEstimates(const FramebufferView& grid, const float* bounds, int y, std::
 
 }  // namespace
 
-void QualityRenderer::markVisible(const Frame& frame) {
-  const std::size_t polygons = frame.firstPolygon.back();
-  if (shownSize_ < polygons) {
-    shown_ = std::make_unique<std::atomic<std::uint8_t>[]>(polygons);
-    shownSize_ = polygons;
-  }
-  renderer_.parallelFor(polygons, std::size_t{1} << 20, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      shown_[i].store(0, std::memory_order_relaxed);
-  });
-  const FramebufferView& grid = frame.samples;
-  forRows(renderer_, grid.height, [&](int y) {
-    const std::int32_t* ids = grid.polygonId + static_cast<std::size_t>(y) * grid.width;
-    for (int x = 0; x < grid.width; ++x) {
-      if (ids[x] >= 0) shown_[static_cast<std::size_t>(ids[x])].store(1, std::memory_order_relaxed);
-    }
-  });
-}
-
-// Per sample, its polygon's bound (−∞: background), in one pass over the sample grid: the
-// 3 × 3 neighbourhoods of estimate() then read them in image order rather than the polygons'
-// bounds nine times at random. (The bounds themselves are found in polygon order,
-// preparePolygons, not here in image order: that would read the polygons' extents at random,
-// a cache miss each.)
-void QualityRenderer::gatherBounds(const Frame& frame) {
-  const FramebufferView& grid = frame.samples;
-  sampleBounds_.resize(static_cast<std::size_t>(grid.width) * grid.height);
-  rowSpans_.resize(static_cast<std::size_t>(grid.height));
-  forRows(renderer_, grid.height, [&](int y) {
-    const std::size_t row = static_cast<std::size_t>(y) * grid.width;
-    for (std::size_t i = row; i < row + grid.width; ++i)
-      sampleBounds_[i] = grid.polygonId[i] < 0 ? -INFINITY : polygonBounds_[grid.polygonId[i]];
-    const std::span<const std::int32_t> ids(grid.polygonId + row, grid.width);
-    const auto covered = [](std::int32_t id) { return id >= 0; };
-    const auto first = std::find_if(ids.begin(), ids.end(), covered) - ids.begin();
-    const auto last = ids.rend() - std::find_if(ids.rbegin(), ids.rend(), covered) - 1;
-    rowSpans_[y] = {static_cast<int>(first), static_cast<int>(std::max(last, first - 1))};
-  });
-}
-
-// Per visible polygon: its bound (estimate, adaptive) and, for Gouraud, its lit corners.
+// Per visible polygon: its bound (estimate, adaptive), whether it is shaded again and, for
+// Gouraud, its lit corners.
 std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bool corners) {
   const std::size_t polygons = frame.firstPolygon.back();
   polygonBounds_.resize(bounds ? polygons : 0);  // only the visible ones are set and read
+  reshade_.resize(frame.reshades() ? polygons : 0);
   cornerBright_.clear();
   if (corners) {
     std::size_t total = 0;
@@ -575,22 +671,24 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
     cornerColors_.resize(total);
     cornerBright_.resize(textured ? total : 0);
   }
-  const std::size_t blocks = (polygons + kPolygonsPerTask - 1) / kPolygonsPerTask;
-  std::vector<std::size_t> reshaded(blocks, 0);
   if (bounds && frame.meshes.empty()) {  // flat, one bound per visible polygon and no more
     renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
-      boundInBatches(frame, begin, end);
+      boundFromExtents(frame, begin, end);
     });
     return 0;
   }
+  const std::size_t blocks = (polygons + kPolygonsPerTask - 1) / kPolygonsPerTask;
+  std::vector<std::size_t> reshaded(blocks, 0);
   renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
     std::size_t count = 0;
     for (std::size_t id = begin; id < end; ++id) {
-      if (!shown_[id].load(std::memory_order_relaxed)) continue;
+      if (!shown_[id]) continue;
       const auto [m, polygon] = frame.locate(id);
       if (bounds) polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
       if (corners && frame.gouraud(m)) frame.lightCorners(m, polygon, cornerColors_, cornerBright_);
-      count += frame.reshadesPolygon(m, bounds ? polygonBounds_[id] : 0.0f);
+      if (!frame.reshades()) continue;
+      reshade_[id] = frame.reshadesPolygon(m, bounds ? polygonBounds_[id] : 0.0f);
+      count += reshade_[id];
     }
     reshaded[begin / kPolygonsPerTask] = count;
   });
@@ -601,89 +699,109 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
 }
 
 // The bounds of the visible polygons among ids [begin, end), from the kept extents: in SIMD
-// batches (FlatErrorBoundBatch.h) where the mesh's lighting allows, else one by one.
-void QualityRenderer::boundInBatches(const Frame& frame, std::size_t begin, std::size_t end) {
+// batches (FlatErrorBoundBatch.h) where the lighting and the mesh allow, else one by one.
+void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end) {
   detail::BoundBatch batch;
-  std::size_t ids[detail::kBoundBatchSize];
-  std::vector<std::uint32_t> visible(end - begin);  // offsets from `begin`
+  std::size_t polygonOf[detail::kBoundBatchSize];  // per lane, within the mesh
+  const auto visible = std::make_unique_for_overwrite<std::uint32_t[]>(end - begin);
   for (std::size_t m = 0; m < frame.extents.size(); ++m) {
-    const std::size_t first = std::max(begin, frame.firstPolygon[m]),
+    const std::size_t offset = frame.firstPolygon[m], first = std::max(begin, offset),
                       last = std::min(end, frame.firstPolygon[m + 1]);
-    // The visible ids first, without a branch per id (whether one is shown is a coin toss
-    // along a silhouette).
-    std::size_t count = 0;
-    for (std::size_t id = first; id < last; ++id) {
-      visible[count] = static_cast<std::uint32_t>(id - begin);
-      count += shown_[id].load(std::memory_order_relaxed);
-    }
-    const std::optional<detail::BatchLighting>& lighting = frame.batchLighting[m];
+    if (first >= last) continue;
+    const std::size_t count = shownAmong(shown_, first, last, begin, visible.get());
+    const MeshView& view = frame.scene.meshes[m].mesh;
     const std::span<const PolygonExtent> extents = frame.extents[m].polygons;
-    std::size_t lanes = 0;
-    const auto flush = [&] {
-      for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
-        copyLane(batch, lanes - 1, lane);  // unused lanes: a copy, no stale values
-      detail::boundBatch(*lighting, batch, detail::kBoundBatchSize);
-      for (std::size_t lane = 0; lane < lanes; ++lane) {
-        const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
-        polygonBounds_[ids[lane]] = static_cast<float>(
-            std::isnan(bound) ? frame.boundOf(m, ids[lane] - frame.firstPolygon[m]) : bound);
-      }
-      lanes = 0;
+    const std::optional<detail::BatchMaterial>& material = frame.batchMaterials[m];
+    const bool batched = frame.batchLighting && material;
+    const bool pointColors = !view.pointColors.empty() || !view.scalarTexture.empty();
+    // As FlatErrorBound::bound reads it; one for the mesh without colors per polygon.
+    const auto surfaceOf = [&](std::size_t polygon) {
+      return glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
     };
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t id = begin + visible[i], polygon = id - frame.firstPolygon[m];
-      if (i + 8 < count)
-        __builtin_prefetch(&extents[begin + visible[i + 8] - frame.firstPolygon[m]]);
-      const PolygonExtent& extent = extents[polygon];
-      if (!lighting || extent.normal == glm::vec3(0.0f)) {
-        polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
-        continue;
+    const glm::dvec3 meshSurface = surfaceOf(0);
+    const bool polygonColors = !view.polygonColors.empty();
+    detail::withTypedMesh(view, [&](auto, auto polygons) {
+      // One by one: the shape from the extent, with the colors its corners can show.
+      const auto boundOne = [&](std::size_t polygon) {
+        PolygonShape shape = shapeOf(extents[polygon]);
+        if (pointColors && shape.normal != glm::dvec3(0.0)) {
+          addColors(shape, view, polygons.size(polygon),
+                    [&](std::size_t k) { return polygons.pointId(polygon, k); });
+        }
+        return static_cast<float>(frame.boundOf(m, polygon, shape));
+      };
+      std::size_t lanes = 0;
+      const auto flush = [&] {
+        for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
+          copyLane(batch, lanes - 1, lane);  // unused lanes: a copy, no stale values
+        detail::boundBatch(*frame.batchLighting, *material, batch, detail::kBoundBatchSize);
+        for (std::size_t lane = 0; lane < lanes; ++lane) {
+          const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
+          polygonBounds_[offset + polygonOf[lane]] =
+              std::isnan(bound) ? boundOne(polygonOf[lane]) : static_cast<float>(bound);
+        }
+        lanes = 0;
+      };
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t polygon = begin + visible[i] - offset;
+        if (i + 8 < count) __builtin_prefetch(&extents[begin + visible[i + 8] - offset]);
+        const PolygonExtent& extent = extents[polygon];
+        if (!batched || extent.normal == glm::vec3(0.0f)) {
+          polygonBounds_[offset + polygon] = boundOne(polygon);
+          continue;
+        }
+        const glm::dvec3 surface = polygonColors ? surfaceOf(polygon) : meshSurface;
+        for (int k = 0; k < 3; ++k) {
+          batch.center[k][lanes] = extent.center[k];
+          batch.normal[k][lanes] = extent.normal[k];
+          batch.surface[k][lanes] = surface[k];
+        }
+        batch.radius[lanes] = extent.radius;
+        batch.sinNormalSpread[lanes] = extent.sinNormalSpread;
+        polygonOf[lanes++] = polygon;
+        if (lanes == detail::kBoundBatchSize) flush();
       }
-      // As shapeAt and FlatErrorBound::bound read them.
-      const glm::dvec3 surface =
-          glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
-      for (int k = 0; k < 3; ++k) {
-        batch.center[k][lanes] = extent.center[k];
-        batch.normal[k][lanes] = extent.normal[k];
-        batch.surface[k][lanes] = surface[k];
-      }
-      batch.radius[lanes] = extent.radius;
-      batch.sinNormalSpread[lanes] = extent.sinNormalSpread;
-      ids[lanes++] = id;
-      if (lanes == detail::kBoundBatchSize) flush();
-    }
-    if (lanes > 0) flush();
+      if (lanes > 0) flush();
+    });
   }
 }
 
-// Per sample (rowEstimates), then per pixel the mean of its samples' (the pixel's error
-// is the mean of its samples' against their parts of the pixel), plus 0.5 for rounding that
-// mean; 0 where the pixel shows no polygon. Then the statistics over covered pixels. Reads
-// the samples' bounds gatherBounds left.
-void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target,
+// Per pixel the mean of its samples' estimates (rowEstimates: the pixel's error is the mean
+// of its samples' against their parts of the pixel), plus 0.5 for rounding that mean; 0
+// where the pixel shows no polygon. Then the statistics over covered pixels. Reads the
+// visible polygons' bounds preparePolygons left, gathered per sample row by row.
+void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target, bool image,
                                QualityStats& stats) {
   const FramebufferView& grid = frame.samples;
   const int g = frame.grid;
-  estimate_.resize(static_cast<std::size_t>(target.width) * target.height);  // every pixel set
+  estimate_.resize(image ? static_cast<std::size_t>(target.width) * target.height : 0);
   std::vector<double> rowSquares(static_cast<std::size_t>(target.height), 0.0);
   std::vector<float> rowLargest(static_cast<std::size_t>(target.height), 0.0f);
   std::vector<std::size_t> rowCovered(static_cast<std::size_t>(target.height), 0);
   const std::size_t rowSize = static_cast<std::size_t>(grid.width);
-  renderer_.parallelFor(target.height, kRowsPerTask, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> rows(g * rowSize);  // the estimates of a pixel row's sample rows
+  const std::size_t rowsPerTask = static_cast<std::size_t>(std::max(1, kSampleRowsPerTask / g));
+  renderer_.parallelFor(target.height, rowsPerTask, [&](std::size_t begin, std::size_t end) {
+    // Per thread, reused from task to task (a task's rows are ~140 kB at 1080p).
+    thread_local BoundRows bounds;
+    thread_local std::vector<float> rows;    // the estimates of a pixel row's sample rows
+    thread_local std::vector<float> pixels;  // a pixel row's, when the image is not kept
+    pixels.resize(image ? 0 : static_cast<std::size_t>(target.width));
+    gatherBounds(grid, polygonBounds_.data(), std::max(0, static_cast<int>(begin) * g - 1),
+                 std::min(grid.height, static_cast<int>(end) * g + 1), bounds);
+    rows.resize(g * rowSize);
     for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
       for (int j = 0; j < g; ++j)
-        rowEstimates(grid, sampleBounds_.data(), y * g + j, rowSpans_[y * g + j],
-                     rows.data() + j * rowSize);
-      const float* own = sampleBounds_.data() + static_cast<std::size_t>(y) * g * rowSize;
-      float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
+        rowEstimates(grid, bounds, y * g + j, rows.data() + j * rowSize);
+      const float* own = bounds.row(y * g);  // the pixel row's g sample rows, one after another
+      float* out =
+          image ? estimate_.data() + static_cast<std::size_t>(y) * target.width : pixels.data();
       // In registers, not in the shared row arrays; four partial sums, so that one addition
       // need not wait for the one before (a fixed order: the same bytes for any threads).
       double squares[4] = {0.0, 0.0, 0.0, 0.0};
       float largest = 0.0f;
       std::size_t count = 0;
       // One sample: the pixels outside the row's covered span show no polygon.
-      const auto [first, last] = g == 1 ? rowSpans_[y] : std::array<int, 2>{0, target.width - 1};
+      const auto [first, last] = g == 1 ? bounds.span(y) : std::array<int, 2>{0, target.width - 1};
       std::fill(out, out + std::max(first, 0), 0.0f);
       std::fill(out + std::max(last + 1, first), out + target.width, 0.0f);
       for (int x = first; x <= last; ++x) {
@@ -741,10 +859,7 @@ void QualityRenderer::shadeAndResolve(const Frame& frame, const FramebufferView&
           const std::size_t index = static_cast<std::size_t>(sy) * grid.width + sx;
           const std::int32_t id = grid.polygonId[index];
           const Rgba8 painted = grid.color[index];
-          const bool keep = id < 0 || !frame.reshades() ||
-                            !frame.reshadesPolygon(frame.locate(static_cast<std::size_t>(id)).first,
-                                                   frame.adaptive() ? polygonBounds_[id] : 0.0f);
-          if (!keep) {
+          if (id >= 0 && frame.reshades() && reshade_[id]) {
             sum += glm::vec4(frame.shadeSample(index, sx, sy, cornerColors_, cornerBright_), 1.0f);
             ++rowReshaded[y];
           } else {
@@ -779,8 +894,9 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   QualityStats stats;
   const bool reshades = reshadesAny(settings);
   const int g = gridSide(settings.samplesPerPixel);
-  const int estimatedGrid = std::exchange(estimatedGrid_, 0);  // until this render's is made
-  if (!settings.estimateError) estimate_.clear();
+  const std::array<int, 4> estimateFor{g, target.width, target.height, settings.errorEstimateImage};
+  const std::array<int, 4> estimated = std::exchange(estimatedFor_, {});  // until this render's
+  if (!settings.estimateError || !settings.errorEstimateImage) estimate_.clear();
   if (!reshades && g == 1 && !settings.estimateError) {
     stats.render = renderer_.render(scene, camera, target);
     stats.totalSeconds = secondsSince(start);
@@ -809,38 +925,37 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
   frame.extents = extents_;
   if (shading.empty()) {
+    frame.batchLighting = detail::batchLighting(scene.lights, camera, frame.twoSided);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
       const MeshView& mesh = scene.meshes[m].mesh;
-      frame.batchLighting.push_back(
-          mesh.pointColors.empty() && mesh.scalarTexture.empty()
-              ? detail::batchLighting(scene.lights, camera, frame.twoSided, frame.materials[m])
-              : std::nullopt);
+      frame.batchMaterials.push_back(mesh.pointColors.empty() && mesh.scalarTexture.empty()
+                                         ? detail::batchMaterial(frame.materials[m])
+                                         : std::nullopt);
     }
   }
   Clock::time_point phase = Clock::now();
   // Only the background changed since this object's last render: same polygons, same flat
   // colors where any polygon shows, so the same estimate (it ignores the background).
-  const bool keepEstimate =
-      settings.estimateError && stats.render.plan.path == RenderPath::Resolve &&
-      estimatedGrid == g &&
-      estimate_.size() == static_cast<std::size_t>(target.width) * target.height;
+  const bool keepEstimate = settings.estimateError &&
+                            stats.render.plan.path == RenderPath::Resolve &&
+                            estimated == estimateFor;
   const bool bounds = (settings.estimateError && !keepEstimate) || frame.adaptive();
   bool corners = false;  // some mesh is Gouraud-shaded: its corners are lit first
   for (std::size_t m = 0; m < scene.meshes.size(); ++m)
     corners = corners || frame.gouraud(m);
   if (bounds || corners || frame.reshades()) {
-    markVisible(frame);
+    FACET_ASSERT(renderer_.shownPolygons().size() == frame.firstPolygon.back());
+    shown_ = renderer_.shownPolygons().data();  // the polygons the render lit: every one shown
     stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
   }
   if (keepEstimate) {
     stats.predictedRmse = estimated_.predictedRmse;
     stats.predictedMaxError = estimated_.predictedMaxError;
   } else if (settings.estimateError) {
-    gatherBounds(frame);
-    estimate(frame, target, stats);
+    estimate(frame, target, settings.errorEstimateImage, stats);
     estimated_ = stats;
   }
-  if (settings.estimateError) estimatedGrid_ = g;
+  if (settings.estimateError) estimatedFor_ = estimateFor;
   stats.estimateSeconds = secondsSince(phase);
   phase = Clock::now();
   if (frame.reshades() || g > 1) shadeAndResolve(frame, target, stats);
@@ -888,20 +1003,10 @@ void QualityRenderer::updateExtents(const Scene& scene) {
   extents_.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const MeshView& mesh = scene.meshes[m].mesh;
-    const SpreadKey key{mesh.points.data,
-                        mesh.polygons.offsets,
-                        mesh.polygons.connectivity,
-                        mesh.pointNormals.data,
-                        mesh.points.count,
-                        mesh.polygons.count,
-                        mesh.polygons.connectivitySize,
-                        mesh.pointNormals.count,
-                        static_cast<int>(mesh.points.type) |
-                            static_cast<int>(mesh.polygons.type) << 4 |
-                            static_cast<int>(mesh.pointNormals.type) << 8,
-                        mesh.version};
+    const MeshExtents::Key key{detail::MeshIdentity::of(mesh), mesh.pointNormals.data,
+                               mesh.pointNormals.count, mesh.pointNormals.type};
     MeshExtents& extents = extents_[m];
-    if (key.version != 0 && extents.key == key) continue;
+    if (key.geometry.version != 0 && extents.key == key) continue;
     extents = {};  // a mesh that throws leaves nothing behind that claims to be its
     validatePointData(mesh);
     const VertexNormals normals = mesh.pointNormals.count > 0
@@ -910,15 +1015,9 @@ void QualityRenderer::updateExtents(const Scene& scene) {
     extents.polygons.resize(mesh.polygons.count);
     renderer_.parallelFor(
         mesh.polygons.count, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
-          Corners corners;
-          for (std::size_t p = begin; p < end; ++p) {
-            const PolygonShape shape = polygonShape(mesh, p, &normals, corners);
-            if (shape.normal == glm::dvec3(0.0)) continue;  // degenerate
-            // The spread about the normal flat shading lights by: the rounded one.
-            const glm::vec3 rounded(shape.normal);
-            const double c = smallestCosine(glm::normalize(glm::dvec3(rounded)), corners.normals);
-            extents.polygons[p] = {shape.center, rounded, roundedUp(shape.radius), sineOfSpread(c)};
-          }
+          forEachPolygon(mesh, normals, begin, end, [&](std::size_t p, const Corners& corners) {
+            extents.polygons[p] = extentOf(corners);
+          });
         });
     extents.key = key;
   }

@@ -180,6 +180,10 @@ void Renderer::parallelFor(std::size_t count, std::size_t grain,
   workspace_->pool->run((count + grain - 1) / grain, detail::FunctionRef<void(std::size_t)>(block));
 }
 
+std::span<const std::uint8_t> Renderer::shownPolygons() const {
+  return {workspace_->polygons.shown.data(), workspace_->polygons.shown.size()};
+}
+
 RenderPlan Renderer::plan(const Scene& scene, const Camera& camera, int width, int height) const {
   detail::validateSceneInputs(scene, camera, width, height);
   detail::validateMeshHeaders(scene);  // the bounds read the points

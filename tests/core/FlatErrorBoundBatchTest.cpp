@@ -43,6 +43,8 @@ std::vector<Case> cases() {
   mixed.lights.push_back(DirectionalLight{{-1, -2, -3}, Color(0.9f, 0.7f, 0.5f)});
   mixed.lights.push_back(
       PointLight{{3, 2, 4}, Color(0.8f), 1.5, QuadraticAttenuation{1, 0.1, 0.02}});
+  mixed.lights.push_back(  // a constant term only (vtkLight's default): one factor
+      PointLight{{-1.5, 2.5, 3}, Color(0.6f), 1.2, QuadraticAttenuation{0.8, 0.0, 0.0}});
   mixed.lights.push_back(PointLight{{-2, 5, 1}, Color(0.3f, 0.9f, 0.6f), 0.7, NoAttenuation{}});
   mixed.lights.push_back(
       PointLight{{0.5, -3, 2}, Color(1.0f), 2.0, FalloffDistanceAttenuation{2.5}});
@@ -101,8 +103,9 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
   for (const Case& c : cases()) {
     const PreparedMaterial material(c.material);
     const FlatErrorBound scalar(c.lights, c.camera, c.twoSided);
-    const auto lighting = detail::batchLighting(c.lights, c.camera, c.twoSided, material);
-    ASSERT_TRUE(lighting) << c.name;
+    const auto lighting = detail::batchLighting(c.lights, c.camera, c.twoSided);
+    const auto terms = detail::batchMaterial(material);
+    ASSERT_TRUE(lighting && terms) << c.name;
     const Polygons polygons = randomPolygons(c, 64 * kBoundBatchSize);
     for (const detail::SimdTarget& target : targets) {
       detail::useSimdTarget(target.bits);
@@ -119,7 +122,7 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
           batch.radius[lane] = shape.radius;
           batch.sinNormalSpread[lane] = polygons.sines[first + lane];
         }
-        detail::boundBatch(*lighting, batch, kBoundBatchSize);
+        detail::boundBatch(*lighting, *terms, batch, kBoundBatchSize);
         for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane) {
           const PolygonShape& shape = polygons.shapes[first + lane];
           if (std::isnan(batch.bound[lane])) {  // the eye or a light at its center
@@ -146,10 +149,12 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
 TEST_F(BoundBatches, NotTakenForSpotLightsOrSpecularMaterials) {
   LightSet spot;
   spot.lights.push_back(SpotLight{});
-  EXPECT_FALSE(detail::batchLighting(spot, Camera{}, true, PreparedMaterial(Material{})));
+  EXPECT_FALSE(detail::batchLighting(spot, Camera{}, true));
+  EXPECT_TRUE(detail::batchLighting(LightSet{}, Camera{}, true));
   Material shiny;
   shiny.specular = 0.5;
-  EXPECT_FALSE(detail::batchLighting(LightSet{}, Camera{}, true, PreparedMaterial(shiny)));
+  EXPECT_FALSE(detail::batchMaterial(PreparedMaterial(shiny)));
+  EXPECT_TRUE(detail::batchMaterial(PreparedMaterial(Material{})));
 }
 
 TEST_F(BoundBatches, NeighbourMaximaAreTheirDefinitionOnEveryInstructionSet) {

@@ -478,6 +478,39 @@ TEST(QualityRenderer, EstimateWithoutShadingMeshesIsTheShadingMeshOne) {
   }
 }
 
+// Without the image (the filter's EstimateError without ErrorEstimateArray), the estimate's
+// summary is the same numbers, and a new background keeps it.
+TEST(QualityRenderer, EstimateSummaryWithoutTheImageIsTheSame) {
+  const Mesh sphere = makeUvSphere(24, 13);
+  Scene scene = sphereScene(sphere);
+  scene.meshes[0].mesh.version = 1;
+  const Camera camera = sphereCamera();
+  for (const int samples : {1, 4}) {
+    const QualitySettings withImage{.samplesPerPixel = samples, .estimateError = true};
+    QualitySettings summary = withImage;
+    summary.errorEstimateImage = false;
+    const Output full = renderQuality(scene, camera, 80, 60, withImage);
+    Renderer renderer;
+    QualityRenderer quality(renderer);
+    Framebuffer framebuffer(80, 60);
+    const QualityStats stats = quality.render(scene, {}, camera, framebuffer, summary);
+    EXPECT_TRUE(quality.errorEstimate().empty());
+    EXPECT_GT(stats.predictedRmse, 0.0);
+    EXPECT_EQ(stats.predictedRmse, full.stats.predictedRmse) << samples << " samples";
+    EXPECT_EQ(stats.predictedMaxError, full.stats.predictedMaxError) << samples << " samples";
+
+    renderer.setBackground(Color(0.2f, 0.3f, 0.4f));
+    const QualityStats recolored = quality.render(scene, {}, camera, framebuffer, summary);
+    EXPECT_EQ(recolored.render.plan.path, RenderPath::Resolve);
+    EXPECT_EQ(recolored.predictedRmse, stats.predictedRmse);
+    EXPECT_TRUE(quality.errorEstimate().empty());
+
+    renderer.setBackground(Color(0.0f));  // the image asked for again: made, not kept
+    quality.render(scene, {}, camera, framebuffer, withImage);
+    EXPECT_TRUE(std::ranges::equal(quality.errorEstimate(), full.estimate));
+  }
+}
+
 // The estimate follows the mesh's versions, lights and camera, and a render that only
 // recolors the frame (a new background) keeps it: every time what a fresh renderer gives.
 TEST(QualityRenderer, EstimateFollowsVersionsAndIsKeptWhenOnlyTheBackgroundChanges) {

@@ -34,9 +34,7 @@
 /// bytes, same cost. Every mode gives the same bytes for any thread count.
 
 #include <array>
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -87,6 +85,10 @@ struct QualitySettings {
   /// Compute the flat-shading error estimate (QualityStats::predicted*, and the per-pixel
   /// image errorEstimate()). (default: off)
   bool estimateError = false;
+  /// With estimateError, keep the per-pixel estimate (errorEstimate()); off, the render finds
+  /// the summary alone (the same QualityStats::predicted*) without writing the image.
+  /// (default: on)
+  bool errorEstimateImage = true;
   /// One shading per scene mesh, in place of `shading` (a VTK scene's actors each have their
   /// property's interpolation); empty: `shading` for every mesh. (default: empty)
   std::vector<Shading> meshShading{};
@@ -119,7 +121,8 @@ class QualityRenderer {
  public:
   /// Renders through `renderer` (its threads, background, visibility, lighting side), which
   /// must outlive this object.
-  explicit QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
+  explicit QualityRenderer(Renderer& renderer);
+  ~QualityRenderer();
 
   /// Renders the scene in the mode the settings ask for. `shading` holds one ShadingMesh per
   /// scene mesh (prepared once, kept while the meshes do not change), or is empty: shading
@@ -140,21 +143,19 @@ class QualityRenderer {
   }
 
   /// The last render's per-pixel estimate (QualityStats), row 0 at the bottom, 0 where no
-  /// polygon shows; empty unless it was asked for. A render that only recolors the previous
-  /// frame (RenderPath::Resolve: a new background) keeps the previous estimate, which must
-  /// then be of the renderer's previous frame: render through this object only, or call
-  /// Renderer::forgetPreviousFrame() after rendering without it.
+  /// polygon shows; empty unless it was asked for (estimateError and errorEstimateImage). A render
+  /// that only recolors the previous frame (RenderPath::Resolve: a new background) keeps the
+  /// previous estimate, which must then be of the renderer's previous frame: render through this
+  /// object only, or call Renderer::forgetPreviousFrame() after rendering without it.
   std::span<const float> errorEstimate() const { return estimate_; }
 
  private:
   struct Frame;
   std::span<const ShadingMesh> shadingFor(const Scene& scene, std::span<const ShadingMesh> given,
                                           bool reshades, bool estimates);
-  void markVisible(const Frame& frame);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
-  void boundInBatches(const Frame& frame, std::size_t begin, std::size_t end);
-  void gatherBounds(const Frame& frame);
-  void estimate(const Frame& frame, const FramebufferView& target, QualityStats& stats);
+  void boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end);
+  void estimate(const Frame& frame, const FramebufferView& target, bool image, QualityStats& stats);
   void updateExtents(const Scene& scene);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
 
@@ -162,43 +163,20 @@ class QualityRenderer {
   Framebuffer samples_;  // the 2× or 4× sample grid
   std::vector<ShadingMesh> owned_;
   std::vector<float> estimate_;
-  QualityStats estimated_;  // predicted* of estimate_, for a render that keeps it
-  int estimatedGrid_ = 0;   // the sample grid side estimate_ was made on; 0: none
+  QualityStats estimated_;  // the last estimate's predicted*, for a render that keeps it
+  // What the last estimate was made for: sample grid side, width, height, image kept (or
+  // zeros: none).
+  std::array<int, 4> estimatedFor_{};
 
-  // Per scene mesh, the estimate's camera-independent part (a PolygonShape but its point
-  // colors) for the arrays and version in `key`: 48 bytes per polygon in place of a
-  // ShadingMesh's ~250. The center is kept (in double, for data far from the origin) so a
-  // frame reads no corners. The normal is flat shading's, rounded to float as the Renderer's, and
-  // the spread is taken about it; the radius and the spread's sine are rounded up, so the bound
-  // stays a bound.
-  struct SpreadKey {
-    const void* points = nullptr;
-    const void* offsets = nullptr;
-    const void* connectivity = nullptr;
-    const void* pointNormals = nullptr;
-    std::size_t pointCount = 0, polygonCount = 0, connectivitySize = 0, normalCount = 0;
-    int types = 0;  // point, index and normal types
-    std::uint64_t version = 0;
-    friend bool operator==(const SpreadKey&, const SpreadKey&) = default;
-  };
-  struct PolygonExtent {
-    glm::dvec3 center{0.0};
-    glm::vec3 normal{0.0f};  // zero: degenerate
-    float radius = 0.0f;
-    float sinNormalSpread = 0.0f;  // 2: 90° or more
-  };
-  struct MeshExtents {
-    SpreadKey key;
-    std::vector<PolygonExtent> polygons;
-  };
+  // Per scene mesh, the estimate's camera-independent part for one version of its arrays
+  // (QualityRenderer.cpp).
+  struct MeshExtents;
   std::vector<MeshExtents> extents_;
-  std::vector<float> sampleBounds_;           // per sample: its polygon's bound; −∞: background
-  std::vector<std::array<int, 2>> rowSpans_;  // per sample row: first, last covered sample
-  std::vector<float> polygonBounds_;          // per polygon id, 8-bit units (visible ones only)
-  std::vector<Color> cornerColors_;           // Gouraud: per corner of every mesh
-  std::vector<Color> cornerBright_;           // Gouraud with a scalarTexture: the corners lit white
-  std::unique_ptr<std::atomic<std::uint8_t>[]> shown_;  // per polygon id: some sample shows it
-  std::size_t shownSize_ = 0;
+  std::vector<float> polygonBounds_;     // per polygon id, 8-bit units (visible ones only)
+  std::vector<std::uint8_t> reshade_;    // per polygon id: shaded again (visible ones only)
+  std::vector<Color> cornerColors_;      // Gouraud: per corner of every mesh
+  std::vector<Color> cornerBright_;      // Gouraud with a scalarTexture: the corners lit white
+  const std::uint8_t* shown_ = nullptr;  // per polygon id: this render lit it (Renderer)
 };
 
 }  // namespace facet

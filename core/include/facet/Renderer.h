@@ -35,8 +35,10 @@
 /// that wrote into them, or cannot be sure, calls forgetPreviousFrame() or turns
 /// RenderRules::incremental off. RenderPlan::path says which path ran, and why.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 
 #include "facet/Camera.h"
 #include "facet/Color.h"
@@ -110,6 +112,12 @@ class Renderer {
   /// size outside [1, kMaxImageSide] or a null plane (the depth plane may be null when depth
   /// output is off).
   RenderStats render(const Scene& scene, const Camera& camera, const FramebufferView& target);
+
+  /// Per polygon id of the last render's scene (its meshes' polygons in order), nonzero for
+  /// every polygon a pixel of the image shows — and for any that won a pixel while painting
+  /// and lost it later: the polygons the render lit. For work on the rendered image (the
+  /// error estimate of QualityRenderer); valid until the next render.
+  std::span<const std::uint8_t> shownPolygons() const;
 
   /// Runs work(begin, end) over [0, count) in blocks of `grain`, on the renderer's threads
   /// (the caller's included), for elementwise work on a rendered image such as converting
