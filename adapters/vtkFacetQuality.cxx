@@ -128,9 +128,14 @@ vtkFacetQuality::Key vtkFacetQuality::KeyOf(const facet::MeshView& mesh)
   // gives a mesh a new one when its normals change); the color version matters only to the
   // corner color ranges, which exist with point colors or a scalar texture.
   const bool cornerColors = !mesh.pointColors.empty() || !mesh.scalarTexture.empty();
-  return {
-    mesh.points.data, mesh.polygons.count, mesh.version, cornerColors ? mesh.colorVersion : 0
-  };
+  return { mesh.points.data,
+    mesh.polygons.offsets,
+    mesh.polygons.connectivity,
+    mesh.points.count,
+    mesh.polygons.count,
+    mesh.polygons.connectivitySize,
+    mesh.version,
+    cornerColors ? mesh.colorVersion : 0 };
 }
 
 //------------------------------------------------------------------------------

@@ -29,7 +29,6 @@
 
 #include <functional>
 #include <memory>
-#include <tuple>
 #include <vector>
 
 class vtkFacetMessages;
@@ -81,10 +80,20 @@ public:
     vtkFacetMessages& messages);
 
 private:
-  // What a mesh's ShadingMesh is made of: points, polygon count, version (points, polygons
-  // and point normals) and, with point colors or a scalar texture, the color version (the
-  // polygons' corner color ranges).
-  using Key = std::tuple<const void*, std::size_t, std::uint64_t, std::uint64_t>;
+  // What a mesh's ShadingMesh is made of: its arrays (points, offsets, connectivity and their
+  // sizes: two inputs may share their points and their version, the latest MTime of both),
+  // its version (points, polygons and point normals) and, with point colors or a scalar
+  // texture, its color version (the polygons' corner color ranges). The core's own caches key
+  // a mesh the same way (MeshIdentity).
+  struct Key
+  {
+    const void* Points = nullptr;
+    const void* Offsets = nullptr;
+    const void* Connectivity = nullptr;
+    std::size_t PointCount = 0, PolygonCount = 0, ConnectivitySize = 0;
+    std::uint64_t Version = 0, ColorVersion = 0;
+    bool operator==(const Key&) const = default;
+  };
   static Key KeyOf(const facet::MeshView& mesh);
   // The ShadingMesh of every mesh whose key changed (every render for an unversioned mesh).
   void UpdateShading(const facet::Scene& scene);

@@ -475,9 +475,9 @@ public:
    * the polygons the render lit (in SIMD batches for point and directional lights and a
    * material without specular) and takes one pass over the pixels, writing no image unless
    * ErrorEstimateArray asks; a new background alone keeps the last estimate. Not free yet:
-   * about half the instructions of before per frame, but on spheres of 0.5M and 2M triangles
-   * at 1920 x 1080 still about 10 % of the CPU of a turning-camera Update() (README,
-   * "Measuring error": figures of a loaded machine) and, once, about as much as the
+   * about half the instructions of before per frame, but at 1920 x 1080 still about 13 % of
+   * the CPU of a turning-camera Update() of a 0.5M-triangle sphere and 5 % at 2M (README,
+   * "An estimate of a render's error": figures of a loaded machine) and, once, about as much as the
    * conversion to the first, so it stays off; off, a flat one-sample render is the plain
    * rasterizer (default: off).
    */

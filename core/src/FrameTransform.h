@@ -74,7 +74,9 @@ struct WindowVertex {
 };
 // 16 bytes, the last four (outcode and residues) one little-endian word: TransformBatch.cpp
 // stores vertices as four 32-bit words.
-static_assert(sizeof(WindowVertex) == 16 && offsetof(WindowVertex, outcode) == 12 &&
+static_assert(sizeof(WindowVertex) == 16 && offsetof(WindowVertex, x) == 0 &&
+              offsetof(WindowVertex, y) == 4 && offsetof(WindowVertex, depth) == 8 &&
+              offsetof(WindowVertex, outcode) == 12 &&
               offsetof(WindowVertex, residueX) == 14 && offsetof(WindowVertex, residueY) == 15);
 inline constexpr int kResidueBits = 8;
 inline constexpr int kResidueScale = 1 << kResidueBits;

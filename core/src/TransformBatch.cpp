@@ -6,7 +6,9 @@
 // and the file is compiled without contraction into fused multiply-adds (core/CMakeLists.txt),
 // so a lane gives project()'s bytes. Comparisons take project()'s branches as masks; the one
 // branch that changes the arithmetic, the rescaling of points beyond kLargeCoordinate from the
-// eye (or with a NaN coordinate), sends the lanes' whole group to project() itself.
+// eye, sends the lanes' whole group to project() itself. A NaN coordinate usually does not
+// (x86's max returns its second operand for a NaN): its lane is computed here and, as in
+// project(), its non-finite clip point makes it an outside vertex with kNonFinite.
 
 #include <bit>
 

@@ -5,12 +5,16 @@
 #include "AdapterTestUtilities.h"
 
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkLight.h"
 #include "vtkLookupTable.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
@@ -600,7 +604,7 @@ TEST_F(Incremental, TheShadingMeshIsBuiltOnlyWhenItsMeshChanged)
   changed.Background[0] = 0.7;
   EXPECT_EQ(built(kept.Render(changed)), std::pair(0.0, 1.0)) << "camera, light, background";
   changed.ColorByScalars = false;
-  kept.Render(changed); // the point colors gone: built again, without them
+  EXPECT_EQ(built(kept.Render(changed)), std::pair(1.0, 0.0)) << "the point colors gone";
   NegateScalars(this->Input);
   vtkImageData* again = kept.Render(changed);
   EXPECT_EQ(built(again), std::pair(0.0, 1.0)) << "scalars that color nothing";
@@ -610,4 +614,38 @@ TEST_F(Incremental, TheShadingMeshIsBuiltOnlyWhenItsMeshChanged)
   ExpectSameImage(again, expected);
   EXPECT_EQ(FieldValue(again, "FacetErrorEstimate", "PredictedRMSE"),
     FieldValue(expected, "FacetErrorEstimate", "PredictedRMSE"));
+}
+
+//------------------------------------------------------------------------------
+// Two inputs sharing one vtkPoints, modified after both were built, have the same points,
+// polygon count and version (their latest MTime): what the quality keeps for one must not
+// shade the other.
+TEST_F(Incremental, InputsSharingTheirPointsKeepTheirOwnShading)
+{
+  vtkNew<vtkCellArray> twisted; // the same cells, each corner moved to the next point
+  const vtkIdType points = this->Input->GetNumberOfPoints();
+  vtkCellArray* polys = this->Input->GetPolys();
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->GetCellAtId(c, cell);
+    for (vtkIdType k = 0; k < cell->GetNumberOfIds(); ++k)
+      cell->SetId(k, (cell->GetId(k) + 1) % points);
+    twisted->InsertNextCell(cell);
+  }
+  vtkNew<vtkPolyData> other;
+  other->SetPoints(this->Input->GetPoints());
+  other->SetPolys(twisted);
+  other->GetPointData()->ShallowCopy(this->Input->GetPointData());
+  this->Input->GetPoints()->Modified();
+
+  Settings settings;
+  settings.Interpolation = VTK_PHONG;
+  settings.ColorByScalars = false; // no point colors, so no color version tells them apart
+  Rig kept(this->Input);
+  kept.Render(settings);
+  kept.Filter->SetInputData(other);
+  vtkImageData* again = kept.Render(settings);
+  Rig fresh(other);
+  ExpectSameImage(again, fresh.Render(settings));
 }

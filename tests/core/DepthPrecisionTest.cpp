@@ -268,6 +268,8 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
       d = d < 1.0f ? std::nextafter(d, 2.0f) + 1e-4f : d;
     rejected += detail::losesEverywhere(v[0], v[1], v[2], box, nearer.planes()) || tie;
 
+    // Every pixel the triangle covers, one at a time: the bound is tightest where the
+    // triangle's key is largest, which need not be the first pixel in row order.
     TilePlanes oneFarther = nearer;
     for (std::size_t i = 0; i < oneFarther.depth.size(); ++i) {
       if (written.ids[i] != 0) continue;
@@ -278,7 +280,7 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
                       << v[1].x << "," << v[1].y << "," << v[1].depth << ") (" << v[2].x << ","
                       << v[2].y << "," << v[2].depth << ") rejected, but wins pixel " << i;
       }
-      break;
+      oneFarther.depth[i] = nearer.depth[i];
     }
   }
   EXPECT_EQ(wronglyRejected, 0u);

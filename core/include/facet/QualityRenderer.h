@@ -105,7 +105,9 @@ struct QualityStats {
   double estimateSeconds = 0.0;  ///< the error estimate (bounds and the per-pixel image)
   double totalSeconds = 0.0;
   std::size_t samplesReshaded = 0;   ///< samples shaded again (not kept flat)
-  std::size_t polygonsReshaded = 0;  ///< visible polygons shaded per sample or per corner
+  /// Polygons shaded per sample or per corner: those the renderer lit (Renderer::shownPolygons,
+  /// which includes any that won a pixel while painting and lost it later).
+  std::size_t polygonsReshaded = 0;
   /// The estimate (when asked): per pixel, an upper bound on how far the flat-shaded pixel is
   /// from the converged Phong image of the scene (the mesh reference, MeshReference.h), in
   /// 8-bit units of the largest channel — for each polygon the pixel's 3 × 3 samples see, its
