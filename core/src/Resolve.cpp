@@ -138,9 +138,9 @@ ResolveRoutineChoice chooseResolveRoutine(bool depth) {
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
                   ResolveRoutine routine, const FrameTransform& transform) {
   const PixelBounds viewport = grid.viewport();
-  const int bands = (viewport.y1 + kRowsPerTask) / kRowsPerTask;
+  const int bands = (viewport.y1 - viewport.y0 + kRowsPerTask) / kRowsPerTask;
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
-    const int y0 = static_cast<int>(b) * kRowsPerTask;
+    const int y0 = viewport.y0 + static_cast<int>(b) * kRowsPerTask;
     routine(context, {viewport.x0, y0, viewport.x1, std::min(viewport.y1, y0 + kRowsPerTask - 1)},
             transform);
   });
