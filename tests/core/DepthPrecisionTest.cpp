@@ -288,5 +288,49 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
   EXPECT_GT(rejected, tested / 2) << "a triangle well behind should mostly be rejected";
 }
 
+// The reject end to end: a random stream of small and mid-sized triangles (steep and flat
+// depth planes, every boundary-edge mask, many polygon ids) painted with the depth test into
+// one tile with the reject and into another without it: the same keys, ids, shown flags and
+// writes.
+TEST(DepthPrecision, RejectingHiddenTrianglesPaintsTheSamePixels) {
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> corner(0, TilePlanes::kSide * 256), spread(1, 6 * 256),
+      residue(-127, 127), mask(0, 7), polygon(0, 63);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
+  const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
+  TilePlanes with, without;
+  with.shown.assign(64, 0), without.shown.assign(64, 0);
+  detail::PaintCounts withCounts, withoutCounts;
+  std::size_t painted = 0;
+  for (int t = 0; t < 40000; ++t) {
+    WindowVertex v[3];
+    const int cx = corner(random), cy = corner(random), size = spread(random);
+    const float base = key(random);
+    for (WindowVertex& c : v) {
+      c.x = cx + std::uniform_int_distribution<int>(-size, size)(random);
+      c.y = cy + std::uniform_int_distribution<int>(-size, size)(random);
+      c.residueX = static_cast<std::int8_t>(residue(random));
+      c.residueY = static_cast<std::int8_t>(residue(random));
+      c.depth = base + (t % 3 ? steep(random) : steep(random) * 1e-4f);
+    }
+    const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
+    if (area == 0) continue;
+    if (area < 0) std::swap(v[1], v[2]);
+    const auto boundary = static_cast<detail::EdgeMask>(mask(random));
+    const std::int32_t id = polygon(random);
+    detail::paintTriangle<detail::DepthMode::Test, true>(v[0], v[1], v[2], boundary, id, tile,
+                                                         with.planes(), withCounts);
+    detail::paintTriangle<detail::DepthMode::Test, false>(v[0], v[1], v[2], boundary, id, tile,
+                                                          without.planes(), withoutCounts);
+    ++painted;
+  }
+  EXPECT_GT(painted, 30000u);
+  EXPECT_EQ(withCounts.written, withoutCounts.written);
+  EXPECT_GT(withoutCounts.written, 0u);
+  EXPECT_TRUE(with.depth == without.depth) << "depth keys differ";
+  EXPECT_TRUE(with.ids == without.ids) << "polygon ids differ";
+  EXPECT_TRUE(with.shown == without.shown) << "shown flags differ";
+}
+
 }  // namespace
 }  // namespace facet::testing
