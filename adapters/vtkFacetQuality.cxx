@@ -74,8 +74,9 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const Settings& setting
   if (!reshades && samples == 1 && !settings.EstimateError && !settings.ErrorEstimateArray &&
     !settings.ComputeError)
   {
-    // The Renderer alone: nothing to prepare, nothing kept (the meshes may change unseen
-    // meanwhile, and the quality renderer's estimate would not be of the next frame).
+    // The Renderer alone: nothing to prepare. The quality renderer goes (its estimate would not
+    // be of the next frame) and so do the ShadingMeshes, though their keys would tell whether
+    // they still hold: a mode that needs them builds them again.
     this->Keys.clear();
     this->Shading.clear();
     this->Quality.reset();
