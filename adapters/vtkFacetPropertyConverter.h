@@ -38,8 +38,8 @@ public:
 
   /**
    * What the property asks for that Facet does not render yet, as a phrase ("Physically
-   * based rendering interpolation (shown flat) and opacity 0.5"); empty when it asks for nothing of the
-   * kind.
+   * based rendering interpolation (shown flat) and opacity 0.5"); empty when it asks for nothing of
+   * the kind.
    */
   static std::string Unrendered(vtkProperty* property);
 };

@@ -76,8 +76,8 @@ struct WindowVertex {
 // stores vertices as four 32-bit words.
 static_assert(sizeof(WindowVertex) == 16 && offsetof(WindowVertex, x) == 0 &&
               offsetof(WindowVertex, y) == 4 && offsetof(WindowVertex, depth) == 8 &&
-              offsetof(WindowVertex, outcode) == 12 &&
-              offsetof(WindowVertex, residueX) == 14 && offsetof(WindowVertex, residueY) == 15);
+              offsetof(WindowVertex, outcode) == 12 && offsetof(WindowVertex, residueX) == 14 &&
+              offsetof(WindowVertex, residueY) == 15);
 inline constexpr int kResidueBits = 8;
 inline constexpr int kResidueScale = 1 << kResidueBits;
 

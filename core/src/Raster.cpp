@@ -76,8 +76,7 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
         // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
         // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
         // triangles would only pay for the test.
-        paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes,
-                                             counts);
+        paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes, counts);
       } else {
         paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
       }

@@ -104,7 +104,7 @@ struct QualityStats {
   double shadeSeconds = 0.0;     ///< re-shading and resolving the samples
   double estimateSeconds = 0.0;  ///< the error estimate (bounds and the per-pixel image)
   double totalSeconds = 0.0;
-  std::size_t samplesReshaded = 0;   ///< samples shaded again (not kept flat)
+  std::size_t samplesReshaded = 0;  ///< samples shaded again (not kept flat)
   /// Polygons shaded per sample or per corner: those the renderer lit (Renderer::shownPolygons,
   /// which includes any that won a pixel while painting and lost it later).
   std::size_t polygonsReshaded = 0;
