@@ -27,6 +27,7 @@
 #include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
+#include "ShownPolygons.h"
 #include "Validate.h"
 #include "facet/Conventions.h"
 #include "facet/Error.h"
@@ -247,27 +248,13 @@ PolygonShape shapeOf(const PolygonExtent& extent) {
 }
 
 // The ids in [first, last) whose `shown` flag is set, as offsets from `base`, into `out`;
-// returns how many. Without a branch per id (whether one is shown is a coin toss along a
-// silhouette), but eight at once where none is (the far side of a closed surface, say).
+// returns how many.
 std::size_t shownAmong(const std::uint8_t* shown, std::size_t first, std::size_t last,
                        std::size_t base, std::uint32_t* out) {
   std::size_t count = 0;
-  const auto add = [&](std::size_t id) {
-    out[count] = static_cast<std::uint32_t>(id - base);
-    count += shown[id] != 0;
-  };
-  std::size_t id = first;
-  for (; id < last && id % 8 != 0; ++id)
-    add(id);
-  for (; id + 8 <= last; id += 8) {
-    std::uint64_t word;
-    std::memcpy(&word, shown + id, sizeof word);
-    if (word == 0) continue;
-    for (std::size_t k = id; k < id + 8; ++k)
-      add(k);
-  }
-  for (; id < last; ++id)
-    add(id);
+  detail::forEachShownPolygon(shown, first, last, [&](std::size_t id) {
+    out[count++] = static_cast<std::uint32_t>(id - base);
+  });
   return count;
 }
 

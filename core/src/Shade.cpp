@@ -16,7 +16,7 @@ template <class ColorOf>
 std::size_t forEachShown(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
                          std::size_t end, const ColorOf& colorOf) {
   std::size_t shaded = 0;
-  forEachShownPolygon(context.shown, mesh, begin, end, [&](std::size_t polygon) {
+  forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ++shaded;
     context.colors[id] = colorOf(id, polygon);

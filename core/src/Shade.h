@@ -9,14 +9,13 @@
 // (direct light or not, polygon centers, specular, per-polygon colors), as llvmpipe picks
 // its triangle routine: no per-polygon tests of the plan.
 
-#include <bit>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <vector>
 
 #include "Frame.h"
 #include "PhaseRunner.h"
+#include "ShownPolygons.h"
 
 namespace facet::detail {
 
@@ -28,30 +27,6 @@ struct ShadeContext {
   const std::uint8_t* backFacing;  // per polygon id (Setup.h)
   Rgba8* colors;                   // out, per shown polygon id
 };
-
-// The polygons that won a pixel, which every shade routine (and anything else that needs
-// the visible polygons after the raster) walks: calls visit(polygon) for each shown one among
-// the mesh's polygons [begin, end), in id order. Eight flags at a time: most polygons of a
-// dense mesh won no pixel (behind others, back faces, or covering no pixel center), and a
-// branch per flag would be a coin toss at each shown one.
-template <class Visit>
-void forEachShownPolygon(const std::uint8_t* shown, const FrameMesh& mesh, std::size_t begin,
-                         std::size_t end, Visit&& visit) {
-  const std::uint8_t* flags = shown + mesh.firstPolygon;
-  std::size_t polygon = begin;
-  for (; polygon + 8 <= end; polygon += 8) {
-    std::uint64_t word;
-    std::memcpy(&word, flags + polygon, sizeof word);
-    while (word != 0) {  // a flag is 0 or 1: bit 8k is polygon + k's
-      const int bit = std::countr_zero(word);
-      visit(polygon + bit / 8);
-      word &= word - 1;
-    }
-  }
-  for (; polygon < end; ++polygon) {
-    if (flags[polygon]) visit(polygon);
-  }
-}
 
 // Shades the shown polygons among one mesh's polygons [begin, end); returns how many.
 using ShadeRoutine = std::size_t (*)(const ShadeContext& context, const FrameMesh& mesh,

@@ -71,7 +71,7 @@ FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const Frame
                                         std::size_t end) {
   const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
   std::size_t shaded = 0;
-  forEachShownPolygon(context.shown, mesh, begin, end, [&](std::size_t polygon) {
+  forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ++shaded;
     context.colors[id] = litColor<kCenters, kSpecular, kColors>(
