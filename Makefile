@@ -29,6 +29,10 @@ TSAN_SIMD_TARGETS := AVX2
 # make fuzz: the sanitized build with libFuzzer's coverage feedback in everything.
 FUZZ_BUILD_DIR ?= build-fuzz
 JOBS ?= $(shell nproc)
+# ccache keys paths inside the checkout relative to the build folder, so the plugin's build of
+# the core (build-plugin/core/...: the same unity sources at the same relative paths, the
+# same flags) reuses the main build's objects.
+export CCACHE_BASEDIR := $(CURDIR)
 CMAKE_FLAGS ?=
 
 # Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the

@@ -8,11 +8,6 @@
 #include <vector>
 
 namespace {
-facet::Color ToColor(const double c[3])
-{
-  return { static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]) };
-}
-
 // VTK's unlit fragment color, ambientColor + diffuseColor = Ka·Ca + Kd·Cd, as an ambient
 // term: with scalars (Ca = Cd = the scalar color) a coefficient, else a color.
 void MakeUnlit(facet::Material& m, vtkProperty* property, bool scalarColoring)
@@ -23,9 +18,10 @@ void MakeUnlit(facet::Material& m, vtkProperty* property, bool scalarColoring)
   }
   else
   {
-    m.ambientColor =
-      ToColor(property->GetAmbientColor()) * static_cast<float>(property->GetAmbient()) +
-      ToColor(property->GetDiffuseColor()) * static_cast<float>(property->GetDiffuse());
+    m.ambientColor = vtkFacetPropertyConverter::ToColor(property->GetAmbientColor()) *
+        static_cast<float>(property->GetAmbient()) +
+      vtkFacetPropertyConverter::ToColor(property->GetDiffuseColor()) *
+        static_cast<float>(property->GetDiffuse());
     m.ambient = 1.0;
   }
   m.diffuse = 0.0;
@@ -39,12 +35,12 @@ facet::Material vtkFacetPropertyConverter::Convert(vtkProperty* property,
   vtkFacetSceneConverter::Lighting lighting)
 {
   facet::Material m;
-  m.color = ToColor(property->GetDiffuseColor());
+  m.color = vtkFacetPropertyConverter::ToColor(property->GetDiffuseColor());
   if (!scalarColoring)
   {
-    m.ambientColor = ToColor(property->GetAmbientColor());
+    m.ambientColor = vtkFacetPropertyConverter::ToColor(property->GetAmbientColor());
   }
-  m.specularColor = ToColor(property->GetSpecularColor());
+  m.specularColor = vtkFacetPropertyConverter::ToColor(property->GetSpecularColor());
   m.ambient = property->GetAmbient();
   m.diffuse = property->GetDiffuse();
   m.specular = property->GetSpecular();
@@ -89,4 +85,9 @@ std::string vtkFacetPropertyConverter::Unrendered(vtkProperty* property)
     asks.push_back("textures");
   }
   return vtkFacetMessages::List(asks);
+}
+
+facet::Color vtkFacetPropertyConverter::ToColor(const double rgb[3])
+{
+  return { static_cast<float>(rgb[0]), static_cast<float>(rgb[1]), static_cast<float>(rgb[2]) };
 }

@@ -42,6 +42,9 @@ public:
    * the kind.
    */
   static std::string Unrendered(vtkProperty* property);
+
+  /// A VTK color (three doubles in [0, 1], as vtkProperty and vtkLight hold them) as Facet's.
+  static facet::Color ToColor(const double rgb[3]);
 };
 
 #endif

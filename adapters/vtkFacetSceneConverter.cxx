@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkFacetLight.h"
 #include "vtkFacetMessages.h"
+#include "vtkFacetPropertyConverter.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
@@ -20,11 +21,6 @@ namespace {
 glm::dvec3 ToVec(const double v[3])
 {
   return { v[0], v[1], v[2] };
-}
-
-facet::Color ToColor(const double c[3])
-{
-  return { static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]) };
 }
 
 glm::dvec3 Transform(vtkMatrix4x4* matrix, const double point[3])
@@ -123,7 +119,7 @@ facet::Attenuation AttenuationOf(vtkLight* light)
 // The light as Facet sees it, given where it is and where it looks in world coordinates.
 facet::Light ConvertLight(vtkLight* light, const glm::dvec3& position, const glm::dvec3& focal)
 {
-  const facet::Color color = ToColor(light->GetDiffuseColor());
+  const facet::Color color = vtkFacetPropertyConverter::ToColor(light->GetDiffuseColor());
   const double intensity = light->GetIntensity();
   if (!light->GetPositional())
   {
@@ -230,7 +226,7 @@ facet::LightSet vtkFacetSceneConverter::ConvertLights(vtkLightCollection* lights
   vtkFacetMessages& messages)
 {
   facet::LightSet set;
-  set.ambient.color = ToColor(options.AmbientColor);
+  set.ambient.color = vtkFacetPropertyConverter::ToColor(options.AmbientColor);
   set.ambient.intensity = 1.0;
 
   vtkSmartPointer<vtkLightCollection> effective = lights;
