@@ -33,6 +33,11 @@ JOBS ?= $(shell nproc)
 # the core (build-plugin/core/...: the same unity sources at the same relative paths, the
 # same flags) reuses the main build's objects.
 export CCACHE_BASEDIR := $(CURDIR)
+# $(call stage-mark,WHAT): when WHAT ended, in seconds after make started (CI's time budget).
+MAKE_STARTED := $(shell date +%s)
+define stage-mark
+@echo "== $(1): $$(( $$(date +%s) - $(MAKE_STARTED) )) s after make started"
+endef
 CMAKE_FLAGS ?=
 
 # Build tools and the core's libraries; VTK with its Python wrapping tools; Xvfb for the
@@ -113,7 +118,9 @@ build: deps $(BUILD_DIR)/build.ninja
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 test-main: deps-parallel build
+	$(call stage-mark,main build)
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	$(call stage-mark,main suite)
 
 # $(call configure-sanitized,DIR,FLAGS): the clang build under AddressSanitizer and UBSan.
 define configure-sanitized
@@ -146,7 +153,9 @@ plugin: deps-plugin $(PARAVIEW_PYTHON_ROOT)/.unpacked $(PLUGIN_BUILD_DIR)/build.
 	cmake --build $(PLUGIN_BUILD_DIR) -j $(JOBS)
 
 test-plugin: plugin
+	$(call stage-mark,plugin build)
 	cd $(PLUGIN_BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	$(call stage-mark,plugin suite)
 
 
 fuzz-build: deps $(FUZZ_BUILD_DIR)/build.ninja
@@ -163,17 +172,21 @@ SANITIZED_SKIP := $(SANITIZED_SKIP)|SphereOf500kTrianglesRendersTheSameBytesOnEv
 
 test-sanitized: deps-parallel $(SANITIZE_BUILD_DIR)/build.ninja
 	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS)
+	$(call stage-mark,sanitized build)
 	cd $(SANITIZE_BUILD_DIR) && $(SANITIZER_ENV) \
 	  ctest --output-on-failure -j $(JOBS) -LE asan-preload -E '$(SANITIZED_SKIP)'
 	cd $(SANITIZE_BUILD_DIR) && $(SANITIZER_ENV) ASAN_OPTIONS=$(ASAN_OPTIONS_ALL):detect_leaks=0 \
 	  LD_PRELOAD=$(ASAN_RUNTIME) ctest --output-on-failure -j $(JOBS) -L asan-preload
+	$(call stage-mark,sanitized suites)
 
 test-thread-sanitized: deps
 	CC=clang CXX=clang++ cmake -S . -B $(TSAN_BUILD_DIR) -G Ninja \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_CORE_ONLY=ON -DCMAKE_DISABLE_FIND_PACKAGE_VTK=ON \
 	  -DFACET_SANITIZE=thread -DFACET_BUILD_BENCHMARKS=OFF '-DFACET_SIMD_TARGETS=$(TSAN_SIMD_TARGETS)'
 	cmake --build $(TSAN_BUILD_DIR) -j $(JOBS) --target facet_core_tests facet-core-demo
+	$(call stage-mark,thread-sanitized build)
 	$(SANITIZER_ENV) $(TSAN_BUILD_DIR)/tests/core/facet_core_tests
+	$(call stage-mark,thread-sanitized suite)
 
 test: test-main test-sanitized test-thread-sanitized test-plugin
 	@echo "All test suites passed."
