@@ -205,19 +205,11 @@ glm::dvec3 clampedOnto(glm::dvec3 weights) {
   return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
 }
 
-// A polygon's part of the estimate that does not depend on the camera: a PolygonShape but
-// its point colors, 48 bytes in place of a ShadingMesh's ~250. The center is kept (in double,
-// for data far from the origin) so a frame reads no corners. The normal is flat shading's,
-// rounded to float as the Renderer's, and the spread is taken about it; the radius and the
-// spread's sine are rounded up, so the bound stays a bound.
-struct PolygonExtent {
-  glm::dvec3 center{0.0};
-  glm::vec3 normal{0.0f};  // zero: degenerate
-  float radius = 0.0f;
-  float sinNormalSpread = 0.0f;  // 2: 90° or more
-};
+// A polygon's part of the estimate that does not depend on the camera (FlatErrorBoundBatch.h):
+// a PolygonShape but its point colors, 48 bytes in place of a ShadingMesh's ~250.
+using detail::BoundExtent;
 
-PolygonExtent extentOf(const Corners& corners) {
+BoundExtent extentOf(const Corners& corners) {
   if (corners.points.size() < 3) return {};
   const std::span<const glm::dvec3> points = corners.points;
   const std::optional<glm::dvec3> normal =
@@ -237,7 +229,7 @@ PolygonExtent extentOf(const Corners& corners) {
 }
 
 // A polygon's shape from its extent, without colors.
-PolygonShape shapeOf(const PolygonExtent& extent) {
+PolygonShape shapeOf(const BoundExtent& extent) {
   PolygonShape shape;
   if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
   shape.normal = glm::dvec3(extent.normal);
@@ -256,17 +248,6 @@ std::size_t shownAmong(const std::uint8_t* shown, std::size_t first, std::size_t
     out[count++] = static_cast<std::uint32_t>(id - base);
   });
   return count;
-}
-
-// Lane `to` of a bound batch set to lane `from`'s polygon.
-void copyLane(detail::BoundBatch& batch, std::size_t from, std::size_t to) {
-  for (int k = 0; k < 3; ++k) {
-    batch.center[k][to] = batch.center[k][from];
-    batch.normal[k][to] = batch.normal[k][from];
-    batch.surface[k][to] = batch.surface[k][from];
-  }
-  batch.radius[to] = batch.radius[from];
-  batch.sinNormalSpread[to] = batch.sinNormalSpread[from];
 }
 
 }  // namespace
@@ -310,7 +291,7 @@ struct QualityRenderer::MeshExtents {
     friend bool operator==(const Key&, const Key&) = default;
   };
   Key key;
-  std::vector<PolygonExtent> polygons;
+  std::vector<BoundExtent> polygons;
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
@@ -741,23 +722,23 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
 // batches (FlatErrorBoundBatch.h) where the lighting and the mesh allow, else one by one.
 void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end) {
   detail::BoundBatch batch;
-  std::size_t polygonOf[detail::kBoundBatchSize];  // per lane, within the mesh
   const auto visible = std::make_unique_for_overwrite<std::uint32_t[]>(end - begin);
   for (std::size_t m = 0; m < frame.extents.size(); ++m) {
     const std::size_t offset = frame.firstPolygon[m], first = std::max(begin, offset),
                       last = std::min(end, frame.firstPolygon[m + 1]);
     if (first >= last) continue;
-    const std::size_t count = shownAmong(shown_, first, last, begin, visible.get());
+    // The visible polygons, numbered within the mesh.
+    const std::size_t count = shownAmong(shown_, first, last, offset, visible.get());
     const MeshView& view = frame.scene.meshes[m].mesh;
-    const std::span<const PolygonExtent> extents = frame.extents[m].polygons;
+    const std::span<const BoundExtent> extents = frame.extents[m].polygons;
     const std::optional<detail::BatchMaterial>& material = frame.batchMaterials[m];
-    const bool batched = frame.batchLighting && material;
+    const bool batched = frame.batchLighting && material &&
+                         extents.size() <= detail::kMaxGatheredPolygons;
     const bool pointColors = !view.pointColors.empty() || !view.scalarTexture.empty();
-    // As FlatErrorBound::bound reads it; one for the mesh without colors per polygon.
+    // As FlatErrorBound::bound reads it.
     const auto surfaceOf = [&](std::size_t polygon) {
       return glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
     };
-    const glm::dvec3 meshSurface = surfaceOf(0);
     const bool polygonColors = !view.polygonColors.empty();
     detail::withTypedMesh(view, [&](auto, auto polygons) {
       // One by one: the shape from the extent, with the colors its corners can show.
@@ -769,38 +750,31 @@ void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, st
         }
         return static_cast<float>(frame.boundOf(m, polygon, shape));
       };
-      std::size_t lanes = 0;
-      const auto flush = [&] {
-        for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
-          copyLane(batch, lanes - 1, lane);  // unused lanes: a copy, no stale values
+      if (!batched) {
+        for (std::size_t i = 0; i < count; ++i)
+          polygonBounds_[offset + visible[i]] = boundOne(visible[i]);
+        return;
+      }
+      // In batches, the extents gathered in SIMD lanes; one color for the mesh set once.
+      const auto setSurface = [&](std::size_t lane, const glm::dvec3& surface) {
+        for (int k = 0; k < 3; ++k)
+          batch.surface[k][lane] = surface[k];
+      };
+      for (std::size_t lane = 0; !polygonColors && lane < detail::kBoundBatchSize; ++lane)
+        setSurface(lane, surfaceOf(0));
+      for (std::size_t i = 0; i < count; i += detail::kBoundBatchSize) {
+        const std::size_t lanes = std::min(detail::kBoundBatchSize, count - i);
+        detail::gatherExtents(extents.data(), visible.get() + i, lanes, batch);
+        for (std::size_t lane = 0; polygonColors && lane < detail::kBoundBatchSize; ++lane)
+          setSurface(lane, surfaceOf(visible[i + (lane < lanes ? lane : 0)]));
         detail::boundBatch(*frame.batchLighting, *material, batch, detail::kBoundBatchSize);
         for (std::size_t lane = 0; lane < lanes; ++lane) {
+          const std::size_t polygon = visible[i + lane];
           const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
-          polygonBounds_[offset + polygonOf[lane]] =
-              std::isnan(bound) ? boundOne(polygonOf[lane]) : static_cast<float>(bound);
+          polygonBounds_[offset + polygon] =
+              std::isnan(bound) ? boundOne(polygon) : static_cast<float>(bound);
         }
-        lanes = 0;
-      };
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t polygon = begin + visible[i] - offset;
-        if (i + 8 < count) __builtin_prefetch(&extents[begin + visible[i + 8] - offset]);
-        const PolygonExtent& extent = extents[polygon];
-        if (!batched || extent.normal == glm::vec3(0.0f)) {
-          polygonBounds_[offset + polygon] = boundOne(polygon);
-          continue;
-        }
-        const glm::dvec3 surface = polygonColors ? surfaceOf(polygon) : meshSurface;
-        for (int k = 0; k < 3; ++k) {
-          batch.center[k][lanes] = extent.center[k];
-          batch.normal[k][lanes] = extent.normal[k];
-          batch.surface[k][lanes] = surface[k];
-        }
-        batch.radius[lanes] = extent.radius;
-        batch.sinNormalSpread[lanes] = extent.sinNormalSpread;
-        polygonOf[lanes++] = polygon;
-        if (lanes == detail::kBoundBatchSize) flush();
       }
-      if (lanes > 0) flush();
     });
   }
 }
