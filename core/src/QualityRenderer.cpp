@@ -764,6 +764,10 @@ void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, st
         setSurface(lane, surfaceOf(0));
       for (std::size_t i = 0; i < count; i += detail::kBoundBatchSize) {
         const std::size_t lanes = std::min(detail::kBoundBatchSize, count - i);
+        // The next batch's extents on their way (the visible ones are scattered: a miss each).
+        const std::size_t next = std::min(count, i + 2 * detail::kBoundBatchSize);
+        for (std::size_t j = i + detail::kBoundBatchSize; j < next; ++j)
+          __builtin_prefetch(&extents[visible[j]]);
         detail::gatherExtents(extents.data(), visible.get() + i, lanes, batch);
         for (std::size_t lane = 0; polygonColors && lane < detail::kBoundBatchSize; ++lane)
           setSurface(lane, surfaceOf(visible[i + (lane < lanes ? lane : 0)]));
