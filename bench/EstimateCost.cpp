@@ -93,8 +93,8 @@ void measure(int segments, int frames, int round) {
   std::printf(
       "| %d | %zu | %d | %.1f | %.1f | %+.1f %% | %.1f | %.3f | %.3f | %.3f | %.4f | %.3f |\n",
       segments, sphere.polygonCount(), round, 1e3 * offCpu, 1e3 * onCpu,
-      100.0 * (onCpu / offCpu - 1.0), 1e3 * median(estimateSeconds), firstOff, firstOn,
-      firstOnWall, stats.predictedRmse, stats.predictedMaxError);
+      100.0 * (onCpu / offCpu - 1.0), 1e3 * median(estimateSeconds), firstOff, firstOn, firstOnWall,
+      stats.predictedRmse, stats.predictedMaxError);
   std::fflush(stdout);
 }
 
@@ -116,11 +116,13 @@ int main(int argc, char** argv) {
   if (sizes.empty()) sizes = {500, 1000};
   if (frames < 1 || rounds < 1 ||
       std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
-    std::fprintf(stderr, "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n");
+    std::fprintf(stderr,
+                 "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n");
     return 2;
   }
-  std::printf("| segments | polygons | round | frame CPU ms, off | on | added | estimate wall ms "
-              "| first frame CPU s, off | on | on, wall s | predicted RMSE | max |\n");
+  std::printf(
+      "| segments | polygons | round | frame CPU ms, off | on | added | estimate wall ms "
+      "| first frame CPU s, off | on | on, wall s | predicted RMSE | max |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int round = 1; round <= rounds; ++round) {
     for (const int segments : sizes)

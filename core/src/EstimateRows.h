@@ -42,8 +42,7 @@ void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* 
 
 // For x in [begin, end) and every plane: out[x] = max(in[x − 1], in[x], in[x + 1]) (the
 // caller keeps in[begin − 1] and in[end] readable).
-void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
-               std::size_t stride);
+void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out, std::size_t stride);
 
 // For x in [begin, end): the sample's estimate plus its rounding (0.5), in kEstimateUnit
 // steps and capped at kEstimateCap, from the row maxima of the rows above, of its own and

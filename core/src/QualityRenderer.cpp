@@ -732,8 +732,8 @@ void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, st
     const MeshView& view = frame.scene.meshes[m].mesh;
     const std::span<const BoundExtent> extents = frame.extents[m].polygons;
     const std::optional<detail::BatchMaterial>& material = frame.batchMaterials[m];
-    const bool batched = frame.batchLighting && material &&
-                         extents.size() <= detail::kMaxGatheredPolygons;
+    const bool batched =
+        frame.batchLighting && material && extents.size() <= detail::kMaxGatheredPolygons;
     const bool pointColors = !view.pointColors.empty() || !view.scalarTexture.empty();
     // As FlatErrorBound::bound reads it.
     const auto surfaceOf = [&](std::size_t polygon) {
@@ -894,7 +894,8 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   const bool reshades = reshadesAny(settings);
   const int g = gridSide(settings.samplesPerPixel);
   const EstimateKey estimateFor{g, target.width, target.height, settings.errorEstimateImage};
-  const std::optional<EstimateKey> estimated = std::exchange(estimatedFor_, {});  // until this render's
+  const std::optional<EstimateKey> estimated =
+      std::exchange(estimatedFor_, {});  // until this render's
   if (!settings.estimateError || !settings.errorEstimateImage) estimate_.clear();
   if (!reshades && g == 1 && !settings.estimateError) {
     stats.render = renderer_.render(scene, camera, target);

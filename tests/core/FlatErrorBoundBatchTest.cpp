@@ -170,7 +170,7 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
   for (float& b : bounds)
     b = bound(random);
   bounds[7] = 0.0f;
-  bounds[8] = INFINITY;  // no bound: 255
+  bounds[8] = INFINITY;        // no bound: 255
   bounds[9] = 1.0f / 1024.0f;  // rounds up to 1/128
   std::vector<Rgba8> colors(width * height);
   std::vector<std::int32_t> ids(width * height);

@@ -88,7 +88,9 @@ TEST(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
             const Rgba8 color = id < 0 ? background : colors[id];
             const float key = before.depth[i];
             // The library's scalar path (compiled without fused multiply-adds, as the lanes).
-            const float depth = !depths ? key : id < 0 ? 1.0f : detail::resolvedDepth(transform, key);
+            const float depth = !depths  ? key
+                                : id < 0 ? 1.0f
+                                         : detail::resolvedDepth(transform, key);
             const bool same =
                 after.color[i] == color && std::memcmp(&after.depth[i], &depth, sizeof depth) == 0;
             if (!same && ++differing <= 5) {
