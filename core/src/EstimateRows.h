@@ -6,7 +6,10 @@
 //
 // A sample p's estimate is, over the polygons q its 3 × 3 neighbourhood shows (p's own
 // included), the largest |c_p − c_q| + b_q: D(c_p, c_q), the largest channel difference of
-// the two flat colors, plus q's bound (FlatErrorBound.h, QualityStats::predicted*). As
+// the two flat colors, plus q's bound (FlatErrorBound.h, QualityStats::predicted*) — the
+// sample may show any of them where the Phong image has them: |c_p − Phong_q(x)| ≤
+// |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
+// one, which is within b_q of Phong_q anywhere on q; the caller's 0.5 is added here). As
 // |a − b| = max(a − b, b − a),
 //   max_q (D(c_p, c_q) + b_q) = max over channel k and sign s of
 //                               [ max_q (s·c_q,k + b_q) ] − s·c_p,k,
