@@ -33,7 +33,6 @@
 /// Flat shading with one sample and no estimate is the Renderer itself, unchanged: same
 /// bytes, same cost. Every mode gives the same bytes for any thread count.
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
