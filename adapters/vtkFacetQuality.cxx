@@ -96,7 +96,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const Settings& setting
            const facet::FramebufferView& target) {
     if (shading)
     {
-      this->UpdateShading(scene);
+      this->UpdateShading(scene, renderer);
     }
     facet::QualitySettings quality;
     quality.shading = ShadingOf(this->Current.Interpolation);
@@ -140,8 +140,9 @@ vtkFacetQuality::Key vtkFacetQuality::KeyOf(const facet::MeshView& mesh)
 }
 
 //------------------------------------------------------------------------------
-void vtkFacetQuality::UpdateShading(const facet::Scene& scene)
+void vtkFacetQuality::UpdateShading(const facet::Scene& scene, facet::Renderer& renderer)
 {
+  const facet::ParallelFor parallel = facet::parallelOn(renderer); // the vertex normals
   const std::size_t meshes = scene.meshes.size();
   this->Shading.resize(meshes);
   this->Keys.resize(meshes);
@@ -152,7 +153,7 @@ void vtkFacetQuality::UpdateShading(const facet::Scene& scene)
     if (key != this->Keys[m] || mesh.version == 0)
     {
       this->Keys[m] = {}; // a ShadingMesh that throws leaves nothing that claims to be its
-      this->Shading[m] = facet::ShadingMesh(mesh);
+      this->Shading[m] = facet::ShadingMesh(mesh, {}, parallel);
       this->Keys[m] = key;
       ++this->Built;
     }

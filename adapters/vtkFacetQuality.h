@@ -96,7 +96,7 @@ private:
   };
   static Key KeyOf(const facet::MeshView& mesh);
   // The ShadingMesh of every mesh whose key changed (every render for an unversioned mesh).
-  void UpdateShading(const facet::Scene& scene);
+  void UpdateShading(const facet::Scene& scene, facet::Renderer& renderer);
 
   Settings Current;
   std::unique_ptr<facet::QualityRenderer> Quality; // its buffers kept between renders

@@ -37,7 +37,7 @@
  * error budget (vtkFacetQuality). The property's Opacity, Representation, edge visibility
  * and textures are not used yet: everything renders as opaque surfaces (a warning, said
  * once, names what the property asks for).
- * A render can estimate its own flat-shading error (EstimateError, off by default): field data
+ * Every render estimates its own flat-shading error (EstimateError, on by default): field data
  * `FacetErrorEstimate` (PredictedRMSE, PredictedMax, 8-bit units, Seconds; point array
  * `ErrorEstimate` with ErrorEstimateArray on); SetComputeError renders the converged Phong
  * reference beside it and reports the measured error (`FacetError`, point array `Error`). Its
@@ -470,16 +470,16 @@ public:
   /**
    * Estimate the render's flat-shading error and put it in the field data
    * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
-   * cost). Once per mesh version (not per frame) it computes the vertex normals and keeps
-   * each polygon's normal, extent, normal spread and center (48 bytes); per render it bounds
-   * the polygons the render lit (in SIMD batches for point and directional lights and a
-   * material without specular) and takes one pass over the pixels, writing no image unless
-   * ErrorEstimateArray asks; a new background alone keeps the last estimate. Not free yet:
-   * about half the instructions of before per frame, but at 1920 x 1080 still about 13 % of
-   * the CPU of a turning-camera Update() of a 0.5M-triangle sphere and 5 % at 2M (README,
-   * "An estimate of a render's error": figures of a loaded machine) and, once, about as much as the
-   * conversion to the first, so it stays off; off, a flat one-sample render is the plain
-   * rasterizer (default: off).
+   * cost): per pixel a bound on how far flat shading is from the converged Phong image. Once
+   * per mesh version (not per frame) it computes the vertex normals (on the filter's threads)
+   * and keeps each polygon's normal, extent, normal spread and center (48 bytes); per render
+   * it bounds the polygons the render lit (in SIMD batches for point and directional lights
+   * and a material without specular) and takes one pass over the pixels in integers, writing
+   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate.
+   * Not free: about 13 % of the CPU of a turning-camera Update() of a 0.5M- or 2M-triangle
+   * sphere at 1920 x 1080, and once per mesh about as much as its first conversion (README,
+   * "An estimate of a render's error"; bench/estimate-cost.md). Off, a flat one-sample render
+   * is the plain rasterizer (default: on).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);
   vtkGetMacro(EstimateError, vtkTypeBool);
@@ -593,7 +593,7 @@ protected:
   int SamplesPerPixel = 1;
   double MaximumError = 0.0;
   vtkTypeBool ComputeError = 0;
-  vtkTypeBool EstimateError = 0;
+  vtkTypeBool EstimateError = 1;
   vtkTypeBool ErrorEstimateArray = 0;
   vtkTypeBool OutputDepth = 1;
   vtkTypeBool OutputCellIds = 1;

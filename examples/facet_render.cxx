@@ -827,7 +827,7 @@ int Run(int argc, char** argv)
   render->GetProperty()->SetInterpolation(o.Interpolation);
   render->SetSamplesPerPixel(o.Samples);
   render->SetMaximumError(o.MaxError);
-  render->EstimateErrorOn(); // the tool says how far flat shading can be off
+  // The filter estimates flat shading's error by default (EstimateError): the tool says it.
   if (o.Painter)
   {
     render->SetVisibilityModeToPainterSort();

@@ -1,5 +1,7 @@
 // EstimateRows.h, compiled once per instruction set by Highway's foreach_target (this file
-// includes itself) and dispatched at run time.
+// includes itself) and dispatched at run time. Integers throughout, but for the rounding of
+// a bound, which is exact (a power-of-two scaling, a rounding up to an integer below 2^24):
+// every target gives the scalar loops' bytes.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "EstimateRows.cpp"
@@ -7,42 +9,213 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
-#include <cstdlib>
+#include <cstring>
 
 #include "EstimateRows.h"
+
+#ifndef FACET_ESTIMATE_ROWS_SCALAR
+#define FACET_ESTIMATE_ROWS_SCALAR
+namespace facet::detail {
+namespace {
+
+static_assert(kEstimateUnit == 1u << 7, "the SIMD lanes scale a channel by a shift of 7");
+
+// A bound in fixed point (EstimateRows.h): ⌈min(b, 255)·kEstimateUnit⌉ + 1; NaN as 255.
+inline std::uint32_t fixedBound(float bound) {
+  const float capped = bound < 255.0f ? std::max(bound, 0.0f) : 255.0f;
+  return static_cast<std::uint32_t>(std::ceil(capped * static_cast<float>(kEstimateUnit))) + 1;
+}
+
+inline std::uint32_t wordOf(Rgba8 color) {
+  std::uint32_t word;
+  std::memcpy(&word, &color, sizeof word);
+  return word;
+}
+
+// Channel j of a color word (red in the low byte), scaled.
+inline std::uint32_t scaledChannel(std::uint32_t word, int j) {
+  return ((word >> (8 * j)) & 0xFFu) * kEstimateUnit;
+}
+
+// The scalar definitions; the SIMD loops below end with them.
+inline void fieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                     int x, std::uint32_t* fields, std::size_t stride) {
+  const std::int32_t id = ids[x];
+  const std::uint32_t word = wordOf(colors[x]);
+  const std::uint32_t q = id < 0 ? 0 : fixedBound(polygonBounds[id]);
+  for (int j = 0; j < 3; ++j) {
+    const std::uint32_t c = scaledChannel(word, j);
+    fields[2 * j * stride + x] = id < 0 ? 0 : c + q;
+    fields[(2 * j + 1) * stride + x] = id < 0 ? 0 : kEstimateCap - c + q;
+  }
+}
+
+inline void rowMaximumOf(const std::uint32_t* in, int x, std::uint32_t* out, std::size_t stride) {
+  for (int k = 0; k < kEstimateFields; ++k) {
+    const std::uint32_t* plane = in + k * stride;
+    out[k * stride + x] = std::max({plane[x - 1], plane[x], plane[x + 1]});
+  }
+}
+
+inline std::uint32_t sampleEstimateOf(const std::uint32_t* above, const std::uint32_t* row,
+                                      const std::uint32_t* below, std::size_t stride,
+                                      const Rgba8* colors, const std::int32_t* ids, int x) {
+  if (ids[x] < 0) return 0;
+  const std::uint32_t word = wordOf(colors[x]);
+  std::uint32_t largest = 0;
+  for (int k = 0; k < kEstimateFields; ++k) {
+    const std::size_t i = k * stride + x;
+    const std::uint32_t c = scaledChannel(word, k / 2);
+    const std::uint32_t m = std::max({above[i], row[i], below[i]});
+    // No wrap: the sample's own field is part of the maximum.
+    largest = std::max(largest, m - (k % 2 == 0 ? c : kEstimateCap - c));
+  }
+  // largest = max(D·unit + ⌈b·unit⌉) + 1: less the 1, plus the 0.5 of rounding.
+  return std::min(largest - 1 + kEstimateUnit / 2, kEstimateCap);
+}
+
+}  // namespace
+}  // namespace facet::detail
+#endif  // FACET_ESTIMATE_ROWS_SCALAR
 
 HWY_BEFORE_NAMESPACE();
 namespace facet::detail::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void NeighbourMaxima(const Rgba8* center, const Rgba8* neighbours, const float* bounds, int begin,
-                     int end, float* out) {
-  const auto* c = reinterpret_cast<const std::uint8_t*>(neighbours);
-  const auto* p = reinterpret_cast<const std::uint8_t*>(center);
-  int x = begin;
-#if HWY_TARGET != HWY_SCALAR  // a lane of four bytes (HWY_SCALAR has one lane of any type)
-  const hn::ScalableTag<std::uint32_t> du;  // one sample (RGBA) per lane
-  const hn::Repartition<std::uint8_t, decltype(du)> d8;
-  const hn::Repartition<std::int32_t, decltype(du)> di;
-  const hn::Repartition<float, decltype(du)> df;
+using DU = hn::ScalableTag<std::uint32_t>;
+using DI = hn::RebindToSigned<DU>;
+using DF = hn::RebindToFloat<DU>;
+
+// Channel j of color words, scaled by kEstimateUnit (a shift of 7).
+template <int j>
+HWY_INLINE hn::Vec<DU> scaledChannels(hn::Vec<DU> words) {
+  const DU du;
+  const auto mask = hn::Set(du, 0xFFu << 7);
+  if constexpr (j == 0) {
+    return hn::And(hn::ShiftLeft<7>(words), mask);
+  } else {
+    return hn::And(hn::ShiftRight<8 * j - 7>(words), mask);
+  }
+}
+
+void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+  const DU du;
+  const DI di;
+  const DF df;
   const int lanes = static_cast<int>(hn::Lanes(du));
-  const auto byte = hn::Set(du, 0xFFu);
+  const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
+  int x = begin;
   for (; x + lanes <= end; x += lanes) {
-    const auto a = hn::LoadU(d8, c + 4 * x), b = hn::LoadU(d8, p + 4 * x);
-    const auto difference = hn::BitCast(du, hn::Or(hn::SaturatedSub(a, b), hn::SaturatedSub(b, a)));
-    const auto largest =
-        hn::Max(hn::Max(hn::And(difference, byte), hn::And(hn::ShiftRight<8>(difference), byte)),
-                hn::And(hn::ShiftRight<16>(difference), byte));
-    const auto v = hn::ConvertTo(df, hn::BitCast(di, largest)) + hn::LoadU(df, bounds + x);
-    hn::StoreU(hn::Max(hn::LoadU(df, out + x), v), df, out + x);
+    const auto id = hn::LoadU(di, ids + x);
+    const auto backgroundI = id < hn::Zero(di);
+    const auto background = hn::RebindMask(du, backgroundI);
+    const auto bound = hn::GatherIndex(df, polygonBounds, hn::IfThenZeroElse(backgroundI, id));
+    const auto capped = hn::IfThenElse(bound < hn::Set(df, 255.0f), hn::Max(bound, hn::Zero(df)),
+                                       hn::Set(df, 255.0f));
+    const auto q =
+        hn::BitCast(du, hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit)))) +
+        hn::Set(du, 1u);
+    const auto word = hn::IfThenZeroElse(background, hn::LoadU(du, words + x));
+    const auto plus = hn::IfThenZeroElse(background, q);
+    const auto minus = hn::IfThenZeroElse(background, q + hn::Set(du, kEstimateCap));
+    const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
+                                     scaledChannels<2>(word)};
+    for (int j = 0; j < 3; ++j) {
+      hn::StoreU(channels[j] + plus, du, fields + 2 * j * stride + x);
+      hn::StoreU(minus - channels[j], du, fields + (2 * j + 1) * stride + x);
+    }
+  }
+  for (; x < end; ++x)
+    fieldsOf(colors, ids, polygonBounds, x, fields, stride);
+}
+
+void RowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
+               std::size_t stride) {
+  const DU du;
+  const int lanes = static_cast<int>(hn::Lanes(du));
+  int x = begin;
+  for (; x + lanes <= end; x += lanes) {
+    for (int k = 0; k < kEstimateFields; ++k) {
+      const std::uint32_t* plane = in + k * stride + x;
+      const auto m = hn::Max(hn::Max(hn::LoadU(du, plane - 1), hn::LoadU(du, plane)),
+                             hn::LoadU(du, plane + 1));
+      hn::StoreU(m, du, out + k * stride + x);
+    }
+  }
+  for (; x < end; ++x)
+    rowMaximumOf(in, x, out, stride);
+}
+
+void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
+                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+                     const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
+  const DU du;
+  const DI di;
+  const int lanes = static_cast<int>(hn::Lanes(du));
+  const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
+  const auto cap = hn::Set(du, kEstimateCap);
+  int x = begin;
+  for (; x + lanes <= end; x += lanes) {
+    const auto word = hn::LoadU(du, words + x);
+    const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
+                                     scaledChannels<2>(word)};
+    auto largest = hn::Zero(du);
+    for (int k = 0; k < kEstimateFields; ++k) {
+      const std::size_t i = k * stride + x;
+      const auto m = hn::Max(hn::Max(hn::LoadU(du, above + i), hn::LoadU(du, row + i)),
+                             hn::LoadU(du, below + i));
+      const auto own = k % 2 == 0 ? channels[k / 2] : cap - channels[k / 2];
+      largest = hn::Max(largest, m - own);
+    }
+    const auto estimate = hn::Min(largest + hn::Set(du, kEstimateUnit / 2 - 1), cap);
+    const auto background = hn::RebindMask(du, hn::LoadU(di, ids + x) < hn::Zero(di));
+    hn::StoreU(hn::IfThenZeroElse(background, estimate), du, out + x);
+  }
+  for (; x < end; ++x)
+    out[x] = sampleEstimateOf(above, row, below, stride, colors, ids, x);
+}
+
+EstimateSums SumEstimates(const std::uint32_t* estimates, int begin, int end) {
+  EstimateSums sums;
+  int x = begin;
+#if HWY_TARGET != HWY_SCALAR
+  const DU du;
+  const hn::Repartition<std::uint64_t, DU> d64;
+  const int lanes = static_cast<int>(hn::Lanes(du));
+  auto squares = hn::Zero(d64);
+  auto largest = hn::Zero(du), covered = hn::Zero(du);
+  for (; x + lanes <= end; x += lanes) {
+    const auto e = hn::LoadU(du, estimates + x);
+    largest = hn::Max(largest, e);
+    covered = covered + hn::IfThenElseZero(e != hn::Zero(du), hn::Set(du, 1u));
+    // Each estimate is below 2^15, its square below 2^30: the even lanes' squares, then the
+    // odd lanes' moved down, in 64-bit lanes.
+    const auto odd = hn::BitCast(du, hn::ShiftRight<32>(hn::BitCast(d64, e)));
+    squares = squares + hn::MulEven(e, e) + hn::MulEven(odd, odd);
+  }
+  constexpr std::size_t kMax = HWY_MAX_BYTES / sizeof(std::uint32_t);
+  HWY_ALIGN std::uint64_t wide[kMax];
+  HWY_ALIGN std::uint32_t narrow[2][kMax];
+  hn::Store(squares, d64, wide);
+  hn::Store(largest, du, narrow[0]);
+  hn::Store(covered, du, narrow[1]);
+  for (std::size_t i = 0; i < hn::Lanes(d64); ++i)
+    sums.squares += wide[i];
+  for (std::size_t i = 0; i < hn::Lanes(du); ++i) {
+    sums.largest = std::max(sums.largest, narrow[0][i]);
+    sums.covered += narrow[1][i];
   }
 #endif
-  for (; x < end; ++x) {  // the same, one sample at a time
-    const int r = std::abs(c[4 * x] - p[4 * x]), g = std::abs(c[4 * x + 1] - p[4 * x + 1]),
-              bl = std::abs(c[4 * x + 2] - p[4 * x + 2]);
-    out[x] = std::max(out[x], static_cast<float>(std::max(std::max(r, g), bl)) + bounds[x]);
+  for (; x < end; ++x) {
+    const std::uint32_t e = estimates[x];
+    sums.squares += static_cast<std::uint64_t>(e) * e;
+    sums.largest = std::max(sums.largest, e);
+    sums.covered += e != 0;
   }
+  return sums;
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -51,11 +224,29 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace facet::detail {
 
-HWY_EXPORT(NeighbourMaxima);
+HWY_EXPORT(NeighbourFields);
+HWY_EXPORT(RowMaxima);
+HWY_EXPORT(SampleEstimates);
+HWY_EXPORT(SumEstimates);
 
-void neighbourMaxima(const Rgba8* center, const Rgba8* neighbours, const float* bounds, int begin,
-                     int end, float* out) {
-  HWY_DYNAMIC_DISPATCH(NeighbourMaxima)(center, neighbours, bounds, begin, end, out);
+EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
+  return HWY_DYNAMIC_DISPATCH(SumEstimates)(estimates, begin, end);
+}
+
+void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+  HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, polygonBounds, begin, end, fields, stride);
+}
+
+void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
+               std::size_t stride) {
+  HWY_DYNAMIC_DISPATCH(RowMaxima)(in, begin, end, out, stride);
+}
+
+void sampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
+                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+                     const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
+  HWY_DYNAMIC_DISPATCH(SampleEstimates)(above, row, below, stride, colors, ids, begin, end, out);
 }
 
 }  // namespace facet::detail

@@ -12,6 +12,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <cstddef>
+
 #include "FlatErrorBoundBatch.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -109,7 +111,8 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
   V nx = hn::Load(d, batch.normal[0] + lane), ny = hn::Load(d, batch.normal[1] + lane),
     nz = hn::Load(d, batch.normal[2] + lane);
   const V radius = hn::Load(d, batch.radius + lane);
-  M bounded = hn::FirstN(d, hn::Lanes(d));
+  // A zero normal (degenerate) is the scalar bound's to bound.
+  M bounded = hn::Not(hn::And(hn::And(nx == zero, ny == zero), nz == zero));
 
   // The viewer, as FlatErrorBound::bound finds it (its cone enters the specular term only).
   V vx = hn::Set(d, lighting.viewer.x), vy = hn::Set(d, lighting.viewer.y),
@@ -182,6 +185,38 @@ void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& materia
     boundLanes(d, lighting, material, batch, lane);
 }
 
+// The fields of a BoundExtent as doubles and floats from its start (checked below).
+constexpr int kExtentDoubles = sizeof(BoundExtent) / sizeof(double);
+constexpr int kExtentFloats = sizeof(BoundExtent) / sizeof(float);
+constexpr int kNormalFloat = 6, kRadiusFloat = 9, kSpreadFloat = 10;
+
+void GatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
+                   BoundBatch& batch) {
+  const D d;
+  const hn::Rebind<std::int32_t, D> di;
+  const hn::Rebind<std::int64_t, D> dl;
+  const hn::Rebind<float, D> df;
+  const auto* doubles = reinterpret_cast<const double*>(extents);
+  const auto* floats = reinterpret_cast<const float*>(extents);
+  HWY_ALIGN std::int32_t ids[kBoundBatchSize];
+  for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane)
+    ids[lane] = static_cast<std::int32_t>(polygons[lane < count ? lane : 0]);
+  for (std::size_t lane = 0; lane < kBoundBatchSize; lane += hn::Lanes(d)) {
+    const auto id = hn::Load(di, ids + lane);
+    const auto inDoubles = hn::PromoteTo(dl, id * hn::Set(di, kExtentDoubles));
+    const auto inFloats = id * hn::Set(di, kExtentFloats);
+    for (int k = 0; k < 3; ++k) {
+      hn::Store(hn::GatherIndex(d, doubles + k, inDoubles), d, batch.center[k] + lane);
+      hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kNormalFloat + k, inFloats)), d,
+                batch.normal[k] + lane);
+    }
+    hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kRadiusFloat, inFloats)), d,
+              batch.radius + lane);
+    hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kSpreadFloat, inFloats)), d,
+              batch.sinNormalSpread + lane);
+  }
+}
+
 }  // namespace facet::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -194,6 +229,17 @@ HWY_AFTER_NAMESPACE();
 namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
+HWY_EXPORT(GatherExtents);
+
+static_assert(sizeof(BoundExtent) == 48 && offsetof(BoundExtent, normal) == 24 &&
+                  offsetof(BoundExtent, radius) == 36 &&
+                  offsetof(BoundExtent, sinNormalSpread) == 40,
+              "GatherExtents reads the fields at these offsets");
+
+void gatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
+                   BoundBatch& batch) {
+  HWY_DYNAMIC_DISPATCH(GatherExtents)(extents, polygons, count, batch);
+}
 
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count) {

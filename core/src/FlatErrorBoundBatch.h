@@ -11,6 +11,7 @@
 // one.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -67,8 +68,29 @@ struct BoundBatch {
   alignas(64) double bound[kBoundBatchSize];            // out: 8-bit units; NaN: not bounded
 };
 
-// Fills `bound` of lanes [0, count) (the others are left to any value).
+// Fills `bound` of lanes [0, count) (the others are left to any value). A lane of zero
+// normal (a degenerate polygon) is NaN too.
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count);
+
+// A polygon's part of the estimate that does not depend on the camera (QualityRenderer.cpp):
+// its center (in double, for data far from the origin) so a frame reads no corners; its
+// normal, flat shading's rounded to float as the Renderer's; its radius and the sine of its
+// corner normals' spread about that normal, both rounded up, so the bound stays a bound.
+struct BoundExtent {
+  glm::dvec3 center{0.0};
+  glm::vec3 normal{0.0f};  // zero: degenerate
+  float radius = 0.0f;
+  float sinNormalSpread = 0.0f;  // 2: 90° or more
+};
+
+// The most polygons gatherExtents takes: their fields' offsets fit 32-bit lanes.
+inline constexpr std::size_t kMaxGatheredPolygons = (std::size_t{1} << 31) / sizeof(BoundExtent);
+
+// The center, normal, radius and spread of lanes [0, kBoundBatchSize) from
+// extents[polygons[lane]], gathered in SIMD lanes; the lanes from `count` on repeat lane 0.
+// Every polygon index is below kMaxGatheredPolygons.
+void gatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
+                   BoundBatch& batch);
 
 }  // namespace facet::detail

@@ -205,19 +205,11 @@ glm::dvec3 clampedOnto(glm::dvec3 weights) {
   return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
 }
 
-// A polygon's part of the estimate that does not depend on the camera: a PolygonShape but
-// its point colors, 48 bytes in place of a ShadingMesh's ~250. The center is kept (in double,
-// for data far from the origin) so a frame reads no corners. The normal is flat shading's,
-// rounded to float as the Renderer's, and the spread is taken about it; the radius and the
-// spread's sine are rounded up, so the bound stays a bound.
-struct PolygonExtent {
-  glm::dvec3 center{0.0};
-  glm::vec3 normal{0.0f};  // zero: degenerate
-  float radius = 0.0f;
-  float sinNormalSpread = 0.0f;  // 2: 90° or more
-};
+// A polygon's part of the estimate that does not depend on the camera (FlatErrorBoundBatch.h):
+// a PolygonShape but its point colors, 48 bytes in place of a ShadingMesh's ~250.
+using detail::BoundExtent;
 
-PolygonExtent extentOf(const Corners& corners) {
+BoundExtent extentOf(const Corners& corners) {
   if (corners.points.size() < 3) return {};
   const std::span<const glm::dvec3> points = corners.points;
   const std::optional<glm::dvec3> normal =
@@ -237,7 +229,7 @@ PolygonExtent extentOf(const Corners& corners) {
 }
 
 // A polygon's shape from its extent, without colors.
-PolygonShape shapeOf(const PolygonExtent& extent) {
+PolygonShape shapeOf(const BoundExtent& extent) {
   PolygonShape shape;
   if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
   shape.normal = glm::dvec3(extent.normal);
@@ -258,17 +250,6 @@ std::size_t shownAmong(const std::uint8_t* shown, std::size_t first, std::size_t
   return count;
 }
 
-// Lane `to` of a bound batch set to lane `from`'s polygon.
-void copyLane(detail::BoundBatch& batch, std::size_t from, std::size_t to) {
-  for (int k = 0; k < 3; ++k) {
-    batch.center[k][to] = batch.center[k][from];
-    batch.normal[k][to] = batch.normal[k][from];
-    batch.surface[k][to] = batch.surface[k][from];
-  }
-  batch.radius[to] = batch.radius[from];
-  batch.sinNormalSpread[to] = batch.sinNormalSpread[from];
-}
-
 }  // namespace
 
 const char* toString(Shading shading) {
@@ -283,11 +264,12 @@ const char* toString(Shading shading) {
   return "unknown";
 }
 
-ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options) {
+ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options,
+                         const ParallelFor& parallel) {
   validatePointData(mesh);
   triangles = triangulateMesh(mesh);
   normals = mesh.pointNormals.count > 0 ? fromPointNormals(mesh, mesh.pointNormals)
-                                        : computeVertexNormals(mesh, options);
+                                        : computeVertexNormals(mesh, options, parallel);
   firstTriangle.assign(mesh.polygons.count + 1, 0);
   for (const MeshTriangle& t : triangles)
     ++firstTriangle[t.polygon + 1];
@@ -309,11 +291,17 @@ struct QualityRenderer::MeshExtents {
     friend bool operator==(const Key&, const Key&) = default;
   };
   Key key;
-  std::vector<PolygonExtent> polygons;
+  std::vector<BoundExtent> polygons;
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
-QualityRenderer::~QualityRenderer() = default;
+
+ParallelFor parallelOn(Renderer& renderer) {
+  return [&renderer](std::size_t count, std::size_t grain,
+                     const std::function<void(std::size_t, std::size_t)>& work) {
+    renderer.parallelFor(count, grain, work);
+  };
+}
 
 void validate(const QualitySettings& settings) {
   const int s = settings.samplesPerPixel;
@@ -551,21 +539,8 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
 }
 
 // Sample rows per task of the estimate's pass: the rows just above and below a task's are
-// gathered by both tasks that read them, 2 in 18.
+// taken by both tasks that read them, 2 in 18.
 constexpr int kSampleRowsPerTask = 16;
-
-// A task's rows [first, first + spans.size()) of the sample grid: per sample the bound of its
-// polygon (−∞: background), per row its covered span (first and last covered sample).
-struct BoundRows {
-  std::vector<float> bounds;
-  std::vector<std::array<int, 2>> spans;
-  int first = 0, width = 0;
-
-  const float* row(int y) const {
-    return bounds.data() + static_cast<std::size_t>(y - first) * width;
-  }
-  std::array<int, 2> span(int y) const { return spans[y - first]; }
-};
 
 // The span [first, last) of a row's covered samples (ids ≥ 0): whole blocks of background
 // skipped by the sign of their AND (negative when every id is), one branch per sixteen ids
@@ -590,56 +565,114 @@ std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
   return {first, last};
 }
 
-// Rows [first, last) of the sample grid into `out`, from the polygons' bounds: the 3 × 3
-// neighbourhoods of rowEstimates then read them in image order rather than the polygons'
-// bounds nine times at random. (The bounds themselves are found in polygon order,
-// preparePolygons, not here in image order: that would read the polygons' extents at random,
-// a cache miss each.)
-void gatherBounds(const FramebufferView& grid, const float* polygonBounds, int first, int last,
-                  BoundRows& out) {
-  const int width = grid.width;
-  out.first = first;
-  out.width = width;
-  out.bounds.resize(static_cast<std::size_t>(last - first) * width);
-  out.spans.resize(static_cast<std::size_t>(last - first));
-  for (int y = first; y < last; ++y) {
-    const std::int32_t* ids = grid.polygonId + static_cast<std::size_t>(y) * width;
-    const auto [begin, end] = coveredSpan(ids, width);
-    float* bounds = out.bounds.data() + static_cast<std::size_t>(y - first) * width;
-    std::fill(bounds, bounds + begin, -INFINITY);
-    for (int x = begin; x < end; ++x)
-      bounds[x] = ids[x] < 0 ? -INFINITY : polygonBounds[ids[x]];
-    std::fill(bounds + end, bounds + width, -INFINITY);
-    out.spans[y - first] = {begin, end - 1};
-  }
-}
-
-// The flat-shading estimate of the samples of row y (FlatErrorBound.h, extended to what a
-// pixel shows), into `out`: a sample's color c_p against the Phong color of any polygon q
-// whose part of the neighbourhood the 3 × 3 samples around it see: |c_p − Phong_q(x)| ≤
-// |c_p − c_q| + 0.5 + b_q (c_q is q's flat color rounded to 8 bits, within 0.5 of the exact
-// one, which is within b_q of Phong_q anywhere on q). For q = p this is b_p + 0.5.
-// `bounds` holds rows y − 1 to y + 1 (those inside the grid); the background's −∞ adds
-// nothing, as no polygon. Neighbour by neighbour over the row's covered span
-// (EstimateRows.h), rather than nine scattered reads per sample. `out` is set on that span
-// only, and without the 0.5, which estimate() adds where it reads a covered sample's.
-void rowEstimates(const FramebufferView& grid, const BoundRows& bounds, int y, float* out) {
-  const int width = grid.width;
-  const Rgba8* center = grid.color + static_cast<std::size_t>(y) * width;
-  // Only the span of the row's covered samples: the others are not estimated (nor read).
-  const auto [first, last] = bounds.span(y);
-  std::fill(out + first, out + last + 1, 0.0f);
-  for (int ny = std::max(0, y - 1); ny <= std::min(grid.height - 1, y + 1); ++ny) {
-    const float* rowBounds = bounds.row(ny);
-    const Rgba8* rowColors = grid.color + static_cast<std::size_t>(ny) * width;
-    for (int dx = -1; dx <= 1; ++dx) {
-      detail::neighbourMaxima(center, rowColors + dx, rowBounds + dx, std::max(first, -dx),
-                              std::min(last + 1, width - dx), out);
-    }
-  }
-}
-
 }  // namespace
+
+// One task's space for the estimate's pass (EstimateRows.h), kept from frame to frame by its
+// QualityRenderer and lent to one task at a time. Every row of fields holds kEstimateFields
+// planes of `stride` words, a zero either side of a sample row's `width`.
+struct QualityRenderer::EstimateSpace {
+  int width = 0, side = 0;  // sample row width, samples per pixel side
+  std::size_t stride = 0;
+  std::vector<std::uint32_t> fields;  // one sample row's fields
+  // The row maxima of three consecutive sample rows (row r in maxima[r % 3]), each 0 outside
+  // the samples `written` says; and a row of zeros, for the rows outside the grid.
+  std::array<std::vector<std::uint32_t>, 3> maxima;
+  std::array<std::array<int, 2>, 3> written{};
+  std::array<std::array<int, 2>, 3> spans{};  // the covered samples of each of those rows
+  std::vector<std::uint32_t> zeros;
+  std::vector<std::uint32_t> samples;  // the estimates of a pixel row's sample rows
+  std::vector<std::uint32_t> pixels;   // a pixel row's, with more than one sample
+
+  void resize(int sampleWidth, int gridSide) {
+    if (sampleWidth == width && gridSide == side) return;
+    width = sampleWidth;
+    side = gridSide;
+    stride = static_cast<std::size_t>(width) + 2;
+    const std::size_t planes = detail::kEstimateFields * stride;
+    fields.assign(planes, 0);
+    for (std::vector<std::uint32_t>& row : maxima)
+      row.assign(planes, 0);
+    written = {};
+    zeros.assign(planes, 0);
+    samples.assign(static_cast<std::size_t>(side) * width, 0);
+    pixels.assign(static_cast<std::size_t>(width / side), 0);
+  }
+  // Plane 0's sample 0 of a row of fields.
+  static std::uint32_t* at(std::vector<std::uint32_t>& row) { return row.data() + 1; }
+  const std::uint32_t* maximaOf(int r, int height) {
+    return r < 0 || r >= height ? at(zeros) : at(maxima[r % 3]);
+  }
+
+  // Sample row r's row maxima into maxima[r % 3]: the fields of its covered span and of two
+  // samples either side (the neighbours' fields that maxima read), the maxima over one sample
+  // either side; zero elsewhere.
+  void findMaxima(const FramebufferView& grid, const float* polygonBounds, int r) {
+    const std::size_t row = static_cast<std::size_t>(r) * width;
+    const std::int32_t* ids = grid.polygonId + row;
+    const auto [first, last] = coveredSpan(ids, width);
+    std::uint32_t* out = at(maxima[r % 3]);
+    const auto [wasFirst, wasLast] = written[r % 3];
+    for (int k = 0; k < detail::kEstimateFields; ++k)
+      std::fill(out + k * stride + wasFirst, out + k * stride + wasLast, 0u);
+    spans[r % 3] = {first, last};
+    written[r % 3] = {0, 0};
+    if (first >= last) return;  // no polygon in the row
+    detail::neighbourFields(grid.color + row, ids, polygonBounds, std::max(0, first - 2),
+                            std::min(width, last + 2), at(fields), stride);
+    const int begin = std::max(0, first - 1), end = std::min(width, last + 1);
+    detail::rowMaxima(at(fields), begin, end, out, stride);
+    written[r % 3] = {begin, end};
+  }
+
+  // The estimates of sample row r (its maxima and its neighbours' found) into samples' row
+  // r % side; 0 outside its covered span where `whole` (else left as they were).
+  void estimateSamples(const FramebufferView& grid, int r, bool whole) {
+    const std::size_t row = static_cast<std::size_t>(r) * width;
+    std::uint32_t* out = samples.data() + static_cast<std::size_t>(r % side) * width;
+    const auto [first, last] = spans[r % 3];
+    if (whole) {
+      std::fill(out, out + first, 0u);
+      std::fill(out + last, out + width, 0u);
+    }
+    detail::sampleEstimates(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
+                            maximaOf(r + 1, grid.height), stride, grid.color + row,
+                            grid.polygonId + row, first, last, out);
+  }
+
+  // Pixel row y's estimates (samples holds its sample rows): the mean of its samples',
+  // rounded up, plus 0.5 for rounding that mean, capped; 0 where no sample is covered.
+  const std::uint32_t* pixelEstimates() {
+    if (side == 1) return samples.data();
+    const std::uint32_t area = static_cast<std::uint32_t>(side * side);
+    for (std::size_t x = 0; x < pixels.size(); ++x) {
+      std::uint32_t sum = 0;
+      for (int j = 0; j < side; ++j) {
+        const std::uint32_t* s = samples.data() + static_cast<std::size_t>(j) * width + x * side;
+        for (int i = 0; i < side; ++i)
+          sum += s[i];
+      }
+      pixels[x] = sum == 0 ? 0
+                           : std::min((sum + area - 1) / area + detail::kEstimateUnit / 2,
+                                      detail::kEstimateCap);
+    }
+    return pixels.data();
+  }
+};
+
+QualityRenderer::~QualityRenderer() = default;
+
+// Lends an EstimateSpace to a task and takes it back.
+std::unique_ptr<QualityRenderer::EstimateSpace> QualityRenderer::borrowSpace() {
+  const std::lock_guard lock(spaceMutex_);
+  if (spaces_.empty()) return std::make_unique<EstimateSpace>();
+  std::unique_ptr<EstimateSpace> space = std::move(spaces_.back());
+  spaces_.pop_back();
+  return space;
+}
+void QualityRenderer::returnSpace(std::unique_ptr<EstimateSpace> space) {
+  const std::lock_guard lock(spaceMutex_);
+  spaces_.push_back(std::move(space));
+}
 
 // Per visible polygon: its bound (estimate, adaptive), whether it is shaded again and, for
 // Gouraud, its lit corners.
@@ -689,23 +722,23 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
 // batches (FlatErrorBoundBatch.h) where the lighting and the mesh allow, else one by one.
 void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end) {
   detail::BoundBatch batch;
-  std::size_t polygonOf[detail::kBoundBatchSize];  // per lane, within the mesh
   const auto visible = std::make_unique_for_overwrite<std::uint32_t[]>(end - begin);
   for (std::size_t m = 0; m < frame.extents.size(); ++m) {
     const std::size_t offset = frame.firstPolygon[m], first = std::max(begin, offset),
                       last = std::min(end, frame.firstPolygon[m + 1]);
     if (first >= last) continue;
-    const std::size_t count = shownAmong(shown_, first, last, begin, visible.get());
+    // The visible polygons, numbered within the mesh.
+    const std::size_t count = shownAmong(shown_, first, last, offset, visible.get());
     const MeshView& view = frame.scene.meshes[m].mesh;
-    const std::span<const PolygonExtent> extents = frame.extents[m].polygons;
+    const std::span<const BoundExtent> extents = frame.extents[m].polygons;
     const std::optional<detail::BatchMaterial>& material = frame.batchMaterials[m];
-    const bool batched = frame.batchLighting && material;
+    const bool batched =
+        frame.batchLighting && material && extents.size() <= detail::kMaxGatheredPolygons;
     const bool pointColors = !view.pointColors.empty() || !view.scalarTexture.empty();
-    // As FlatErrorBound::bound reads it; one for the mesh without colors per polygon.
+    // As FlatErrorBound::bound reads it.
     const auto surfaceOf = [&](std::size_t polygon) {
       return glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
     };
-    const glm::dvec3 meshSurface = surfaceOf(0);
     const bool polygonColors = !view.polygonColors.empty();
     detail::withTypedMesh(view, [&](auto, auto polygons) {
       // One by one: the shape from the extent, with the colors its corners can show.
@@ -717,116 +750,95 @@ void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, st
         }
         return static_cast<float>(frame.boundOf(m, polygon, shape));
       };
-      std::size_t lanes = 0;
-      const auto flush = [&] {
-        for (std::size_t lane = lanes; lane < detail::kBoundBatchSize; ++lane)
-          copyLane(batch, lanes - 1, lane);  // unused lanes: a copy, no stale values
+      if (!batched) {
+        for (std::size_t i = 0; i < count; ++i)
+          polygonBounds_[offset + visible[i]] = boundOne(visible[i]);
+        return;
+      }
+      // In batches, the extents gathered in SIMD lanes; one color for the mesh set once.
+      const auto setSurface = [&](std::size_t lane, const glm::dvec3& surface) {
+        for (int k = 0; k < 3; ++k)
+          batch.surface[k][lane] = surface[k];
+      };
+      for (std::size_t lane = 0; !polygonColors && lane < detail::kBoundBatchSize; ++lane)
+        setSurface(lane, surfaceOf(0));
+      for (std::size_t i = 0; i < count; i += detail::kBoundBatchSize) {
+        const std::size_t lanes = std::min(detail::kBoundBatchSize, count - i);
+        // The next batch's extents on their way (the visible ones are scattered: a miss each).
+        const std::size_t next = std::min(count, i + 2 * detail::kBoundBatchSize);
+        for (std::size_t j = i + detail::kBoundBatchSize; j < next; ++j)
+          __builtin_prefetch(&extents[visible[j]]);
+        detail::gatherExtents(extents.data(), visible.get() + i, lanes, batch);
+        for (std::size_t lane = 0; polygonColors && lane < detail::kBoundBatchSize; ++lane)
+          setSurface(lane, surfaceOf(visible[i + (lane < lanes ? lane : 0)]));
         detail::boundBatch(*frame.batchLighting, *material, batch, detail::kBoundBatchSize);
         for (std::size_t lane = 0; lane < lanes; ++lane) {
+          const std::size_t polygon = visible[i + lane];
           const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
-          polygonBounds_[offset + polygonOf[lane]] =
-              std::isnan(bound) ? boundOne(polygonOf[lane]) : static_cast<float>(bound);
+          polygonBounds_[offset + polygon] =
+              std::isnan(bound) ? boundOne(polygon) : static_cast<float>(bound);
         }
-        lanes = 0;
-      };
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t polygon = begin + visible[i] - offset;
-        if (i + 8 < count) __builtin_prefetch(&extents[begin + visible[i + 8] - offset]);
-        const PolygonExtent& extent = extents[polygon];
-        if (!batched || extent.normal == glm::vec3(0.0f)) {
-          polygonBounds_[offset + polygon] = boundOne(polygon);
-          continue;
-        }
-        const glm::dvec3 surface = polygonColors ? surfaceOf(polygon) : meshSurface;
-        for (int k = 0; k < 3; ++k) {
-          batch.center[k][lanes] = extent.center[k];
-          batch.normal[k][lanes] = extent.normal[k];
-          batch.surface[k][lanes] = surface[k];
-        }
-        batch.radius[lanes] = extent.radius;
-        batch.sinNormalSpread[lanes] = extent.sinNormalSpread;
-        polygonOf[lanes++] = polygon;
-        if (lanes == detail::kBoundBatchSize) flush();
       }
-      if (lanes > 0) flush();
     });
   }
 }
 
-// Per pixel the mean of its samples' estimates (rowEstimates: the pixel's error is the mean
-// of its samples' against their parts of the pixel), plus 0.5 for rounding that mean; 0
-// where the pixel shows no polygon. Then the statistics over covered pixels. Reads the
-// visible polygons' bounds preparePolygons left, gathered per sample row by row.
+// The estimate per pixel (EstimateRows.h, QualityStats): per sample the largest, over the
+// polygons its 3 × 3 neighbourhood shows, of their bound plus how far their flat color is
+// from the sample's, plus 0.5 for the sample's rounding; per pixel the mean of its samples',
+// plus 0.5 for rounding that mean; 0 where the pixel shows no polygon. All in fixed point
+// (kEstimateUnit steps, each rounding up), so the sums are exact integers: the same bytes in
+// any order. Then the statistics over covered pixels. Reads the visible polygons' bounds that
+// preparePolygons left.
 void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target, bool image,
                                QualityStats& stats) {
   const FramebufferView& grid = frame.samples;
   const int g = frame.grid;
   estimate_.resize(image ? static_cast<std::size_t>(target.width) * target.height : 0);
-  std::vector<double> rowSquares(static_cast<std::size_t>(target.height), 0.0);
-  std::vector<float> rowLargest(static_cast<std::size_t>(target.height), 0.0f);
-  std::vector<std::size_t> rowCovered(static_cast<std::size_t>(target.height), 0);
-  const std::size_t rowSize = static_cast<std::size_t>(grid.width);
+  std::vector<std::uint64_t> rowSquares(static_cast<std::size_t>(target.height), 0);
+  std::vector<std::uint32_t> rowLargest(static_cast<std::size_t>(target.height), 0);
+  std::vector<std::uint32_t> rowCovered(static_cast<std::size_t>(target.height), 0);
   const std::size_t rowsPerTask = static_cast<std::size_t>(std::max(1, kSampleRowsPerTask / g));
   renderer_.parallelFor(target.height, rowsPerTask, [&](std::size_t begin, std::size_t end) {
-    // Per thread, reused from task to task (a task's rows are ~140 kB at 1080p).
-    thread_local BoundRows bounds;
-    thread_local std::vector<float> rows;    // the estimates of a pixel row's sample rows
-    thread_local std::vector<float> pixels;  // a pixel row's, when the image is not kept
-    pixels.resize(image ? 0 : static_cast<std::size_t>(target.width));
-    gatherBounds(grid, polygonBounds_.data(), std::max(0, static_cast<int>(begin) * g - 1),
-                 std::min(grid.height, static_cast<int>(end) * g + 1), bounds);
-    rows.resize(g * rowSize);
-    for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
-      for (int j = 0; j < g; ++j)
-        rowEstimates(grid, bounds, y * g + j, rows.data() + j * rowSize);
-      const float* own = bounds.row(y * g);  // the pixel row's g sample rows, one after another
-      float* out =
-          image ? estimate_.data() + static_cast<std::size_t>(y) * target.width : pixels.data();
-      // In registers, not in the shared row arrays; four partial sums, so that one addition
-      // need not wait for the one before (a fixed order: the same bytes for any threads).
-      double squares[4] = {0.0, 0.0, 0.0, 0.0};
-      float largest = 0.0f;
-      std::size_t count = 0;
-      // One sample: the pixels outside the row's covered span show no polygon.
-      const auto [first, last] = g == 1 ? bounds.span(y) : std::array<int, 2>{0, target.width - 1};
-      std::fill(out, out + std::max(first, 0), 0.0f);
-      std::fill(out + std::max(last + 1, first), out + target.width, 0.0f);
-      for (int x = first; x <= last; ++x) {
-        float e;
-        if (g == 1) {  // the sample's own estimate (a separate loop after unswitching)
-          e = own[x] < 0.0f ? 0.0f : std::min(255.0f, rows[x] + 0.5f);
-        } else {
-          float sum = 0.0f;
-          bool covered = false;
-          for (int j = 0; j < g; ++j) {
-            for (int i = 0; i < g; ++i) {
-              const int sx = x * g + i;
-              if (own[j * rowSize + sx] < 0.0f) continue;
-              covered = true;
-              sum += rows[j * rowSize + sx] + 0.5f;
-            }
-          }
-          e = covered ? std::min(255.0f, sum / static_cast<float>(g * g) + 0.5f) : 0.0f;
-        }
-        out[x] = e;
-        if (e == 0.0f) continue;  // no polygon (a covered pixel's estimate is at least 0.5)
-        squares[x & 3] += static_cast<double>(e) * e;
-        largest = std::max(largest, e);
-        ++count;
-      }
-      rowSquares[y] = (squares[0] + squares[1]) + (squares[2] + squares[3]);
-      rowLargest[y] = largest;
-      rowCovered[y] = count;
+    std::unique_ptr<EstimateSpace> space = borrowSpace();
+    space->resize(grid.width, g);
+    // Sample rows r − 1 to end · g, each row's maxima found once; row r estimated once r + 1's
+    // are, a pixel row once its g sample rows are.
+    const int firstRow = static_cast<int>(begin) * g, lastRow = static_cast<int>(end) * g;
+    for (int r = firstRow - 1; r <= lastRow; ++r) {
+      if (r >= 0 && r < grid.height) space->findMaxima(grid, polygonBounds_.data(), r);
+      const int estimated = r - 1;
+      if (estimated < firstRow) continue;
+      space->estimateSamples(grid, estimated, image || g > 1);  // else only the span is read
+      if ((estimated + 1) % g != 0) continue;
+      const int y = estimated / g;
+      const std::uint32_t* pixels = space->pixelEstimates();
+      // One sample: the pixels outside the row's covered span are 0.
+      const auto [first, last] =
+          g == 1 ? space->spans[estimated % 3] : std::array<int, 2>{0, target.width};
+      const detail::EstimateSums sums = detail::estimateSums(pixels, first, last);
+      rowSquares[y] = sums.squares;
+      rowLargest[y] = sums.largest;
+      rowCovered[y] = sums.covered;
+      if (!image) continue;
+      float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
+      for (int x = 0; x < target.width; ++x)  // exact: a power-of-two scale
+        out[x] = static_cast<float>(pixels[x]) / static_cast<float>(detail::kEstimateUnit);
     }
+    returnSpace(std::move(space));
   });
-  double squares = 0.0;
-  std::size_t covered = 0;
+  std::uint64_t squares = 0, covered = 0;
+  std::uint32_t largest = 0;
   for (int y = 0; y < target.height; ++y) {
     squares += rowSquares[y];
     covered += rowCovered[y];
-    stats.predictedMaxError = std::max<double>(stats.predictedMaxError, rowLargest[y]);
+    largest = std::max(largest, rowLargest[y]);
   }
-  stats.predictedRmse = covered > 0 ? std::sqrt(squares / static_cast<double>(covered)) : 0.0;
+  const double unit = detail::kEstimateUnit;
+  stats.predictedMaxError = largest / unit;
+  stats.predictedRmse =
+      covered > 0 ? std::sqrt(static_cast<double>(squares) / static_cast<double>(covered)) / unit
+                  : 0.0;
 }
 
 // Per output pixel: its samples, shaded again where the mode asks, averaged and rounded once;
@@ -881,8 +893,9 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   QualityStats stats;
   const bool reshades = reshadesAny(settings);
   const int g = gridSide(settings.samplesPerPixel);
-  const std::array<int, 4> estimateFor{g, target.width, target.height, settings.errorEstimateImage};
-  const std::array<int, 4> estimated = std::exchange(estimatedFor_, {});  // until this render's
+  const EstimateKey estimateFor{g, target.width, target.height, settings.errorEstimateImage};
+  const std::optional<EstimateKey> estimated =
+      std::exchange(estimatedFor_, {});  // until this render's
   if (!settings.estimateError || !settings.errorEstimateImage) estimate_.clear();
   if (!reshades && g == 1 && !settings.estimateError) {
     stats.render = renderer_.render(scene, camera, target);
@@ -936,6 +949,7 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     stats.polygonsReshaded = preparePolygons(frame, bounds, corners);
   }
   if (keepEstimate) {
+    stats.estimateKept = true;
     stats.predictedRmse = estimated_.predictedRmse;
     stats.predictedMaxError = estimated_.predictedMaxError;
   } else if (settings.estimateError) {
@@ -966,7 +980,7 @@ std::span<const ShadingMesh> QualityRenderer::shadingFor(const Scene& scene,
   if (given.empty()) {
     owned_.clear();
     for (const SceneMesh& mesh : scene.meshes)
-      owned_.emplace_back(mesh.mesh);
+      owned_.emplace_back(mesh.mesh, VertexNormalOptions{}, parallelOn(renderer_));
     given = owned_;
   }
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -998,7 +1012,7 @@ void QualityRenderer::updateExtents(const Scene& scene) {
     validatePointData(mesh);
     const VertexNormals normals = mesh.pointNormals.count > 0
                                       ? fromPointNormals(mesh, mesh.pointNormals)
-                                      : computeVertexNormals(mesh);
+                                      : computeVertexNormals(mesh, {}, parallelOn(renderer_));
     extents.polygons.resize(mesh.polygons.count);
     renderer_.parallelFor(
         mesh.polygons.count, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {

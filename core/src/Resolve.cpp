@@ -90,7 +90,7 @@ void resolvePixels(const ResolveContext& context, const PixelBounds& pixels,
     for (; x < width; ++x) {  // a width that is no multiple of a group
       const std::int32_t id = ids[x];
       color[x] = id < 0 ? wordOf(context.background) : k.colors[id];
-      if constexpr (kDepth) depth[x] = id < 0 ? 1.0f : transform.windowDepth(depth[x]);
+      if constexpr (kDepth) depth[x] = id < 0 ? 1.0f : resolvedDepth(transform, depth[x]);
     }
   }
 }
@@ -129,6 +129,13 @@ void resolveColors(const ResolveContext& context, const PixelBounds& pixels,
 }
 
 }  // namespace
+
+float resolvedDepth(const FrameTransform& transform, float key) {
+  // windowDepth's operations written out, so that this file's flags compile them (an inline
+  // windowDepth may be instantiated, and fused, in another file).
+  const double depth = transform.depthFromKeyOffset() + transform.depthFromKeyScale() * key;
+  return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
+}
 
 ResolveRoutineChoice chooseResolveRoutine(bool depth) {
   if (depth) return {resolveColorsAndDepths, "colors and window depths"};

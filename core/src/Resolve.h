@@ -32,6 +32,10 @@ struct ResolveRoutineChoice {
 };
 ResolveRoutineChoice chooseResolveRoutine(bool depth);
 
+// FrameTransform::windowDepth of a key as this phase's scalar path computes it, compiled
+// without fused multiply-adds (core/CMakeLists.txt): the bytes every SIMD target gives.
+float resolvedDepth(const FrameTransform& transform, float key);
+
 // Resolves every pixel of the grid's viewport with the routine, a band of whole rows per task
 // (Resolve.cpp says why not tile by tile), turning depth keys into window depths by
 // `transform`.

@@ -6,6 +6,7 @@
 #include "facet/VertexNormals.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -42,22 +43,43 @@ std::size_t validatedCornerCount(const MeshView& mesh) {
   return corners;
 }
 
-// Newell's unit normal per polygon; zero for a degenerate one.
+// Blocks of work: polygons or points per task. Fixed, so the blocks (and the order their
+// results are joined in) are the same for any thread count.
+constexpr std::size_t kBlock = 1 << 12;
+
+// Runs work(begin, end) over [0, count) in blocks of kBlock, through `parallel` when given.
+void forBlocks(const ParallelFor& parallel, std::size_t count,
+               const std::function<void(std::size_t, std::size_t)>& work) {
+  if (parallel) {
+    parallel(count, kBlock, work);
+    return;
+  }
+  for (std::size_t begin = 0; begin < count; begin += kBlock)
+    work(begin, std::min(count, begin + kBlock));
+}
+
+// Newell's unit normal per polygon; zero for a degenerate one (counted in `degenerate`).
 template <class PointsT, class PolygonsT>
 std::vector<glm::dvec3> polygonNormals(PointsT points, PolygonsT polygons, std::size_t count,
-                                       std::size_t& degenerate) {
+                                       std::size_t& degenerate, const ParallelFor& parallel) {
   std::vector<glm::dvec3> normals(count, glm::dvec3(0.0));
-  for (std::size_t p = 0; p < count; ++p) {
-    const auto corner = [&](std::size_t k) { return points[polygons.pointId(p, k)]; };
-    const std::size_t n = polygons.size(p);
-    const std::optional<glm::dvec3> normal =
-        n == 3 ? triangleNormal(corner(0), corner(1), corner(2)) : newellNormal(n, corner);
-    if (normal) {
-      normals[p] = *normal;
-    } else {
-      ++degenerate;
+  std::atomic<std::size_t> degenerates{0};
+  forBlocks(parallel, count, [&](std::size_t begin, std::size_t end) {
+    std::size_t found = 0;
+    for (std::size_t p = begin; p < end; ++p) {
+      const auto corner = [&](std::size_t k) { return points[polygons.pointId(p, k)]; };
+      const std::size_t n = polygons.size(p);
+      const std::optional<glm::dvec3> normal =
+          n == 3 ? triangleNormal(corner(0), corner(1), corner(2)) : newellNormal(n, corner);
+      if (normal) {
+        normals[p] = *normal;
+      } else {
+        ++found;
+      }
     }
-  }
+    degenerates += found;
+  });
+  degenerate += degenerates;
   return normals;
 }
 
@@ -110,23 +132,67 @@ struct EdgeEnd {
   }
 };
 
+// The normals of a block of points, in point order, before they are joined: `cornerNormal`
+// of their corners then holds indices into this block's `normals`.
+struct PointBlock {
+  std::vector<glm::dvec3> normals;
+  std::vector<std::uint32_t> point;
+  std::size_t splitPoints = 0, inconsistentEdges = 0;
+};
+
+// One task's space for a point at a time, reused.
+struct PointScratch {
+  OrientedUnionFind groups;
+  std::vector<EdgeEnd> ends;
+  std::vector<glm::dvec3> sums;
+  std::vector<std::uint32_t> entries;
+};
+
 template <class PointsT, class PolygonsT>
 class NormalBuilder {
  public:
   NormalBuilder(PointsT points, PolygonsT polygons, const MeshView& mesh, std::size_t corners,
-                double featureAngleDegrees)
+                double featureAngleDegrees, const ParallelFor& parallel)
       : polygons_(polygons),
         pointCount_(mesh.points.count),
         polygonCount_(mesh.polygons.count),
-        cosFeatureAngle_(std::cos(glm::radians(featureAngleDegrees))) {
+        cosFeatureAngle_(std::cos(glm::radians(featureAngleDegrees))),
+        parallel_(parallel) {
     result_.cornerNormal.assign(corners, 0);
-    faceNormals_ = polygonNormals(points, polygons, polygonCount_, result_.degeneratePolygons);
+    faceNormals_ =
+        polygonNormals(points, polygons, polygonCount_, result_.degeneratePolygons, parallel);
     buildPointCorners(corners);
   }
 
+  // Blocks of points in parallel, each numbering its normals from 0; then the blocks joined
+  // in point order, their corners' indices moved by the normals of the blocks before: the
+  // normals of one point after another, whatever the threads.
   VertexNormals build() {
-    for (std::size_t v = 0; v < pointCount_; ++v)
-      buildPoint(static_cast<std::uint32_t>(v));
+    std::vector<PointBlock> blocks((pointCount_ + kBlock - 1) / kBlock);
+    forBlocks(parallel_, pointCount_, [&](std::size_t begin, std::size_t end) {
+      PointScratch scratch;
+      PointBlock& block = blocks[begin / kBlock];
+      for (std::size_t v = begin; v < end; ++v)
+        buildPoint(static_cast<std::uint32_t>(v), scratch, block);
+    });
+    std::vector<std::uint32_t> firstNormal(blocks.size() + 1, 0);
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      firstNormal[b + 1] = firstNormal[b] + static_cast<std::uint32_t>(blocks[b].normals.size());
+      result_.splitPoints += blocks[b].splitPoints;
+      result_.inconsistentEdges += blocks[b].inconsistentEdges;
+    }
+    result_.normals.resize(firstNormal.back());
+    result_.point.resize(firstNormal.back());
+    forBlocks(parallel_, pointCount_, [&](std::size_t begin, std::size_t end) {
+      const std::size_t b = begin / kBlock;
+      PointBlock& block = blocks[b];
+      std::copy(block.normals.begin(), block.normals.end(),
+                result_.normals.begin() + firstNormal[b]);
+      std::copy(block.point.begin(), block.point.end(), result_.point.begin() + firstNormal[b]);
+      for (std::uint32_t i = pointStart_[begin]; i < pointStart_[end]; ++i)
+        result_.cornerNormal[pointCorners_[i].index] += firstNormal[b];
+      block = {};
+    });
     return std::move(result_);
   }
 
@@ -163,93 +229,94 @@ class NormalBuilder {
     return static_cast<std::uint32_t>(polygons_.pointId(corner.polygon, neighbour));
   }
 
-  void buildPoint(std::uint32_t v) {
+  void buildPoint(std::uint32_t v, PointScratch& scratch, PointBlock& block) {
     const std::span<const Corner> corners(pointCorners_.data() + pointStart_[v],
                                           pointStart_[v + 1] - pointStart_[v]);
-    groups_.reset(corners.size());
-    collectEdgeEnds(v, corners);
-    joinAcrossSmoothEdges(v, corners);
-    emitNormals(v, corners);
+    scratch.groups.reset(corners.size());
+    collectEdgeEnds(v, corners, scratch.ends);
+    joinAcrossSmoothEdges(v, corners, scratch, block);
+    emitNormals(v, corners, scratch, block);
   }
 
-  void collectEdgeEnds(std::uint32_t v, std::span<const Corner> corners) {
-    ends_.clear();
+  void collectEdgeEnds(std::uint32_t v, std::span<const Corner> corners,
+                       std::vector<EdgeEnd>& ends) const {
+    ends.clear();
     for (std::uint32_t i = 0; i < corners.size(); ++i) {
       for (const bool next : {true, false}) {
         const std::uint32_t w = neighbourPoint(corners[i], next);
-        if (w != v) ends_.push_back({w, i, next});
+        if (w != v) ends.push_back({w, i, next});
       }
     }
-    std::sort(ends_.begin(), ends_.end());
+    std::sort(ends.begin(), ends.end());
   }
 
   // An edge is smooth when exactly two corners use it (a manifold edge) and their normals,
   // the second reversed if the windings disagree, are within the feature angle.
-  void joinAcrossSmoothEdges(std::uint32_t v, std::span<const Corner> corners) {
-    for (std::size_t first = 0; first < ends_.size();) {
+  void joinAcrossSmoothEdges(std::uint32_t v, std::span<const Corner> corners,
+                             PointScratch& scratch, PointBlock& block) const {
+    const std::vector<EdgeEnd>& ends = scratch.ends;
+    for (std::size_t first = 0; first < ends.size();) {
       std::size_t last = first + 1;
-      while (last < ends_.size() && ends_[last].otherPoint == ends_[first].otherPoint)
+      while (last < ends.size() && ends[last].otherPoint == ends[first].otherPoint)
         ++last;
-      if (last - first == 2) joinPair(v, corners, ends_[first], ends_[first + 1]);
+      if (last - first == 2) joinPair(v, corners, ends[first], ends[first + 1], scratch, block);
       first = last;
     }
   }
 
   void joinPair(std::uint32_t v, std::span<const Corner> corners, const EdgeEnd& a,
-                const EdgeEnd& b) {
+                const EdgeEnd& b, PointScratch& scratch, PointBlock& block) const {
     if (a.localCorner == b.localCorner) return;  // a polygon folded back along the edge
     const bool consistent = a.outgoing != b.outgoing;
-    if (!consistent && v < a.otherPoint) ++result_.inconsistentEdges;  // count each edge once
+    if (!consistent && v < a.otherPoint) ++block.inconsistentEdges;  // count each edge once
     const glm::dvec3& na = faceNormals_[corners[a.localCorner].polygon];
     const glm::dvec3& nb = faceNormals_[corners[b.localCorner].polygon];
     const double cosine = glm::dot(na, nb) * (consistent ? 1.0 : -1.0);
     // A degenerate polygon joins nothing (in VTK its zero normal fails the test too, up to
     // a feature angle of 90°).
     if (na == glm::dvec3(0.0) || nb == glm::dvec3(0.0) || !(cosine > cosFeatureAngle_)) return;
-    groups_.unite(a.localCorner, b.localCorner, consistent ? 0 : 1);
+    scratch.groups.unite(a.localCorner, b.localCorner, consistent ? 0 : 1);
   }
 
   // One normal per (group, winding) pair, in order of first use.
-  void emitNormals(std::uint32_t v, std::span<const Corner> corners) {
-    sums_.assign(corners.size(), glm::dvec3(0.0));
+  void emitNormals(std::uint32_t v, std::span<const Corner> corners, PointScratch& scratch,
+                   PointBlock& block) {
+    scratch.sums.assign(corners.size(), glm::dvec3(0.0));
     for (std::uint32_t i = 0; i < corners.size(); ++i) {
-      const auto [root, parity] = groups_.find(i);
-      sums_[root] += (parity ? -1.0 : 1.0) * faceNormals_[corners[i].polygon];
+      const auto [root, parity] = scratch.groups.find(i);
+      scratch.sums[root] += (parity ? -1.0 : 1.0) * faceNormals_[corners[i].polygon];
     }
-    entries_.assign(2 * corners.size(), kNoEntry);
+    scratch.entries.assign(2 * corners.size(), kNoEntry);
     std::size_t groupCount = 0;
     for (std::uint32_t i = 0; i < corners.size(); ++i) {
-      const auto [root, parity] = groups_.find(i);
+      const auto [root, parity] = scratch.groups.find(i);
       groupCount += root == i;
-      std::uint32_t& entry = entries_[2 * root + parity];
-      if (entry == kNoEntry) entry = addNormal(v, sums_[root], parity);
+      std::uint32_t& entry = scratch.entries[2 * root + parity];
+      if (entry == kNoEntry) entry = addNormal(v, scratch.sums[root], parity, block);
       result_.cornerNormal[corners[i].index] = entry;
     }
-    result_.splitPoints += groupCount > 1;
+    block.splitPoints += groupCount > 1;
   }
 
-  std::uint32_t addNormal(std::uint32_t v, const glm::dvec3& sum, std::uint8_t parity) {
+  static std::uint32_t addNormal(std::uint32_t v, const glm::dvec3& sum, std::uint8_t parity,
+                                 PointBlock& block) {
     const double length = glm::length(sum);
     // Zero: only degenerate polygons, or normals that cancel exactly (impossible within the
     // feature angle below 90°); never divide by it.
     const glm::dvec3 unit = length > 0.0 ? sum / length : glm::dvec3(0.0);
-    result_.normals.push_back(parity ? -unit : unit);
-    result_.point.push_back(v);
-    return static_cast<std::uint32_t>(result_.normals.size() - 1);
+    block.normals.push_back(parity ? -unit : unit);
+    block.point.push_back(v);
+    return static_cast<std::uint32_t>(block.normals.size() - 1);
   }
 
   PolygonsT polygons_;
   std::size_t pointCount_, polygonCount_;
   double cosFeatureAngle_;
+  const ParallelFor& parallel_;
   VertexNormals result_;
   std::vector<glm::dvec3> faceNormals_;
   std::vector<std::uint32_t> pointStart_;
   std::vector<Corner> pointCorners_;
-  // Per-point scratch, reused.
-  OrientedUnionFind groups_;
-  std::vector<EdgeEnd> ends_;
-  std::vector<glm::dvec3> sums_;
-  std::vector<std::uint32_t> entries_;
 };
 
 // Unit, or nothing for a zero or non-finite input normal.
@@ -261,12 +328,14 @@ std::optional<glm::dvec3> usableNormal(const glm::dvec3& n) {
 
 }  // namespace
 
-VertexNormals computeVertexNormals(const MeshView& mesh, const VertexNormalOptions& options) {
+VertexNormals computeVertexNormals(const MeshView& mesh, const VertexNormalOptions& options,
+                                   const ParallelFor& parallel) {
   detail::requireInRange(options.featureAngleDegrees, 0.0, 180.0,
                          "VertexNormalOptions.featureAngleDegrees");
   const std::size_t corners = validatedCornerCount(mesh);
   return detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
-    return NormalBuilder(points, polygons, mesh, corners, options.featureAngleDegrees).build();
+    return NormalBuilder(points, polygons, mesh, corners, options.featureAngleDegrees, parallel)
+        .build();
   });
 }
 
@@ -286,7 +355,7 @@ VertexNormals fromPointNormals(const MeshView& mesh, const PointArray& pointNorm
   };
   detail::withTypedMesh(mesh, [&](auto points, auto polygons) {
     const std::vector<glm::dvec3> faces =
-        polygonNormals(points, polygons, mesh.polygons.count, result.degeneratePolygons);
+        polygonNormals(points, polygons, mesh.polygons.count, result.degeneratePolygons, {});
     for (std::size_t p = 0; p < mesh.polygons.count; ++p) {
       for (std::size_t k = 0; k < polygons.size(p); ++k) {
         const std::size_t v = polygons.pointId(p, k);

@@ -89,13 +89,10 @@ TEST(QualityFilter, InterpolationPicksTheShadingWithoutAWarning)
   EXPECT_NE(messages.Last.find("Physically based"), std::string::npos) << messages.Last;
 }
 
-TEST(QualityFilter, EstimateReportedWhenAsked)
+TEST(QualityFilter, EstimateReportedWithEveryRender)
 {
   auto filter = SphereFilter(16, VTK_FLAT);
-  filter->Update();
-  EXPECT_EQ(filter->GetOutput()->GetFieldData()->GetArray("FacetErrorEstimate"), nullptr)
-    << "off by default: it is not free yet";
-  filter->EstimateErrorOn();
+  EXPECT_TRUE(filter->GetEstimateError()) << "on by default";
   filter->Update();
   const double predictedRmse =
     FieldValue(filter->GetOutput(), "FacetErrorEstimate", "PredictedRMSE");

@@ -1,7 +1,7 @@
 // The error estimate's SIMD parts on every instruction set this CPU has: each lane of the
 // bound's batch (FlatErrorBoundBatch.h) is the scalar FlatErrorBound::bound to the last bit,
 // over random polygons and every light and material the batch takes, and lanes the scalar
-// bound treats apart are NaN; the pass over a row (EstimateRows.h) is its one-sample
+// bound treats apart are NaN; the pass over the samples (EstimateRows.h) is its per-sample
 // definition to the last bit; a flat render's estimate is the same bytes on every one.
 
 #include <cmath>
@@ -157,38 +157,78 @@ TEST_F(BoundBatches, NotTakenForSpotLightsOrSpecularMaterials) {
   EXPECT_TRUE(detail::batchMaterial(PreparedMaterial(Material{})));
 }
 
-TEST_F(BoundBatches, NeighbourMaximaAreTheirDefinitionOnEveryInstructionSet) {
+// The estimate's pass over a grid of samples (EstimateRows.h: fields, row maxima, sample
+// estimates) against its definition — per covered sample, over the covered samples q of its
+// 3 × 3 neighbourhood, the largest channel difference plus q's bound rounded up to 1/128,
+// plus 0.5, capped at 255 — and their sums to the last bit, on every instruction set.
+TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
   std::mt19937 random(3);
-  std::uniform_int_distribution<int> channel(0, 255);
+  std::uniform_int_distribution<int> channel(0, 255), polygon(-3, 40);
   std::uniform_real_distribution<float> bound(0.0f, 300.0f);
-  const int width = 203;  // not a multiple of any vector's lanes
-  std::vector<Rgba8> center(width), neighbours(width);
-  std::vector<float> bounds(width), start(width);
-  for (int x = 0; x < width; ++x) {
+  const int width = 203, height = 5;  // not a multiple of any vector's lanes
+  std::vector<float> bounds(41);
+  for (float& b : bounds)
+    b = bound(random);
+  bounds[7] = 0.0f;
+  bounds[8] = INFINITY;        // no bound: 255
+  bounds[9] = 1.0f / 1024.0f;  // rounds up to 1/128
+  std::vector<Rgba8> colors(width * height);
+  std::vector<std::int32_t> ids(width * height);
+  for (int i = 0; i < width * height; ++i) {
     const auto byte = [&] { return static_cast<std::uint8_t>(channel(random)); };
-    center[x] = {byte(), byte(), byte(), byte()};
-    neighbours[x] = {byte(), byte(), byte(), byte()};
-    bounds[x] = x % 7 == 0 ? -INFINITY : bound(random);  // some background
-    start[x] = x % 3 == 0 ? 0.0f : bound(random);
+    colors[i] = {byte(), byte(), byte(), byte()};
+    ids[i] = std::max(-1, polygon(random));  // some background
   }
+  // The definition, in 1/128 units.
+  const auto fixedBound = [&](std::int32_t id) {
+    return static_cast<std::uint32_t>(std::ceil(std::min(bounds[id], 255.0f) * 128.0f));
+  };
+  const auto expected = [&](int x, int y) -> std::uint32_t {
+    if (ids[y * width + x] < 0) return 0;
+    const Rgba8 p = colors[y * width + x];
+    std::uint32_t largest = 0;
+    for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
+      for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+        const std::int32_t id = ids[ny * width + nx];
+        if (id < 0) continue;
+        const Rgba8 q = colors[ny * width + nx];
+        const int d = std::max({std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
+        largest = std::max(largest, static_cast<std::uint32_t>(d) * 128 + fixedBound(id));
+      }
+    }
+    return std::min(largest + 64, 255u * 128);
+  };
+  const std::size_t stride = width + 2;
   for (const detail::SimdTarget& target : detail::simdTargets()) {
     detail::useSimdTarget(target.bits);
-    for (const auto& [begin, end] : {std::pair{0, width}, std::pair{5, 190}, std::pair{9, 9}}) {
-      std::vector<float> out = start;
-      detail::neighbourMaxima(center.data(), neighbours.data(), bounds.data(), begin, end,
-                              out.data());
-      for (int x = 0; x < width; ++x) {
-        float expected = start[x];
-        if (x >= begin && x < end) {
-          int largest = 0;
-          for (int k = 0; k < 3; ++k) {
-            const auto* c = &neighbours[x].r;
-            const auto* p = &center[x].r;
-            largest = std::max(largest, std::abs(c[k] - p[k]));  // alpha left out
-          }
-          expected = std::max(expected, static_cast<float>(largest) + bounds[x]);
+    std::vector<std::vector<std::uint32_t>> maxima(height);
+    for (int y = 0; y < height; ++y) {
+      std::vector<std::uint32_t> fields(detail::kEstimateFields * stride, 0);
+      maxima[y].assign(detail::kEstimateFields * stride, 0);
+      detail::neighbourFields(colors.data() + y * width, ids.data() + y * width, bounds.data(), 0,
+                              width, fields.data() + 1, stride);
+      detail::rowMaxima(fields.data() + 1, 0, width, maxima[y].data() + 1, stride);
+    }
+    const std::vector<std::uint32_t> zeros(detail::kEstimateFields * stride, 0);
+    const auto row = [&](int y) { return (y < 0 || y >= height ? zeros : maxima[y]).data() + 1; };
+    for (int y = 0; y < height; ++y) {
+      for (const auto& [begin, end] : {std::pair{0, width}, std::pair{5, 190}, std::pair{9, 9}}) {
+        std::vector<std::uint32_t> out(width, 7);
+        detail::sampleEstimates(row(y - 1), row(y), row(y + 1), stride, colors.data() + y * width,
+                                ids.data() + y * width, begin, end, out.data());
+        detail::EstimateSums sums;  // and their statistics
+        for (int x = 0; x < width; ++x) {
+          ASSERT_EQ(out[x], x >= begin && x < end ? expected(x, y) : 7u)
+              << target.name << ", sample " << x << ", " << y;
+          if (x < begin || x >= end) continue;
+          sums.squares += std::uint64_t{out[x]} * out[x];
+          sums.largest = std::max(sums.largest, out[x]);
+          sums.covered += out[x] != 0;
         }
-        ASSERT_EQ(out[x], expected) << target.name << ", sample " << x;
+        const detail::EstimateSums found = detail::estimateSums(out.data(), begin, end);
+        EXPECT_EQ(found.squares, sums.squares) << target.name;
+        EXPECT_EQ(found.largest, sums.largest) << target.name;
+        EXPECT_EQ(found.covered, sums.covered) << target.name;
       }
     }
   }

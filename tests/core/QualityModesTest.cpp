@@ -531,14 +531,31 @@ TEST(QualityRenderer, EstimateFollowsVersionsAndIsKeptWhenOnlyTheBackgroundChang
     return stats;
   };
   const QualityStats first = render(scene);
+  EXPECT_FALSE(first.estimateKept);
   const std::vector<float> firstEstimate(quality.errorEstimate().begin(),
                                          quality.errorEstimate().end());
+  ASSERT_FALSE(firstEstimate.empty());
+  ASSERT_GT(first.predictedMaxError, 0.0);
 
+  // A new background: the frame is recolored, the estimate kept — not lost, not found again
+  // (estimateKept), and not the estimate of a frame shown on the new background either: the
+  // estimate ignores the background, so a fresh renderer finds the same numbers.
   renderer.setBackground(Color(0.2f, 0.3f, 0.4f));
   const QualityStats recolored = quality.render(scene, {}, camera, framebuffer, settings);
   EXPECT_EQ(recolored.render.plan.path, RenderPath::Resolve);
+  EXPECT_TRUE(recolored.estimateKept);
   EXPECT_TRUE(std::ranges::equal(quality.errorEstimate(), firstEstimate));
   EXPECT_EQ(recolored.predictedRmse, first.predictedRmse);
+  EXPECT_EQ(recolored.predictedMaxError, first.predictedMaxError);
+  // Asked for the summary alone on the next recoloring: the kept image goes, the summary stays.
+  renderer.setBackground(Color(0.1f, 0.1f, 0.1f));
+  QualitySettings summary = settings;
+  summary.errorEstimateImage = false;
+  const QualityStats summarized = quality.render(scene, {}, camera, framebuffer, summary);
+  EXPECT_EQ(summarized.render.plan.path, RenderPath::Resolve);
+  EXPECT_FALSE(summarized.estimateKept);  // an estimate without its image is another one
+  EXPECT_TRUE(quality.errorEstimate().empty());
+  EXPECT_EQ(summarized.predictedRmse, first.predictedRmse);
 
   scene.lights.lights.pop_back();  // a new light set: the bounds change, the frame re-shades
   const QualityStats relit = render(scene);

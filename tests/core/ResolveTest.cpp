@@ -1,6 +1,7 @@
 // The resolve (Resolve.h, SIMD lanes) against its definition pixel by pixel, on every
 // instruction set this CPU has: the polygon's color or the background's, and
-// FrameTransform::windowDepth of the key (1 for the background), for perspective and
+// FrameTransform::windowDepth of the key (1 for the background; detail::resolvedDepth, the
+// library's scalar path, compiled as the lanes are), for perspective and
 // parallel cameras, keys of every magnitude, images whose width is no multiple of a group.
 
 #include <cmath>
@@ -86,7 +87,10 @@ TEST(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
             const std::int32_t id = before.ids[i];
             const Rgba8 color = id < 0 ? background : colors[id];
             const float key = before.depth[i];
-            const float depth = !depths ? key : id < 0 ? 1.0f : transform.windowDepth(key);
+            // The library's scalar path (compiled without fused multiply-adds, as the lanes).
+            const float depth = !depths  ? key
+                                : id < 0 ? 1.0f
+                                         : detail::resolvedDepth(transform, key);
             const bool same =
                 after.color[i] == color && std::memcmp(&after.depth[i], &depth, sizeof depth) == 0;
             if (!same && ++differing <= 5) {

@@ -271,6 +271,22 @@ class Quality(unittest.TestCase):
         # A budget above any polygon's bound keeps everything flat.
         numpy.testing.assert_array_equal(Image(self.render(MaximumError=255.0)).rgba, flat)
 
+    def test_every_render_estimates_its_error(self):
+        image = Image(self.render())
+        estimate = image.data.GetFieldData().GetArray("FacetErrorEstimate")
+        self.assertIsNotNone(estimate, "EstimateError is on by default")
+        names = [estimate.GetComponentName(c) for c in range(estimate.GetNumberOfComponents())]
+        rmse, largest = (estimate.GetComponent(0, names.index(n))
+                         for n in ("PredictedRMSE", "PredictedMax"))
+        self.assertGreater(rmse, 0.5)
+        self.assertGreaterEqual(largest, rmse)
+        self.assertNotIn("ErrorEstimate", image.arrays)
+        per_pixel = Image(self.render(ErrorEstimateArray=1))
+        self.assertIn("ErrorEstimate", per_pixel.arrays)
+        off = Image(self.render(EstimateError=0))
+        self.assertIsNone(off.data.GetFieldData().GetArray("FacetErrorEstimate"))
+        numpy.testing.assert_array_equal(off.rgba, image.rgba)
+
     def test_compute_error_reports_phong_closer_to_the_reference_than_flat(self):
         rmse = {}
         for shading in ("Flat", "Phong"):

@@ -33,8 +33,9 @@
 /// Flat shading with one sample and no estimate is the Renderer itself, unchanged: same
 /// bytes, same cost. Every mode gives the same bytes for any thread count.
 
-#include <array>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
@@ -64,7 +65,9 @@ struct ShadingMesh {
   /// Validates the mesh (throws facet::Error, naming the problem: also point normals, point
   /// colors or scalar texture coordinates whose count is not the point count, or a scalar
   /// texture whose texels are not width × 2).
-  explicit ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options = {});
+  /// `parallel` spreads the vertex normals over threads (computeVertexNormals).
+  explicit ShadingMesh(const MeshView& mesh, const VertexNormalOptions& options = {},
+                       const ParallelFor& parallel = {});
 
   std::vector<MeshTriangle> triangles;       ///< in polygon order
   std::vector<std::uint32_t> firstTriangle;  ///< per polygon, and one past the last
@@ -72,6 +75,9 @@ struct ShadingMesh {
   std::vector<PolygonShape> shapes;  ///< one per polygon
   std::size_t polygonCount() const { return shapes.size(); }
 };
+
+/// Blocks of work on the renderer's threads (Renderer::parallelFor), e.g. for ShadingMesh.
+ParallelFor parallelOn(Renderer& renderer);
 
 struct QualitySettings {
   Shading shading = Shading::Flat;  ///< (default: flat)
@@ -117,6 +123,9 @@ struct QualityStats {
   /// (the background a pixel mixes in) are not part of it.
   double predictedRmse = 0.0;
   double predictedMaxError = 0.0;
+  /// The estimate is the previous render's, kept: this render only recolored that frame (a
+  /// new background, RenderPath::Resolve), which changes no covered pixel.
+  bool estimateKept = false;
 };
 
 class QualityRenderer {
@@ -153,11 +162,14 @@ class QualityRenderer {
 
  private:
   struct Frame;
+  struct EstimateSpace;
   std::span<const ShadingMesh> shadingFor(const Scene& scene, std::span<const ShadingMesh> given,
                                           bool reshades, bool estimates);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
   void boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end);
   void estimate(const Frame& frame, const FramebufferView& target, bool image, QualityStats& stats);
+  std::unique_ptr<EstimateSpace> borrowSpace();
+  void returnSpace(std::unique_ptr<EstimateSpace> space);
   void updateExtents(const Scene& scene);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
 
@@ -166,9 +178,17 @@ class QualityRenderer {
   std::vector<ShadingMesh> owned_;
   std::vector<float> estimate_;
   QualityStats estimated_;  // the last estimate's predicted*, for a render that keeps it
-  // What the last estimate was made for: sample grid side, width, height, image kept (or
-  // zeros: none).
-  std::array<int, 4> estimatedFor_{};
+  // What an estimate was made for; the last one's in estimatedFor_ (empty: none).
+  struct EstimateKey {
+    int gridSide = 0;  // samples per pixel side
+    int width = 0, height = 0;
+    bool image = false;  // errorEstimate() kept
+    friend bool operator==(const EstimateKey&, const EstimateKey&) = default;
+  };
+  std::optional<EstimateKey> estimatedFor_;
+  // The estimate's per-task space (QualityRenderer.cpp), one per task running at once.
+  std::vector<std::unique_ptr<EstimateSpace>> spaces_;
+  std::mutex spaceMutex_;
 
   // Per scene mesh, the estimate's camera-independent part for one version of its arrays
   // (QualityRenderer.cpp).

@@ -37,6 +37,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -67,10 +68,19 @@ struct VertexNormalOptions {
   double featureAngleDegrees = 30.0;
 };
 
-/// Corner normals computed from the geometry, as described above. Validates the mesh
-/// (throws facet::Error naming the problem, or a feature angle outside [0, 180], or a mesh
-/// of 2^32 or more corners). O(corners · valence).
-VertexNormals computeVertexNormals(const MeshView& mesh, const VertexNormalOptions& options = {});
+/// Runs work(begin, end) for the blocks [i · grain, min(count, (i + 1) · grain)) of [0, count),
+/// in any order and on any threads, and returns when all are done — Renderer::parallelFor,
+/// for one. Empty: one block after another on the calling thread.
+using ParallelFor = std::function<void(std::size_t count, std::size_t grain,
+                                       const std::function<void(std::size_t, std::size_t)>& work)>;
+
+/// Corner normals computed from the geometry, as described above, in blocks of polygons and
+/// of points through `parallel` (the same result for any threads: each block numbers its
+/// normals, and the blocks are joined in point order). Validates the mesh (throws
+/// facet::Error naming the problem, or a feature angle outside [0, 180], or a mesh of 2^32 or
+/// more corners). O(corners · valence).
+VertexNormals computeVertexNormals(const MeshView& mesh, const VertexNormalOptions& options = {},
+                                   const ParallelFor& parallel = {});
 
 /// Corner normals from the mesh's own point normals (one xyz per point, float or double,
 /// as vtkPointData::GetNormals stores them), used as given apart from normalizing: the

@@ -1,0 +1,131 @@
+// What the flat-shading error estimate (QualityRenderer, estimateError) adds to a frame: the
+// filter's scene in the core alone (a UV sphere, one unattenuated positional light at the
+// eye, every face drawn, 1920 × 1080, 2 threads), the camera turning 0.5° a frame. Two
+// renderers side by side, the estimate off and on, alternate frame by frame, so the load of
+// the moment weighs on both alike; CPU time of the process (CLOCK_PROCESS_CPUTIME_ID).
+//
+//   facet_estimate_cost [segments...] [--frames N] [--rounds R]
+//
+// Per sphere (segments around; ~2·segments² triangles: 500 → 500k, 1000 → 2M) and round:
+// the median CPU of a frame off and on and the ratio, the estimate's own wall time, and the
+// first frame's CPU off and on, and its wall time on (on: the vertex normals and the
+// polygons' extents, found once per mesh version). bench/estimate-cost.md has the figures.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "facet/QualityRenderer.h"
+#include "support/TestMeshes.h"
+
+namespace {
+
+using namespace facet;
+
+double cpuSeconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+void turn(Camera& camera, double degrees) {
+  const double a = degrees * std::numbers::pi / 180.0;
+  const glm::dvec3 o = camera.position - camera.focalPoint;
+  camera.position = camera.focalPoint + glm::dvec3(o.x * std::cos(a) + o.z * std::sin(a), o.y,
+                                                   -o.x * std::sin(a) + o.z * std::cos(a));
+}
+
+void measure(int segments, int frames, int round) {
+  const Mesh sphere = testing::makeUvSphere(segments, segments + 2);
+  Camera camera = testing::fitCamera(sphere);
+  Scene scene;
+  SceneMesh mesh{sphere.view(), Material{}};
+  mesh.mesh.version = 1;  // as the filter's input: the extents kept from frame to frame
+  scene.meshes.push_back(mesh);
+  PointLight light;
+  light.position = camera.position;
+  light.attenuation = QuadraticAttenuation{1.0, 0.0, 0.0};
+  scene.lights.lights.push_back(light);
+  scene.lights.ambient.intensity = 0.0;
+
+  Renderer plainRenderer, estimatingRenderer;
+  plainRenderer.setThreadCount(2);
+  estimatingRenderer.setThreadCount(2);
+  QualityRenderer plain(plainRenderer), estimating(estimatingRenderer);
+  Framebuffer plainImage(1920, 1080), estimatingImage(1920, 1080);
+  QualitySettings off, on;
+  on.estimateError = true;
+  on.errorEstimateImage = false;  // the filter's default: the summary in field data
+
+  double start = cpuSeconds();
+  plain.render(scene, {}, camera, plainImage, off);
+  const double firstOff = cpuSeconds() - start;
+  start = cpuSeconds();
+  const auto wallStart = std::chrono::steady_clock::now();
+  QualityStats stats = estimating.render(scene, {}, camera, estimatingImage, on);
+  const double firstOn = cpuSeconds() - start;
+  const double firstOnWall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+
+  std::vector<double> offSeconds, onSeconds, estimateSeconds;
+  for (int i = 0; i < frames; ++i) {
+    turn(camera, 0.5);
+    start = cpuSeconds();
+    plain.render(scene, {}, camera, plainImage, off);
+    offSeconds.push_back(cpuSeconds() - start);
+    start = cpuSeconds();
+    stats = estimating.render(scene, {}, camera, estimatingImage, on);
+    onSeconds.push_back(cpuSeconds() - start);
+    estimateSeconds.push_back(stats.estimateSeconds);
+  }
+  const double offCpu = median(offSeconds), onCpu = median(onSeconds);
+  std::printf(
+      "| %d | %zu | %d | %.1f | %.1f | %+.1f %% | %.1f | %.3f | %.3f | %.3f | %.4f | %.3f |\n",
+      segments, sphere.polygonCount(), round, 1e3 * offCpu, 1e3 * onCpu,
+      100.0 * (onCpu / offCpu - 1.0), 1e3 * median(estimateSeconds), firstOff, firstOn, firstOnWall,
+      stats.predictedRmse, stats.predictedMaxError);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes;
+  int frames = 16, rounds = 3;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--frames" && i + 1 < argc) {
+      frames = std::atoi(argv[++i]);
+    } else if (arg == "--rounds" && i + 1 < argc) {
+      rounds = std::atoi(argv[++i]);
+    } else {
+      sizes.push_back(std::atoi(arg.c_str()));
+    }
+  }
+  if (sizes.empty()) sizes = {500, 1000};
+  if (frames < 1 || rounds < 1 ||
+      std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
+    std::fprintf(stderr,
+                 "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n");
+    return 2;
+  }
+  std::printf(
+      "| segments | polygons | round | frame CPU ms, off | on | added | estimate wall ms "
+      "| first frame CPU s, off | on | on, wall s | predicted RMSE | max |\n");
+  std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (int round = 1; round <= rounds; ++round) {
+    for (const int segments : sizes)
+      measure(segments, frames, round);
+  }
+}
