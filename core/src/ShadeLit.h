@@ -9,6 +9,7 @@
 #include "FaceNormal.h"
 #include "MeshAccess.h"
 #include "Shade.h"
+#include "ShadeBatch.h"
 #include "ShaderAccess.h"
 
 namespace facet::detail {
@@ -33,10 +34,11 @@ Color surfaceColor(const FrameMesh& mesh, std::size_t polygon) {
   return mesh.source->material.color;
 }
 
-// The flat-shaded color of one polygon under direct light, at its center.
+// The sample one polygon is lit at under direct light: its center (kCenters), its normal
+// facing the side seen, its surface color.
 template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
-Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess::Routine shade,
-               PointsT points, PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+SurfaceSample litSample(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                        PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
   SurfaceSample sample;
   sample.color = surfaceColor<kColors>(mesh, polygon);
   const std::size_t n = polygons.size(polygon);
@@ -53,7 +55,34 @@ Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess:
   sample.normal =
       normal != glm::vec3(0.0f) ? glm::dvec3(normal) : context.transform.toViewer(corner(0));
   if (seenFromBack && context.twoSidedLighting) sample.normal = -sample.normal;
-  return toRgba8(shade(context.shader, sample, mesh.material));
+  return sample;
+}
+
+// The shown polygons among [begin, end) without specular term, under lights ShadeBatch.h
+// takes: their samples gathered into columns, lit in SIMD lanes (the same bytes).
+template <bool kCenters, ColorSource kColors, class PointsT, class PolygonsT>
+std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                              PolygonsT polygons, std::size_t begin, std::size_t end) {
+  ShadeBatch batch{};  // zeroed once: the lanes past its count read initialized columns
+  ShadeBatchColors colors;
+  std::size_t ids[kShadeBatchSize];
+  std::size_t shaded = 0;
+  const auto flush = [&] {
+    shadeBatch(context.shader, mesh.material, batch, colors);
+    for (std::size_t i = 0; i < batch.count; ++i)
+      context.colors[ids[i]] = colors[i];
+    shaded += batch.count;
+    batch.count = 0;
+  };
+  forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
+    const std::size_t id = mesh.firstPolygon + polygon;
+    ids[batch.count] = id;
+    batch.add(litSample<kCenters, false, kColors>(context, mesh, points, polygons, polygon,
+                                                  context.backFacing[id]));
+    if (batch.full()) flush();
+  });
+  flush();
+  return shaded;
 }
 
 // Flattened: with these many instantiations, GCC's unit-growth limit would otherwise
@@ -69,13 +98,19 @@ template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, cla
 FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const FrameMesh& mesh,
                                         PointsT points, PolygonsT polygons, std::size_t begin,
                                         std::size_t end) {
+  if constexpr (!kSpecular) {
+    if (shadesInBatches(context.shader)) {
+      return shadeLitInBatches<kCenters, kColors>(context, mesh, points, polygons, begin, end);
+    }
+  }
   const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
   std::size_t shaded = 0;
   forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ++shaded;
-    context.colors[id] = litColor<kCenters, kSpecular, kColors>(
-        context, mesh, shade, points, polygons, polygon, context.backFacing[id]);
+    const SurfaceSample sample = litSample<kCenters, kSpecular, kColors>(
+        context, mesh, points, polygons, polygon, context.backFacing[id]);
+    context.colors[id] = toRgba8(shade(context.shader, sample, mesh.material));
   });
   return shaded;
 }
