@@ -91,7 +91,7 @@ void ShadeLanes(const Shader& shader, const PreparedMaterial& m, const ShadeBatc
   for (std::size_t i = 0; i < batch.count; i += lanes) {  // the columns hold whole groups
     V position[3], normal[3], surface[3], sum[3];
     for (int c = 0; c < 3; ++c) {
-      position[c] = hn::Load(d, batch.position[c] + i);
+      position[c] = hn::Load(d, batch.cornerSum[c] + i) / hn::Load(d, batch.corners + i);
       normal[c] = hn::Load(d, batch.normal[c] + i);
       surface[c] = capped(d, hn::PromoteTo(d, hn::LoadU(df, batch.color[c] + i)));
       sum[c] = hn::Zero(d);
@@ -128,7 +128,7 @@ HWY_EXPORT(ShadeLanes);
 
 SurfaceSample ShadeBatch::sample(std::size_t i) const {
   SurfaceSample s;
-  s.position = {position[0][i], position[1][i], position[2][i]};
+  s.position = glm::dvec3(cornerSum[0][i], cornerSum[1][i], cornerSum[2][i]) / corners[i];
   s.normal = {normal[0][i], normal[1][i], normal[2][i]};
   s.color = {color[0][i], color[1][i], color[2][i]};
   return s;

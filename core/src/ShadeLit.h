@@ -34,12 +34,19 @@ Color surfaceColor(const FrameMesh& mesh, std::size_t polygon) {
   return mesh.source->material.color;
 }
 
-// The sample one polygon is lit at under direct light: its center (kCenters), its normal
-// facing the side seen, its surface color.
-template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
-SurfaceSample litSample(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
-                        PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+// One polygon's sample under direct light before its center is divided out: `sample.position`
+// holds the sum of its `corners` corners (kCenters; else the origin over 1), its normal faces
+// the side seen, its color is the surface color.
+struct GatheredSample {
   SurfaceSample sample;
+  double corners = 1.0;
+};
+
+template <bool kCenters, ColorSource kColors, class PointsT, class PolygonsT>
+GatheredSample gatherSample(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                            PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+  GatheredSample gathered;
+  SurfaceSample& sample = gathered.sample;
   sample.color = surfaceColor<kColors>(mesh, polygon);
   const std::size_t n = polygons.size(polygon);
   const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
@@ -48,13 +55,25 @@ SurfaceSample litSample(const ShadeContext& context, const FrameMesh& mesh, Poin
     glm::dvec3 sum(0.0);
     for (std::size_t k = 0; k < n; ++k)
       sum += corner(k);
-    sample.position = sum / static_cast<double>(n);
+    sample.position = sum;
+    gathered.corners = static_cast<double>(n);
   }
-  if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
   // A polygon with area on screen but none in 3D (pathological input only) faces the viewer.
   sample.normal =
       normal != glm::vec3(0.0f) ? glm::dvec3(normal) : context.transform.toViewer(corner(0));
   if (seenFromBack && context.twoSidedLighting) sample.normal = -sample.normal;
+  return gathered;
+}
+
+// The sample one polygon is lit at under direct light, at its center.
+template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
+SurfaceSample litSample(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                        PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+  GatheredSample gathered =
+      gatherSample<kCenters, kColors>(context, mesh, points, polygons, polygon, seenFromBack);
+  SurfaceSample& sample = gathered.sample;
+  if constexpr (kCenters) sample.position /= gathered.corners;
+  if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
   return sample;
 }
 
@@ -63,7 +82,7 @@ SurfaceSample litSample(const ShadeContext& context, const FrameMesh& mesh, Poin
 template <bool kCenters, ColorSource kColors, class PointsT, class PolygonsT>
 std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
                               PolygonsT polygons, std::size_t begin, std::size_t end) {
-  ShadeBatch batch{};  // zeroed once: the lanes past its count read initialized columns
+  ShadeBatch batch;
   ShadeBatchColors colors;
   std::size_t ids[kShadeBatchSize];
   std::size_t shaded = 0;
@@ -77,8 +96,9 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ids[batch.count] = id;
-    batch.add(litSample<kCenters, false, kColors>(context, mesh, points, polygons, polygon,
-                                                  context.backFacing[id]));
+    const GatheredSample gathered = gatherSample<kCenters, kColors>(
+        context, mesh, points, polygons, polygon, context.backFacing[id]);
+    batch.add(gathered.sample, gathered.corners);
     if (batch.full()) flush();
   });
   flush();

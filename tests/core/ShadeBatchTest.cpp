@@ -98,14 +98,19 @@ TEST(ShadeBatches, LanesGiveShadesBytesOnEveryTarget) {
         for (std::size_t count :
              {kShadeBatchSize, std::size_t{61}, std::size_t{1}, std::size_t{0}}) {
           const std::vector<SurfaceSample> in = batchSamples(count, {0.5, -1.0, 8.0}, seed++);
-          ShadeBatch batch{};
-          for (const SurfaceSample& s : in)
-            batch.add(s);
+          ShadeBatch batch;
+          for (const SurfaceSample& s : in) {  // as a triangle's corner sum
+            SurfaceSample sum = s;
+            sum.position *= 3.0;
+            batch.add(sum, 3.0);
+          }
           detail::ShadeBatchColors colors;
           detail::shadeBatch(shader, prepared, batch, colors);
           int differing = 0;
           for (std::size_t i = 0; i < count; ++i) {
-            const Rgba8 expected = toRgba8(shade(shader, in[i], prepared));
+            SurfaceSample sample = in[i];
+            sample.position = (3.0 * sample.position) / 3.0;
+            const Rgba8 expected = toRgba8(shade(shader, sample, prepared));
             const Rgba8 got = colors[i];
             if ((got.r != expected.r || got.g != expected.g || got.b != expected.b ||
                  got.a != expected.a) &&
