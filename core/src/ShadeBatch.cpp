@@ -11,7 +11,6 @@
 // saturate(Color(base)) (adding +0 only turns a −0 into +0, which saturates to 0 alike).
 
 #include <algorithm>
-#include <cstring>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "ShadeBatch.cpp"
