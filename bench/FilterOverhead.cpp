@@ -3,7 +3,10 @@
 // at 1920 × 1080 with a camera turning every frame (RGBA + Depth + CellId output), and a bare
 // facet::Renderer renders the same arrays (float points, VTK's 64-bit cells, the same
 // camera and light) into a facet::Framebuffer, frame by frame in turn. Per side: the median
-// wall and CPU time (all threads of the process) per frame, and the page faults per frame.
+// wall and CPU time (all threads of the process) per frame, and the page faults per frame;
+// then the median of each phase of Update() (its FacetPhaseSeconds; "outside" is the
+// Update() less the filter's own FacetRenderSeconds: the executive and the field data) and of
+// the core frame's phases.
 //
 //   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
 //   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
@@ -16,6 +19,7 @@
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFacetRenderFilter.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -66,12 +70,66 @@ Sample timed(Work&& work) {
           processCpuSeconds() - cpu, minorFaults() - faults};
 }
 
-double median(std::vector<Sample>& samples, double Sample::*field) {
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+double median(const std::vector<Sample>& samples, double Sample::*field) {
   std::vector<double> values;
   for (const Sample& s : samples)
     values.push_back(s.*field);
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
+  return median(values);
+}
+
+// Per phase, its seconds in each frame.
+struct PhaseSeries {
+  std::vector<const char*> names;
+  std::vector<std::vector<double>> seconds;
+
+  void add(std::initializer_list<std::pair<const char*, double>> phases) {
+    if (names.empty()) {
+      for (const auto& phase : phases)
+        names.push_back(phase.first);
+      seconds.resize(names.size());
+    }
+    std::size_t i = 0;
+    for (const auto& phase : phases)
+      seconds[i++].push_back(phase.second);
+  }
+  void print(const char* title) const {
+    std::printf("  %s, median ms:", title);
+    for (std::size_t i = 0; i < names.size(); ++i)
+      std::printf(" %s %.2f", names[i], 1e3 * median(seconds[i]));
+    std::printf("\n");
+  }
+};
+
+// The filter's phases of its last execution (vtkFacetImageRenderer's field data), with the
+// time of the Update() outside them.
+void addFilterPhases(PhaseSeries& series, vtkImageData* output, double updateSeconds) {
+  vtkFieldData* fields = output->GetFieldData();
+  vtkDataArray* phases = fields->GetArray("FacetPhaseSeconds");
+  const double total = fields->GetArray("FacetRenderSeconds")->GetComponent(0, 0);
+  const auto phase = [&](int i) { return phases->GetComponent(0, i); };
+  series.add({{"conversion", phase(0)},
+              {"validate", phase(1)},
+              {"transform", phase(2)},
+              {"setup", phase(3)},
+              {"raster", phase(4)},
+              {"shade+resolve", phase(5)},
+              {"output", phase(6)},
+              {"render total", total},
+              {"outside", updateSeconds - total}});
+}
+
+void addCorePhases(PhaseSeries& series, const facet::RenderStats& s) {
+  series.add({{"validate", s.validateSeconds},
+              {"transform", s.transformSeconds},
+              {"setup", s.setupSeconds},
+              {"raster", s.rasterSeconds},
+              {"shade+resolve", s.shadeSeconds},
+              {"total", s.totalSeconds}});
 }
 
 // The filter's camera conversion for a plain perspective vtkCamera (vtkFacetSceneConverter).
@@ -148,19 +206,23 @@ int main(int argc, char** argv) {
   renderer.setThreadCount(threads);
   facet::Framebuffer framebuffer(width, height);
 
+  facet::RenderStats coreStats;
   const auto renderCore = [&] {
     const facet::Camera view = cameraOf(camera);
     scene.lights.lights = {facet::PointLight{view.position, facet::Color(1.0f), 1.0,
                                              facet::QuadraticAttenuation{1.0, 0.0, 0.0}}};
-    renderer.render(scene, view, framebuffer);
+    coreStats = renderer.render(scene, view, framebuffer);
   };
   const Sample firstUpdate = timed([&] { filter->Update(); });
   renderCore();
   std::vector<Sample> updates, cores;
+  PhaseSeries updatePhases, corePhases;
   for (int f = 0; f < frames; ++f) {
     camera->Azimuth(0.5);
     updates.push_back(timed([&] { filter->Update(); }));
+    addFilterPhases(updatePhases, filter->GetOutput(), updates.back().wall);
     cores.push_back(timed(renderCore));
+    addCorePhases(corePhases, coreStats);
   }
   const Sample u{median(updates, &Sample::wall), median(updates, &Sample::cpu),
                  median(updates, &Sample::faults)};
@@ -173,5 +235,7 @@ int main(int argc, char** argv) {
       2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
       1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
       u.cpu / c.cpu, firstUpdate.wall);
+  updatePhases.print("Update()");
+  corePhases.print("core");
   return 0;
 }

@@ -2,11 +2,14 @@
 // positional light at the eye, float points and 64-bit cells as VTK hands them over), over a
 // fixed number of frames: the best of each phase, for comparing two builds phase by phase.
 // A fixed frame count also makes the program's instruction count comparable between builds
-// (valgrind --tool=callgrind), which the load of a shared machine does not change. TURN > 0
-// turns the camera (and the light at its eye) that many degrees about the sphere's axis
-// every frame, as an interactive view does: each frame then bins a little differently.
+// (valgrind --tool=callgrind), which the load of a shared machine does not change.
 //
-//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN]
+// By default the frames are the VTK filter's (TurningView.h): a versioned mesh, the camera
+// (and the light at its eye) turning TURN = 1 degree about the sphere's axis every frame.
+// TURN 0 keeps the camera still (a versioned mesh's frame is then reused: RenderPath::Resolve);
+// VERSION 0 renders the mesh unversioned, validated and its normals computed every frame.
+//
+//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -21,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "TurningView.h"
 #include "facet/Renderer.h"
 #include "support/TestMeshes.h"
 
@@ -38,14 +42,6 @@ struct Phases {
   }
 };
 
-// The camera turned by `degrees` about the y axis through its focal point.
-Camera turned(Camera camera, double degrees) {
-  const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
-  const glm::dvec3 r = camera.position - camera.focalPoint;
-  camera.position = camera.focalPoint + glm::dvec3(c * r.x + s * r.z, r.y, -s * r.x + c * r.z);
-  return camera;
-}
-
 // FNV-1a over the last frame's color, depth and polygon-id bytes: two builds that must give
 // the same bytes print the same number.
 std::uint64_t fingerprint(const Framebuffer& framebuffer) {
@@ -60,7 +56,7 @@ std::uint64_t fingerprint(const Framebuffer& framebuffer) {
   return hash;
 }
 
-int run(int triangles, bool closed, int frames, int threads, double turn) {
+int run(int triangles, bool closed, int frames, int threads, double turn, std::uint64_t version) {
   // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles, as
   // CoreBench's sphereWithTriangles picks it (the same spheres as facet_bench's).
   const int theta = static_cast<int>(std::lround(std::sqrt(triangles / 2.0)));
@@ -69,8 +65,9 @@ int run(int triangles, bool closed, int frames, int threads, double turn) {
   for (const auto& p : sphere.points)
     xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
   Camera camera = testing::fitCamera(sphere);
-  const MeshView view{
+  MeshView view{
       PointArray::ofXyz(xyz), PolygonArray::of(sphere.offsets, sphere.connectivity), {}, closed};
+  view.version = version;
   Scene scene;
   scene.meshes.push_back({view, Material{}});
   scene.lights.ambient.intensity = 0.0;
@@ -82,19 +79,18 @@ int run(int triangles, bool closed, int frames, int threads, double turn) {
   renderer.render(scene, camera, framebuffer);  // warm: buffers grow
   Phases best;
   for (int i = 0; i < frames; ++i) {
-    if (turn != 0.0) {
-      camera = turned(camera, turn);
-      std::get<PointLight>(scene.lights.lights[0]).position = camera.position;
-    }
+    if (turn != 0.0) bench::turnView(camera, scene, turn);
     best.keepBest(renderer.render(scene, camera, framebuffer));
   }
   const double* s = best.seconds;
   std::printf(
-      "%d triangles, closed %d, %d threads, turn %g, best of %d frames, ms: validate %.3f "
+      "%d triangles, closed %d, %d threads, turn %g, version %llu, best of %d frames, ms: validate "
+      "%.3f "
       "transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last frame's planes "
       "%016llx\n",
-      triangles, int(closed), threads, turn, frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
-      s[4] * 1e3, s[5] * 1e3, static_cast<unsigned long long>(fingerprint(framebuffer)));
+      triangles, int(closed), threads, turn, static_cast<unsigned long long>(version), frames,
+      s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3,
+      static_cast<unsigned long long>(fingerprint(framebuffer)));
   return 0;
 }
 
@@ -103,12 +99,15 @@ int run(int triangles, bool closed, int frames, int threads, double turn) {
 int main(int argc, char** argv) {
   const int triangles = argc < 3 ? 0 : std::atoi(argv[1]);
   if (triangles < 18) {  // theta >= 3
-    std::fprintf(stderr,
-                 "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
-                 "[THREADS] [TURN degrees per frame]\n",
-                 argv[0]);
+    std::fprintf(
+        stderr,
+        "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
+        "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned]\n",
+        argv[0], bench::kTurnDegreesPerFrame);
     return 2;
   }
   return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
-             argc > 4 ? std::atoi(argv[4]) : 2, argc > 5 ? std::atof(argv[5]) : 0.0);
+             argc > 4 ? std::atoi(argv[4]) : 2,
+             argc > 5 ? std::atof(argv[5]) : bench::kTurnDegreesPerFrame,
+             argc > 6 ? std::strtoull(argv[6], nullptr, 10) : 1);
 }

@@ -15,7 +15,8 @@ light at the camera, at 1920x1080 with one sample per pixel (except "VTK default
                the geometric normal, RGBA + depth + primitive id (build/bin/embree_peer);
                its BVH build, done once per mesh, is a column of its own
   core         Facet's core, facet_bench's BM_Sphere (Google Benchmark mean; every face drawn
-               / closed-surface hint)
+               / closed-surface hint): the filter's frame without the filter, a versioned mesh
+               and the camera turning a degree per frame (bench/TurningView.h)
   Update       vtkFacetRenderFilter.Update() from Python with the camera turning every frame,
                RGBA + Depth + CellId output (bench/filter_speed.py; every face / closed check)
   limit        the memory-bound limit: bytes a frame must move over the measured bandwidth

@@ -9,6 +9,7 @@
 #include "FaceNormal.h"
 #include "MeshAccess.h"
 #include "Shade.h"
+#include "ShadeBatch.h"
 #include "ShaderAccess.h"
 
 namespace facet::detail {
@@ -33,11 +34,19 @@ Color surfaceColor(const FrameMesh& mesh, std::size_t polygon) {
   return mesh.source->material.color;
 }
 
-// The flat-shaded color of one polygon under direct light, at its center.
-template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
-Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess::Routine shade,
-               PointsT points, PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+// One polygon's sample under direct light before its center is divided out: `sample.position`
+// holds the sum of its `corners` corners (kCenters; else the origin over 1), its normal faces
+// the side seen, its color is the surface color.
+struct GatheredSample {
   SurfaceSample sample;
+  double corners = 1.0;
+};
+
+template <bool kCenters, ColorSource kColors, class PointsT, class PolygonsT>
+GatheredSample gatherSample(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                            PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+  GatheredSample gathered;
+  SurfaceSample& sample = gathered.sample;
   sample.color = surfaceColor<kColors>(mesh, polygon);
   const std::size_t n = polygons.size(polygon);
   const auto corner = [&](std::size_t k) { return points[polygons.pointId(polygon, k)]; };
@@ -46,14 +55,54 @@ Rgba8 litColor(const ShadeContext& context, const FrameMesh& mesh, ShaderAccess:
     glm::dvec3 sum(0.0);
     for (std::size_t k = 0; k < n; ++k)
       sum += corner(k);
-    sample.position = sum / static_cast<double>(n);
+    sample.position = sum;
+    gathered.corners = static_cast<double>(n);
   }
-  if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
   // A polygon with area on screen but none in 3D (pathological input only) faces the viewer.
   sample.normal =
       normal != glm::vec3(0.0f) ? glm::dvec3(normal) : context.transform.toViewer(corner(0));
   if (seenFromBack && context.twoSidedLighting) sample.normal = -sample.normal;
-  return toRgba8(shade(context.shader, sample, mesh.material));
+  return gathered;
+}
+
+// The sample one polygon is lit at under direct light, at its center.
+template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, class PolygonsT>
+SurfaceSample litSample(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                        PolygonsT polygons, std::size_t polygon, bool seenFromBack) {
+  GatheredSample gathered =
+      gatherSample<kCenters, kColors>(context, mesh, points, polygons, polygon, seenFromBack);
+  SurfaceSample& sample = gathered.sample;
+  if constexpr (kCenters) sample.position /= gathered.corners;
+  if constexpr (kSpecular) sample.toViewer = context.transform.toViewer(sample.position);
+  return sample;
+}
+
+// The shown polygons among [begin, end) without specular term, under lights ShadeBatch.h
+// takes: their samples gathered into columns, lit in SIMD lanes (the same bytes).
+template <bool kCenters, ColorSource kColors, class PointsT, class PolygonsT>
+std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                              PolygonsT polygons, std::size_t begin, std::size_t end) {
+  ShadeBatch batch;
+  ShadeBatchColors colors;
+  std::size_t ids[kShadeBatchSize];
+  std::size_t shaded = 0;
+  const auto flush = [&] {
+    shadeBatch(context.shader, mesh.material, batch, colors);
+    for (std::size_t i = 0; i < batch.count; ++i)
+      context.colors[ids[i]] = colors[i];
+    shaded += batch.count;
+    batch.count = 0;
+  };
+  forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
+    const std::size_t id = mesh.firstPolygon + polygon;
+    ids[batch.count] = id;
+    const GatheredSample gathered = gatherSample<kCenters, kColors>(
+        context, mesh, points, polygons, polygon, context.backFacing[id]);
+    batch.add(gathered.sample, gathered.corners);
+    if (batch.full()) flush();
+  });
+  flush();
+  return shaded;
 }
 
 // Flattened: with these many instantiations, GCC's unit-growth limit would otherwise
@@ -69,13 +118,19 @@ template <bool kCenters, bool kSpecular, ColorSource kColors, class PointsT, cla
 FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const FrameMesh& mesh,
                                         PointsT points, PolygonsT polygons, std::size_t begin,
                                         std::size_t end) {
+  if constexpr (!kSpecular) {
+    if (shadesInBatches(context.shader)) {
+      return shadeLitInBatches<kCenters, kColors>(context, mesh, points, polygons, begin, end);
+    }
+  }
   const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
   std::size_t shaded = 0;
   forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ++shaded;
-    context.colors[id] = litColor<kCenters, kSpecular, kColors>(
-        context, mesh, shade, points, polygons, polygon, context.backFacing[id]);
+    const SurfaceSample sample = litSample<kCenters, kSpecular, kColors>(
+        context, mesh, points, polygons, polygon, context.backFacing[id]);
+    context.colors[id] = toRgba8(shade(context.shader, sample, mesh.material));
   });
   return shaded;
 }

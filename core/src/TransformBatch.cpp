@@ -211,5 +211,9 @@ std::uint32_t projectPoints(const FrameTransform& transform, const double* xyz, 
   return HWY_DYNAMIC_DISPATCH(ProjectDoublePoints)(transform, xyz, count, vertices);
 }
 
+WindowVertex projectPoint(const FrameTransform& transform, const glm::dvec3& world) {
+  return transform.project(world);
+}
+
 }  // namespace facet::detail
 #endif  // HWY_ONCE

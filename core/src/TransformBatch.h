@@ -18,4 +18,9 @@ std::uint32_t projectPoints(const FrameTransform& transform, const float* xyz, s
 std::uint32_t projectPoints(const FrameTransform& transform, const double* xyz, std::size_t count,
                             WindowVertex* vertices);
 
+// transform.project(world), compiled as the lanes are: without contraction into fused
+// multiply-adds (core/CMakeLists.txt). The reference a test checks the lanes against: project()
+// is inline, and a test's own file, compiled for a CPU with FMA, could fuse its products.
+WindowVertex projectPoint(const FrameTransform& transform, const glm::dvec3& world);
+
 }  // namespace facet::detail

@@ -1,8 +1,9 @@
 // The projection in SIMD lanes (TransformBatch.h) against FrameTransform::project point by
-// point, byte for byte, on every instruction set this CPU has: perspective and parallel
-// cameras, data far from the origin, huge far/near ratios, points behind the eye, beyond the
-// guard band, on the near plane, beyond kLargeCoordinate, and not finite; float and double
-// points; runs that do not fill the last group of lanes.
+// point, byte for byte, on every instruction set this CPU has (project() as the library
+// compiles it, detail::projectPoint: this file's own flags could fuse its products): perspective
+// and parallel cameras, data far from the origin, huge far/near ratios, points behind the eye,
+// beyond the guard band, on the near plane, beyond kLargeCoordinate, and not finite; float and
+// double points; runs that do not fill the last group of lanes.
 
 #include <cmath>
 #include <cstring>
@@ -112,8 +113,8 @@ std::size_t differences(const FrameTransform& transform, const std::vector<Scala
   std::uint32_t expectedAny = 0;
   std::size_t differing = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    const WindowVertex expected =
-        transform.project({double(xyz[3 * i]), double(xyz[3 * i + 1]), double(xyz[3 * i + 2])});
+    const WindowVertex expected = detail::projectPoint(
+        transform, {double(xyz[3 * i]), double(xyz[3 * i + 1]), double(xyz[3 * i + 2])});
     expectedAny |= expected.outcode;
     if (std::memcmp(&expected, &batch[i], sizeof expected) != 0 && ++differing <= 5) {
       ADD_FAILURE() << "point " << i << " (" << xyz[3 * i] << ", " << xyz[3 * i + 1] << ", "
@@ -145,7 +146,8 @@ TEST_F(TransformBatches, LanesGiveProjectsBytesOnEveryTarget) {
       const std::vector<double> xyz = pointsFor(c.camera, 20000, seed++);
       std::size_t inside = 0;
       for (std::size_t i = 0; i < xyz.size(); i += 3)
-        inside += transform.project({xyz[i], xyz[i + 1], xyz[i + 2]}).outcode == detail::kInside;
+        inside += detail::projectPoint(transform, {xyz[i], xyz[i + 1], xyz[i + 2]}).outcode ==
+                  detail::kInside;
       EXPECT_GT(inside, 4000u) << "most points should be drawn";
       EXPECT_EQ(differences(transform, xyz), 0u);
       const std::vector<float> asFloat(xyz.begin(), xyz.end());

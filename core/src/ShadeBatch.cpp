@@ -1,0 +1,147 @@
+// ShadeBatch.h: Shader::shade (Lighting.cpp) in SIMD lanes, compiled once per instruction set
+// by Highway's foreach_target (this file includes itself) and dispatched at run time, as
+// SetupBatch.cpp. Each operation below is shade()'s on the same double operands in the same
+// order (glm's dot products add (x + y) + z; a vector over a scalar divides each component);
+// IEEE addition, multiplication, division and square root are correctly rounded on every
+// instruction set, and the file is compiled without contraction into fused multiply-adds
+// (core/CMakeLists.txt, as Lighting.cpp), so a lane gives shade()'s color and toRgba8's bytes.
+//
+// Without a specular term shade()'s last step is saturate(Color(base + 0)) for the additive
+// mix and saturate(Color((1 − 0)·saturate(Color(base)) + 0)) for the blend: both the bytes of
+// saturate(Color(base)) (adding +0 only turns a −0 into +0, which saturates to 0 alike).
+
+#include <algorithm>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "ShadeBatch.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "ShadeBatch.h"
+#include "ShaderAccess.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace facet::detail::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<double>;
+using V = hn::Vec<D>;
+using M = hn::Mask<D>;
+using DF = hn::Rebind<float, D>;
+using DI = hn::Rebind<std::int32_t, D>;
+using DU = hn::Rebind<std::uint32_t, D>;
+
+static_assert(kShadeBatchSize * sizeof(double) % HWY_MAX_BYTES == 0,
+              "a batch's columns hold whole groups of lanes");
+
+// Radiance.h's capped(): x > 0 ? min(x, kMaxRadiance) : 0, NaN → 0.
+HWY_INLINE V capped(D d, V x) {
+  return hn::IfThenElseZero(x > hn::Zero(d), hn::Min(x, hn::Set(d, kMaxRadiance)));
+}
+
+// Color.h's toByte(saturate(x)) of each lane's channel.
+HWY_INLINE hn::Vec<DU> toBytes(V channel) {
+  const DF df;
+  const hn::Vec<DF> x = hn::DemoteTo(df, channel);  // Color(base): rounded to float
+  const hn::Vec<DF> saturated = hn::IfThenElseZero(x > hn::Zero(df), hn::Min(x, hn::Set(df, 1.0f)));
+  const hn::Vec<DF> scaled = saturated * hn::Set(df, 255.0f) + hn::Set(df, 0.5f);
+  return hn::BitCast(DU(), hn::ConvertTo(DI(), scaled));  // truncation, as static_cast
+}
+
+// One light's contribution to the diffuse sums of the lanes' samples: radiance ·
+// diffuseFactor(N · L). `ordinary` loses the lanes whose light direction shade() would take
+// by its rare branch (towardLight: a squared distance outside (1e-290, 1e290)).
+HWY_INLINE void addLight(const PreparedLight& light, bool directional, const PreparedMaterial& m,
+                         const V (&position)[3], const V (&normal)[3], V (&sum)[3], M& ordinary) {
+  const D d;
+  V toLight[3];
+  if (directional) {
+    for (int c = 0; c < 3; ++c)
+      toLight[c] = hn::Set(d, light.direction[c]);
+  } else {
+    V offset[3];
+    for (int c = 0; c < 3; ++c)
+      offset[c] = hn::Set(d, light.position[c]) - position[c];
+    const V squared = (offset[0] * offset[0] + offset[1] * offset[1]) + offset[2] * offset[2];
+    ordinary =
+        hn::And(ordinary, hn::And(squared > hn::Set(d, 1e-290), squared < hn::Set(d, 1e290)));
+    const V distance = hn::Sqrt(squared);
+    for (int c = 0; c < 3; ++c)
+      toLight[c] = offset[c] / distance;
+  }
+  const V cosine = (normal[0] * toLight[0] + normal[1] * toLight[1]) + normal[2] * toLight[2];
+  const V lit = hn::IfThenElseZero(cosine > hn::Zero(d), hn::Min(cosine, hn::Set(d, 1.0)));
+  const V factor = m.material.diffuseModel == DiffuseModel::Lambert
+                       ? lit
+                       : hn::Set(d, m.lerpAmbient) + hn::Set(d, m.lerpFull - m.lerpAmbient) * lit;
+  for (int c = 0; c < 3; ++c)
+    sum[c] = sum[c] + hn::Set(d, light.radiance[c]) * factor;
+}
+
+void ShadeLanes(const Shader& shader, const PreparedMaterial& m, const ShadeBatch& batch,
+                ShadeBatchColors& out) {
+  Rgba8* colors = out.data();
+  const D d;
+  const DF df;
+  const std::size_t lanes = hn::Lanes(d);
+  const std::vector<PreparedLight>& lights = ShaderAccess::lights(shader);
+  const bool directional = ShaderAccess::loop(shader) == LightLoop::Directional;
+  const glm::dvec3& ambient = ShaderAccess::ambient(shader);
+  for (std::size_t i = 0; i < batch.count; i += lanes) {  // the columns hold whole groups
+    V position[3], normal[3], surface[3], sum[3];
+    for (int c = 0; c < 3; ++c) {
+      position[c] = hn::Load(d, batch.cornerSum[c] + i) / hn::Load(d, batch.corners + i);
+      normal[c] = hn::Load(d, batch.normal[c] + i);
+      surface[c] = capped(d, hn::PromoteTo(d, hn::LoadU(df, batch.color[c] + i)));
+      sum[c] = hn::Zero(d);
+    }
+    M ordinary = hn::FirstN(d, batch.count - i);
+    for (const PreparedLight& light : lights)
+      addLight(light, directional, m, position, normal, sum, ordinary);
+    // base = m.ambient · (ambient color or Cd) + Cd · ambient light + (m.diffuse · Cd) · sum.
+    hn::Vec<DU> word = hn::Set(DU(), 0xFF000000u);  // alpha: toByte(1)
+    for (int c = 0; c < 3; ++c) {
+      const V ambientTerm = m.ambientColor ? hn::Set(d, m.ambient * (*m.ambientColor)[c])
+                                           : hn::Set(d, m.ambient) * surface[c];
+      const V base = (ambientTerm + surface[c] * hn::Set(d, ambient[c])) +
+                     (hn::Set(d, m.diffuse) * surface[c]) * sum[c];
+      word = hn::Or(word, hn::ShiftLeftSame(toBytes(base), 8 * c));
+    }
+    hn::StoreU(word, DU(), reinterpret_cast<std::uint32_t*>(colors + i));
+    const std::size_t end = std::min(i + lanes, batch.count);
+    if (!hn::AllTrue(d, hn::Or(ordinary, hn::Not(hn::FirstN(d, end - i))))) {
+      const ShaderAccess::Routine shade = ShaderAccess::routine(shader, false);
+      for (std::size_t j = i; j < end; ++j)  // a rare branch: shade() itself
+        colors[j] = toRgba8(shade(shader, batch.sample(j), m));
+    }
+  }
+}
+
+}  // namespace facet::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace facet::detail {
+
+HWY_EXPORT(ShadeLanes);
+
+SurfaceSample ShadeBatch::sample(std::size_t i) const {
+  SurfaceSample s;
+  s.position = glm::dvec3(cornerSum[0][i], cornerSum[1][i], cornerSum[2][i]) / corners[i];
+  s.normal = {normal[0][i], normal[1][i], normal[2][i]};
+  s.color = {color[0][i], color[1][i], color[2][i]};
+  return s;
+}
+
+bool shadesInBatches(const Shader& shader) {
+  const LightLoop loop = ShaderAccess::loop(shader);
+  return loop == LightLoop::Directional || loop == LightLoop::Point;
+}
+
+void shadeBatch(const Shader& shader, const PreparedMaterial& material, const ShadeBatch& batch,
+                ShadeBatchColors& colors) {
+  HWY_DYNAMIC_DISPATCH(ShadeLanes)(shader, material, batch, colors);
+}
+
+}  // namespace facet::detail
+#endif  // HWY_ONCE
