@@ -1,5 +1,7 @@
 #include "ThreadPool.h"
 
+#include <utility>
+
 namespace facet::detail {
 
 ThreadPool::ThreadPool(int threads) {
@@ -22,11 +24,25 @@ ThreadPool::~ThreadPool() {
     worker.join();
 }
 
+// Runs work; if it throws, keeps the job's first exception for run() and cancels the job.
+bool ThreadPool::succeeds(FunctionRef<void()> work) {
+  try {
+    work();
+    return true;
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    if (!failure_) failure_ = std::current_exception();
+    cancelled_.store(true);
+    return false;
+  }
+}
+
 void ThreadPool::runTasks() {
   while (!cancelled_.load(std::memory_order_relaxed)) {
     const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
     if (i >= count_) return;
-    task_(i);
+    auto runTask = [&] { task_(i); };
+    if (!succeeds(runTask)) return;
     done_.fetch_add(1, std::memory_order_relaxed);
   }
 }
@@ -60,6 +76,7 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
     next_.store(0);
     done_.store(0);
     cancelled_.store(false);
+    failure_ = nullptr;
     open_ = true;
     ++generation_;
   }
@@ -70,9 +87,13 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
   while (!cancelled_.load(std::memory_order_relaxed)) {
     const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
     if (i >= count_) break;
-    task(i);
+    auto runTask = [&] { task(i); };
+    if (!succeeds(runTask)) break;
     const std::size_t finished = done_.fetch_add(1, std::memory_order_relaxed) + 1;
-    if (afterCallerTask && !afterCallerTask(finished)) cancelled_.store(true);
+    bool goOn = true;
+    auto askCaller = [&] { goOn = afterCallerTask(finished); };
+    if (afterCallerTask && !succeeds(askCaller)) break;
+    if (!goOn) cancelled_.store(true);
   }
 
   // Wait only for the workers that joined: on a busy machine a worker may not run for a
@@ -81,6 +102,7 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
   std::unique_lock lock(mutex_);
   open_ = false;
   finished_.wait(lock, [&] { return busyWorkers_ == 0; });
+  if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
   return !cancelled_.load();
 }
 

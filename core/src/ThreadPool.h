@@ -7,6 +7,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -30,13 +31,17 @@ class ThreadPool {
   /// Runs task(i) for every i in [0, count) on all threads, the caller included, and
   /// returns when all have finished. After each task the *caller* runs, it calls
   /// afterCallerTask(tasksFinishedSoFar); when that returns false no further task starts and
-  /// run() returns false once the running ones finish. Allocates nothing.
+  /// run() returns false once the running ones finish. A task that throws cancels the job
+  /// (or an afterCallerTask that throws) the same way, and run() rethrows its exception once every
+  /// thread has left the job (a worker's would otherwise end the program, and the caller's would
+  /// leave workers running a task whose captures are gone). Allocates nothing unless a task throws.
   bool run(std::size_t count, FunctionRef<void(std::size_t)> task,
            FunctionRef<bool(std::size_t)> afterCallerTask = {});
 
  private:
   void workerLoop();
   void runTasks();
+  bool succeeds(FunctionRef<void()> work);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -46,6 +51,7 @@ class ThreadPool {
   int busyWorkers_ = 0;         // guarded by mutex_: workers inside the current job
   bool open_ = false;           // guarded by mutex_: workers may still join the current job
   bool stopping_ = false;       // guarded by mutex_
+  std::exception_ptr failure_;  // guarded by mutex_: the current job's first exception
 
   // The current job; written by run() before the generation is published under mutex_.
   std::size_t count_ = 0;

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/common.hpp>
@@ -274,6 +276,55 @@ TEST(RendererProgress, ReportsIncreasingFractionsAndCanAbort) {
   EXPECT_TRUE(stopped.aborted);
   for (std::int32_t id : fb.polygonId())
     ASSERT_EQ(id, Framebuffer::kBackgroundId);
+}
+
+// A callback that throws: render() rethrows once every thread has left the phase (the
+// workers ran on while the caller unwound: a crash or a double free, 3 runs of 3), and the
+// renderer's next frame is the one a fresh renderer draws.
+TEST(RendererProgress, ACallbackThatThrowsLeavesTheRendererUsable) {
+  const Mesh sphere = makeUvSphere(256, 256);
+  const Scene scene = oneMeshScene(sphere.view());
+  const Camera camera = fitCamera(sphere);
+  Renderer fresh;
+  fresh.setThreadCount(2);
+  Framebuffer expected(320, 240);
+  fresh.render(scene, camera, expected);
+
+  Renderer renderer;
+  renderer.setThreadCount(2);
+  Framebuffer fb(320, 240);
+  for (int stopAt = 1; stopAt <= 24; ++stopAt) {
+    int calls = 0;
+    renderer.setProgressCallback([&](double) {
+      if (++calls == stopAt) throw std::runtime_error("stop");
+      return true;
+    });
+    try {
+      renderer.render(scene, camera, fb);
+    } catch (const std::runtime_error&) {
+    }
+  }
+  renderer.setProgressCallback({});
+  renderer.render(scene, camera, fb);
+  EXPECT_TRUE(std::ranges::equal(fb.color(), expected.color()));
+  EXPECT_TRUE(std::ranges::equal(fb.polygonId(), expected.polygonId()));
+}
+
+TEST(RendererParallelFor, ATaskThatThrowsIsRethrownAfterEveryThreadLeft) {
+  Renderer renderer;
+  renderer.setThreadCount(4);
+  std::vector<int> ran(64, 0);
+  EXPECT_THROW(renderer.parallelFor(64, 1,
+                                    [&](std::size_t begin, std::size_t) {
+                                      if (begin == 5) throw std::out_of_range("block 5");
+                                      ran[begin] = 1;
+                                    }),
+               std::out_of_range);
+  EXPECT_EQ(ran[5], 0);
+  // The pool is whole again: every block of the next job runs.
+  std::fill(ran.begin(), ran.end(), 0);
+  renderer.parallelFor(64, 1, [&](std::size_t begin, std::size_t) { ran[begin] = 1; });
+  EXPECT_EQ(std::count(ran.begin(), ran.end(), 1), 64);
 }
 
 TEST(RenderPlan, LeavesOutWhatTheSceneDoesNotNeed) {
