@@ -53,7 +53,7 @@ class Renderer {
   /// Called on the thread that called render(), with the fraction done in [0, 1]. Return
   /// false to stop: render() then returns soon with RenderStats::aborted set and a
   /// partially painted (but valid) framebuffer. An exception it throws leaves render() once
-  /// every thread has stopped, and the next render is a full one.
+  /// every thread has stopped; the next render draws what a new renderer would (tested).
   using ProgressCallback = std::function<bool(double fraction)>;
 
   Renderer();
