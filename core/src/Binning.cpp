@@ -1,7 +1,10 @@
 #include "Binning.h"
 
 #include <optional>
+#include <string>
 #include <utility>
+
+#include "facet/Error.h"
 
 namespace facet::detail {
 namespace {
@@ -54,6 +57,20 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
   chunk.triangles.push_back({{r0, r1, r2}, polygon});
   chunk.boundaryEdges.push_back(boundary);
   return BinOutcome::Binned;
+}
+
+void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t clippedVertices) {
+  static_assert(kMaxBinnedPerChunk == kFragmentBit && kMaxBinnedPerChunk == kClippedVertexBit);
+  const auto check = [](std::size_t count, const char* what) {
+    if (count >= kMaxBinnedPerChunk) {
+      throw Error("a set-up chunk holds " + std::to_string(count) + " " + what +
+                  "; a 32-bit bin entry indexes at most " + std::to_string(kMaxBinnedPerChunk - 1) +
+                  " (draw fewer or smaller polygons)");
+    }
+  };
+  check(triangles, "binned triangles");
+  check(fragments, "binned fragments");
+  check(clippedVertices, "clipped vertices");
 }
 
 void clearBins(Chunk& chunk, const TileGrid& grid) {

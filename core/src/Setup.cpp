@@ -424,8 +424,12 @@ const char* setupRoutineName(bool skipBackFaces) {
 bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
                    SetupBuffers& buffers) {
   planChunks(context, threads, buffers);
-  return runner.run(Phase::Setup, buffers.chunks.size(),
-                    [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
+  const bool completed = runner.run(Phase::Setup, buffers.chunks.size(),
+                                    [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
+  // Here, on the caller's thread, before any tile reads a wrapped index.
+  for (const Chunk& chunk : buffers.chunks)
+    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.clippedVertices.size());
+  return completed;
 }
 
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {

@@ -11,8 +11,10 @@
 
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "Binning.h"
 #include "RasterTriangle.h"
 #include "SetupBatch.h"
+#include "facet/Error.h"
 
 namespace facet::testing {
 namespace {
@@ -248,6 +250,24 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
                      optionsWith(Visibility::ZBuffer, threads)});
   }
   expectSameRenders(cases, targets());
+}
+
+// A bin entry's 31 bits of index (Binning.h): at the limit the set-up throws facet::Error
+// naming the count rather than bin an index that wrapped into the fragment bit.
+TEST(Binning, ChunksBeyondTheBinIndexThrowNamingTheCount) {
+  const std::size_t limit = detail::kMaxBinnedPerChunk;
+  EXPECT_NO_THROW(detail::requireIndexable(limit - 1, limit - 1, limit - 1));
+  for (int which = 0; which < 3; ++which) {
+    const std::size_t counts[3] = {which == 0 ? limit : 0, which == 1 ? limit : 0,
+                                   which == 2 ? limit : 0};
+    try {
+      detail::requireIndexable(counts[0], counts[1], counts[2]);
+      ADD_FAILURE() << "no error for " << limit << " of kind " << which;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(std::to_string(limit)), std::string::npos)
+          << error.what();
+    }
+  }
 }
 
 }  // namespace
