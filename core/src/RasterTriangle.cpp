@@ -13,14 +13,6 @@ namespace {
 
 constexpr std::int64_t kHalfPixel = kSubpixelScale / 2;
 
-// floor(value / 256) and ceil(value / 256) for any sign (C++20 >> is arithmetic).
-std::int64_t floorToPixel(std::int64_t value) {
-  return value >> kSubpixelBits;
-}
-std::int64_t ceilToPixel(std::int64_t value) {
-  return -((-value) >> kSubpixelBits);
-}
-
 // One edge's function, stepped exactly in integers.
 struct Edge {
   std::int64_t stepX;  // change per pixel to the right
@@ -355,21 +347,9 @@ std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& 
   return toDepthKey(TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped));
 }
 
-PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
-                                 const WindowVertex& c, const PixelBounds& clip) {
-  const std::int64_t minX = std::min({a.x, b.x, c.x}), maxX = std::max({a.x, b.x, c.x});
-  const std::int64_t minY = std::min({a.y, b.y, c.y}), maxY = std::max({a.y, b.y, c.y});
-  // Smallest px with px·256 + 128 ≥ minX, largest with px·256 + 128 ≤ maxX.
-  return {static_cast<int>(std::max<std::int64_t>(ceilToPixel(minX - kHalfPixel), clip.x0)),
-          static_cast<int>(std::max<std::int64_t>(ceilToPixel(minY - kHalfPixel), clip.y0)),
-          static_cast<int>(std::min<std::int64_t>(floorToPixel(maxX - kHalfPixel), clip.x1)),
-          static_cast<int>(std::min<std::int64_t>(floorToPixel(maxY - kHalfPixel), clip.y1))};
-}
-
-bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                     const PixelBounds& bounds) {
+bool coversAnyOfFewSamples(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                           const PixelBounds& bounds) {
   const int width = bounds.x1 - bounds.x0 + 1, height = bounds.y1 - bounds.y0 + 1;
-  if (width * height > 4) return true;
   const std::int64_t sampleX = std::int64_t{bounds.x0} * kSubpixelScale + kHalfPixel;
   const std::int64_t sampleY = std::int64_t{bounds.y0} * kSubpixelScale + kHalfPixel;
   const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
