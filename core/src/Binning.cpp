@@ -34,7 +34,7 @@ BinOutcome binFragment(Chunk& chunk, const TileGrid& grid, const WindowVertex& a
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon) {
+                       std::int32_t polygon, bool coversSample) {
   if (area == 0) return BinOutcome::ZeroArea;
   const WindowVertex* second = &b;
   const WindowVertex* third = &c;
@@ -48,7 +48,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
     return binFragment(chunk, grid, a, *second, *third, area < 0 ? -area : area, boundary,
                        bounds.x0, bounds.y0, polygon);
   }
-  if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
+  if (!coversSample && (bounds.empty() || !coversAnySample(a, *second, *third, bounds))) {
     return BinOutcome::CoversNoSample;
   }
   chunk.counts.boxSamples += bounds.area();

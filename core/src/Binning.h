@@ -16,11 +16,12 @@ enum class BinOutcome { Binned, ZeroArea, CoversNoSample };
 // One triangle of `polygon`, given as vertex references (Frame.h) with their window
 // vertices, in either winding, `area` its doubleSignedArea and `boundary` its polygon-edge
 // mask (RasterTriangle.h). Kept counter-clockwise (corners 1 and 2 swapped if need be)
-// unless it has zero area or covers no pixel center.
+// unless it has zero area or covers no pixel center; `coversSample`: the set-up's batch
+// found that it covers one (BatchVerdicts::coversSample), not to be tested again.
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon);
+                       std::int32_t polygon, bool coversSample = false);
 
 // A bin entry is 32 bits with the top one telling a fragment from a triangle (kFragmentBit),
 // and a vertex reference has its top bit for a clipped vertex (kClippedVertexBit): a chunk

@@ -106,8 +106,12 @@ class PolygonSetup {
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
     const std::uint32_t used = (1u << lanes) - 1;
-    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1)
-      run(lanePolygon[std::countr_zero(rest)]);
+    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
+      const int lane = std::countr_zero(rest);
+      coversSample_ = (verdicts.coversSample >> lane) & 1u;
+      run(lanePolygon[lane]);
+    }
+    coversSample_ = false;
   }
 
   void run(std::size_t polygon) {
@@ -164,7 +168,7 @@ class PolygonSetup {
     }
     emit(area < 0, [&](Tally& tally) {
       keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
-           tally);
+           tally, coversSample_);
     });
   }
 
@@ -283,14 +287,16 @@ class PolygonSetup {
     keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), boundary, tally);
   }
 
-  // Hands a triangle to binning. Without back faces no silhouette fold can form: no edge
-  // is marked as a polygon boundary, so the unsnapped depth plane holds everywhere
-  // (RasterTriangle.cpp, TriangleDepth).
+  // Hands a triangle to binning (`coversSample`: the batch found it covers a sample of its
+  // box). Without back faces no silhouette fold can form: no edge is marked as a polygon
+  // boundary, so the unsnapped depth plane holds everywhere (RasterTriangle.cpp,
+  // TriangleDepth).
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
             const WindowVertex& b, const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-            Tally& tally) {
+            Tally& tally, bool coversSample = false) {
     const EdgeMask edges = kSkipBackFaces ? EdgeMask{0} : boundary;
-    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_)) {
+    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_,
+                        coversSample)) {
       case BinOutcome::ZeroArea:
         ++tally.zeroArea;
         break;
@@ -319,6 +325,7 @@ class PolygonSetup {
   const WindowVertex* meshVertices_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
+  bool coversSample_ = false;  // the polygon run() sets up is a batch lane known to cover one
 };
 
 // The mesh a global polygon id belongs to.

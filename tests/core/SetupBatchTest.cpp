@@ -110,7 +110,7 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
     SCOPED_TRACE(target.name);
     use(target);
     for (bool skipBackFaces : {false, true}) {
-      std::size_t decided = 0, mismatches = 0;
+      std::size_t decided = 0, mismatches = 0, covering = 0;
       for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
         TriangleBatch batch{};
         for (int lane = 0; lane < kBatchSize; ++lane) {
@@ -131,21 +131,27 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
           const WindowVertex v[3] = {corners[at], corners[at + 1], corners[at + 2]};
           const std::int32_t exact = exactVerdict(v[0], v[1], v[2], viewport, skipBackFaces);
           // A tested lane may leave a triangle it need not decide to the per-triangle path.
-          const bool right =
+          bool right =
               batch.tested[lane] && batchDecides(v, viewport)
                   ? verdict == exact
                   : verdict == kUndecided || (batch.tested[lane] && verdict == exact);
           decided += verdict != kUndecided;
+          // A lane said to cover a sample is one the per-triangle path keeps.
+          if (((verdicts.coversSample >> lane) & 1) && (verdict != kUndecided || exact != kUndecided))
+            right = false;
+          covering += (verdicts.coversSample >> lane) & 1;
           if (!right && ++mismatches <= 5) {
             ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << ") (" << v[1].x << ","
                           << v[1].y << ") (" << v[2].x << "," << v[2].y << "), tested "
                           << batch.tested[lane] << ", skip back faces " << skipBackFaces
-                          << ": batch " << verdict << ", exact " << exact;
+                          << ": batch " << verdict << ", exact " << exact << ", covers a sample "
+                          << ((verdicts.coversSample >> lane) & 1);
           }
         }
       }
       EXPECT_EQ(mismatches, 0u);
       EXPECT_GT(decided, triangles / 3) << "the batch should drop most of these";
+      EXPECT_GT(covering, triangles / 100) << "the batch should find some covering a sample";
     }
   }
 }
