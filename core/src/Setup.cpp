@@ -353,10 +353,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     setup.settle(classifyBatch(batch, context.grid.viewport(), kSkipBackFaces), lanePolygon, lanes);
     lanes = 0;
   };
-  for (; position < chunk.end; ++position) {
-    const std::size_t id = context.order.polygonAt(position);
-    if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
-    const std::size_t polygon = id - mesh.firstPolygon;
+  const auto visit = [&](std::size_t polygon) {
     if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
       ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
     } else if (!batched) {
@@ -365,6 +362,19 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       setup.load(polygon, batch, lanes);
       lanePolygon[lanes] = polygon;
       if (++lanes == kBatchSize) settleBatch();
+    }
+  };
+  if (context.order.ids.empty()) {
+    // Draw positions are polygon ids: the run ends where the chunk or the mesh does (a
+    // third of the loop's instructions were these tests, per polygon, at 2M triangles).
+    const std::size_t end = std::min(chunk.end, mesh.endPolygon());
+    for (; position < end; ++position)
+      visit(position - mesh.firstPolygon);
+  } else {
+    for (; position < chunk.end; ++position) {
+      const std::size_t id = context.order.ids[position];
+      if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
+      visit(id - mesh.firstPolygon);
     }
   }
   if (lanes > 0) {

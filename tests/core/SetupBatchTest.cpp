@@ -131,13 +131,13 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
           const WindowVertex v[3] = {corners[at], corners[at + 1], corners[at + 2]};
           const std::int32_t exact = exactVerdict(v[0], v[1], v[2], viewport, skipBackFaces);
           // A tested lane may leave a triangle it need not decide to the per-triangle path.
-          bool right =
-              batch.tested[lane] && batchDecides(v, viewport)
-                  ? verdict == exact
-                  : verdict == kUndecided || (batch.tested[lane] && verdict == exact);
+          bool right = batch.tested[lane] && batchDecides(v, viewport)
+                           ? verdict == exact
+                           : verdict == kUndecided || (batch.tested[lane] && verdict == exact);
           decided += verdict != kUndecided;
           // A lane said to cover a sample is one the per-triangle path keeps.
-          if (((verdicts.coversSample >> lane) & 1) && (verdict != kUndecided || exact != kUndecided))
+          if (((verdicts.coversSample >> lane) & 1) &&
+              (verdict != kUndecided || exact != kUndecided))
             right = false;
           covering += (verdicts.coversSample >> lane) & 1;
           if (!right && ++mismatches <= 5) {
