@@ -245,7 +245,18 @@ struct BoxRaster {
   // surfaces 1e-6 apart.
   template <DepthMode kMode>
   [[gnu::always_inline]] void paint(std::int32_t polygonId, const Planes& planes,
-                                    PaintCounts& counts) {
+                                    PaintCounts& counts, EdgeMask boundary) {
+    // No polygon-boundary edge (every triangle of a mesh whose back faces are skipped): the
+    // stepped key is every sample's (refine() would return it), so no refining per pixel.
+    if (boundary == 0) {
+      paintRows<kMode, false>(polygonId, planes, counts);
+    } else {
+      paintRows<kMode, true>(polygonId, planes, counts);
+    }
+  }
+  template <DepthMode kMode, bool kRefine>
+  [[gnu::always_inline]] void paintRows(std::int32_t polygonId, const Planes& planes,
+                                        PaintCounts& counts) {
     const double keyPerPixel = depth.perPixelX();
     for (int y = box.y0; y <= box.y1; ++y) {
       std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
@@ -254,9 +265,12 @@ struct BoxRaster {
       const std::size_t row = static_cast<std::size_t>(y) * planes.width;
       for (int x = box.x0; x <= box.x1; ++x) {
         if ((w0 | w1 | w2) >= 0) {
-          const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
-          const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
-          const double refined = depth.refine(key, columnX, rowY, snapped);
+          double refined = key;
+          if constexpr (kRefine) {
+            const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
+            const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
+            refined = depth.refine(key, columnX, rowY, snapped);
+          }
           writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
         }
         w0 += e0.stepX;
@@ -382,7 +396,7 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     return;
   }
   BoxRaster raster(a, b, c, area, boundary, box);
-  raster.paint<kMode>(polygonId, planes, counts);
+  raster.paint<kMode>(polygonId, planes, counts, boundary);
 }
 
 void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,
@@ -404,7 +418,7 @@ void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b
   }
   coarse.raise(box, floatBelow(lowest),
                [&](const PixelBounds& pixels) { return raster.coverage(pixels); });
-  raster.paint<DepthMode::Test>(polygonId, planes, counts);
+  raster.paint<DepthMode::Test>(polygonId, planes, counts, boundary);
 }
 
 CoarseDepth::CoarseDepth(const PixelBounds& tile) : tile_(tile) {
