@@ -40,7 +40,7 @@ inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& 
 
 // The pixels whose centers lie in the triangle's bounding box, clipped to `clip`. Inline:
 // set-up and raster call it once per triangle (per tile), and out of line its call and
-// std::min's initializer lists cost ~56 instructions a call (callgrind, 500k triangles).
+// std::min's initializer lists cost ~60 instructions a call (callgrind, 500k triangles).
 inline PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
                                         const WindowVertex& c, const PixelBounds& clip) {
   // Smallest px with px·256 + 128 ≥ min, largest with px·256 + 128 ≤ max: ceil and floor of
