@@ -235,11 +235,11 @@ struct RejectTally {
 };
 
 // losesEverywhere against the keys the triangle does write: random small triangles (residues,
-// steep and flat depth planes), painted first over the background with polygon-boundary
-// edges `boundary` (kAllEdges, or random ones from `masks`) to learn their keys; then with
-// every box pixel nearer than those keys it may reject (and should, mostly), and with one
-// covered pixel a float farther than the triangle's key there it must not (the triangle would
-// win that pixel).
+// steep and flat depth planes), painted first over the background (every edge on the
+// polygon's boundary, or random boundary edges) to learn their keys; then with every box
+// pixel nearer than those keys it may reject (and should, mostly), and with one covered pixel
+// a float farther than the triangle's key there it must not (the triangle would win that
+// pixel).
 RejectTally rejectRandomTriangles(unsigned seed, bool randomBoundaries) {
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> corner(2 * 256, 10 * 256), residue(-127, 127), mask(0, 6);
