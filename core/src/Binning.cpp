@@ -1,7 +1,10 @@
 #include "Binning.h"
 
 #include <optional>
+#include <string>
 #include <utility>
+
+#include "facet/Error.h"
 
 namespace facet::detail {
 namespace {
@@ -31,7 +34,7 @@ BinOutcome binFragment(Chunk& chunk, const TileGrid& grid, const WindowVertex& a
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon) {
+                       std::int32_t polygon, bool coversSample) {
   if (area == 0) return BinOutcome::ZeroArea;
   const WindowVertex* second = &b;
   const WindowVertex* third = &c;
@@ -45,7 +48,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
     return binFragment(chunk, grid, a, *second, *third, area < 0 ? -area : area, boundary,
                        bounds.x0, bounds.y0, polygon);
   }
-  if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
+  if (!coversSample && (bounds.empty() || !coversAnySample(a, *second, *third, bounds))) {
     return BinOutcome::CoversNoSample;
   }
   chunk.counts.boxSamples += bounds.area();
@@ -54,6 +57,20 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
   chunk.triangles.push_back({{r0, r1, r2}, polygon});
   chunk.boundaryEdges.push_back(boundary);
   return BinOutcome::Binned;
+}
+
+void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t clippedVertices) {
+  static_assert(kMaxBinnedPerChunk == kFragmentBit && kMaxBinnedPerChunk == kClippedVertexBit);
+  const auto check = [](std::size_t count, const char* what) {
+    if (count >= kMaxBinnedPerChunk) {
+      throw Error("a set-up chunk holds " + std::to_string(count) + " " + what +
+                  "; a 32-bit bin entry indexes at most " + std::to_string(kMaxBinnedPerChunk - 1) +
+                  " (draw fewer or smaller polygons)");
+    }
+  };
+  check(triangles, "binned triangles");
+  check(fragments, "binned fragments");
+  check(clippedVertices, "clipped vertices");
 }
 
 void clearBins(Chunk& chunk, const TileGrid& grid) {

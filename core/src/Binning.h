@@ -3,6 +3,7 @@
 // Phase 2, second half: binning. A triangle in window space joins the bins of the tiles its
 // pixel centers may fall in; the raster phase paints each tile from its bins.
 
+#include <cstddef>
 #include <cstdint>
 
 #include "Frame.h"
@@ -15,11 +16,22 @@ enum class BinOutcome { Binned, ZeroArea, CoversNoSample };
 // One triangle of `polygon`, given as vertex references (Frame.h) with their window
 // vertices, in either winding, `area` its doubleSignedArea and `boundary` its polygon-edge
 // mask (RasterTriangle.h). Kept counter-clockwise (corners 1 and 2 swapped if need be)
-// unless it has zero area or covers no pixel center.
+// unless it has zero area or covers no pixel center; `coversSample`: the set-up's batch
+// found that it covers one (BatchVerdicts::coversSample), not to be tested again.
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon);
+                       std::int32_t polygon, bool coversSample = false);
+
+// A bin entry is 32 bits with the top one telling a fragment from a triangle (kFragmentBit),
+// and a vertex reference has its top bit for a clipped vertex (kClippedVertexBit): a chunk
+// can index fewer than 2^31 triangles, fragments and clipped vertices each. Its 2^20
+// polygons stay far below that unless they are huge polygons, each a fan of triangles.
+inline constexpr std::size_t kMaxBinnedPerChunk = std::size_t{1} << 31;
+
+// Throws facet::Error naming the count when a chunk holds kMaxBinnedPerChunk or more of any
+// of the three (its indices have wrapped: the raster must not read them).
+void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t clippedVertices);
 
 // Empties a chunk's triangles and bins for a new frame, with one bin per tile.
 void clearBins(Chunk& chunk, const TileGrid& grid);

@@ -13,14 +13,6 @@ namespace {
 
 constexpr std::int64_t kHalfPixel = kSubpixelScale / 2;
 
-// floor(value / 256) and ceil(value / 256) for any sign (C++20 >> is arithmetic).
-std::int64_t floorToPixel(std::int64_t value) {
-  return value >> kSubpixelBits;
-}
-std::int64_t ceilToPixel(std::int64_t value) {
-  return -((-value) >> kSubpixelBits);
-}
-
 // One edge's function, stepped exactly in integers.
 struct Edge {
   std::int64_t stepX;  // change per pixel to the right
@@ -253,7 +245,18 @@ struct BoxRaster {
   // surfaces 1e-6 apart.
   template <DepthMode kMode>
   [[gnu::always_inline]] void paint(std::int32_t polygonId, const Planes& planes,
-                                    PaintCounts& counts) {
+                                    PaintCounts& counts, EdgeMask boundary) {
+    // No polygon-boundary edge (every triangle of a mesh whose back faces are skipped): the
+    // stepped key is every sample's (refine() would return it), so no refining per pixel.
+    if (boundary == 0) {
+      paintRows<kMode, false>(polygonId, planes, counts);
+    } else {
+      paintRows<kMode, true>(polygonId, planes, counts);
+    }
+  }
+  template <DepthMode kMode, bool kRefine>
+  [[gnu::always_inline]] void paintRows(std::int32_t polygonId, const Planes& planes,
+                                        PaintCounts& counts) {
     const double keyPerPixel = depth.perPixelX();
     for (int y = box.y0; y <= box.y1; ++y) {
       std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
@@ -262,9 +265,12 @@ struct BoxRaster {
       const std::size_t row = static_cast<std::size_t>(y) * planes.width;
       for (int x = box.x0; x <= box.x1; ++x) {
         if ((w0 | w1 | w2) >= 0) {
-          const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
-          const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
-          const double refined = depth.refine(key, columnX, rowY, snapped);
+          double refined = key;
+          if constexpr (kRefine) {
+            const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
+            const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
+            refined = depth.refine(key, columnX, rowY, snapped);
+          }
           writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
         }
         w0 += e0.stepX;
@@ -355,21 +361,9 @@ std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& 
   return toDepthKey(TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped));
 }
 
-PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
-                                 const WindowVertex& c, const PixelBounds& clip) {
-  const std::int64_t minX = std::min({a.x, b.x, c.x}), maxX = std::max({a.x, b.x, c.x});
-  const std::int64_t minY = std::min({a.y, b.y, c.y}), maxY = std::max({a.y, b.y, c.y});
-  // Smallest px with px·256 + 128 ≥ minX, largest with px·256 + 128 ≤ maxX.
-  return {static_cast<int>(std::max<std::int64_t>(ceilToPixel(minX - kHalfPixel), clip.x0)),
-          static_cast<int>(std::max<std::int64_t>(ceilToPixel(minY - kHalfPixel), clip.y0)),
-          static_cast<int>(std::min<std::int64_t>(floorToPixel(maxX - kHalfPixel), clip.x1)),
-          static_cast<int>(std::min<std::int64_t>(floorToPixel(maxY - kHalfPixel), clip.y1))};
-}
-
-bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                     const PixelBounds& bounds) {
+bool coversAnyOfFewSamples(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                           const PixelBounds& bounds) {
   const int width = bounds.x1 - bounds.x0 + 1, height = bounds.y1 - bounds.y0 + 1;
-  if (width * height > 4) return true;
   const std::int64_t sampleX = std::int64_t{bounds.x0} * kSubpixelScale + kHalfPixel;
   const std::int64_t sampleY = std::int64_t{bounds.y0} * kSubpixelScale + kHalfPixel;
   const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
@@ -402,7 +396,7 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     return;
   }
   BoxRaster raster(a, b, c, area, boundary, box);
-  raster.paint<kMode>(polygonId, planes, counts);
+  raster.paint<kMode>(polygonId, planes, counts, boundary);
 }
 
 void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,
@@ -424,7 +418,7 @@ void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b
   }
   coarse.raise(box, floatBelow(lowest),
                [&](const PixelBounds& pixels) { return raster.coverage(pixels); });
-  raster.paint<DepthMode::Test>(polygonId, planes, counts);
+  raster.paint<DepthMode::Test>(polygonId, planes, counts, boundary);
 }
 
 CoarseDepth::CoarseDepth(const PixelBounds& tile) : tile_(tile) {

@@ -12,6 +12,7 @@
 //   two triangles sharing an edge traverse it in opposite directions, so exactly one of
 //   them owns the samples on it (D3D10 / OpenGL rasterization rules, llvmpipe's approach).
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include "FrameTransform.h"
 #include "TileGrid.h"
 #include "facet/Color.h"
+#include "facet/Conventions.h"
 #include "facet/Framebuffer.h"
 
 namespace facet::detail {
@@ -36,15 +38,38 @@ inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& 
          static_cast<std::int64_t>(c.x - a.x) * (b.y - a.y);
 }
 
-// The pixels whose centers lie in the triangle's bounding box, clipped to `clip`.
-PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
-                                 const WindowVertex& c, const PixelBounds& clip);
+// The pixels whose centers lie in the triangle's bounding box, clipped to `clip`. Inline:
+// set-up and raster call it once per triangle (per tile), and out of line its call and
+// std::min's initializer lists cost ~60 instructions a call (callgrind, 500k triangles).
+inline PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
+                                        const WindowVertex& c, const PixelBounds& clip) {
+  // Smallest px with px·256 + 128 ≥ min, largest with px·256 + 128 ≤ max: ceil and floor of
+  // (v − 128)/256 by arithmetic shifts (C++20 >> is arithmetic), in 64 bits (no overflow).
+  constexpr std::int64_t kHalf = kSubpixelScale / 2;
+  const auto ceilPixel = [](std::int64_t v) { return -((kHalf - v) >> kSubpixelBits); };
+  const auto floorPixel = [](std::int64_t v) { return (v - kHalf) >> kSubpixelBits; };
+  const std::int64_t minX = std::min(std::min(a.x, b.x), c.x);
+  const std::int64_t maxX = std::max(std::max(a.x, b.x), c.x);
+  const std::int64_t minY = std::min(std::min(a.y, b.y), c.y);
+  const std::int64_t maxY = std::max(std::max(a.y, b.y), c.y);
+  return {static_cast<int>(std::max<std::int64_t>(ceilPixel(minX), clip.x0)),
+          static_cast<int>(std::max<std::int64_t>(ceilPixel(minY), clip.y0)),
+          static_cast<int>(std::min<std::int64_t>(floorPixel(maxX), clip.x1)),
+          static_cast<int>(std::min<std::int64_t>(floorPixel(maxY), clip.y1))};
+}
 
-// False only when the triangle (counter-clockwise) certainly covers no sample in `bounds`:
-// decided exactly for bounds of at most 4 samples (most triangles of a dense mesh), assumed
-// true for larger ones. Lets set-up drop sub-pixel triangles before lighting and binning.
-bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                     const PixelBounds& bounds);
+// coversAnySample for bounds of 2 to 4 samples.
+bool coversAnyOfFewSamples(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                           const PixelBounds& bounds);
+
+// False only when the triangle (counter-clockwise) certainly covers no sample in `bounds`
+// (not empty): decided exactly for bounds of at most 4 samples (most triangles of a dense
+// mesh), assumed true for larger ones. Lets set-up drop sub-pixel triangles before lighting
+// and binning.
+inline bool coversAnySample(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                            const PixelBounds& bounds) {
+  return bounds.area() > 4 || coversAnyOfFewSamples(a, b, c, bounds);
+}
 
 // The one sample (x, y) a counter-clockwise triangle's box holds: its depth key if the
 // triangle covers it, as paintTriangle would write it; nothing if it does not. Set-up decides

@@ -106,8 +106,12 @@ class PolygonSetup {
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
     const std::uint32_t used = (1u << lanes) - 1;
-    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1)
-      run(lanePolygon[std::countr_zero(rest)]);
+    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
+      const int lane = std::countr_zero(rest);
+      coversSample_ = (verdicts.coversSample >> lane) & 1u;
+      run(lanePolygon[lane]);
+    }
+    coversSample_ = false;
   }
 
   void run(std::size_t polygon) {
@@ -164,7 +168,7 @@ class PolygonSetup {
     }
     emit(area < 0, [&](Tally& tally) {
       keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
-           tally);
+           tally, coversSample_);
     });
   }
 
@@ -283,14 +287,16 @@ class PolygonSetup {
     keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), boundary, tally);
   }
 
-  // Hands a triangle to binning. Without back faces no silhouette fold can form: no edge
-  // is marked as a polygon boundary, so the unsnapped depth plane holds everywhere
-  // (RasterTriangle.cpp, TriangleDepth).
+  // Hands a triangle to binning (`coversSample`: the batch found it covers a sample of its
+  // box). Without back faces no silhouette fold can form: no edge is marked as a polygon
+  // boundary, so the unsnapped depth plane holds everywhere (RasterTriangle.cpp,
+  // TriangleDepth).
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
             const WindowVertex& b, const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-            Tally& tally) {
+            Tally& tally, bool coversSample = false) {
     const EdgeMask edges = kSkipBackFaces ? EdgeMask{0} : boundary;
-    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_)) {
+    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_,
+                        coversSample)) {
       case BinOutcome::ZeroArea:
         ++tally.zeroArea;
         break;
@@ -319,6 +325,7 @@ class PolygonSetup {
   const WindowVertex* meshVertices_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
+  bool coversSample_ = false;  // the polygon run() sets up is a batch lane known to cover one
 };
 
 // The mesh a global polygon id belongs to.
@@ -346,10 +353,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     setup.settle(classifyBatch(batch, context.grid.viewport(), kSkipBackFaces), lanePolygon, lanes);
     lanes = 0;
   };
-  for (; position < chunk.end; ++position) {
-    const std::size_t id = context.order.polygonAt(position);
-    if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
-    const std::size_t polygon = id - mesh.firstPolygon;
+  const auto visit = [&](std::size_t polygon) {
     if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
       ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
     } else if (!batched) {
@@ -358,6 +362,19 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       setup.load(polygon, batch, lanes);
       lanePolygon[lanes] = polygon;
       if (++lanes == kBatchSize) settleBatch();
+    }
+  };
+  if (context.order.ids.empty()) {
+    // Draw positions are polygon ids: the run ends where the chunk or the mesh does (a
+    // third of the loop's instructions were these tests, per polygon, at 2M triangles).
+    const std::size_t end = std::min(chunk.end, mesh.endPolygon());
+    for (; position < end; ++position)
+      visit(position - mesh.firstPolygon);
+  } else {
+    for (; position < chunk.end; ++position) {
+      const std::size_t id = context.order.ids[position];
+      if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
+      visit(id - mesh.firstPolygon);
     }
   }
   if (lanes > 0) {
@@ -424,8 +441,12 @@ const char* setupRoutineName(bool skipBackFaces) {
 bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
                    SetupBuffers& buffers) {
   planChunks(context, threads, buffers);
-  return runner.run(Phase::Setup, buffers.chunks.size(),
-                    [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
+  const bool completed = runner.run(Phase::Setup, buffers.chunks.size(),
+                                    [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
+  // Here, on the caller's thread, before any tile reads a wrapped index.
+  for (const Chunk& chunk : buffers.chunks)
+    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.clippedVertices.size());
+  return completed;
 }
 
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {

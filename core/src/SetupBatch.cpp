@@ -129,6 +129,7 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Pixe
   verdicts.culled |= laneBits(d, culled) << lane;
   verdicts.zeroArea |= laneBits(d, zeroArea) << lane;  // never culled: area == 0, not < 0
   verdicts.coversNoSample |= laneBits(d, noSample) << lane;
+  verdicts.coversSample |= laneBits(d, hn::And(live, hn::And(sampled, covers))) << lane;
 }
 
 BatchVerdicts ClassifyBatch(const TriangleBatch& batch, const PixelBounds& viewport,

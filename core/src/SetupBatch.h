@@ -38,6 +38,9 @@ struct BatchVerdicts {
   std::uint32_t culled = 0;          // back-facing, and the mesh skips back faces
   std::uint32_t zeroArea = 0;        // degenerate
   std::uint32_t coversNoSample = 0;  // no pixel center inside (or in the viewport): outside
+  // Not a drop: lanes kept whose box of at most 2 × 2 pixel centers holds one they cover, so
+  // binning need not test their coverage again (coversAnySample, RasterTriangle.h).
+  std::uint32_t coversSample = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
 };

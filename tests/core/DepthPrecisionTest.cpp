@@ -3,6 +3,7 @@
 // first; a tiny near plane still draws; exact ties keep the polygon drawn first; the Depth
 // output keeps VTK's window-depth convention.
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -228,17 +229,23 @@ struct TilePlanes {
   detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide, shown.data()}; }
 };
 
-// losesEverywhere (RasterTriangle.h) against the keys the triangle does write: random small
-// triangles (residues, steep and flat depth planes), painted first over the background to
-// learn their keys; then with every box pixel nearer than those keys it may reject (and
-// should, mostly), and with one covered pixel a float farther than the triangle's key there
-// it must not (the triangle would win that pixel).
-TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
-  std::mt19937 random(7);
-  std::uniform_int_distribution<int> corner(2 * 256, 10 * 256), residue(-127, 127);
+// What a run of random triangles did under losesEverywhere (RasterTriangle.h).
+struct RejectTally {
+  std::size_t tested = 0, rejected = 0, wronglyRejected = 0;
+};
+
+// losesEverywhere against the keys the triangle does write: random small triangles (residues,
+// steep and flat depth planes), painted first over the background (every edge on the
+// polygon's boundary, or random boundary edges) to learn their keys; then with every box
+// pixel nearer than those keys it may reject (and should, mostly), and with one covered pixel
+// a float farther than the triangle's key there it must not (the triangle would win that
+// pixel).
+RejectTally rejectRandomTriangles(unsigned seed, bool randomBoundaries) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> corner(2 * 256, 10 * 256), residue(-127, 127), mask(0, 6);
   std::uniform_real_distribution<float> key(0.25f, 0.75f), steep(-0.01f, 0.01f);
   const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
-  std::size_t tested = 0, rejected = 0, wronglyRejected = 0;
+  RejectTally tally;
   for (int t = 0; t < 20000; ++t) {
     WindowVertex v[3];
     const float base = key(random);
@@ -248,6 +255,8 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
       c.residueY = static_cast<std::int8_t>(residue(random));
       c.depth = base + (t % 2 ? steep(random) : steep(random) * 1e-4f);
     }
+    const auto boundary =
+        randomBoundaries ? static_cast<detail::EdgeMask>(mask(random)) : detail::kAllEdges;
     const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
     if (area == 0) continue;
     if (area < 0) std::swap(v[1], v[2]);
@@ -255,10 +264,10 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
     if (box.area() < 2 || box.area() > 16) continue;
     TilePlanes written;  // the triangle's own keys
     detail::PaintCounts counts;
-    detail::paintTriangle<detail::DepthMode::Overwrite>(v[0], v[1], v[2], detail::kAllEdges, 0,
-                                                        tile, written.planes(), counts);
+    detail::paintTriangle<detail::DepthMode::Overwrite>(v[0], v[1], v[2], boundary, 0, tile,
+                                                        written.planes(), counts);
     if (counts.written == 0) continue;
-    ++tested;
+    ++tally.tested;
 
     TilePlanes nearer;
     for (std::size_t i = 0; i < nearer.depth.size(); ++i)
@@ -266,7 +275,7 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
     const bool tie = detail::losesEverywhere(v[0], v[1], v[2], box, nearer.planes());
     for (float& d : nearer.depth)
       d = d < 1.0f ? std::nextafter(d, 2.0f) + 1e-4f : d;
-    rejected += detail::losesEverywhere(v[0], v[1], v[2], box, nearer.planes()) || tie;
+    tally.rejected += detail::losesEverywhere(v[0], v[1], v[2], box, nearer.planes()) || tie;
 
     // Every pixel the triangle covers, one at a time: the bound is tightest where the
     // triangle's key is largest, which need not be the first pixel in row order.
@@ -275,17 +284,82 @@ TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
       if (written.ids[i] != 0) continue;
       oneFarther.depth[i] = std::nextafter(written.depth[i], -1.0f);
       if (detail::losesEverywhere(v[0], v[1], v[2], box, oneFarther.planes()) &&
-          ++wronglyRejected <= 5) {
+          ++tally.wronglyRejected <= 5) {
         ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << "," << v[0].depth << ") ("
                       << v[1].x << "," << v[1].y << "," << v[1].depth << ") (" << v[2].x << ","
-                      << v[2].y << "," << v[2].depth << ") rejected, but wins pixel " << i;
+                      << v[2].y << "," << v[2].depth << "), boundary edges " << int{boundary}
+                      << ", rejected, but wins pixel " << i;
       }
       oneFarther.depth[i] = nearer.depth[i];
     }
   }
-  EXPECT_EQ(wronglyRejected, 0u);
-  EXPECT_GT(tested, 5000u);
-  EXPECT_GT(rejected, tested / 2) << "a triangle well behind should mostly be rejected";
+  return tally;
+}
+
+TEST(DepthPrecision, TrianglesRejectedBeforeSetUpLoseEveryPixel) {
+  const RejectTally tally = rejectRandomTriangles(7, false);
+  EXPECT_EQ(tally.wronglyRejected, 0u);
+  EXPECT_GT(tally.tested, 5000u);
+  EXPECT_GT(tally.rejected, tally.tested / 2) << "a triangle well behind should mostly be rejected";
+}
+
+// The same with random polygon-boundary edges: beyond a diagonal the unsnapped plane goes on
+// past the snapped triangle's edge (TriangleDepth, RasterTriangle.cpp).
+TEST(DepthPrecision, TrianglesWithDiagonalsRejectedBeforeSetUpLoseEveryPixel) {
+  const RejectTally tally = rejectRandomTriangles(13, true);
+  EXPECT_EQ(tally.wronglyRejected, 0u);
+  EXPECT_GT(tally.tested, 5000u);
+  // The margin is wider than 1e-4 on the steepest planes: fewer are rejected than above.
+  EXPECT_GT(tally.rejected, tally.tested / 3) << "a triangle well behind should often be rejected";
+}
+
+// The reject's margin above the vertex keys, where it is needed: a triangle whose key at a
+// sample is nearer than every vertex's, with the tile's keys one float farther than that.
+// Vertex a lies on a pixel center where two top-left edges meet (the triangle covers that
+// sample); its unsnapped position is half a grid step to the right, across the diagonal a → b,
+// so the sample is outside the unsnapped triangle, where the unsnapped plane (keys falling to
+// the right, a and b the nearest) goes on to a key nearer than a's. Without the margin the
+// tile's keys there, no farther than the vertices', would reject it.
+TEST(DepthPrecision, RejectMarginKeepsAKeyNearerThanEveryVertex) {
+  constexpr int kCenter = 4 * 256 + 128, kSide = 3 * 256;
+  const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
+  const detail::EdgeMask diagonalAB = 0b011;  // edges b → c and c → a on the boundary
+  for (const float nearest : {0.25f, 0.5f, 0.75f}) {
+    for (const float drop : {1e-2f, 1e-3f, 1e-4f}) {
+      WindowVertex a, b, c;
+      a.x = kCenter, a.y = kCenter + kSide, a.residueX = 127, a.depth = nearest;
+      b.x = kCenter, b.y = kCenter, b.depth = nearest;
+      c.x = kCenter + kSide, c.y = kCenter + kSide, c.depth = nearest - drop;
+      SCOPED_TRACE("vertex keys " + std::to_string(nearest) + ", " + std::to_string(drop) +
+                   " lower at c");
+      const PixelBounds box = detail::samplesInBoundingBox(a, b, c, tile);
+      ASSERT_EQ(box.area(), 16u);
+      TilePlanes written;
+      detail::PaintCounts counts;
+      detail::paintTriangle<detail::DepthMode::Overwrite>(a, b, c, diagonalAB, 0, tile,
+                                                          written.planes(), counts);
+      const std::size_t atA = 7 * TilePlanes::kSide + 4;  // pixel (4, 7), a's sample
+      ASSERT_EQ(written.ids[atA], 0);
+      ASSERT_GT(written.depth[atA], nearest) << "the premise: a key nearer than every vertex's";
+
+      TilePlanes tied;  // every pixel one float farther than the triangle's key at a
+      tied.shown.assign(2, 0);  // polygons 0 and 1
+      const float farther = std::nextafter(written.depth[atA], -1.0f);
+      std::fill(tied.depth.begin(), tied.depth.end(), farther);
+      EXPECT_FALSE(detail::losesEverywhere(a, b, c, box, tied.planes()))
+          << "rejected, but wins pixel (4, 7) with key " << written.depth[atA] << " over "
+          << farther;
+      TilePlanes unrejected = tied;
+      detail::PaintCounts tiedCounts, unrejectedCounts;
+      detail::paintTriangle<detail::DepthMode::Test, true>(a, b, c, diagonalAB, 1, tile,
+                                                           tied.planes(), tiedCounts);
+      detail::paintTriangle<detail::DepthMode::Test, false>(a, b, c, diagonalAB, 1, tile,
+                                                            unrejected.planes(), unrejectedCounts);
+      EXPECT_EQ(tied.ids[atA], 1);
+      EXPECT_EQ(tiedCounts.written, unrejectedCounts.written);
+      EXPECT_TRUE(tied.depth == unrejected.depth);
+    }
+  }
 }
 
 // The reject end to end: a random stream of small and mid-sized triangles (steep and flat

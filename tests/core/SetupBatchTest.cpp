@@ -11,8 +11,10 @@
 
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "Binning.h"
 #include "RasterTriangle.h"
 #include "SetupBatch.h"
+#include "facet/Error.h"
 
 namespace facet::testing {
 namespace {
@@ -108,7 +110,7 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
     SCOPED_TRACE(target.name);
     use(target);
     for (bool skipBackFaces : {false, true}) {
-      std::size_t decided = 0, mismatches = 0;
+      std::size_t decided = 0, mismatches = 0, covering = 0;
       for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
         TriangleBatch batch{};
         for (int lane = 0; lane < kBatchSize; ++lane) {
@@ -129,21 +131,27 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
           const WindowVertex v[3] = {corners[at], corners[at + 1], corners[at + 2]};
           const std::int32_t exact = exactVerdict(v[0], v[1], v[2], viewport, skipBackFaces);
           // A tested lane may leave a triangle it need not decide to the per-triangle path.
-          const bool right =
-              batch.tested[lane] && batchDecides(v, viewport)
-                  ? verdict == exact
-                  : verdict == kUndecided || (batch.tested[lane] && verdict == exact);
+          bool right = batch.tested[lane] && batchDecides(v, viewport)
+                           ? verdict == exact
+                           : verdict == kUndecided || (batch.tested[lane] && verdict == exact);
           decided += verdict != kUndecided;
+          // A lane said to cover a sample is one the per-triangle path keeps.
+          if (((verdicts.coversSample >> lane) & 1) &&
+              (verdict != kUndecided || exact != kUndecided))
+            right = false;
+          covering += (verdicts.coversSample >> lane) & 1;
           if (!right && ++mismatches <= 5) {
             ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << ") (" << v[1].x << ","
                           << v[1].y << ") (" << v[2].x << "," << v[2].y << "), tested "
                           << batch.tested[lane] << ", skip back faces " << skipBackFaces
-                          << ": batch " << verdict << ", exact " << exact;
+                          << ": batch " << verdict << ", exact " << exact << ", covers a sample "
+                          << ((verdicts.coversSample >> lane) & 1);
           }
         }
       }
       EXPECT_EQ(mismatches, 0u);
       EXPECT_GT(decided, triangles / 3) << "the batch should drop most of these";
+      EXPECT_GT(covering, triangles / 100) << "the batch should find some covering a sample";
     }
   }
 }
@@ -248,6 +256,24 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
                      optionsWith(Visibility::ZBuffer, threads)});
   }
   expectSameRenders(cases, targets());
+}
+
+// A bin entry's 31 bits of index (Binning.h): at the limit the set-up throws facet::Error
+// naming the count rather than bin an index that wrapped into the fragment bit.
+TEST(Binning, ChunksBeyondTheBinIndexThrowNamingTheCount) {
+  const std::size_t limit = detail::kMaxBinnedPerChunk;
+  EXPECT_NO_THROW(detail::requireIndexable(limit - 1, limit - 1, limit - 1));
+  for (int which = 0; which < 3; ++which) {
+    const std::size_t counts[3] = {which == 0 ? limit : 0, which == 1 ? limit : 0,
+                                   which == 2 ? limit : 0};
+    try {
+      detail::requireIndexable(counts[0], counts[1], counts[2]);
+      ADD_FAILURE() << "no error for " << limit << " of kind " << which;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(std::to_string(limit)), std::string::npos)
+          << error.what();
+    }
+  }
 }
 
 }  // namespace
