@@ -17,10 +17,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <numbers>
 #include <string>
 #include <vector>
 
+#include "TurningView.h"
 #include "facet/QualityRenderer.h"
 #include "support/TestMeshes.h"
 
@@ -37,13 +37,6 @@ double cpuSeconds() {
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
-}
-
-void turn(Camera& camera, double degrees) {
-  const double a = degrees * std::numbers::pi / 180.0;
-  const glm::dvec3 o = camera.position - camera.focalPoint;
-  camera.position = camera.focalPoint + glm::dvec3(o.x * std::cos(a) + o.z * std::sin(a), o.y,
-                                                   -o.x * std::sin(a) + o.z * std::cos(a));
 }
 
 void measure(int segments, int frames, int round) {
@@ -80,7 +73,7 @@ void measure(int segments, int frames, int round) {
 
   std::vector<double> offSeconds, onSeconds, estimateSeconds;
   for (int i = 0; i < frames; ++i) {
-    turn(camera, 0.5);
+    bench::turnView(camera, scene, 0.5);  // the light stays at the eye
     start = cpuSeconds();
     plain.render(scene, {}, camera, plainImage, off);
     offSeconds.push_back(cpuSeconds() - start);

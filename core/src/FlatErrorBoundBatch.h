@@ -61,7 +61,7 @@ std::optional<BatchMaterial> batchMaterial(const PreparedMaterial& material);
 // Polygons in lanes (the fields of PolygonShape that the batch reads), and their bounds.
 struct BoundBatch {
   alignas(64) double center[3][kBoundBatchSize];
-  alignas(64) double normal[3][kBoundBatchSize];  // unit, not zero
+  alignas(64) double normal[3][kBoundBatchSize];  // unit; zero gives a NaN bound
   alignas(64) double radius[kBoundBatchSize];
   alignas(64) double sinNormalSpread[kBoundBatchSize];  // ≥ 1: 90° or more
   alignas(64) double surface[3][kBoundBatchSize];       // Cd, capped at kMaxRadiance

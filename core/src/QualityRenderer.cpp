@@ -169,6 +169,7 @@ PolygonShape polygonShape(const MeshView& mesh, const Corners& corners) {
   return shape;
 }
 
+// A bound kept as a float: rounded up, so it stays a bound.
 float roundedUp(double value) {
   const float f = static_cast<float>(value);
   return f < value ? std::nextafter(f, INFINITY) : f;
@@ -704,7 +705,7 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
     for (std::size_t id = begin; id < end; ++id) {
       if (!shown_[id]) continue;
       const auto [m, polygon] = frame.locate(id);
-      if (bounds) polygonBounds_[id] = static_cast<float>(frame.boundOf(m, polygon));
+      if (bounds) polygonBounds_[id] = roundedUp(frame.boundOf(m, polygon));
       if (corners && frame.gouraud(m)) frame.lightCorners(m, polygon, cornerColors_, cornerBright_);
       if (!frame.reshades()) continue;
       reshade_[id] = frame.reshadesPolygon(m, bounds ? polygonBounds_[id] : 0.0f);
@@ -748,7 +749,7 @@ void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, st
           addColors(shape, view, polygons.size(polygon),
                     [&](std::size_t k) { return polygons.pointId(polygon, k); });
         }
-        return static_cast<float>(frame.boundOf(m, polygon, shape));
+        return roundedUp(frame.boundOf(m, polygon, shape));
       };
       if (!batched) {
         for (std::size_t i = 0; i < count; ++i)
@@ -776,7 +777,7 @@ void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, st
           const std::size_t polygon = visible[i + lane];
           const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
           polygonBounds_[offset + polygon] =
-              std::isnan(bound) ? boundOne(polygon) : static_cast<float>(bound);
+              std::isnan(bound) ? boundOne(polygon) : roundedUp(bound);
         }
       }
     });

@@ -118,9 +118,6 @@ std::size_t cornerOf(const Mesh& mesh, std::size_t polygon, std::int64_t point) 
   return 0;
 }
 
-// The feature angle's definition, edge by edge: across a smooth edge both polygons share the
-// normal at both ends; across a sharp edge they do not, at every end where at least two
-// sharp edges meet (one sharp edge alone cannot cut the disk of polygons around a point).
 // In blocks on the renderer's threads: the same normals, in the same order, for 1, 2 and 8
 // threads as on the caller's alone — on fandisk (creases: points with several normals, one
 // block) and on a sphere of many blocks of points, some of its polygons flipped and one
@@ -148,6 +145,9 @@ TEST(VertexNormals, SameForAnyThreadCount) {
   }
 }
 
+// The feature angle's definition, edge by edge: across a smooth edge both polygons share the
+// normal at both ends; across a sharp edge they do not, at every end where at least two
+// sharp edges meet (one sharp edge alone cannot cut the disk of polygons around a point).
 TEST(VertexNormals, FandiskKeepsItsCreases) {
   const Mesh fandisk = readObj(sharedMeshPath("fandisk.obj"));
   const VertexNormals normals = computeVertexNormals(fandisk.view());
