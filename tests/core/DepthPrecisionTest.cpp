@@ -342,7 +342,7 @@ TEST(DepthPrecision, RejectMarginKeepsAKeyNearerThanEveryVertex) {
       ASSERT_EQ(written.ids[atA], 0);
       ASSERT_GT(written.depth[atA], nearest) << "the premise: a key nearer than every vertex's";
 
-      TilePlanes tied;  // every pixel one float farther than the triangle's key at a
+      TilePlanes tied;          // every pixel one float farther than the triangle's key at a
       tied.shown.assign(2, 0);  // polygons 0 and 1
       const float farther = std::nextafter(written.depth[atA], -1.0f);
       std::fill(tied.depth.begin(), tied.depth.end(), farther);
