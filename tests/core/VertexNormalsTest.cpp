@@ -142,6 +142,19 @@ TEST(VertexNormals, SameForAnyThreadCount) {
       EXPECT_EQ(spread.inconsistentEdges, alone.inconsistentEdges);
       EXPECT_EQ(spread.degeneratePolygons, alone.degeneratePolygons);
     }
+    // What the blocks join must be the definition, not only the same for every thread
+    // count: each corner's normal belongs to the corner's point, the normals come point by
+    // point, and each is unit (or zero, for the degenerate polygon's corners alone).
+    ASSERT_EQ(alone.cornerNormal.size(), mesh.connectivity.size());
+    for (std::size_t c = 0; c < mesh.connectivity.size(); ++c) {
+      ASSERT_LT(alone.cornerNormal[c], alone.point.size()) << "corner " << c;
+      ASSERT_EQ(alone.point[alone.cornerNormal[c]], mesh.connectivity[c]) << "corner " << c;
+    }
+    EXPECT_TRUE(std::ranges::is_sorted(alone.point));
+    for (const glm::dvec3& n : alone.normals) {
+      const double length = glm::length(n);
+      EXPECT_TRUE(length == 0.0 || std::abs(length - 1.0) < 1e-12) << length;
+    }
   }
 }
 
