@@ -172,6 +172,9 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
   bounds[7] = 0.0f;
   bounds[8] = INFINITY;        // no bound: 255
   bounds[9] = 1.0f / 1024.0f;  // rounds up to 1/128
+  bounds[10] = NAN;            // no bound either: 255
+  bounds[11] = -3.0f;          // below 0 (none is made so): 0
+  bounds[12] = -0.0f;
   std::vector<Rgba8> colors(width * height);
   std::vector<std::int32_t> ids(width * height);
   for (int i = 0; i < width * height; ++i) {
@@ -181,7 +184,9 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
   }
   // The definition, in 1/128 units.
   const auto fixedBound = [&](std::int32_t id) {
-    return static_cast<std::uint32_t>(std::ceil(std::min(bounds[id], 255.0f) * 128.0f));
+    const float b = bounds[id];
+    const float capped = !(b < 255.0f) ? 255.0f : std::max(b, 0.0f);  // NaN as 255
+    return static_cast<std::uint32_t>(std::ceil(capped * 128.0f));
   };
   const auto expected = [&](int x, int y) -> std::uint32_t {
     if (ids[y * width + x] < 0) return 0;
