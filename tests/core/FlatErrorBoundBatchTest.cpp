@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/EveryTargetTest.h"
 #include "../support/ReferenceScenes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
@@ -25,10 +26,7 @@ namespace {
 
 using detail::kBoundBatchSize;
 
-class BoundBatches : public ::testing::Test {
- protected:
-  void TearDown() override { detail::useSimdTarget(0); }
-};
+class BoundBatches : public EveryTargetTest {};
 
 struct Case {
   std::string name;

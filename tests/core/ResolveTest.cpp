@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/EveryTargetTest.h"
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "Resolve.h"
@@ -55,7 +56,9 @@ Planes randomPlanes(int width, int height, int polygons, unsigned seed) {
   return p;
 }
 
-TEST(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
+class Resolve : public EveryTargetTest {};
+
+TEST_F(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
   Camera perspective;
   perspective.nearClip = 0.01, perspective.farClip = 1e4;
   Camera parallel = perspective;
@@ -103,7 +106,6 @@ TEST(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
       }
     }
   }
-  detail::useSimdTarget(0);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/EveryTargetTest.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "Binning.h"
@@ -26,10 +27,10 @@ using detail::TriangleBatch;
 using detail::WindowVertex;
 
 // Leaves batches on and every instruction set allowed, whatever a test did.
-class SetupBatches : public ::testing::Test {
+class SetupBatches : public EveryTargetTest {
  protected:
   void TearDown() override {
-    detail::useSimdTarget(0);
+    EveryTargetTest::TearDown();
     detail::enableSetupBatches(true);
   }
   // Every target this CPU has, the best first and the portable one last.

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/EveryTargetTest.h"
 #include "SetupBatch.h"
 #include "ShadeBatch.h"
 #include "ShaderAccess.h"
@@ -81,7 +82,9 @@ std::vector<SurfaceSample> batchSamples(std::size_t count, const glm::dvec3& lig
   return out;
 }
 
-TEST(ShadeBatches, LanesGiveShadesBytesOnEveryTarget) {
+class ShadeBatches : public EveryTargetTest {};
+
+TEST_F(ShadeBatches, LanesGiveShadesBytesOnEveryTarget) {
   const std::vector<detail::SimdTarget> targets = detail::simdTargets();
   ASSERT_GE(targets.size(), 1u);
   for (const detail::SimdTarget& target : targets) {
@@ -126,10 +129,9 @@ TEST(ShadeBatches, LanesGiveShadesBytesOnEveryTarget) {
       }
     }
   }
-  detail::useSimdTarget(0);
 }
 
-TEST(ShadeBatches, TakeOnlyTheLightsTheyComputeAsShadeDoes) {
+TEST_F(ShadeBatches, TakeOnlyTheLightsTheyComputeAsShadeDoes) {
   const auto takes = [](Light light) {
     return detail::shadesInBatches(Shader(LightSet{AmbientLight{}, {light}}));
   };

@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/EveryTargetTest.h"
 #include "FrameTransform.h"
 #include "SetupBatch.h"
 #include "TransformBatch.h"
@@ -127,10 +128,7 @@ std::size_t differences(const FrameTransform& transform, const std::vector<Scala
   return differing;
 }
 
-class TransformBatches : public ::testing::Test {
- protected:
-  void TearDown() override { detail::useSimdTarget(0); }
-};
+class TransformBatches : public EveryTargetTest {};
 
 TEST_F(TransformBatches, LanesGiveProjectsBytesOnEveryTarget) {
   const std::vector<detail::SimdTarget> targets = detail::simdTargets();
