@@ -553,21 +553,32 @@ int vtkFacetRendererToImageFilter::RequestData(vtkInformation*,
   vtkFacetQuality::Settings quality;
   quality.SamplesPerPixel = this->SamplesPerPixel;
   quality.MaximumError = this->MaximumError;
-  quality.EstimateError = false;
+  quality.EstimateError = this->EstimateError != 0;
+  quality.ErrorEstimateArray = this->ErrorEstimateArray != 0;
   quality.MeshInterpolation = internals.MeshInterpolation;
   settings.RenderWith = internals.Quality.Prepare(quality, messages);
 
   // Render straight into the output's arrays; polygon ids become actor and cell ids.
-  internals.Image.Render(
-    scene,
-    facetCamera,
-    settings,
-    output,
-    [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
-      internals.MapIds(renderer, polygonIds, begin, end);
-    },
-    internals.NumberOfConversions(),
-    messages);
+  if (internals.Image.Render(
+        scene,
+        facetCamera,
+        settings,
+        output,
+        [&](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
+          internals.MapIds(renderer, polygonIds, begin, end);
+        },
+        internals.NumberOfConversions(),
+        messages))
+  {
+    internals.Quality.AddOutputs(scene,
+      facetCamera,
+      internals.Image.GetPolygonIds(),
+      settings.Background,
+      settings.TwoSidedLighting,
+      this->NumberOfThreads,
+      output,
+      messages);
+  }
   internals.RememberScene(renderer);
   return messages.Report(this, output);
 }
@@ -585,4 +596,6 @@ void vtkFacetRendererToImageFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DetectClosedSurfaces: " << this->DetectClosedSurfaces << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "MaximumError: " << this->MaximumError << "\n";
+  os << indent << "EstimateError: " << this->EstimateError << "\n";
+  os << indent << "ErrorEstimateArray: " << this->ErrorEstimateArray << "\n";
 }

@@ -43,7 +43,8 @@
  * VTK_FLAT one color per polygon; data without point normals is shaded flat whatever the
  * interpolation, as VTK shows it (its shaders then take the face normal). Point scalars are
  * interpolated as the mapper's InterpolateScalarsBeforeMapping says. SamplesPerPixel
- * supersamples and MaximumError shades adaptively (facet's QualityRenderer.h). Everything is
+ * supersamples and MaximumError shades adaptively (facet's QualityRenderer.h); every render
+ * estimates its flat-shading error (EstimateError, field data `FacetErrorEstimate`). Everything is
  * opaque: a warning, said once per actor, names what an actor's property asks for beyond
  * that, and an actor's texture or backface property. Errors and warnings of an
  * execution are reported at its end, one vtkErrorMacro and one vtkWarningMacro. Long renders report
@@ -149,6 +150,29 @@ public:
   vtkGetMacro(MaximumError, double);
   ///@}
 
+  ///@{
+  /**
+   * Estimate the render's flat-shading error, as vtkFacetRenderFilter's EstimateError: field
+   * data `FacetErrorEstimate` (PredictedRMSE, PredictedMax, 8-bit units, and Seconds), per
+   * pixel a bound on how far flat shading is from the converged Phong image of the actors
+   * shown (whatever their interpolation, it is flat shading's estimate). Its cost is the
+   * filter's (vtkFacetRenderFilter::SetEstimateError) (default: on).
+   */
+  vtkSetMacro(EstimateError, vtkTypeBool);
+  vtkGetMacro(EstimateError, vtkTypeBool);
+  vtkBooleanMacro(EstimateError, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Add the per-pixel error estimate as the point array `ErrorEstimate` (8-bit units; the
+   * field data then has its summary too, as with EstimateError) (default: off).
+   */
+  vtkSetMacro(ErrorEstimateArray, vtkTypeBool);
+  vtkGetMacro(ErrorEstimateArray, vtkTypeBool);
+  vtkBooleanMacro(ErrorEstimateArray, vtkTypeBool);
+  ///@}
+
   /**
    * What the last render did and left out, a few lines of text (empty before the first).
    */
@@ -176,6 +200,8 @@ protected:
   vtkTypeBool DetectClosedSurfaces = 1;
   int SamplesPerPixel = 1;
   double MaximumError = 0.0;
+  vtkTypeBool EstimateError = 1;
+  vtkTypeBool ErrorEstimateArray = 0;
 
 private:
   vtkFacetRendererToImageFilter(const vtkFacetRendererToImageFilter&) = delete;

@@ -628,6 +628,47 @@ TEST(Quality, SamplesPerPixelBlendTheSilhouettesAndBadSettingsAreErrors)
   }
 }
 
+// Every render estimates its flat-shading error, as vtkFacetRenderFilter's: the summary in the
+// field data, the per-pixel bound on request (0 on the background), and off the same image
+// without it.
+TEST(Quality, EstimateReportedWithEveryRenderOfTheScene)
+{
+  QualityScene scene;
+  vtkSmartPointer<vtkFacetRendererToImageFilter> grab = Grab(scene.Renderer);
+  EXPECT_TRUE(grab->GetEstimateError()) << "on by default, as the filter's";
+  grab->Update();
+  const double predictedRmse = FieldValue(grab->GetOutput(), "FacetErrorEstimate", "PredictedRMSE");
+  const double predictedMax = FieldValue(grab->GetOutput(), "FacetErrorEstimate", "PredictedMax");
+  EXPECT_GT(predictedRmse, 0.5) << "12-segment spheres, flat";
+  EXPECT_GE(predictedMax, predictedRmse);
+  EXPECT_EQ(grab->GetOutput()->GetPointData()->GetArray("ErrorEstimate"), nullptr);
+
+  grab->ErrorEstimateArrayOn();
+  grab->Update();
+  vtkDataArray* estimate = grab->GetOutput()->GetPointData()->GetArray("ErrorEstimate");
+  ASSERT_NE(estimate, nullptr);
+  ASSERT_EQ(estimate->GetNumberOfValues(), Width * Height);
+  EXPECT_FLOAT_EQ(static_cast<float>(estimate->GetRange()[1]), static_cast<float>(predictedMax));
+  long onBackground = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      onBackground +=
+        ActorIdAt(grab->GetOutput(), x, y) < 0 && estimate->GetTuple1(y * Width + x) != 0;
+    }
+  }
+  EXPECT_EQ(onBackground, 0) << "background pixels with an estimate";
+
+  vtkNew<vtkImageData> with;
+  with->DeepCopy(grab->GetOutput());
+  grab->EstimateErrorOff();
+  grab->ErrorEstimateArrayOff();
+  grab->Update();
+  EXPECT_EQ(grab->GetOutput()->GetFieldData()->GetArray("FacetErrorEstimate"), nullptr);
+  ExpectSameArray(with, grab->GetOutput(), "RGBA");
+}
+
 //------------------------------------------------------------------------------
 // Update renders again when, and only when, something in the scene changed; conversions
 // are kept for what did not.
