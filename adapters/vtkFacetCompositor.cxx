@@ -75,22 +75,38 @@ public:
   };
   static_assert(sizeof(Payload) == 4 * sizeof(IceTFloat), "a payload is one RGBA_FLOAT color");
 
-  /// What one composite cost.
-  static constexpr int BytesPerPixel = sizeof(Payload) + sizeof(float); // with the depth
+  /// What one composite sends a covered pixel, with the depth; the estimate's adds its float
+  /// (the bits of an RGBA_UBYTE color, which IceT copies as it copies the payload).
+  static constexpr int BytesPerPixel = sizeof(Payload) + sizeof(float);
+  static constexpr int EstimateBytesPerPixel = sizeof(float) + sizeof(float);
 
   ~vtkIceT() { this->Destroy(); }
 
   /// A context on `controller`'s MPI communicator; false, with an error, without MPI.
   bool Bind(vtkMultiProcessController* controller, vtkFacetMessages& messages);
 
-  /// Composites Colors and Depths, in place on the target.
+  /// One image IceT composites in place on the target: a color per pixel in `format`
+  /// (`bytes` each), and the depths.
+  struct Layer
+  {
+    IceTEnum Format;
+    void* Colors;
+    std::size_t Bytes;
+    float* Depths;
+  };
+  /// Composites a layer of Depths.size() pixels; adds its time and bytes to `cost`.
   bool Run(const vtkFacetCompositor::Settings& settings,
     int ranks,
+    const Layer& layer,
     vtkFacetCompositor::Cost& cost,
     vtkFacetMessages& messages);
 
   facet::HugePageVector<Payload> Colors;
   facet::HugePageVector<float> Depths;
+  // With the estimate: its float per pixel, and a copy of the depths sent (the first
+  // composite overwrites Depths on the target).
+  facet::HugePageVector<float> Estimates;
+  facet::HugePageVector<float> EstimateDepths;
 
 private:
   // IceT has one current context per process, which ParaView's own compositing also sets:
@@ -177,6 +193,7 @@ void vtkFacetCompositor::vtkIceT::Destroy()
 //------------------------------------------------------------------------------
 bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settings,
   int ranks,
+  const Layer& layer,
   vtkFacetCompositor::Cost& cost,
   vtkFacetMessages& messages)
 {
@@ -188,7 +205,7 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
   icetResetTiles();
   icetAddTile(0, 0, settings.Width, settings.Height, settings.Target);
   icetPhysicalRenderSize(settings.Width, settings.Height);
-  icetSetColorFormat(ICET_IMAGE_COLOR_RGBA_FLOAT);
+  icetSetColorFormat(layer.Format);
   icetSetDepthFormat(ICET_IMAGE_DEPTH_FLOAT);
   icetCompositeMode(ICET_COMPOSITE_MODE_Z_BUFFER);
   icetDisable(ICET_COMPOSITE_ONE_BUFFER); // the depth comes back too
@@ -209,12 +226,12 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
   static constexpr IceTDouble identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   static constexpr IceTFloat background[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
   const Clock::time_point start = Clock::now();
-  IceTImage result = icetCompositeImage(
-    this->Colors.data(), this->Depths.data(), nullptr, identity, identity, background);
-  cost.IceTSeconds = SecondsSince(start);
+  IceTImage result =
+    icetCompositeImage(layer.Colors, layer.Depths, nullptr, identity, identity, background);
+  cost.IceTSeconds += SecondsSince(start);
   IceTInt bytes = 0;
   icetGetIntegerv(ICET_BYTES_SENT, &bytes);
-  cost.BytesSent = bytes;
+  cost.BytesSent += bytes;
   cost.Strategy =
     std::string("(") + icetGetStrategyName() + ", " + icetGetSingleImageStrategyName() + ")";
   const IceTEnum error = icetGetError();
@@ -234,8 +251,11 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
         std::to_string(icetImageGetNumPixels(result)) + " pixels for " + std::to_string(pixels));
       return false;
     }
-    std::memcpy(this->Colors.data(), icetImageGetColorcf(result), pixels * sizeof(Payload));
-    std::memcpy(this->Depths.data(), icetImageGetDepthcf(result), pixels * sizeof(float));
+    const void* colors = layer.Format == ICET_IMAGE_COLOR_RGBA_FLOAT
+      ? static_cast<const void*>(icetImageGetColorcf(result))
+      : static_cast<const void*>(icetImageGetColorcui(result));
+    std::memcpy(layer.Colors, colors, pixels * layer.Bytes);
+    std::memcpy(layer.Depths, icetImageGetDepthcf(result), pixels * sizeof(float));
   }
   return true;
 }
@@ -287,7 +307,8 @@ void vtkFacetCompositor::Prepare(vtkMultiProcessController* controller,
     static_cast<double>(settings.Height),
     static_cast<double>(settings.Target),
     settings.ToAllRanks ? 1.0 : 0.0,
-    static_cast<double>(settings.Method) };
+    static_cast<double>(settings.Method),
+    settings.WithEstimate ? 1.0 : 0.0 };
   constexpr int settingCount = static_cast<int>(std::size(agreed));
   double local[6 + 2 * settingCount], global[6 + 2 * settingCount];
   for (int axis = 0; axis < 3; ++axis)
@@ -318,11 +339,12 @@ void vtkFacetCompositor::Prepare(vtkMultiProcessController* controller,
   }
   if (!this->Agreed)
   {
-    messages.AddError("the processes disagree on Size, CompositeRank, CompositeToAllRanks or "
-                      "CompositeStrategy (here " +
+    messages.AddError("the processes disagree on Size, CompositeRank, CompositeToAllRanks, "
+                      "CompositeStrategy or EstimateError (here " +
       std::to_string(settings.Width) + " x " + std::to_string(settings.Height) + ", rank " +
       std::to_string(settings.Target) + (settings.ToAllRanks ? ", to all ranks" : "") +
       ", strategy " + std::to_string(static_cast<int>(settings.Method)) +
+      (settings.WithEstimate ? ", estimating" : ", not estimating") +
       "): set them alike on every process");
   }
   else if (settings.Target < 0 || settings.Target >= this->Ranks)
@@ -428,7 +450,8 @@ void vtkFacetCompositor::KeepOwnPieces(vtkFacetImageRenderer& image,
 void vtkFacetCompositor::Composite(vtkFacetImageRenderer& image,
   vtkImageData* output,
   bool rendered,
-  vtkFacetMessages& messages)
+  vtkFacetMessages& messages,
+  vtkFloatArray* estimate)
 {
   const Clock::time_point start = Clock::now();
   const bool targetRendered = this->Gather(rendered, messages);
@@ -463,7 +486,7 @@ void vtkFacetCompositor::Composite(vtkFacetImageRenderer& image,
     return;
   }
   Cost cost;
-  const bool composited = this->RunIceT(image, rendered, cost, messages);
+  const bool composited = this->RunIceT(image, rendered, estimate, cost, messages);
   if (!rendered)
   {
     return; // this rank's output is emptied with its error
@@ -485,6 +508,7 @@ void vtkFacetCompositor::Composite(vtkFacetImageRenderer& image,
 //------------------------------------------------------------------------------
 bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   bool rendered,
+  vtkFloatArray* estimate,
   Cost& cost,
   vtkFacetMessages& messages)
 {
@@ -527,11 +551,41 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   {
     std::fill(icet.Depths.begin(), icet.Depths.end(), 1.0f);
   }
+  const bool withEstimate = this->Current.WithEstimate;
+  if (withEstimate)
+  {
+    icet.EstimateDepths.assign(icet.Depths.begin(), icet.Depths.end());
+    icet.Estimates.resize(pixels);
+    const bool has =
+      rendered && estimate && static_cast<std::size_t>(estimate->GetNumberOfValues()) == pixels;
+    std::fill(icet.Estimates.begin(), icet.Estimates.end(), 0.0f);
+    if (has)
+    {
+      std::copy_n(estimate->GetPointer(0), pixels, icet.Estimates.begin());
+    }
+  }
   cost.PackSeconds = SecondsSince(start);
 
   // Every rank learns whether every rank composited, and the bytes they sent, before any
   // rank gives up: the broadcast below is collective too.
-  const bool ranHere = icet.Run(this->Current, this->Ranks, cost, messages);
+  bool ranHere = icet.Run(this->Current,
+    this->Ranks,
+    { ICET_IMAGE_COLOR_RGBA_FLOAT, colors, sizeof(Payload), depths },
+    cost,
+    messages);
+  if (withEstimate)
+  {
+    // Run even when the first failed here: the others are in it.
+    ranHere = icet.Run(this->Current,
+                this->Ranks,
+                { ICET_IMAGE_COLOR_RGBA_UBYTE,
+                  icet.Estimates.data(),
+                  sizeof(float),
+                  icet.EstimateDepths.data() },
+                cost,
+                messages) &&
+      ranHere;
+  }
   const long long local[2] = { cost.BytesSent, ranHere ? 0 : 1 };
   long long global[2] = { 0, 0 };
   this->Controller->AllReduce(local, global, 2, vtkCommunicator::SUM_OP);
@@ -553,6 +607,10 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
       static_cast<vtkIdType>(pixels * sizeof(Payload) / sizeof(int)),
       target);
     this->Controller->Broadcast(depths, static_cast<vtkIdType>(pixels), target);
+    if (withEstimate)
+    {
+      this->Controller->Broadcast(icet.Estimates.data(), static_cast<vtkIdType>(pixels), target);
+    }
   }
   if (rendered && this->Receives())
   {
@@ -561,6 +619,10 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
     float* depth = image.GetDepth()->GetPointer(0);
     vtkIdType* cellIds = image.GetCellIds()->GetPointer(0);
     int* rankIds = image.GetRankIds()->GetPointer(0);
+    float* estimates =
+      withEstimate && estimate && static_cast<std::size_t>(estimate->GetNumberOfValues()) == pixels
+      ? estimate->GetPointer(0)
+      : nullptr;
     image.ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
@@ -571,6 +633,10 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
           rankIds[i] = colors[i].Rank;
           cellIds[i] = static_cast<vtkIdType>(
             (static_cast<std::uint64_t>(colors[i].CellHigh) << 32) | colors[i].CellLow);
+        }
+        if (estimates)
+        {
+          estimates[i] = depths[i] < 1.0f ? icet.Estimates[i] : 0.0f;
         }
       }
     });
@@ -618,9 +684,12 @@ void vtkFacetCompositor::Report(vtkFacetImageRenderer& image,
   fieldData->AddArray(name);
 
   std::ostringstream plan;
-  plan << "  composite: " << strategy.str() << "; " << vtkIceT::BytesPerPixel
-       << " bytes a covered pixel, " << cost.BytesSentByAll << " sent by all ranks ("
-       << cost.BytesSent << " by rank " << this->Rank << "), " << seconds << " s\n";
+  plan << "  composite: " << strategy.str() << "; "
+       << vtkIceT::BytesPerPixel + (this->Current.WithEstimate ? vtkIceT::EstimateBytesPerPixel : 0)
+       << " bytes a covered pixel"
+       << (this->Current.WithEstimate ? " (the error estimate's 8 in a second composite), " : ", ")
+       << cost.BytesSentByAll << " sent by all ranks (" << cost.BytesSent << " by rank "
+       << this->Rank << "), " << seconds << " s\n";
   image.AddToReport(output, plan.str());
 }
 #endif

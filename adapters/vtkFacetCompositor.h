@@ -45,6 +45,7 @@
 class vtkDataArray;
 class vtkFacetImageRenderer;
 class vtkFacetMessages;
+class vtkFloatArray;
 class vtkImageData;
 class vtkMultiProcessController;
 class vtkPolyData;
@@ -68,6 +69,9 @@ public:
     int Target = 0;          ///< the rank that receives the image
     bool ToAllRanks = false; ///< every rank receives it
     Strategy Method = Strategy::Automatic;
+    /// Composite each pixel's error estimate too (a second IceT composite of 8 bytes a
+    /// covered pixel, with the same depths: the same rank wins every pixel).
+    bool WithEstimate = false;
   };
 
   vtkFacetCompositor();
@@ -111,12 +115,15 @@ public:
    * is in `image`'s arrays; false after an error, it then adds nothing) into `output` on
    * the target (every process with ToAllRanks); the others' outputs keep their field data
    * but no pixels. Adds the composite's cost to the field data (`FacetCompositeSeconds`,
-   * `FacetCompositeBytes`, `FacetCompositeStrategy`) and to the render plan.
+   * `FacetCompositeBytes`, `FacetCompositeStrategy`) and to the render plan. With
+   * WithEstimate, `estimate` (this process's per-pixel error estimate, or null: zeros) becomes
+   * on the target the estimate of the piece each pixel shows, 0 on the background.
    */
   void Composite(vtkFacetImageRenderer& image,
     vtkImageData* output,
     bool rendered,
-    vtkFacetMessages& messages);
+    vtkFacetMessages& messages,
+    vtkFloatArray* estimate = nullptr);
 
 private:
   class vtkIceT;
@@ -138,7 +145,11 @@ private:
     vtkFacetMessages& messages);
   void MakeEmpty(vtkImageData* output) const;
   // With IceT only:
-  bool RunIceT(vtkFacetImageRenderer& image, bool rendered, Cost& cost, vtkFacetMessages& messages);
+  bool RunIceT(vtkFacetImageRenderer& image,
+    bool rendered,
+    vtkFloatArray* estimate,
+    Cost& cost,
+    vtkFacetMessages& messages);
   void Report(vtkFacetImageRenderer& image,
     vtkImageData* output,
     const Cost& cost,

@@ -2,6 +2,7 @@
 
 #include "vtkAbstractMapper.h"
 #include "vtkCamera.h"
+#include "vtkDoubleArray.h"
 #include "vtkFacetActorConverter.h"
 #include "vtkFacetColoringMapper.h"
 #include "vtkFacetCompositor.h"
@@ -10,10 +11,13 @@
 #include "vtkFacetPolyDataConverter.h"
 #include "vtkFacetQuality.h"
 #include "vtkFacetSceneConverter.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
@@ -27,6 +31,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -53,7 +58,12 @@ public:
   static vtkFacetSceneConverter::LightOptions LightOptionsOf(vtkFacetRenderFilter* filter);
   vtkFacetActorConverter::Actor ActorOf(vtkFacetRenderFilter* filter, vtkPolyData* input);
   static vtkFacetImageRenderer::Settings SettingsOf(vtkFacetRenderFilter* filter, bool parallel);
-  static vtkFacetQuality::Settings QualityOf(vtkFacetRenderFilter* filter);
+  // Across processes (`composited`) every rank keeps its per-pixel estimate to composite.
+  static vtkFacetQuality::Settings QualityOf(vtkFacetRenderFilter* filter, bool composited);
+  static bool Estimates(vtkFacetRenderFilter* filter)
+  {
+    return filter->EstimateError || filter->ErrorEstimateArray;
+  }
 
   // The camera to render with, fitted to `bounds` if automatic, and the scene's lights.
   facet::Camera ViewOf(vtkFacetRenderFilter* filter, const double bounds[6], facet::Scene& scene);
@@ -72,7 +82,11 @@ public:
   // the rank in RankId); nothing without CellId.
   vtkFacetImageRenderer::IdMap CellLabels(vtkPolyData* input,
     const vtkFacetImageRenderer::Settings& settings);
-  // Across processes Depth and CellId are made to composite by: removed if not asked for.
+  // On the rank that received the composited image: FacetErrorEstimate's PredictedRMSE and
+  // PredictedMax of its composited ErrorEstimate, in place of this rank's piece's.
+  static void SummarizeCompositedEstimate(vtkImageData* output);
+  // Across processes Depth, CellId and ErrorEstimate are made to composite by: removed if not
+  // asked for.
   static void RemoveArraysNotAsked(vtkFacetRenderFilter* filter, vtkImageData* output);
 };
 
@@ -171,14 +185,15 @@ vtkFacetImageRenderer::Settings vtkFacetRenderFilter::vtkInternals::SettingsOf(
 
 //------------------------------------------------------------------------------
 vtkFacetQuality::Settings vtkFacetRenderFilter::vtkInternals::QualityOf(
-  vtkFacetRenderFilter* filter)
+  vtkFacetRenderFilter* filter,
+  bool composited)
 {
   return { filter->GetProperty()->GetInterpolation(),
     filter->SamplesPerPixel,
     filter->MaximumError,
     filter->ComputeError != 0,
     filter->EstimateError != 0,
-    filter->ErrorEstimateArray != 0 };
+    filter->ErrorEstimateArray || (composited && Estimates(filter)) };
 }
 
 //------------------------------------------------------------------------------
@@ -201,6 +216,7 @@ void vtkFacetRenderFilter::vtkInternals::BoundsOf(vtkFacetRenderFilter* filter,
   composite.Target = filter->CompositeRank;
   composite.ToAllRanks = filter->CompositeToAllRanks != 0;
   composite.Method = static_cast<vtkFacetCompositor::Strategy>(filter->CompositeStrategy);
+  composite.WithEstimate = Estimates(filter);
   this->Compositor.Prepare(filter->Controller, composite, bounds, this->Messages);
 }
 
@@ -228,7 +244,8 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
   vtkImageData* output)
 {
   const int conversions = this->Actor.GetNumberOfConversions();
-  settings.RenderWith = this->Quality.Prepare(QualityOf(filter), this->Messages);
+  settings.RenderWith =
+    this->Quality.Prepare(QualityOf(filter, settings.Composited), this->Messages);
   if (!this->Image.Render(scene,
         camera,
         settings,
@@ -283,6 +300,46 @@ void vtkFacetRenderFilter::vtkInternals::RemoveArraysNotAsked(vtkFacetRenderFilt
   if (!filter->OutputCellIds)
   {
     output->GetPointData()->RemoveArray("CellId");
+  }
+  if (!filter->ErrorEstimateArray)
+  {
+    output->GetPointData()->RemoveArray("ErrorEstimate");
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetRenderFilter::vtkInternals::SummarizeCompositedEstimate(vtkImageData* output)
+{
+  auto* estimate = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate"));
+  auto* rankIds = vtkIntArray::SafeDownCast(output->GetPointData()->GetArray("RankId"));
+  auto* summary =
+    vtkDoubleArray::SafeDownCast(output->GetFieldData()->GetArray("FacetErrorEstimate"));
+  if (!estimate || !rankIds || !summary ||
+    estimate->GetNumberOfValues() != rankIds->GetNumberOfValues())
+  {
+    return; // not the rank that received the image, or no estimate
+  }
+  // QualityStats' definition: over the pixels a polygon shows.
+  double sumOfSquares = 0.0, maximum = 0.0;
+  vtkIdType covered = 0;
+  for (vtkIdType i = 0; i < estimate->GetNumberOfValues(); ++i)
+  {
+    if (rankIds->GetValue(i) >= 0)
+    {
+      const double value = estimate->GetValue(i);
+      sumOfSquares += value * value;
+      maximum = std::max(maximum, value);
+      ++covered;
+    }
+  }
+  const double rmse = covered > 0 ? std::sqrt(sumOfSquares / static_cast<double>(covered)) : 0.0;
+  for (int c = 0; c < summary->GetNumberOfComponents(); ++c)
+  {
+    const std::string name = summary->GetComponentName(c) ? summary->GetComponentName(c) : "";
+    if (name == "PredictedRMSE" || name == "PredictedMax")
+    {
+      summary->SetComponent(0, c, name == "PredictedRMSE" ? rmse : maximum);
+    }
   }
 }
 
@@ -579,7 +636,12 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   const bool rendered = internals.Render(this, input, scene, camera, settings, output);
   if (parallel)
   {
-    internals.Compositor.Composite(internals.Image, output, rendered, messages);
+    internals.Compositor.Composite(internals.Image,
+      output,
+      rendered,
+      messages,
+      vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate")));
+    internals.SummarizeCompositedEstimate(output);
     internals.RemoveArraysNotAsked(this, output);
   }
   return messages.Report(this, output);

@@ -178,7 +178,7 @@ class Render:
         point_data = self.image.GetPointData()
         self.planes = {}
         if self.image.GetNumberOfPoints() > 0:
-            for name in ("RGBA", "Depth", "CellId", "RankId"):
+            for name in ("RGBA", "Depth", "CellId", "RankId", "ErrorEstimate"):
                 array = point_data.GetArray(name)
                 if array is not None:
                     plane = vtk_to_numpy(array).copy()
@@ -520,6 +520,62 @@ def another_composite_rank_and_the_report():
         return
     reference = serial(polydata(points, triangles))
     check_plane("RGBA", render, reference)
+
+
+@case
+def the_error_estimate_is_the_composited_images():
+    """Each pixel's error estimate is that of the piece it shows, and FacetErrorEstimate
+    summarizes the composited image (the other ranks keep their own piece's): the estimate one
+    process gives for the whole input, away from the seams between pieces — a pixel whose
+    3 x 3 neighbours show another piece, or whose cell has a corner in another piece too (its
+    vertex normals there see only its own piece's cells)."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    piece = piece_of(points, triangles, first, last, with_global_ids=True)
+    render = Render(piece, ErrorEstimateArray=True)
+    summary_only = Render(piece)  # EstimateError is on by default; no array asked for
+    if RANK != 0:
+        check_receives_nothing(render)
+        check(render.named("FacetErrorEstimate", "PredictedMax") > 0,
+              "the other ranks keep their piece's estimate")
+        return
+    check("ErrorEstimate" not in summary_only.planes, "ErrorEstimate without being asked for")
+    check("the error estimate's 8 in a second composite" in render.filter.GetRenderPlan(),
+          render.filter.GetRenderPlan())
+    estimate, rank_id = render.planes["ErrorEstimate"], render.planes["RankId"]
+    covered = rank_id >= 0
+    check(not numpy.any(estimate[~covered]), "an estimate on the background")
+    rmse = float(numpy.sqrt(numpy.mean(numpy.square(estimate[covered], dtype=numpy.float64))))
+    for result in (render, summary_only):
+        predicted = result.named("FacetErrorEstimate", "PredictedRMSE")
+        check(abs(predicted - rmse) <= 1e-9 * rmse,
+              "PredictedRMSE %r, the composited image's %r" % (predicted, rmse))
+        check(result.named("FacetErrorEstimate", "PredictedMax") == float(estimate[covered].max()),
+              "PredictedMax is not the composited image's maximum")
+    owner = numpy.repeat(numpy.arange(RANKS), [numpy.diff(cell_range(len(triangles), r, RANKS))[0]
+                                               for r in range(RANKS)])
+    lowest = numpy.full(len(points), RANKS)
+    highest = numpy.full(len(points), -1)
+    for corner in range(3):
+        numpy.minimum.at(lowest, triangles[:, corner], owner)
+        numpy.maximum.at(highest, triangles[:, corner], owner)
+    on_cut = numpy.any((lowest != highest)[triangles], axis=1)
+    whole = serial(polydata(points, triangles), ErrorEstimateArray=True)
+    cell = whole.planes["CellId"]
+    differs = on_cut[numpy.maximum(cell, 0)] & (cell >= 0)
+    padded_rank, padded_differs = numpy.pad(rank_id, 1, mode="edge"), numpy.pad(differs, 1)
+    seam = numpy.zeros_like(covered)
+    for dy in (0, 1, 2):
+        for dx in (0, 1, 2):
+            seam |= padded_rank[dy:dy + HEIGHT, dx:dx + WIDTH] != rank_id
+            seam |= padded_differs[dy:dy + HEIGHT, dx:dx + WIDTH]
+    away = covered & ~seam
+    check(away.sum() > 0.3 * covered.sum(), "%d of %d pixels away from seams"
+          % (away.sum(), covered.sum()))
+    expected = whole.planes["ErrorEstimate"]
+    if not numpy.array_equal(estimate[away], expected[away]):
+        fail(describe_difference("ErrorEstimate away from seams", numpy.where(away, estimate, 0),
+                                 numpy.where(away, expected, 0)))
 
 
 @case
