@@ -643,6 +643,14 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
       vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate")));
     internals.SummarizeCompositedEstimate(output);
     internals.RemoveArraysNotAsked(this, output);
+    if (this->ComputeError)
+    {
+      // Each rank's measurement is of its own piece, not of the composited pixels.
+      messages.AddWarningOnce("ComputeError across processes measures each process's piece "
+                              "against that piece's reference: FacetError describes this "
+                              "rank's piece, and the composited image has no Error array");
+      output->GetPointData()->RemoveArray("Error");
+    }
   }
   return messages.Report(this, output);
 }

@@ -463,7 +463,10 @@ public:
    * Render the converged Phong mesh reference (128 samples per pixel, ray traced) beside the
    * image and report the measured error: field data `FacetError` (RMSE, Max, PSNR, SSIM,
    * SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the point array `Error` (per
-   * pixel, the largest channel difference, 8-bit units). Slow: for measuring (default: off).
+   * pixel, the largest channel difference, 8-bit units). Slow: for measuring. Across
+   * processes each measures its own piece against its own piece's reference (the reference
+   * is not composited): `FacetError` describes that piece, a warning says so, and the
+   * composited image has no `Error` array (default: off).
    */
   vtkSetMacro(ComputeError, vtkTypeBool);
   vtkGetMacro(ComputeError, vtkTypeBool);

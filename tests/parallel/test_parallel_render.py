@@ -182,7 +182,8 @@ class Render:
                 array = point_data.GetArray(name)
                 if array is not None:
                     plane = vtk_to_numpy(array).copy()
-                    self.planes[name] = plane.reshape((HEIGHT, WIDTH) + plane.shape[1:])
+                    width, height = self.image.GetDimensions()[:2]
+                    self.planes[name] = plane.reshape((height, width) + plane.shape[1:])
 
     def field(self, name):
         return self.image.GetFieldData().GetAbstractArray(name)
@@ -576,6 +577,22 @@ def the_error_estimate_is_the_composited_images():
     if not numpy.array_equal(estimate[away], expected[away]):
         fail(describe_difference("ErrorEstimate away from seams", numpy.where(away, estimate, 0),
                                  numpy.where(away, expected, 0)))
+
+
+@case
+def compute_error_measures_each_piece_and_says_so():
+    """The measured error (ComputeError) is each piece's against its own reference: named in a
+    warning on every rank, with no per-pixel Error beside the composited image."""
+    points, triangles = MESH
+    first, last = cell_range(len(triangles), RANK, RANKS)
+    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
+                    ComputeError=True, Size=(WIDTH // 4, HEIGHT // 4))  # the reference is slow
+    check(any("ComputeError across processes" in w for w in render.warnings),
+          "no warning that the measurement is per piece: %s" % render.warnings)
+    check(render.named("FacetError", "RMSE") >= 0, "no FacetError of the piece")
+    if RANK == 0:
+        check(render.image.GetPointData().GetArray("Error") is None,
+              "a per-piece Error array beside the composited image")
 
 
 @case
