@@ -33,7 +33,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
     const std::optional<float> key = keyOfOnlySample(a, *second, *third, area < 0 ? -area : area,
                                                      boundary, bounds.x0, bounds.y0);
     if (!key) return BinOutcome::CoversNoSample;
-    binFragment(chunk, grid, bounds.x0, bounds.y0, *key, polygon);
+    binFragment(chunk, tileOf(grid, bounds.x0, bounds.y0), bounds.x0, bounds.y0, *key, polygon);
     return BinOutcome::Binned;
   }
   if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {

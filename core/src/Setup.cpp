@@ -233,14 +233,14 @@ class PolygonSetup {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
     const bool back = (verdicts.clockwise >> lane) & 1u;
     const auto& samples = verdicts.samples;
+    const std::size_t tile = static_cast<std::size_t>(verdicts.tile[lane]);
     if ((verdicts.fragment >> lane) & 1u) {
-      binFragment(chunk_, context_.grid, samples.x0[lane], samples.y0[lane], verdicts.key[lane],
-                  polygonId);
+      binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId);
     } else {
-      binCovering(chunk_, context_.grid, references[0], references[back ? 2 : 1],
-                  references[back ? 1 : 2],
-                  {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
-                  kBoundaryEdges, polygonId);
+      binCovering(
+          chunk_, context_.grid, references[0], references[back ? 2 : 1], references[back ? 1 : 2],
+          {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
+          polygonId, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
     countDrawn(polygonId, back, 1);
   }
@@ -374,7 +374,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   std::uint32_t laneVertices[kBatchSize][3];
   int lanes = 0;
   const auto settleBatch = [&] {
-    classifyBatch(batch, context.grid.viewport(), kSkipBackFaces, !kSkipBackFaces, verdicts);
+    classifyBatch(batch, context.grid, kSkipBackFaces, !kSkipBackFaces, verdicts);
     setup.settle(verdicts, lanePolygon, laneVertices, lanes);
     lanes = 0;
   };

@@ -22,6 +22,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <bit>
 #include <limits>
 
 #include "SetupBatch.h"
@@ -36,6 +37,8 @@ using V = hn::Vec<D>;
 using M = hn::Mask<D>;
 
 constexpr std::int32_t kMaxExtent = 1 << 14;
+constexpr int kTileBits = std::countr_zero(unsigned{TileGrid::kTileSize});
+static_assert(TileGrid::kTileSize == 1 << kTileBits);
 constexpr std::int32_t kHalfPixel = kSubpixelScale / 2;
 
 // One directed edge p → q of a counter-clockwise triangle: its function at the first sample
@@ -57,7 +60,7 @@ struct EdgeLanes {
 // The pixel centers of a box of at most 4, from its first: (0, 0), then across a 2 × 2 box
 // (1, 0), (0, 1), (1, 1), or along a row or column of up to 4.
 struct FewSamples {
-  M valid[4];  // which of the four the box holds
+  M valid[4];                           // which of the four the box holds
   FewSamples(D d, V width, V height) {  // in centers, less one
     const V one = hn::Set(d, 1), three = hn::Set(d, 3);
     square = hn::And(width == one, height == one);
@@ -131,17 +134,17 @@ V toFine(V grid, V residue) {
 // Binning.cpp decide: culled before zero area, zero area before the pixel-center test, which
 // is exact for boxes of at most 4 pixel centers (samplesInBoundingBox, coversAnySample)
 // and assumed true for larger ones; a kept triangle whose box holds one center is a fragment.
-void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const PixelBounds& viewport,
+void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const TileGrid& grid,
                    bool skipBackFaces, BatchVerdicts& verdicts, KeyInputs& keys) {
+  const PixelBounds viewport = grid.viewport();
   const V zero = hn::Zero(d);
   const VertexLanes a(d, batch.v[0] + lane), b0(d, batch.v[1] + lane), c0(d, batch.v[2] + lane);
   const V minX = hn::Min(hn::Min(a.x, b0.x), c0.x), maxX = hn::Max(hn::Max(a.x, b0.x), c0.x);
   const V minY = hn::Min(hn::Min(a.y, b0.y), c0.y), maxY = hn::Max(hn::Max(a.y, b0.y), c0.y);
   const V limit = hn::Set(d, kMaxExtent);
   const M inside = hn::Or(hn::Or(a.outcode(d), b0.outcode(d)), c0.outcode(d)) == zero;
-  const M tested =
-      hn::And(hn::And(hn::Load(d, batch.triangle + lane) != zero, inside),
-              hn::And(maxX - minX < limit, maxY - minY < limit));
+  const M tested = hn::And(hn::And(hn::Load(d, batch.triangle + lane) != zero, inside),
+                           hn::And(maxX - minX < limit, maxY - minY < limit));
 
   // b and c relative to a; zero in untested lanes, so that no product below can overflow.
   V ux = hn::IfThenElseZero(tested, b0.x - a.x), uy = hn::IfThenElseZero(tested, b0.y - a.y);
@@ -194,6 +197,13 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Pixe
   hn::Store(y0, d, verdicts.samples.y0 + lane);
   hn::Store(x1, d, verdicts.samples.x1 + lane);
   hn::Store(y1, d, verdicts.samples.y1 + lane);
+  // The tile of the first center, and whether it is the only one the box overlaps (centers
+  // of a kept lane are in the viewport: not negative).
+  const V tileX = hn::ShiftRight<kTileBits>(x0), tileY = hn::ShiftRight<kTileBits>(y0);
+  hn::Store(tileY * hn::Set(d, grid.tilesX()) + tileX, d, verdicts.tile + lane);
+  verdicts.oneTile |= laneBits(d, hn::And(tileX == hn::ShiftRight<kTileBits>(x1),
+                                          tileY == hn::ShiftRight<kTileBits>(y1)))
+                      << lane;
   if (fragments == 0) return;
 
   // The fragments' keys' inputs, b and c (and their residues and keys) swapped as above.
@@ -227,7 +237,9 @@ using VD = hn::Vec<DD>;
 void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, float* keys) {
   const hn::Rebind<std::int32_t, DD> di;
   const hn::Rebind<float, DD> df;
-  const auto load = [&](const std::int32_t* p) { return hn::PromoteTo(dd, hn::Load(di, p + lane)); };
+  const auto load = [&](const std::int32_t* p) {
+    return hn::PromoteTo(dd, hn::Load(di, p + lane));
+  };
   const VD bx = load(in.bx), by = load(in.by), cx = load(in.cx), cy = load(in.cy);
   const VD sx = load(in.sx), sy = load(in.sy);
   const VD zero = hn::Zero(dd);
@@ -246,27 +258,29 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
   const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
   const VD one = hn::Set(dd, 1.0);
   const VD unsnappedKey = keyA + (dk1 * fine1 + dk2 * fine2) * (one / fineArea);
-  const VD snappedKey = keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
+  const VD snappedKey =
+      keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
   const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
   const VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
   hn::Store(hn::DemoteTo(df, hn::Min(hn::Max(key, hn::Neg(largest)), largest)), df, keys + lane);
 }
 
-void ClassifyBatch(const TriangleBatch& batch, const PixelBounds& viewport, bool skipBackFaces,
+void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts) {
   const D d;
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
-  verdicts.fragment = verdicts.triangle = verdicts.clockwise = 0;
+  verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
   KeyInputs keys;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
-    classifyLanes(d, batch, lane, viewport, skipBackFaces, verdicts, keys);
+    classifyLanes(d, batch, lane, grid, skipBackFaces, verdicts, keys);
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
   const DD dd;
   const std::uint32_t laneMask = (1u << hn::Lanes(dd)) - 1;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
-    if ((verdicts.fragment >> lane) & laneMask) keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
+    if ((verdicts.fragment >> lane) & laneMask)
+      keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
   }
 }
 
@@ -289,9 +303,9 @@ namespace {
 std::atomic<bool> batchesOn{true};
 }
 
-void classifyBatch(const TriangleBatch& batch, const PixelBounds& viewport, bool skipBackFaces,
+void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts) {
-  HWY_DYNAMIC_DISPATCH(ClassifyBatch)(batch, viewport, skipBackFaces, boundaryEdges, verdicts);
+  HWY_DYNAMIC_DISPATCH(ClassifyBatch)(batch, grid, skipBackFaces, boundaryEdges, verdicts);
 }
 
 std::vector<SimdTarget> simdTargets() {

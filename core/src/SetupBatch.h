@@ -53,20 +53,23 @@ struct BatchVerdicts {
   // Clockwise (snapped window area < 0): seen from the back; binned with corners 1 and 2
   // swapped.
   std::uint32_t clockwise = 0;
+  // Kept lanes whose box overlaps one tile, tile[l].
+  std::uint32_t oneTile = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   // Per kept lane: the pixel centers of its box, clipped to the viewport (inclusive).
   struct {
     alignas(64) std::int32_t x0[kBatchSize], y0[kBatchSize], x1[kBatchSize], y1[kBatchSize];
   } samples;
-  alignas(64) float key[kBatchSize];  // per fragment lane
+  alignas(64) std::int32_t tile[kBatchSize];  // per kept lane: the tile of its first center
+  alignas(64) float key[kBatchSize];          // per fragment lane
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
   std::uint32_t kept() const { return fragment | triangle; }
 };
 
-// The verdicts for a viewport and the mesh's back-face handling (`boundaryEdges`: the depth
-// keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's three edges
-// are its polygon's).
-void classifyBatch(const TriangleBatch& batch, const PixelBounds& viewport, bool skipBackFaces,
+// The verdicts for the tiles' viewport and the mesh's back-face handling (`boundaryEdges`:
+// the depth keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's
+// three edges are its polygon's).
+void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts);
 
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render

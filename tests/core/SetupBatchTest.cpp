@@ -59,8 +59,8 @@ struct TriangleSetUp {
   float key = 0.0f;
 };
 
-TriangleSetUp exactSetUp(WindowVertex a, WindowVertex b, WindowVertex c, const PixelBounds& viewport,
-                 bool skipBackFaces) {
+TriangleSetUp exactSetUp(WindowVertex a, WindowVertex b, WindowVertex c,
+                         const PixelBounds& viewport, bool skipBackFaces) {
   TriangleSetUp result;
   const std::int64_t area = detail::doubleSignedArea(a, b, c);
   if (skipBackFaces && area < 0) return {kCulled};
@@ -99,7 +99,7 @@ bool batchTakes(const WindowVertex (&v)[3], bool triangle) {
 // with random residues and depth keys of every magnitude.
 std::vector<WindowVertex> randomTriangles(std::size_t count, unsigned seed) {
   std::mt19937 random(seed);
-  std::uniform_int_distribution<int> kind(0, 6), pixel(-3, 40), fine(-600, 600), any(0, 255);
+  std::uniform_int_distribution<int> kind(0, 6), pixel(-3, 105), fine(-600, 600), any(0, 255);
   std::uniform_int_distribution<int> residue(-128, 127), exponent(-30, 30);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   std::vector<WindowVertex> corners;
@@ -141,7 +141,8 @@ int verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
 }
 
 TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
-  const PixelBounds viewport{0, 0, 31, 23};
+  const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
+  const PixelBounds viewport = grid.viewport();
   const std::vector<WindowVertex> corners = randomTriangles(20000, 11);
   const std::size_t triangles = corners.size() / 3;
   for (const SimdTarget& target : targets()) {
@@ -157,7 +158,7 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
           batch.triangle[lane] = lane % 7 != 3;  // some lanes hold polygons
         }
         detail::BatchVerdicts verdicts;
-        detail::classifyBatch(batch, viewport, skipBackFaces, !skipBackFaces, verdicts);
+        detail::classifyBatch(batch, grid, skipBackFaces, !skipBackFaces, verdicts);
         EXPECT_EQ(verdicts.culledCount, std::popcount(verdicts.culled));
         EXPECT_EQ(verdicts.zeroAreaCount, std::popcount(verdicts.zeroArea));
         EXPECT_EQ(verdicts.coversNoSampleCount, std::popcount(verdicts.coversNoSample));
@@ -166,8 +167,8 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
           const WindowVertex v[3] = {corners[at], corners[at + 1], corners[at + 2]};
           const int verdict = verdictOf(verdicts, lane);
           const TriangleSetUp exact = batchTakes(v, batch.triangle[lane])
-                                  ? exactSetUp(v[0], v[1], v[2], viewport, skipBackFaces)
-                                  : TriangleSetUp{};
+                                          ? exactSetUp(v[0], v[1], v[2], viewport, skipBackFaces)
+                                          : TriangleSetUp{};
           ++counts[verdict];
           const PixelBounds samples{verdicts.samples.x0[lane], verdicts.samples.y0[lane],
                                     verdicts.samples.x1[lane], verdicts.samples.y1[lane]};
@@ -177,6 +178,14 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
             right = samples.x0 == exact.samples.x0 && samples.y0 == exact.samples.y0 &&
                     samples.x1 == exact.samples.x1 && samples.y1 == exact.samples.y1 &&
                     ((verdicts.clockwise >> lane) & 1u) == exact.clockwise;
+            // Its first center's tile, and whether its box overlaps no other.
+            const int tileSize = detail::TileGrid::kTileSize;
+            const bool oneTile = samples.x0 / tileSize == samples.x1 / tileSize &&
+                                 samples.y0 / tileSize == samples.y1 / tileSize;
+            right = right &&
+                    verdicts.tile[lane] ==
+                        static_cast<std::int32_t>(detail::tileOf(grid, samples.x0, samples.y0)) &&
+                    ((verdicts.oneTile >> lane) & 1u) == oneTile;
           }
           // The same key to the bit.
           if (right && verdict == kFragment)
@@ -186,12 +195,11 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
             ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << ") (" << v[1].x << ","
                           << v[1].y << ") (" << v[2].x << "," << v[2].y << "), triangle "
                           << batch.triangle[lane] << ", skip back faces " << skipBackFaces
-                          << ": batch " << verdict << " samples " << samples.x0 << ","
-                          << samples.y0 << ".." << samples.x1 << "," << samples.y1 << " key "
+                          << ": batch " << verdict << " samples " << samples.x0 << "," << samples.y0
+                          << ".." << samples.x1 << "," << samples.y1 << " key "
                           << verdicts.key[lane] << "; exact " << exact.verdict << " samples "
-                          << exact.samples.x0 << "," << exact.samples.y0 << ".."
-                          << exact.samples.x1 << "," << exact.samples.y1 << " key "
-                          << exact.key;
+                          << exact.samples.x0 << "," << exact.samples.y0 << ".." << exact.samples.x1
+                          << "," << exact.samples.y1 << " key " << exact.key;
           }
         }
       }
