@@ -86,23 +86,18 @@ class PolygonSetup {
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex) {}
 
-  // Puts the polygon in a batch's lane (with its vertex references, for binning), to be set
-  // up there when it is a triangle with every vertex inside (SetupBatch.h).
-  void load(std::size_t polygon, TriangleBatch& batch, int lane,
-            std::uint32_t (&references)[3]) const {
+  // Puts the polygon in a batch's lane, to be set up there when it is a triangle with every
+  // vertex inside (SetupBatch.h).
+  void load(std::size_t polygon, TriangleBatch& batch, int lane) const {
     batch.triangle[lane] = polygons_.size(polygon) == 3;
     if (!batch.triangle[lane]) return;
-    for (int j = 0; j < 3; ++j) {
-      const std::size_t id = polygons_.pointId(polygon, static_cast<std::size_t>(j));
-      batch.v[j][lane] = meshVertices_[id];
-      references[j] = frameIndex(id);
-    }
+    for (int j = 0; j < 3; ++j)
+      batch.v[j][lane] = meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
   }
 
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
   // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
-  void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
-              const std::uint32_t (*laneVertices)[3], int lanes) {
+  void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
     chunk_.counts.culled += static_cast<std::size_t>(verdicts.culledCount);
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
@@ -110,7 +105,7 @@ class PolygonSetup {
     for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
       if ((verdicts.kept() >> lane) & 1u) {
-        bin(verdicts, lane, lanePolygon[lane], laneVertices[lane]);
+        bin(verdicts, lane, lanePolygon[lane]);
       } else {
         run(lanePolygon[lane]);
       }
@@ -228,8 +223,7 @@ class PolygonSetup {
   }
 
   // A triangle polygon a batch kept, binned as it decided (as keep() would bin it).
-  void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon,
-           const std::uint32_t (&references)[3]) {
+  void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
     const bool back = (verdicts.clockwise >> lane) & 1u;
     const auto& samples = verdicts.samples;
@@ -237,8 +231,12 @@ class PolygonSetup {
     if ((verdicts.fragment >> lane) & 1u) {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId);
     } else {
+      // Its vertex references, read again here (most kept triangles are fragments).
+      const auto reference = [&](std::size_t corner) {
+        return frameIndex(polygons_.pointId(polygon, corner));
+      };
       binCovering(
-          chunk_, context_.grid, references[0], references[back ? 2 : 1], references[back ? 1 : 2],
+          chunk_, context_.grid, reference(0), reference(back ? 2 : 1), reference(back ? 1 : 2),
           {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
           polygonId, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
@@ -371,11 +369,10 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   TriangleBatch batch{};
   BatchVerdicts verdicts;
   std::size_t lanePolygon[kBatchSize];
-  std::uint32_t laneVertices[kBatchSize][3];
   int lanes = 0;
   const auto settleBatch = [&] {
     classifyBatch(batch, context.grid, kSkipBackFaces, !kSkipBackFaces, verdicts);
-    setup.settle(verdicts, lanePolygon, laneVertices, lanes);
+    setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
   const auto visit = [&](std::size_t polygon) {
@@ -384,7 +381,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     } else if (!batched) {
       setup.run(polygon);
     } else {
-      setup.load(polygon, batch, lanes, laneVertices[lanes]);
+      setup.load(polygon, batch, lanes);
       lanePolygon[lanes] = polygon;
       if (++lanes == kBatchSize) settleBatch();
     }

@@ -98,7 +98,7 @@ V floorToPixel(V v) {
 }
 
 // Bit l of the result: lane l of the mask.
-std::uint32_t laneBits(D d, M mask) {
+HWY_INLINE std::uint32_t laneBits(D d, M mask) {
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return bytes[0] | std::uint32_t{bytes[1]} << 8;
@@ -153,6 +153,11 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const M clockwise = signedArea < zero;
   const M culled = skipBackFaces ? hn::And(tested, clockwise) : hn::FirstN(d, 0);
   const M zeroArea = hn::And(tested, signedArea == zero);
+  verdicts.culled |= laneBits(d, culled) << lane;
+  verdicts.zeroArea |= laneBits(d, zeroArea) << lane;  // never culled: area == 0, not < 0
+  const M live = hn::AndNot(hn::Or(culled, zeroArea), tested);
+  // Nothing more to decide (often: the back faces of a closed mesh come in runs).
+  if (hn::AllFalse(d, live)) return;
   // Counter-clockwise, as binning keeps it: b and c trade places.
   const V swappedX = hn::IfThenElse(clockwise, vx, ux),
           swappedY = hn::IfThenElse(clockwise, vy, uy);
@@ -182,13 +187,11 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
                               EdgeLanes(d, zero, zero, ux, uy, sx, sy)};
   const M covers = FewSamples(d, width, height).covered(d, edges);
 
-  const M live = hn::AndNot(hn::Or(culled, zeroArea), tested);
   const M noSample = hn::And(live, hn::Or(empty, hn::AndNot(covers, sampled)));
-  const M kept = hn::AndNot(noSample, live);
-  const M single = hn::And(kept, hn::And(width == zero, height == zero));
-  verdicts.culled |= laneBits(d, culled) << lane;
-  verdicts.zeroArea |= laneBits(d, zeroArea) << lane;  // never culled: area == 0, not < 0
   verdicts.coversNoSample |= laneBits(d, noSample) << lane;
+  const M kept = hn::AndNot(noSample, live);
+  if (hn::AllFalse(d, kept)) return;
+  const M single = hn::And(kept, hn::And(width == zero, height == zero));
   const std::uint32_t fragments = laneBits(d, single) << lane;
   verdicts.fragment |= fragments;
   verdicts.triangle |= laneBits(d, hn::AndNot(single, kept)) << lane;
