@@ -14,27 +14,12 @@ EdgeMask swapEdges12(EdgeMask boundary) {
   return static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
 }
 
-// A triangle whose box holds the one sample (x, y): binned as its fragment there, if it
-// covers it.
-BinOutcome binFragment(Chunk& chunk, const TileGrid& grid, const WindowVertex& a,
-                       const WindowVertex& b, const WindowVertex& c, std::int64_t area,
-                       EdgeMask boundary, int x, int y, std::int32_t polygon) {
-  const std::optional<float> key = keyOfOnlySample(a, b, c, area, boundary, x, y);
-  if (!key) return BinOutcome::CoversNoSample;
-  ++chunk.counts.boxSamples;
-  const auto index = static_cast<std::uint32_t>(chunk.fragments.size()) | kFragmentBit;
-  grid.forEachTile({x, y, x, y}, [&](std::size_t t) { chunk.bins[t].push_back(index); });
-  chunk.fragments.push_back(
-      {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), *key, polygon});
-  return BinOutcome::Binned;
-}
-
 }  // namespace
 
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon, bool coversSample) {
+                       std::int32_t polygon) {
   if (area == 0) return BinOutcome::ZeroArea;
   const WindowVertex* second = &b;
   const WindowVertex* third = &c;
@@ -45,17 +30,16 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
   }
   const PixelBounds bounds = samplesInBoundingBox(a, *second, *third, grid.viewport());
   if (bounds.x0 == bounds.x1 && bounds.y0 == bounds.y1) {
-    return binFragment(chunk, grid, a, *second, *third, area < 0 ? -area : area, boundary,
-                       bounds.x0, bounds.y0, polygon);
+    const std::optional<float> key = keyOfOnlySample(a, *second, *third, area < 0 ? -area : area,
+                                                     boundary, bounds.x0, bounds.y0);
+    if (!key) return BinOutcome::CoversNoSample;
+    binFragment(chunk, tileOf(grid, bounds.x0, bounds.y0), bounds.x0, bounds.y0, *key, polygon);
+    return BinOutcome::Binned;
   }
-  if (!coversSample && (bounds.empty() || !coversAnySample(a, *second, *third, bounds))) {
+  if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
     return BinOutcome::CoversNoSample;
   }
-  chunk.counts.boxSamples += bounds.area();
-  const auto index = static_cast<std::uint32_t>(chunk.triangles.size());
-  grid.forEachTile(bounds, [&](std::size_t t) { chunk.bins[t].push_back(index); });
-  chunk.triangles.push_back({{r0, r1, r2}, polygon});
-  chunk.boundaryEdges.push_back(boundary);
+  binCovering(chunk, grid, r0, r1, r2, bounds, boundary, polygon);
   return BinOutcome::Binned;
 }
 

@@ -16,12 +16,48 @@ enum class BinOutcome { Binned, ZeroArea, CoversNoSample };
 // One triangle of `polygon`, given as vertex references (Frame.h) with their window
 // vertices, in either winding, `area` its doubleSignedArea and `boundary` its polygon-edge
 // mask (RasterTriangle.h). Kept counter-clockwise (corners 1 and 2 swapped if need be)
-// unless it has zero area or covers no pixel center; `coversSample`: the set-up's batch
-// found that it covers one (BatchVerdicts::coversSample), not to be tested again.
+// unless it has zero area or covers no pixel center.
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon, bool coversSample = false);
+                       std::int32_t polygon);
+
+// The tile of pixel (x, y) in the viewport.
+inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
+  return static_cast<std::size_t>(y / TileGrid::kTileSize) *
+             static_cast<std::size_t>(grid.tilesX()) +
+         static_cast<std::size_t>(x / TileGrid::kTileSize);
+}
+
+// Bins a triangle whose box holds one pixel center, (x, y) in `tile`, as its fragment there: it
+// covers it with depth key `key` (keyOfOnlySample, RasterTriangle.h). Inlined, as
+// binCovering: the set-up's batches bin most triangles, and out of line their eight
+// arguments and the call cost as much as the appends.
+[[gnu::always_inline]] inline void binFragment(Chunk& chunk, std::size_t tile, int x, int y,
+                                               float key, std::int32_t polygon) {
+  ++chunk.counts.boxSamples;
+  chunk.bins[tile].push_back(static_cast<std::uint32_t>(chunk.fragments.size()) | kFragmentBit);
+  chunk.fragments.push_back(
+      {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), key, polygon});
+}
+
+// Bins a counter-clockwise triangle (vertex references r0, r1, r2) that covers a pixel center
+// of `samples`, those of its box (samplesInBoundingBox), in the tiles they overlap: `onlyTile`
+// alone when it is one (not negative).
+[[gnu::always_inline]] inline void binCovering(Chunk& chunk, const TileGrid& grid, std::uint32_t r0,
+                                               std::uint32_t r1, std::uint32_t r2,
+                                               const PixelBounds& samples, EdgeMask boundary,
+                                               std::int32_t polygon, std::int64_t onlyTile = -1) {
+  chunk.counts.boxSamples += samples.area();
+  const auto index = static_cast<std::uint32_t>(chunk.triangles.size());
+  if (onlyTile >= 0) {
+    chunk.bins[static_cast<std::size_t>(onlyTile)].push_back(index);
+  } else {
+    grid.forEachTile(samples, [&](std::size_t t) { chunk.bins[t].push_back(index); });
+  }
+  chunk.triangles.push_back({{r0, r1, r2}, polygon});
+  chunk.boundaryEdges.push_back(boundary);
+}
 
 // A bin entry is 32 bits with the top one telling a fragment from a triangle (kFragmentBit),
 // and a vertex reference has its top bit for a clipped vertex (kClippedVertexBit): a chunk

@@ -74,6 +74,9 @@ glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
 template <class PointsT, class PolygonsT, bool kSkipBackFaces>
 class PolygonSetup {
  public:
+  // The polygon-boundary edges keep() gives a triangle polygon's one triangle.
+  static constexpr EdgeMask kBoundaryEdges = kSkipBackFaces ? EdgeMask{0} : kAllEdges;
+
   PolygonSetup(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh, PointsT points,
                PolygonsT polygons)
       : context_(context),
@@ -83,24 +86,17 @@ class PolygonSetup {
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex) {}
 
-  // Puts the polygon in a batch's lane, to be tested there when it is a triangle with every
+  // Puts the polygon in a batch's lane, to be set up there when it is a triangle with every
   // vertex inside (SetupBatch.h).
   void load(std::size_t polygon, TriangleBatch& batch, int lane) const {
-    batch.tested[lane] = 0;
-    if (polygons_.size(polygon) != 3) return;
-    std::uint32_t any = 0;
-    for (int j = 0; j < 3; ++j) {
-      const WindowVertex& v =
-          meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
-      batch.x[j][lane] = v.x;
-      batch.y[j][lane] = v.y;
-      any |= v.outcode;
-    }
-    batch.tested[lane] = any == kInside;
+    batch.triangle[lane] = polygons_.size(polygon) == 3;
+    if (!batch.triangle[lane]) return;
+    for (int j = 0; j < 3; ++j)
+      batch.v[j][lane] = meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
   }
 
-  // Counts the polygons the batch dropped as run() would, and runs the others of the first
-  // `lanes` lanes (the lanes beyond were not tested), in lane order.
+  // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
+  // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
     chunk_.counts.culled += static_cast<std::size_t>(verdicts.culledCount);
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
@@ -108,10 +104,12 @@ class PolygonSetup {
     const std::uint32_t used = (1u << lanes) - 1;
     for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
-      coversSample_ = (verdicts.coversSample >> lane) & 1u;
-      run(lanePolygon[lane]);
+      if ((verdicts.kept() >> lane) & 1u) {
+        bin(verdicts, lane, lanePolygon[lane]);
+      } else {
+        run(lanePolygon[lane]);
+      }
     }
-    coversSample_ = false;
   }
 
   void run(std::size_t polygon) {
@@ -168,7 +166,7 @@ class PolygonSetup {
     }
     emit(area < 0, [&](Tally& tally) {
       keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
-           tally, coversSample_);
+           tally);
     });
   }
 
@@ -215,9 +213,34 @@ class PolygonSetup {
       countDropped(tally);
       return;
     }
-    context_.backFacing[static_cast<std::size_t>(polygonId_)] = back;
-    chunk_.counts.trianglesBinned += static_cast<std::size_t>(tally.binned);
+    countDrawn(polygonId_, back, tally.binned);
+  }
+
+  void countDrawn(std::int32_t polygonId, bool back, int trianglesBinned) {
+    context_.backFacing[static_cast<std::size_t>(polygonId)] = back;
+    chunk_.counts.trianglesBinned += static_cast<std::size_t>(trianglesBinned);
     ++chunk_.counts.drawn;
+  }
+
+  // A triangle polygon a batch kept, binned as it decided (as keep() would bin it).
+  void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
+    const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
+    const bool back = (verdicts.clockwise >> lane) & 1u;
+    const auto& samples = verdicts.samples;
+    const std::size_t tile = static_cast<std::size_t>(verdicts.tile[lane]);
+    if ((verdicts.fragment >> lane) & 1u) {
+      binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId);
+    } else {
+      // Its vertex references, read again here (most kept triangles are fragments).
+      const auto reference = [&](std::size_t corner) {
+        return frameIndex(polygons_.pointId(polygon, corner));
+      };
+      binCovering(
+          chunk_, context_.grid, reference(0), reference(back ? 2 : 1), reference(back ? 1 : 2),
+          {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
+          polygonId, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
+    }
+    countDrawn(polygonId, back, 1);
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -287,16 +310,14 @@ class PolygonSetup {
     keep(r0, r1, r2, a, b, c, doubleSignedArea(a, b, c), boundary, tally);
   }
 
-  // Hands a triangle to binning (`coversSample`: the batch found it covers a sample of its
-  // box). Without back faces no silhouette fold can form: no edge is marked as a polygon
-  // boundary, so the unsnapped depth plane holds everywhere (RasterTriangle.cpp,
-  // TriangleDepth).
+  // Hands a triangle to binning. Without back faces no silhouette fold can form: no edge is
+  // marked as a polygon boundary, so the unsnapped depth plane holds everywhere
+  // (RasterTriangle.cpp, TriangleDepth).
   void keep(std::uint32_t r0, std::uint32_t r1, std::uint32_t r2, const WindowVertex& a,
             const WindowVertex& b, const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-            Tally& tally, bool coversSample = false) {
+            Tally& tally) {
     const EdgeMask edges = kSkipBackFaces ? EdgeMask{0} : boundary;
-    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_,
-                        coversSample)) {
+    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_)) {
       case BinOutcome::ZeroArea:
         ++tally.zeroArea;
         break;
@@ -325,7 +346,6 @@ class PolygonSetup {
   const WindowVertex* meshVertices_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
-  bool coversSample_ = false;  // the polygon run() sets up is a batch lane known to cover one
 };
 
 // The mesh a global polygon id belongs to.
@@ -347,10 +367,12 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   PolygonSetup<PointsT, PolygonsT, kSkipBackFaces> setup(context, chunk, mesh, points, polygons);
   const bool batched = setupBatchesEnabled();
   TriangleBatch batch{};
+  BatchVerdicts verdicts;
   std::size_t lanePolygon[kBatchSize];
   int lanes = 0;
   const auto settleBatch = [&] {
-    setup.settle(classifyBatch(batch, context.grid.viewport(), kSkipBackFaces), lanePolygon, lanes);
+    classifyBatch(batch, context.grid, kSkipBackFaces, !kSkipBackFaces, verdicts);
+    setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
   const auto visit = [&](std::size_t polygon) {
@@ -378,7 +400,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     }
   }
   if (lanes > 0) {
-    std::fill(batch.tested + lanes, batch.tested + kBatchSize, 0);  // earlier triangles
+    std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);  // earlier triangles
     settleBatch();
   }
   return position;

@@ -1,21 +1,29 @@
-// The batch test of SetupBatch.h, compiled once per instruction set by Highway's
-// foreach_target (this file includes itself) and dispatched at run time.
+// The batches of SetupBatch.h, compiled once per instruction set by Highway's foreach_target
+// (this file includes itself) and dispatched at run time.
 //
-// 32-bit arithmetic, exact. A lane is tested only when its triangle's bounding box is less
-// than kMaxExtent = 2^14 grid steps (64 pixels) on each side, and coordinates are taken
-// relative to its vertex a: every vertex coordinate then is below 2^14 in magnitude, and so
-// is every edge's (dx, dy). The samples tested lie in the bounding box, or one pixel (2^8)
-// beyond it when the box holds fewer than two pixel centers across; so each product of an
-// edge function, (q − p)·(s − p), is below 2^14 · (2^14 + 2^8) < 2^28.1, an edge function
-// below 2^29.1 and twice the area below 2^29: far from int32's 2^31. Lanes beyond the bound
+// Coverage in 32-bit arithmetic, exact. A lane is tested only when its triangle's bounding box
+// is less than kMaxExtent = 2^14 grid steps (64 pixels) on each side, and coordinates are
+// taken relative to its vertex a: every vertex coordinate then is below 2^14 in magnitude, and
+// so is every edge's (dx, dy). The samples tested lie in the bounding box, or at most three
+// pixels (3 · 2^8) beyond it (in lanes whose box holds fewer centers); so each product of an
+// edge function, (q − p)·(s − p), is below 2^14 · (2^14 + 3 · 2^8) < 2^28.3, an edge function
+// below 2^29.3 and twice the area below 2^29: far from int32's 2^31. Lanes beyond the bound
 // (rare: a dense mesh's triangles are pixels across) have their coordinates zeroed before
 // any product and go to the per-triangle path, whose 64-bit arithmetic holds any triangle
 // in the guard band.
+//
+// Depth keys in double lanes, as RasterTriangle.cpp's TriangleDepth computes them: positions
+// in fine units (1/kResidueScale of a grid step) relative to vertex a are below 2^22.1, so the
+// fine area and edge functions are exact integers below 2^46 whatever the order of their
+// operations; the interpolation, which rounds, runs the scalar path's operations in its order.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "SetupBatch.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
+
+#include <bit>
+#include <limits>
 
 #include "SetupBatch.h"
 #include "facet/Conventions.h"
@@ -29,36 +37,57 @@ using V = hn::Vec<D>;
 using M = hn::Mask<D>;
 
 constexpr std::int32_t kMaxExtent = 1 << 14;
+constexpr int kTileBits = std::countr_zero(unsigned{TileGrid::kTileSize});
+static_assert(TileGrid::kTileSize == 1 << kTileBits);
 constexpr std::int32_t kHalfPixel = kSubpixelScale / 2;
 
-// One directed edge p → q of a counter-clockwise triangle: its function at the first sample,
-// biased by −1 unless the edge is a top or left edge (RasterTriangle.h, top-left rule), so
-// that a sample is covered when every biased value is ≥ 0; and its steps to the next pixel.
+// One directed edge p → q of a counter-clockwise triangle: its function at the first sample
+// (`exact`) and that biased by −1 unless the edge is a top or left edge (RasterTriangle.h,
+// top-left rule), so that a sample is covered when every biased value is ≥ 0; and its steps
+// to the next pixel.
 struct EdgeLanes {
-  V value, stepX, stepY;
+  V exact, value, stepX, stepY;
   EdgeLanes(D d, V px, V py, V qx, V qy, V sx, V sy) {
     const V dx = qx - px, dy = qy - py;
     const M topLeft = hn::Or(dy < hn::Zero(d), hn::And(dy == hn::Zero(d), dx < hn::Zero(d)));
-    const V bias = hn::IfThenZeroElse(topLeft, hn::Set(d, 1));
-    value = dx * (sy - py) - dy * (sx - px) - bias;
+    exact = dx * (sy - py) - dy * (sx - px);
+    value = exact - hn::IfThenZeroElse(topLeft, hn::Set(d, 1));
     stepX = hn::Zero(d) - hn::ShiftLeft<kSubpixelBits>(dy);
     stepY = hn::ShiftLeft<kSubpixelBits>(dx);
   }
 };
 
-// Whether one of the samples (0, 0), (1, 0), (0, 1), (1, 1) pixels from the first is inside
-// all three edges, the second column only where `twoColumns`, the second row where `twoRows`.
-M coversSample(D d, const EdgeLanes (&e)[3], M twoColumns, M twoRows) {
-  const V minusOne = hn::Set(d, -1);  // Highway 1.0 has no integer >=
-  const auto inside = [&](V w0, V w1, V w2) { return (w0 | w1 | w2) > minusOne; };
-  const M s00 = inside(e[0].value, e[1].value, e[2].value);
-  const M s10 = inside(e[0].value + e[0].stepX, e[1].value + e[1].stepX, e[2].value + e[2].stepX);
-  const M s01 = inside(e[0].value + e[0].stepY, e[1].value + e[1].stepY, e[2].value + e[2].stepY);
-  const M s11 = inside(e[0].value + e[0].stepX + e[0].stepY, e[1].value + e[1].stepX + e[1].stepY,
-                       e[2].value + e[2].stepX + e[2].stepY);
-  return hn::Or(hn::Or(s00, hn::And(twoColumns, s10)),
-                hn::Or(hn::And(twoRows, s01), hn::And(hn::And(twoColumns, twoRows), s11)));
-}
+// The pixel centers of a box of at most 4, from its first: (0, 0), then across a 2 × 2 box
+// (1, 0), (0, 1), (1, 1), or along a row or column of up to 4.
+struct FewSamples {
+  M valid[4];                           // which of the four the box holds
+  FewSamples(D d, V width, V height) {  // in centers, less one
+    const V one = hn::Set(d, 1), three = hn::Set(d, 3);
+    square = hn::And(width == one, height == one);
+    wide = width > hn::Zero(d);
+    valid[0] = hn::FirstN(d, hn::Lanes(d));
+    valid[1] = hn::Or(wide, height > hn::Zero(d));
+    valid[2] = hn::Or(square, hn::Or(width > one, height > one));
+    valid[3] = hn::Or(square, hn::Or(width == three, height == three));
+  }
+  // Whether one of them is inside all three edges.
+  M covered(D d, const EdgeLanes (&e)[3]) const {
+    const V minusOne = hn::Set(d, -1);  // Highway 1.0 has no integer >=
+    V at[4][3];
+    for (int i = 0; i < 3; ++i) {
+      const V along = hn::IfThenElse(wide, e[i].stepX, e[i].stepY);
+      at[0][i] = e[i].value;
+      at[1][i] = e[i].value + along;
+      at[2][i] = hn::IfThenElse(square, e[i].value + e[i].stepY, at[1][i] + along);
+      at[3][i] = hn::IfThenElse(square, at[2][i] + e[i].stepX, at[2][i] + along);
+    }
+    M any = hn::FirstN(d, 0);
+    for (int k = 0; k < 4; ++k)
+      any = hn::Or(any, hn::And(valid[k], (at[k][0] | at[k][1] | at[k][2]) > minusOne));
+    return any;
+  }
+  M square, wide;
+};
 
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
 V ceilToPixel(D d, V v) {
@@ -69,35 +98,66 @@ V floorToPixel(V v) {
 }
 
 // Bit l of the result: lane l of the mask.
-std::uint32_t laneBits(D d, M mask) {
+HWY_INLINE std::uint32_t laneBits(D d, M mask) {
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return bytes[0] | std::uint32_t{bytes[1]} << 8;
 }
 
+// One vertex per lane: its four 32-bit words (FrameTransform.h's WindowVertex layout).
+struct VertexLanes {
+  V x, y, depth, word;
+  VertexLanes(D d, const WindowVertex* v) {
+    hn::LoadInterleaved4(d, reinterpret_cast<const std::int32_t*>(v), x, y, depth, word);
+  }
+  V outcode(D d) const { return hn::And(word, hn::Set(d, 0xFFFF)); }
+  V residueX() const { return hn::ShiftRight<24>(hn::ShiftLeft<8>(word)); }  // signed byte 2
+  V residueY() const { return hn::ShiftRight<24>(word); }                    // signed byte 3
+};
+
+// What the keys of a batch's fragments are computed from, per lane (counter-clockwise,
+// relative to vertex a): b, c and the sample in fine units, the sample's snapped edge
+// functions of edges c → a and a → b, twice the snapped area, and the vertices' keys.
+struct KeyInputs {
+  alignas(64) std::int32_t bx[kBatchSize], by[kBatchSize], cx[kBatchSize], cy[kBatchSize];
+  alignas(64) std::int32_t sx[kBatchSize], sy[kBatchSize];
+  alignas(64) std::int32_t edge1[kBatchSize], edge2[kBatchSize], area[kBatchSize];
+  alignas(64) float keyA[kBatchSize], keyB[kBatchSize], keyC[kBatchSize];
+};
+
+// In fine units: grid steps · kResidueScale + the residue.
+V toFine(V grid, V residue) {
+  return hn::ShiftLeft<kResidueBits>(grid) + residue;
+}
+
 // The verdicts of the lanes from `lane` on (SetupBatch.h), decided as Setup.cpp and
 // Binning.cpp decide: culled before zero area, zero area before the pixel-center test, which
-// is exact for boxes of at most 2 × 2 pixel centers (samplesInBoundingBox, coversAnySample)
-// and left to the per-triangle path for larger ones.
-void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const PixelBounds& viewport,
-                   bool skipBackFaces, BatchVerdicts& verdicts) {
+// is exact for boxes of at most 4 pixel centers (samplesInBoundingBox, coversAnySample)
+// and assumed true for larger ones; a kept triangle whose box holds one center is a fragment.
+void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const TileGrid& grid,
+                   bool skipBackFaces, BatchVerdicts& verdicts, KeyInputs& keys) {
+  const PixelBounds viewport = grid.viewport();
   const V zero = hn::Zero(d);
-  const V ax = hn::Load(d, batch.x[0] + lane), ay = hn::Load(d, batch.y[0] + lane);
-  const V bx = hn::Load(d, batch.x[1] + lane), by = hn::Load(d, batch.y[1] + lane);
-  const V cx = hn::Load(d, batch.x[2] + lane), cy = hn::Load(d, batch.y[2] + lane);
-  const V minX = hn::Min(hn::Min(ax, bx), cx), maxX = hn::Max(hn::Max(ax, bx), cx);
-  const V minY = hn::Min(hn::Min(ay, by), cy), maxY = hn::Max(hn::Max(ay, by), cy);
+  const VertexLanes a(d, batch.v[0] + lane), b0(d, batch.v[1] + lane), c0(d, batch.v[2] + lane);
+  const V minX = hn::Min(hn::Min(a.x, b0.x), c0.x), maxX = hn::Max(hn::Max(a.x, b0.x), c0.x);
+  const V minY = hn::Min(hn::Min(a.y, b0.y), c0.y), maxY = hn::Max(hn::Max(a.y, b0.y), c0.y);
   const V limit = hn::Set(d, kMaxExtent);
-  const M tested = hn::And(hn::Load(d, batch.tested + lane) != zero,
+  const M inside = hn::Or(hn::Or(a.outcode(d), b0.outcode(d)), c0.outcode(d)) == zero;
+  const M tested = hn::And(hn::And(hn::Load(d, batch.triangle + lane) != zero, inside),
                            hn::And(maxX - minX < limit, maxY - minY < limit));
 
   // b and c relative to a; zero in untested lanes, so that no product below can overflow.
-  V ux = hn::IfThenElseZero(tested, bx - ax), uy = hn::IfThenElseZero(tested, by - ay);
-  V vx = hn::IfThenElseZero(tested, cx - ax), vy = hn::IfThenElseZero(tested, cy - ay);
-  const V area = ux * vy - vx * uy;  // doubleSignedArea
-  const M clockwise = area < zero;
+  V ux = hn::IfThenElseZero(tested, b0.x - a.x), uy = hn::IfThenElseZero(tested, b0.y - a.y);
+  V vx = hn::IfThenElseZero(tested, c0.x - a.x), vy = hn::IfThenElseZero(tested, c0.y - a.y);
+  const V signedArea = ux * vy - vx * uy;  // doubleSignedArea
+  const M clockwise = signedArea < zero;
   const M culled = skipBackFaces ? hn::And(tested, clockwise) : hn::FirstN(d, 0);
-  const M zeroArea = hn::And(tested, area == zero);
+  const M zeroArea = hn::And(tested, signedArea == zero);
+  verdicts.culled |= laneBits(d, culled) << lane;
+  verdicts.zeroArea |= laneBits(d, zeroArea) << lane;  // never culled: area == 0, not < 0
+  const M live = hn::AndNot(hn::Or(culled, zeroArea), tested);
+  // Nothing more to decide (often: the back faces of a closed mesh come in runs).
+  if (hn::AllFalse(d, live)) return;
   // Counter-clockwise, as binning keeps it: b and c trade places.
   const V swappedX = hn::IfThenElse(clockwise, vx, ux),
           swappedY = hn::IfThenElse(clockwise, vy, uy);
@@ -111,37 +171,120 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Pixe
   const V x1 = hn::Min(floorToPixel(maxX - half), hn::Set(d, viewport.x1));
   const V y1 = hn::Min(floorToPixel(maxY - half), hn::Set(d, viewport.y1));
   const M empty = hn::Or(x0 > x1, y0 > y1);
-  const V two = hn::Set(d, 2);
-  const M small = hn::And(x1 - x0 < two, y1 - y0 < two);  // at most 2 × 2 centers
-  const M sampled = hn::AndNot(empty, hn::And(tested, small));
+  const V width = x1 - x0, height = y1 - y0;  // in centers, less one
+  const V one = hn::Set(d, 1), four = hn::Set(d, 4);
+  const M few = hn::Or(hn::Or(hn::And(width == zero, height < four),  // at most 4 centers
+                              hn::And(height == zero, width < four)),
+                       hn::And(width == one, height == one));
+  const M sampled = hn::AndNot(empty, hn::And(tested, few));
 
   // The first center, relative to a; zero in lanes not sampled (it may lie far outside
   // their box).
-  const V sx = hn::IfThenElseZero(sampled, hn::ShiftLeft<kSubpixelBits>(x0) + half - ax);
-  const V sy = hn::IfThenElseZero(sampled, hn::ShiftLeft<kSubpixelBits>(y0) + half - ay);
+  const V sx = hn::IfThenElseZero(sampled, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
+  const V sy = hn::IfThenElseZero(sampled, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
   const EdgeLanes edges[3] = {EdgeLanes(d, ux, uy, vx, vy, sx, sy),
                               EdgeLanes(d, vx, vy, zero, zero, sx, sy),
                               EdgeLanes(d, zero, zero, ux, uy, sx, sy)};
-  const M covers = coversSample(d, edges, x1 > x0, y1 > y0);
+  const M covers = FewSamples(d, width, height).covered(d, edges);
 
-  const M live = hn::AndNot(hn::Or(culled, zeroArea), tested);
   const M noSample = hn::And(live, hn::Or(empty, hn::AndNot(covers, sampled)));
-  verdicts.culled |= laneBits(d, culled) << lane;
-  verdicts.zeroArea |= laneBits(d, zeroArea) << lane;  // never culled: area == 0, not < 0
   verdicts.coversNoSample |= laneBits(d, noSample) << lane;
-  verdicts.coversSample |= laneBits(d, hn::And(live, hn::And(sampled, covers))) << lane;
+  const M kept = hn::AndNot(noSample, live);
+  if (hn::AllFalse(d, kept)) return;
+  const M single = hn::And(kept, hn::And(width == zero, height == zero));
+  const std::uint32_t fragments = laneBits(d, single) << lane;
+  verdicts.fragment |= fragments;
+  verdicts.triangle |= laneBits(d, hn::AndNot(single, kept)) << lane;
+  verdicts.clockwise |= laneBits(d, clockwise) << lane;
+  hn::Store(x0, d, verdicts.samples.x0 + lane);
+  hn::Store(y0, d, verdicts.samples.y0 + lane);
+  hn::Store(x1, d, verdicts.samples.x1 + lane);
+  hn::Store(y1, d, verdicts.samples.y1 + lane);
+  // The tile of the first center, and whether it is the only one the box overlaps (centers
+  // of a kept lane are in the viewport: not negative).
+  const V tileX = hn::ShiftRight<kTileBits>(x0), tileY = hn::ShiftRight<kTileBits>(y0);
+  hn::Store(tileY * hn::Set(d, grid.tilesX()) + tileX, d, verdicts.tile + lane);
+  verdicts.oneTile |= laneBits(d, hn::And(tileX == hn::ShiftRight<kTileBits>(x1),
+                                          tileY == hn::ShiftRight<kTileBits>(y1)))
+                      << lane;
+  if (fragments == 0) return;
+
+  // The fragments' keys' inputs, b and c (and their residues and keys) swapped as above.
+  const V bResidueX = hn::IfThenElse(clockwise, c0.residueX(), b0.residueX());
+  const V bResidueY = hn::IfThenElse(clockwise, c0.residueY(), b0.residueY());
+  const V cResidueX = hn::IfThenElse(clockwise, b0.residueX(), c0.residueX());
+  const V cResidueY = hn::IfThenElse(clockwise, b0.residueY(), c0.residueY());
+  const V aResidueX = a.residueX(), aResidueY = a.residueY();
+  hn::Store(toFine(ux, bResidueX - aResidueX), d, keys.bx + lane);
+  hn::Store(toFine(uy, bResidueY - aResidueY), d, keys.by + lane);
+  hn::Store(toFine(vx, cResidueX - aResidueX), d, keys.cx + lane);
+  hn::Store(toFine(vy, cResidueY - aResidueY), d, keys.cy + lane);
+  hn::Store(toFine(sx, zero - aResidueX), d, keys.sx + lane);
+  hn::Store(toFine(sy, zero - aResidueY), d, keys.sy + lane);
+  hn::Store(edges[1].exact, d, keys.edge1 + lane);
+  hn::Store(edges[2].exact, d, keys.edge2 + lane);
+  hn::Store(hn::Abs(signedArea), d, keys.area + lane);
+  const hn::Repartition<float, D> df;
+  hn::Store(hn::BitCast(df, a.depth), df, keys.keyA + lane);
+  hn::Store(hn::BitCast(df, hn::IfThenElse(clockwise, c0.depth, b0.depth)), df, keys.keyB + lane);
+  hn::Store(hn::BitCast(df, hn::IfThenElse(clockwise, b0.depth, c0.depth)), df, keys.keyC + lane);
 }
 
-BatchVerdicts ClassifyBatch(const TriangleBatch& batch, const PixelBounds& viewport,
-                            bool skipBackFaces) {
+using DD = hn::ScalableTag<double>;
+using VD = hn::Vec<DD>;
+
+// keyOfOnlySample's key (RasterTriangle.cpp: TriangleDepth's keyAt, then toDepthKey) of the
+// lanes from `lane` on: from the unsnapped plane where the fine area is positive and the
+// sample is not beyond a polygon-boundary edge of the unsnapped triangle, else from the
+// snapped one.
+void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, float* keys) {
+  const hn::Rebind<std::int32_t, DD> di;
+  const hn::Rebind<float, DD> df;
+  const auto load = [&](const std::int32_t* p) {
+    return hn::PromoteTo(dd, hn::Load(di, p + lane));
+  };
+  const VD bx = load(in.bx), by = load(in.by), cx = load(in.cx), cy = load(in.cy);
+  const VD sx = load(in.sx), sy = load(in.sy);
+  const VD zero = hn::Zero(dd);
+  // edgeFunction(p, q, s) = (q.x − p.x)(s.y − p.y) − (q.y − p.y)(s.x − p.x), a at 0: exact.
+  const VD fineArea = bx * cy - by * cx;
+  const VD fine1 = (zero - cx) * (sy - cy) - (zero - cy) * (sx - cx);  // c → a
+  const VD fine2 = bx * sy - by * sx;                                  // a → b
+  const auto unsnapped = fineArea > zero;
+  auto plane = unsnapped;
+  if (boundaryEdges) {
+    const VD fine0 = (cx - bx) * (sy - by) - (cy - by) * (sx - bx);  // b → c
+    plane = hn::AndNot(hn::Or(hn::Or(fine0 < zero, fine1 < zero), fine2 < zero), unsnapped);
+  }
+  const VD keyA = hn::PromoteTo(dd, hn::Load(df, in.keyA + lane));
+  const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
+  const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
+  const VD one = hn::Set(dd, 1.0);
+  const VD unsnappedKey = keyA + (dk1 * fine1 + dk2 * fine2) * (one / fineArea);
+  const VD snappedKey =
+      keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
+  const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
+  const VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
+  hn::Store(hn::DemoteTo(df, hn::Min(hn::Max(key, hn::Neg(largest)), largest)), df, keys + lane);
+}
+
+void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
+                   bool boundaryEdges, BatchVerdicts& verdicts) {
   const D d;
-  BatchVerdicts verdicts;
+  verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
+  verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
+  KeyInputs keys;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
-    classifyLanes(d, batch, lane, viewport, skipBackFaces, verdicts);
+    classifyLanes(d, batch, lane, grid, skipBackFaces, verdicts, keys);
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
-  return verdicts;
+  const DD dd;
+  const std::uint32_t laneMask = (1u << hn::Lanes(dd)) - 1;
+  for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
+    if ((verdicts.fragment >> lane) & laneMask)
+      keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
+  }
 }
 
 const char* BatchTargetName() {
@@ -163,9 +306,9 @@ namespace {
 std::atomic<bool> batchesOn{true};
 }
 
-BatchVerdicts classifyBatch(const TriangleBatch& batch, const PixelBounds& viewport,
-                            bool skipBackFaces) {
-  return HWY_DYNAMIC_DISPATCH(ClassifyBatch)(batch, viewport, skipBackFaces);
+void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
+                   bool boundaryEdges, BatchVerdicts& verdicts) {
+  HWY_DYNAMIC_DISPATCH(ClassifyBatch)(batch, grid, skipBackFaces, boundaryEdges, verdicts);
 }
 
 std::vector<SimdTarget> simdTargets() {

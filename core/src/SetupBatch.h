@@ -1,16 +1,21 @@
 #pragma once
 
-// Set-up's first pass over triangles, in batches: most triangles of a dense mesh are dropped
-// (back-facing, zero area, or covering no pixel center) and need none of the per-triangle
-// path's work. A batch decides those drops for kBatchSize triangles at once, in SIMD lanes
-// (Google Highway, the instruction set chosen at run time); the triangles it cannot drop go
-// through the per-triangle path (Setup.cpp), which decides again, exactly as without batches.
-// A drop is only ever decided on the same exact integer facts as that path's, so the image
-// is the same bytes with batches or without, on any instruction set.
+// Set-up in batches: kBatchSize triangles at once, in SIMD lanes (Google Highway, the
+// instruction set chosen at run time). Most triangles of a dense mesh are dropped
+// (back-facing, zero area, or covering no pixel center); the others cover a few pixel centers
+// each, and a batch sets them up to the point where binning is an append: counter-clockwise
+// winding, the box of pixel centers, and for a triangle whose box holds one center (most of a
+// dense mesh's) the depth key of its fragment there. Triangles a batch does not take (polygons,
+// triangles to clip, ones too large for its 32-bit arithmetic) go through the per-triangle
+// path (Setup.cpp). A batch decides on the same exact integer facts as that path and computes
+// keys with the same double operations in the same order (no fused multiply-add: the
+// -ffp-contract=off list in core/CMakeLists.txt), so the image is the same bytes with
+// batches or without, on any instruction set.
 
 #include <cstdint>
 #include <vector>
 
+#include "FrameTransform.h"
 #include "TileGrid.h"
 
 namespace facet::detail {
@@ -20,34 +25,52 @@ namespace facet::detail {
 inline constexpr int kBatchSize = 16;
 static_assert(kBatchSize <= 32, "verdicts hold a bit per lane");
 
-// Triangles in lanes: vertex j's snapped window coordinates (FrameTransform.h) in x[j], y[j].
-// A lane is tested only when its triangle is a plain triangle with every vertex inside
-// (`tested` = 1); others (polygons, triangles to clip, unused lanes) are left to the
+// Triangles in lanes: lane l's vertex j in v[j][l] (16 bytes each, loaded into lanes as four
+// 32-bit words). A lane is tested when `triangle` is 1 and every vertex is inside (outcode
+// kInside); others (polygons, unused lanes, and so triangles to clip) are left to the
 // per-triangle path.
 struct TriangleBatch {
-  alignas(64) std::int32_t x[3][kBatchSize];
-  alignas(64) std::int32_t y[3][kBatchSize];
-  alignas(64) std::int32_t tested[kBatchSize];
+  alignas(64) WindowVertex v[3][kBatchSize];
+  alignas(64) std::int32_t triangle[kBatchSize];
 };
 
-// What a batch decided: per kind of drop, one bit per lane (bit l for lane l). Each drop is
-// counted as the per-triangle path would count it; every other lane goes on to that path.
-// The counts are the bits set in each (counted with the instruction set's POPCNT, which the
+// What a batch decided: per kind, one bit per lane (bit l for lane l). Each drop is counted
+// as the per-triangle path would count it. A tested lane is either dropped or kept (binned
+// as a fragment or as a triangle); every other lane goes on to the per-triangle path. The
+// counts are the bits set in each (counted with the instruction set's POPCNT, which the
 // baseline build has not: std::popcount there is a call into libgcc).
 struct BatchVerdicts {
   std::uint32_t culled = 0;          // back-facing, and the mesh skips back faces
   std::uint32_t zeroArea = 0;        // degenerate
   std::uint32_t coversNoSample = 0;  // no pixel center inside (or in the viewport): outside
-  // Not a drop: lanes kept whose box of at most 2 × 2 pixel centers holds one they cover, so
-  // binning need not test their coverage again (coversAnySample, RasterTriangle.h).
-  std::uint32_t coversSample = 0;
+  // Kept, binned as its fragment at (samples.x0[l], samples.y0[l]) with depth key key[l]
+  // (keyOfOnlySample, RasterTriangle.h): its box holds that one pixel center, which it covers.
+  std::uint32_t fragment = 0;
+  // Kept, binned as a triangle over the pixel centers of its box (samplesInBoundingBox): it
+  // covers one of them (decided exactly for boxes of at most 4 centers; assumed for larger
+  // ones, as coversAnySample).
+  std::uint32_t triangle = 0;
+  // Clockwise (snapped window area < 0): seen from the back; binned with corners 1 and 2
+  // swapped.
+  std::uint32_t clockwise = 0;
+  // Kept lanes whose box overlaps one tile, tile[l].
+  std::uint32_t oneTile = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
+  // Per kept lane: the pixel centers of its box, clipped to the viewport (inclusive).
+  struct {
+    alignas(64) std::int32_t x0[kBatchSize], y0[kBatchSize], x1[kBatchSize], y1[kBatchSize];
+  } samples;
+  alignas(64) std::int32_t tile[kBatchSize];  // per kept lane: the tile of its first center
+  alignas(64) float key[kBatchSize];          // per fragment lane
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
+  std::uint32_t kept() const { return fragment | triangle; }
 };
 
-// The verdicts for a viewport and the mesh's back-face handling.
-BatchVerdicts classifyBatch(const TriangleBatch& batch, const PixelBounds& viewport,
-                            bool skipBackFaces);
+// The verdicts for the tiles' viewport and the mesh's back-face handling (`boundaryEdges`:
+// the depth keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's
+// three edges are its polygon's).
+void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
+                   bool boundaryEdges, BatchVerdicts& verdicts);
 
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render
 // runs.

@@ -3,6 +3,8 @@
 // set-up without batches.
 
 #include <bit>
+#include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -45,114 +47,171 @@ class SetupBatches : public EveryTargetTest {
   }
 };
 
-enum Verdict { kUndecided, kCulled, kZeroArea, kCoversNoSample };
+enum Verdict { kUntested, kCulled, kZeroArea, kCoversNoSample, kFragment, kTriangle };
 
-// The per-triangle path's decision (Setup.cpp, Binning.cpp) for a triangle with every vertex
-// inside: the verdict a batch must give, or kUndecided for a triangle set up further.
-std::int32_t exactVerdict(WindowVertex a, WindowVertex b, WindowVertex c,
-                          const PixelBounds& viewport, bool skipBackFaces) {
+// What the per-triangle path (Setup.cpp, Binning.cpp) makes of a triangle with every vertex
+// inside: the verdict, and for a kept one the pixel centers of its box, its winding and, for a
+// fragment, its depth key.
+struct TriangleSetUp {
+  int verdict = kUntested;
+  PixelBounds samples{};
+  bool clockwise = false;
+  float key = 0.0f;
+};
+
+TriangleSetUp exactSetUp(WindowVertex a, WindowVertex b, WindowVertex c,
+                         const PixelBounds& viewport, bool skipBackFaces) {
+  TriangleSetUp result;
   const std::int64_t area = detail::doubleSignedArea(a, b, c);
-  if (skipBackFaces && area < 0) return kCulled;
-  if (area == 0) return kZeroArea;
+  if (skipBackFaces && area < 0) return {kCulled};
+  if (area == 0) return {kZeroArea};
+  result.clockwise = area < 0;
   if (area < 0) std::swap(b, c);
-  const PixelBounds bounds = detail::samplesInBoundingBox(a, b, c, viewport);
-  if (bounds.empty() || !detail::coversAnySample(a, b, c, bounds)) return kCoversNoSample;
-  return kUndecided;
+  result.samples = detail::samplesInBoundingBox(a, b, c, viewport);
+  const PixelBounds& box = result.samples;
+  if (box.x0 == box.x1 && box.y0 == box.y1) {
+    const detail::EdgeMask boundary = skipBackFaces ? 0 : detail::kAllEdges;
+    const std::optional<float> key =
+        detail::keyOfOnlySample(a, b, c, std::abs(area), boundary, box.x0, box.y0);
+    if (!key) return {kCoversNoSample};
+    result.verdict = kFragment;
+    result.key = *key;
+    return result;
+  }
+  if (box.empty() || !detail::coversAnySample(a, b, c, box)) return {kCoversNoSample};
+  result.verdict = kTriangle;
+  return result;
 }
 
-// Whether the batch promises to decide this triangle itself: its box is below 2^14 grid
-// steps across and holds at most 2 × 2 pixel centers.
-bool batchDecides(const WindowVertex (&v)[3], const PixelBounds& viewport) {
+// Whether the batch takes this triangle: flagged a triangle, every vertex inside, its box below
+// 2^14 grid steps across.
+bool batchTakes(const WindowVertex (&v)[3], bool triangle) {
   const auto [minX, maxX] = std::minmax({v[0].x, v[1].x, v[2].x});
   const auto [minY, maxY] = std::minmax({v[0].y, v[1].y, v[2].y});
-  if (maxX - minX >= (1 << 14) || maxY - minY >= (1 << 14)) return false;
-  const PixelBounds box = detail::samplesInBoundingBox(v[0], v[1], v[2], viewport);
-  return box.empty() || (box.x1 - box.x0 < 2 && box.y1 - box.y0 < 2);
+  const bool inside = (v[0].outcode | v[1].outcode | v[2].outcode) == detail::kInside;
+  return triangle && inside && maxX - minX < (1 << 14) && maxY - minY < (1 << 14);
 }
 
 // Random triangles of every kind the batch meets: pixel-sized ones with corners on pixel
 // centers and half-pixel lines (so that samples fall exactly on edges, where the top-left
-// rule decides), slivers and collinear ones, ones partly or wholly off the viewport, and
-// ones near and beyond the 2^14 bound.
+// rule decides), slivers and collinear ones, ones partly or wholly off the viewport, ones
+// near and beyond the 2^14 bound, sub-pixel ones, and some with a vertex outside (to clip);
+// with random residues and depth keys of every magnitude.
 std::vector<WindowVertex> randomTriangles(std::size_t count, unsigned seed) {
   std::mt19937 random(seed);
-  std::uniform_int_distribution<int> kind(0, 5), pixel(-3, 40), fine(-600, 600), any(0, 255);
+  std::uniform_int_distribution<int> kind(0, 6), pixel(-3, 105), fine(-600, 600), any(0, 255);
+  std::uniform_int_distribution<int> residue(-128, 127), exponent(-30, 30);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   std::vector<WindowVertex> corners;
   for (std::size_t t = 0; t < count; ++t) {
     const int k = kind(random);
     const std::int32_t x0 = pixel(random) * 256 + any(random),
                        y0 = pixel(random) * 256 + any(random);
+    const float scale = std::ldexp(1.0f, exponent(random));
     WindowVertex v[3];
     for (WindowVertex& corner : v) {
       corner.x = x0 + fine(random), corner.y = y0 + fine(random);
+      if (k >= 5) {  // sub-pixel: many are fragments
+        corner.x = x0 + fine(random) / (k - 3), corner.y = y0 + fine(random) / (k - 3);
+      }
       if (k == 0) corner.x -= corner.x % 128, corner.y -= corner.y % 128;  // on half pixels
       if (k == 1) corner.x *= 24, corner.y *= 24;                          // near the bound
+      corner.residueX = static_cast<std::int8_t>(residue(random));
+      corner.residueY = static_cast<std::int8_t>(residue(random));
+      corner.depth = scale * (1.0f + 0.001f * unit(random));
     }
     if (k == 2) v[2].x = 2 * v[1].x - v[0].x, v[2].y = 2 * v[1].y - v[0].y;  // collinear
     if (k == 3) v[2] = v[1];
+    if (k == 4) v[1].outcode = detail::kNonFinite;
     corners.insert(corners.end(), std::begin(v), std::end(v));
   }
   return corners;
 }
 
-// One lane's verdict, and that its drop bits are at most one.
-std::int32_t verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
-  const bool culled = (verdicts.culled >> lane) & 1, zeroArea = (verdicts.zeroArea >> lane) & 1,
-             none = (verdicts.coversNoSample >> lane) & 1;
-  EXPECT_LE(culled + zeroArea + none, 1) << "lane " << lane;
-  return culled ? kCulled : zeroArea ? kZeroArea : none ? kCoversNoSample : kUndecided;
+// One lane's verdict, and that its bits are at most one of the kinds.
+int verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
+  const std::uint32_t bits[5] = {verdicts.culled, verdicts.zeroArea, verdicts.coversNoSample,
+                                 verdicts.fragment, verdicts.triangle};
+  int verdict = kUntested, kinds = 0;
+  for (int k = 0; k < 5; ++k) {
+    if ((bits[k] >> lane) & 1u) verdict = k + 1, ++kinds;
+  }
+  EXPECT_LE(kinds, 1) << "lane " << lane;
+  return verdict;
 }
 
-TEST_F(SetupBatches, VerdictsAreThePerTriangleDecisionsOnEveryTarget) {
-  const PixelBounds viewport{0, 0, 31, 23};
+TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
+  const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
+  const PixelBounds viewport = grid.viewport();
   const std::vector<WindowVertex> corners = randomTriangles(20000, 11);
   const std::size_t triangles = corners.size() / 3;
   for (const SimdTarget& target : targets()) {
     SCOPED_TRACE(target.name);
     use(target);
     for (bool skipBackFaces : {false, true}) {
-      std::size_t decided = 0, mismatches = 0, covering = 0;
+      std::size_t mismatches = 0, counts[6] = {};
       for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
         TriangleBatch batch{};
         for (int lane = 0; lane < kBatchSize; ++lane) {
-          for (int j = 0; j < 3; ++j) {
-            batch.x[j][lane] = corners[3 * (first + lane) + j].x;
-            batch.y[j][lane] = corners[3 * (first + lane) + j].y;
-          }
-          batch.tested[lane] = lane % 7 != 3;  // some lanes are left to the per-triangle path
+          for (int j = 0; j < 3; ++j)
+            batch.v[j][lane] = corners[3 * (first + lane) + j];
+          batch.triangle[lane] = lane % 7 != 3;  // some lanes hold polygons
         }
-        const detail::BatchVerdicts verdicts =
-            detail::classifyBatch(batch, viewport, skipBackFaces);
+        detail::BatchVerdicts verdicts;
+        detail::classifyBatch(batch, grid, skipBackFaces, !skipBackFaces, verdicts);
         EXPECT_EQ(verdicts.culledCount, std::popcount(verdicts.culled));
         EXPECT_EQ(verdicts.zeroAreaCount, std::popcount(verdicts.zeroArea));
         EXPECT_EQ(verdicts.coversNoSampleCount, std::popcount(verdicts.coversNoSample));
         for (int lane = 0; lane < kBatchSize; ++lane) {
-          const std::int32_t verdict = verdictOf(verdicts, lane);
           const std::size_t at = 3 * (first + lane);
           const WindowVertex v[3] = {corners[at], corners[at + 1], corners[at + 2]};
-          const std::int32_t exact = exactVerdict(v[0], v[1], v[2], viewport, skipBackFaces);
-          // A tested lane may leave a triangle it need not decide to the per-triangle path.
-          bool right = batch.tested[lane] && batchDecides(v, viewport)
-                           ? verdict == exact
-                           : verdict == kUndecided || (batch.tested[lane] && verdict == exact);
-          decided += verdict != kUndecided;
-          // A lane said to cover a sample is one the per-triangle path keeps.
-          if (((verdicts.coversSample >> lane) & 1) &&
-              (verdict != kUndecided || exact != kUndecided))
-            right = false;
-          covering += (verdicts.coversSample >> lane) & 1;
+          const int verdict = verdictOf(verdicts, lane);
+          const TriangleSetUp exact = batchTakes(v, batch.triangle[lane])
+                                          ? exactSetUp(v[0], v[1], v[2], viewport, skipBackFaces)
+                                          : TriangleSetUp{};
+          ++counts[verdict];
+          const PixelBounds samples{verdicts.samples.x0[lane], verdicts.samples.y0[lane],
+                                    verdicts.samples.x1[lane], verdicts.samples.y1[lane]};
+          const bool kept = verdict == kFragment || verdict == kTriangle;
+          bool right = verdict == exact.verdict;
+          if (right && kept) {
+            right = samples.x0 == exact.samples.x0 && samples.y0 == exact.samples.y0 &&
+                    samples.x1 == exact.samples.x1 && samples.y1 == exact.samples.y1 &&
+                    ((verdicts.clockwise >> lane) & 1u) == exact.clockwise;
+            // Its first center's tile, and whether its box overlaps no other.
+            const int tileSize = detail::TileGrid::kTileSize;
+            const bool oneTile = samples.x0 / tileSize == samples.x1 / tileSize &&
+                                 samples.y0 / tileSize == samples.y1 / tileSize;
+            right = right &&
+                    verdicts.tile[lane] ==
+                        static_cast<std::int32_t>(detail::tileOf(grid, samples.x0, samples.y0)) &&
+                    ((verdicts.oneTile >> lane) & 1u) == oneTile;
+          }
+          // The same key to the bit.
+          if (right && verdict == kFragment)
+            right = std::bit_cast<std::uint32_t>(verdicts.key[lane]) ==
+                    std::bit_cast<std::uint32_t>(exact.key);
           if (!right && ++mismatches <= 5) {
             ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << ") (" << v[1].x << ","
-                          << v[1].y << ") (" << v[2].x << "," << v[2].y << "), tested "
-                          << batch.tested[lane] << ", skip back faces " << skipBackFaces
-                          << ": batch " << verdict << ", exact " << exact << ", covers a sample "
-                          << ((verdicts.coversSample >> lane) & 1);
+                          << v[1].y << ") (" << v[2].x << "," << v[2].y << "), triangle "
+                          << batch.triangle[lane] << ", skip back faces " << skipBackFaces
+                          << ": batch " << verdict << " samples " << samples.x0 << "," << samples.y0
+                          << ".." << samples.x1 << "," << samples.y1 << " key "
+                          << verdicts.key[lane] << "; exact " << exact.verdict << " samples "
+                          << exact.samples.x0 << "," << exact.samples.y0 << ".." << exact.samples.x1
+                          << "," << exact.samples.y1 << " key " << exact.key;
           }
         }
       }
       EXPECT_EQ(mismatches, 0u);
-      EXPECT_GT(decided, triangles / 3) << "the batch should drop most of these";
-      EXPECT_GT(covering, triangles / 100) << "the batch should find some covering a sample";
+      // Every kind is met (culled only when back faces are skipped).
+      for (int k = kUntested; k <= kTriangle; ++k) {
+        if (k == kCulled && !skipBackFaces) {
+          EXPECT_EQ(counts[k], 0u);
+        } else {
+          EXPECT_GT(counts[k], triangles / 200) << "verdict " << k << " met too seldom";
+        }
+      }
     }
   }
 }
