@@ -484,8 +484,8 @@ public:
    * and a material without specular) and takes one pass over the pixels in integers, writing
    * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate.
    * Not free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080, about
-   * 13 % of the core's frame (bench/estimate-cost.md) and 18-20 % of an Update() (every face
-   * drawn; bench/filter_speed.py --overhead), and once per mesh about as much as its first
+   * 12-16 % of the core's frame (bench/estimate-cost.md) and 12-18 % of an Update() (every
+   * face drawn; bench/filter_speed.py --overhead), and once per mesh about as much as its first
    * conversion (README, "An estimate of a render's error";
    * bench/estimate-cost.md). Off, a flat one-sample render is the plain rasterizer (default: on).
    */

@@ -125,8 +125,11 @@ LightTerms lightTerms(const Light& light, const PolygonShape& polygon, const glm
             radiance = detail::boundRadianceOf(l.color, l.intensity);
             const glm::dvec3 offset = l.position - polygon.center;
             const double d = glm::length(offset);
-            if (d > 0.0 && std::isfinite(d)) toLight = offset / d;
-            lightAngle = Angle::ofConeSine(d > 0.0 ? polygon.radius / d : 2.0);
+            // One division, its reciprocal multiplied (as FlatErrorBoundBatch.cpp, where
+            // divisions are much of a batch's time).
+            const double inverse = 1.0 / d;
+            if (d > 0.0 && std::isfinite(d)) toLight = offset * inverse;
+            lightAngle = Angle::ofConeSine(d > 0.0 ? polygon.radius * inverse : 2.0);
             const double near = std::max(0.0, d - polygon.radius), far = d + polygon.radius;
             factor = {attenuationFactor(l.attenuation, far), attenuationFactor(l.attenuation, d),
                       attenuationFactor(l.attenuation, near)};
@@ -199,18 +202,24 @@ double FlatErrorBound::bound(const PolygonShape& polygon, const PreparedMaterial
                              const Color& surface) const {
   if (polygon.normal == glm::dvec3(0.0)) return 255.0;  // no plane: nothing to say
   glm::dvec3 viewer = -viewDirection_;
+  // Which side the viewer sees, by the sign of the normal's dot product with the direction
+  // toward the viewer, unnormalized where it can be (FlatErrorBoundBatch.cpp takes it so,
+  // without a square root and divisions).
+  glm::dvec3 towardViewer = viewer;
   Angle viewerAngle;
   if (!parallel_) {  // toViewer, with the eye's distance kept for the viewer's cone
     const glm::dvec3 offset = eye_ - polygon.center;
-    const double eyeDistance = glm::length(offset);
-    viewer = eyeDistance > 1e-150 && eyeDistance < 1e150 ? offset / eyeDistance
-                                                         : toViewer(polygon.center);
+    const double squared = glm::dot(offset, offset);
+    const double eyeDistance = std::sqrt(squared);
+    const bool common = squared > 1e-300 && squared < 1e300;  // toViewer's common case
+    viewer = common ? offset / eyeDistance : toViewer(polygon.center);
+    towardViewer = common ? offset : viewer;
     // The viewer's cone enters the specular term only.
     if (m.specular > 0.0)
       viewerAngle = Angle::ofConeSine(eyeDistance > 0.0 ? polygon.radius / eyeDistance : 2.0);
   }
   glm::dvec3 normal = polygon.normal;
-  if (twoSided_ && glm::dot(normal, viewer) < 0.0) normal = -normal;
+  if (twoSided_ && glm::dot(normal, towardViewer) < 0.0) normal = -normal;
   // Beyond 90° the cone of corner normals is not convex: no bound on the normal's angle.
   const Angle normalAngle =
       polygon.cosNormalSpread > 0.0 ? Angle::ofCosine(polygon.cosNormalSpread) : Angle::straight();

@@ -114,15 +114,15 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
   // A zero normal (degenerate) is the scalar bound's to bound.
   M bounded = hn::Not(hn::And(hn::And(nx == zero, ny == zero), nz == zero));
 
-  // The viewer, as FlatErrorBound::bound finds it (its cone enters the specular term only).
+  // Toward the viewer, as FlatErrorBound::bound finds it: only its sign against the normal is
+  // read (the viewer's cone enters the specular term only), so it stays unnormalized.
   V vx = hn::Set(d, lighting.viewer.x), vy = hn::Set(d, lighting.viewer.y),
     vz = hn::Set(d, lighting.viewer.z);
   if (!lighting.parallel) {
-    const V ox = hn::Set(d, lighting.eye.x) - cx, oy = hn::Set(d, lighting.eye.y) - cy,
-            oz = hn::Set(d, lighting.eye.z) - cz;
-    const V length = hn::Sqrt(ox * ox + oy * oy + oz * oz);
-    bounded = hn::And(bounded, hn::And(length > hn::Set(d, 1e-150), length < hn::Set(d, 1e150)));
-    vx = ox / length, vy = oy / length, vz = oz / length;
+    vx = hn::Set(d, lighting.eye.x) - cx, vy = hn::Set(d, lighting.eye.y) - cy,
+    vz = hn::Set(d, lighting.eye.z) - cz;
+    const V squared = vx * vx + vy * vy + vz * vz;
+    bounded = hn::And(bounded, hn::And(squared > hn::Set(d, 1e-300), squared < hn::Set(d, 1e300)));
   }
   if (lighting.twoSided) {
     const M back = nx * vx + ny * vy + nz * vz < zero;
@@ -146,8 +146,9 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
       const V distance = hn::Sqrt(ox * ox + oy * oy + oz * oz);
       // Not finite or zero: the scalar bound lights by the normal then (FlatErrorBound.cpp).
       bounded = hn::And(bounded, hn::And(distance > zero, distance < hn::Inf(d)));
-      lx = ox / distance, ly = oy / distance, lz = oz / distance;
-      lightAngle = ofConeSine(d, radius / distance);
+      const V inverse = one / distance;
+      lx = ox * inverse, ly = oy * inverse, lz = oz * inverse;
+      lightAngle = ofConeSine(d, radius * inverse);
       const V near = hn::Max(zero, distance - radius), far = distance + radius;
       factorLo = attenuation(d, light, far);
       factorFlat = attenuation(d, light, distance);

@@ -13,9 +13,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -169,10 +172,18 @@ PolygonShape polygonShape(const MeshView& mesh, const Corners& corners) {
   return shape;
 }
 
+// std::nextafter(f, INFINITY) for a float below +∞, without the library call (a call per
+// visible polygon was a tenth of the bounds' time).
+float nextUp(float f) {
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);
+}
+
 // A bound kept as a float: rounded up, so it stays a bound.
 float roundedUp(double value) {
   const float f = static_cast<float>(value);
-  return f < value ? std::nextafter(f, INFINITY) : f;
+  return f < value ? nextUp(f) : f;
 }
 
 // The spread is kept as a sine, rounded up: a float cosine near 1 moves in steps of ~3e-4 rad
@@ -296,13 +307,6 @@ struct QualityRenderer::MeshExtents {
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
-
-ParallelFor parallelOn(Renderer& renderer) {
-  return [&renderer](std::size_t count, std::size_t grain,
-                     const std::function<void(std::size_t, std::size_t)>& work) {
-    renderer.parallelFor(count, grain, work);
-  };
-}
 
 void validate(const QualitySettings& settings) {
   const int s = settings.samplesPerPixel;
@@ -539,8 +543,8 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
                        });
 }
 
-// Sample rows per task of the estimate's pass: the rows just above and below a task's are
-// taken by both tasks that read them, 2 in 18.
+// Sample rows per block of the estimate's pass: the rows just above and below a block's are
+// taken by both blocks that read them, 2 in 18.
 constexpr int kSampleRowsPerTask = 16;
 
 // The span [first, last) of a row's covered samples (ids ≥ 0): whole blocks of background
@@ -569,7 +573,7 @@ std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
 }  // namespace
 
 // One task's space for the estimate's pass (EstimateRows.h), kept from frame to frame by its
-// QualityRenderer and lent to one task at a time. Every row of fields holds kEstimateFields
+// QualityRenderer, one per thread. Every row of fields holds kEstimateFields
 // planes of `stride` words, a zero either side of a sample row's `width`.
 struct QualityRenderer::EstimateSpace {
   int width = 0, side = 0;  // sample row width, samples per pixel side
@@ -661,19 +665,7 @@ struct QualityRenderer::EstimateSpace {
 };
 
 QualityRenderer::~QualityRenderer() = default;
-
-// Lends an EstimateSpace to a task and takes it back.
-std::unique_ptr<QualityRenderer::EstimateSpace> QualityRenderer::borrowSpace() {
-  const std::lock_guard lock(spaceMutex_);
-  if (spaces_.empty()) return std::make_unique<EstimateSpace>();
-  std::unique_ptr<EstimateSpace> space = std::move(spaces_.back());
-  spaces_.pop_back();
-  return space;
-}
-void QualityRenderer::returnSpace(std::unique_ptr<EstimateSpace> space) {
-  const std::lock_guard lock(spaceMutex_);
-  spaces_.push_back(std::move(space));
-}
+QualityRenderer::QualityRenderer(QualityRenderer&&) noexcept = default;
 
 // Per visible polygon: its bound (estimate, adaptive), whether it is shaded again and, for
 // Gouraud, its lit corners.
@@ -799,34 +791,46 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
   std::vector<std::uint64_t> rowSquares(static_cast<std::size_t>(target.height), 0);
   std::vector<std::uint32_t> rowLargest(static_cast<std::size_t>(target.height), 0);
   std::vector<std::uint32_t> rowCovered(static_cast<std::size_t>(target.height), 0);
-  const std::size_t rowsPerTask = static_cast<std::size_t>(std::max(1, kSampleRowsPerTask / g));
-  renderer_.parallelFor(target.height, rowsPerTask, [&](std::size_t begin, std::size_t end) {
-    std::unique_ptr<EstimateSpace> space = borrowSpace();
-    space->resize(grid.width, g);
-    // Sample rows r − 1 to end · g, each row's maxima found once; row r estimated once r + 1's
-    // are, a pixel row once its g sample rows are.
-    const int firstRow = static_cast<int>(begin) * g, lastRow = static_cast<int>(end) * g;
-    for (int r = firstRow - 1; r <= lastRow; ++r) {
-      if (r >= 0 && r < grid.height) space->findMaxima(grid, polygonBounds_.data(), r);
-      const int estimated = r - 1;
-      if (estimated < firstRow) continue;
-      space->estimateSamples(grid, estimated, image || g > 1);  // else only the span is read
-      if ((estimated + 1) % g != 0) continue;
-      const int y = estimated / g;
-      const std::uint32_t* pixels = space->pixelEstimates();
-      // One sample: the pixels outside the row's covered span are 0.
-      const auto [first, last] =
-          g == 1 ? space->spans[estimated % 3] : std::array<int, 2>{0, target.width};
-      const detail::EstimateSums sums = detail::estimateSums(pixels, first, last);
-      rowSquares[y] = sums.squares;
-      rowLargest[y] = sums.largest;
-      rowCovered[y] = sums.covered;
-      if (!image) continue;
-      float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
-      for (int x = 0; x < target.width; ++x)  // exact: a power-of-two scale
-        out[x] = static_cast<float>(pixels[x]) / static_cast<float>(detail::kEstimateUnit);
+  // Blocks of pixel rows, taken in turn by one task per thread, each with a space of its own
+  // (kept from frame to frame): the blocks' results go to their own rows, in any order.
+  const std::size_t rowsPerBlock = static_cast<std::size_t>(std::max(1, kSampleRowsPerTask / g));
+  const std::size_t blocks =
+      (static_cast<std::size_t>(target.height) + rowsPerBlock - 1) / rowsPerBlock;
+  const std::size_t tasks = std::min(blocks, static_cast<std::size_t>(renderer_.threadCount()));
+  while (spaces_.size() < tasks)
+    spaces_.push_back(std::make_unique<EstimateSpace>());
+  std::atomic<std::size_t> nextBlock{0};
+  renderer_.parallelFor(tasks, 1, [&](std::size_t task, std::size_t) {
+    EstimateSpace& space = *spaces_[task];
+    space.resize(grid.width, g);
+    for (std::size_t block; (block = nextBlock.fetch_add(1)) < blocks;) {
+      const std::size_t begin = block * rowsPerBlock;
+      const std::size_t end =
+          std::min(begin + rowsPerBlock, static_cast<std::size_t>(target.height));
+      // Sample rows r − 1 to end · g, each row's maxima found once; row r estimated once r + 1's
+      // are, a pixel row once its g sample rows are.
+      const int firstRow = static_cast<int>(begin) * g, lastRow = static_cast<int>(end) * g;
+      for (int r = firstRow - 1; r <= lastRow; ++r) {
+        if (r >= 0 && r < grid.height) space.findMaxima(grid, polygonBounds_.data(), r);
+        const int estimated = r - 1;
+        if (estimated < firstRow) continue;
+        space.estimateSamples(grid, estimated, image || g > 1);  // else only the span is read
+        if ((estimated + 1) % g != 0) continue;
+        const int y = estimated / g;
+        const std::uint32_t* pixels = space.pixelEstimates();
+        // One sample: the pixels outside the row's covered span are 0.
+        const auto [first, last] =
+            g == 1 ? space.spans[estimated % 3] : std::array<int, 2>{0, target.width};
+        const detail::EstimateSums sums = detail::estimateSums(pixels, first, last);
+        rowSquares[y] = sums.squares;
+        rowLargest[y] = sums.largest;
+        rowCovered[y] = sums.covered;
+        if (!image) continue;
+        float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
+        for (int x = 0; x < target.width; ++x)  // exact: a power-of-two scale
+          out[x] = static_cast<float>(pixels[x]) / static_cast<float>(detail::kEstimateUnit);
+      }
     }
-    returnSpace(std::move(space));
   });
   std::uint64_t squares = 0, covered = 0;
   std::uint32_t largest = 0;
@@ -937,9 +941,10 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   Clock::time_point phase = Clock::now();
   // Only the background changed since this object's last render: same polygons, same flat
   // colors where any polygon shows, so the same estimate (it ignores the background).
+  // A kept image serves a request for the summary alone (its image is then dropped).
   const bool keepEstimate = settings.estimateError &&
-                            stats.render.plan.path == RenderPath::Resolve &&
-                            estimated == estimateFor;
+                            stats.render.plan.path == RenderPath::Resolve && estimated &&
+                            estimated->servesFor(estimateFor);
   const bool bounds = (settings.estimateError && !keepEstimate) || frame.adaptive();
   bool corners = false;  // some mesh is Gouraud-shaded: its corners are lit first
   for (std::size_t m = 0; m < scene.meshes.size(); ++m)

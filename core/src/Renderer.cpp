@@ -26,6 +26,7 @@
 #include "Validate.h"
 #include "Workspace.h"
 #include "facet/Error.h"
+#include "facet/ParallelFor.h"
 
 namespace facet {
 
@@ -178,6 +179,13 @@ void Renderer::parallelFor(std::size_t count, std::size_t grain,
   grain = std::max<std::size_t>(grain, 1);
   auto block = [&](std::size_t i) { work(i * grain, std::min(count, (i + 1) * grain)); };
   workspace_->pool->run((count + grain - 1) / grain, detail::FunctionRef<void(std::size_t)>(block));
+}
+
+ParallelFor parallelOn(Renderer& renderer) {
+  return [&renderer](std::size_t count, std::size_t grain,
+                     const std::function<void(std::size_t, std::size_t)>& work) {
+    renderer.parallelFor(count, grain, work);
+  };
 }
 
 std::span<const std::uint8_t> Renderer::shownPolygons() const {

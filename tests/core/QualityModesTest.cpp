@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -456,6 +458,29 @@ TEST(QualityRenderer, BadSettingsAndMismatchedMeshesAreNamed) {
 // Flat shading with the estimate keeps per mesh version only each polygon's normal, extent and
 // normal spread (rounded outward to float): the estimate is that of a ShadingMesh's shapes
 // to float precision, and never below it.
+// A QualityRenderer can be kept in a container or returned (no lock among its members).
+static_assert(std::is_nothrow_move_constructible_v<QualityRenderer>);
+
+// A moved QualityRenderer renders on, its kept extents and estimate spaces with it.
+TEST(QualityRenderer, AMovedRendererGivesTheSameEstimate) {
+  const Mesh sphere = makeUvSphere(24, 13);
+  Scene scene = sphereScene(sphere);
+  scene.meshes[0].mesh.version = 1;
+  const Camera camera = sphereCamera();
+  const QualitySettings settings{.estimateError = true};
+  const Output fresh = renderQuality(scene, camera, 80, 60, settings);
+  Renderer renderer;
+  QualityRenderer first(renderer);
+  Framebuffer framebuffer(80, 60);
+  first.render(scene, {}, camera, framebuffer, settings);
+  QualityRenderer moved(std::move(first));
+  renderer.forgetPreviousFrame();  // found again, in the spaces moved along
+  const QualityStats stats = moved.render(scene, {}, camera, framebuffer, settings);
+  EXPECT_FALSE(stats.estimateKept);
+  EXPECT_EQ(stats.predictedRmse, fresh.stats.predictedRmse);
+  EXPECT_TRUE(std::ranges::equal(moved.errorEstimate(), fresh.estimate));
+}
+
 TEST(QualityRenderer, EstimateWithoutShadingMeshesIsTheShadingMeshOne) {
   const Mesh sphere = makeUvSphere(24, 13);
   Scene scene = sphereScene(sphere);
@@ -547,15 +572,24 @@ TEST(QualityRenderer, EstimateFollowsVersionsAndIsKeptWhenOnlyTheBackgroundChang
   EXPECT_TRUE(std::ranges::equal(quality.errorEstimate(), firstEstimate));
   EXPECT_EQ(recolored.predictedRmse, first.predictedRmse);
   EXPECT_EQ(recolored.predictedMaxError, first.predictedMaxError);
-  // Asked for the summary alone on the next recoloring: the kept image goes, the summary stays.
+  // Asked for the summary alone on the next recoloring: the kept estimate serves it (not
+  // found again), its image goes.
   renderer.setBackground(Color(0.1f, 0.1f, 0.1f));
   QualitySettings summary = settings;
   summary.errorEstimateImage = false;
   const QualityStats summarized = quality.render(scene, {}, camera, framebuffer, summary);
   EXPECT_EQ(summarized.render.plan.path, RenderPath::Resolve);
-  EXPECT_FALSE(summarized.estimateKept);  // an estimate without its image is another one
+  EXPECT_TRUE(summarized.estimateKept);
   EXPECT_TRUE(quality.errorEstimate().empty());
   EXPECT_EQ(summarized.predictedRmse, first.predictedRmse);
+  EXPECT_EQ(summarized.predictedMaxError, first.predictedMaxError);
+  // The image asked for again on a recoloring: the kept summary cannot give it, so it is
+  // found again (and is the first frame's).
+  renderer.setBackground(Color(0.3f, 0.1f, 0.1f));
+  const QualityStats imaged = quality.render(scene, {}, camera, framebuffer, settings);
+  EXPECT_EQ(imaged.render.plan.path, RenderPath::Resolve);
+  EXPECT_FALSE(imaged.estimateKept);
+  EXPECT_TRUE(std::ranges::equal(quality.errorEstimate(), firstEstimate));
 
   scene.lights.lights.pop_back();  // a new light set: the bounds change, the frame re-shades
   const QualityStats relit = render(scene);

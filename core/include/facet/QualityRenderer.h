@@ -35,7 +35,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
@@ -43,6 +42,7 @@
 #include "facet/FlatErrorBound.h"
 #include "facet/Framebuffer.h"
 #include "facet/MeshTriangles.h"
+#include "facet/ParallelFor.h"
 #include "facet/Renderer.h"
 #include "facet/VertexNormals.h"
 
@@ -75,9 +75,6 @@ struct ShadingMesh {
   std::vector<PolygonShape> shapes;  ///< one per polygon
   std::size_t polygonCount() const { return shapes.size(); }
 };
-
-/// Blocks of work on the renderer's threads (Renderer::parallelFor), e.g. for ShadingMesh.
-ParallelFor parallelOn(Renderer& renderer);
 
 struct QualitySettings {
   Shading shading = Shading::Flat;  ///< (default: flat)
@@ -133,6 +130,7 @@ class QualityRenderer {
   /// Renders through `renderer` (its threads, background, visibility, lighting side), which
   /// must outlive this object.
   explicit QualityRenderer(Renderer& renderer);
+  QualityRenderer(QualityRenderer&&) noexcept;
   ~QualityRenderer();
 
   /// Renders the scene in the mode the settings ask for. `shading` holds one ShadingMesh per
@@ -168,8 +166,6 @@ class QualityRenderer {
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
   void boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end);
   void estimate(const Frame& frame, const FramebufferView& target, bool image, QualityStats& stats);
-  std::unique_ptr<EstimateSpace> borrowSpace();
-  void returnSpace(std::unique_ptr<EstimateSpace> space);
   void updateExtents(const Scene& scene);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
 
@@ -183,12 +179,16 @@ class QualityRenderer {
     int gridSide = 0;  // samples per pixel side
     int width = 0, height = 0;
     bool image = false;  // errorEstimate() kept
-    friend bool operator==(const EstimateKey&, const EstimateKey&) = default;
+    // Whether an estimate made for this key answers a request for `wanted`: the same grid and
+    // size, and the image when it is wanted.
+    bool servesFor(const EstimateKey& wanted) const {
+      return gridSide == wanted.gridSide && width == wanted.width && height == wanted.height &&
+             (image || !wanted.image);
+    }
   };
   std::optional<EstimateKey> estimatedFor_;
-  // The estimate's per-task space (QualityRenderer.cpp), one per task running at once.
+  // The estimate's per-task space (QualityRenderer.cpp), one per thread.
   std::vector<std::unique_ptr<EstimateSpace>> spaces_;
-  std::mutex spaceMutex_;
 
   // Per scene mesh, the estimate's camera-independent part for one version of its arrays
   // (QualityRenderer.cpp).

@@ -37,12 +37,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "facet/Mesh.h"
+#include "facet/ParallelFor.h"
 
 namespace facet {
 
@@ -67,12 +67,6 @@ struct VertexNormalOptions {
   /// edge smooth. (default: 30)
   double featureAngleDegrees = 30.0;
 };
-
-/// Runs work(begin, end) for the blocks [i · grain, min(count, (i + 1) · grain)) of [0, count),
-/// in any order and on any threads, and returns when all are done — Renderer::parallelFor,
-/// for one. Empty: one block after another on the calling thread.
-using ParallelFor = std::function<void(std::size_t count, std::size_t grain,
-                                       const std::function<void(std::size_t, std::size_t)>& work)>;
 
 /// Corner normals computed from the geometry, as described above, in blocks of polygons and
 /// of points through `parallel` (the same result for any threads: each block numbers its
