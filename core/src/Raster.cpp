@@ -1,6 +1,7 @@
 #include "Raster.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "facet/Framebuffer.h"
 
@@ -14,6 +15,28 @@ void clearTile(const RasterContext& context, const PixelBounds& tile) {
               kBackgroundDepthKey);
     std::fill(context.polygonId + row + tile.x0, context.polygonId + row + tile.x1 + 1,
               Framebuffer::kBackgroundId);
+  }
+}
+
+// The polygons the tile's final image shows, read from its id plane while it is in cache:
+// only they need a color. Flagging winners as they were painted also shaded every polygon that
+// won a pixel and lost it again to a nearer one (the back faces under the front ones, with
+// every face drawn), and cost an atomic access per fragment. Tiles sharing a polygon may
+// store the same 1 at once: relaxed atomics make that benign. One store per pixel, without a
+// branch (a test for a run of one id would be a coin toss on a dense mesh's few-pixel
+// triangles); the background's store goes to a byte of its own.
+void markShownPolygons(const RasterContext& context, const PixelBounds& tile) {
+  std::uint8_t background = 0;
+  std::uint8_t* const shown = context.shown.data();
+  const int columns = tile.x1 - tile.x0 + 1;
+  for (int y = tile.y0; y <= tile.y1; ++y) {
+    const std::int32_t* ids =
+        context.polygonId + static_cast<std::size_t>(y) * context.width + tile.x0;
+    for (int x = 0; x < columns; ++x) {
+      const std::int32_t id = ids[x];
+      std::uint8_t* flag = id == Framebuffer::kBackgroundId ? &background : shown + id;
+      std::atomic_ref<std::uint8_t>(*flag).store(1, std::memory_order_relaxed);
+    }
   }
 }
 
@@ -49,8 +72,7 @@ constexpr std::size_t kPrefetchVertices = 4;
 template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
   clearTile(context, tile);
-  const Planes planes{context.color, context.depth, context.polygonId, context.width,
-                      context.shown.data()};
+  const Planes planes{context.color, context.depth, context.polygonId, context.width};
   PaintCounts counts;
   CoarseDepth coarse(tile);
   for (const Chunk& chunk : context.chunks) {
@@ -82,6 +104,7 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
       }
     }
   }
+  markShownPolygons(context, tile);
   return counts;
 }
 
