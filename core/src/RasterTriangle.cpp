@@ -353,8 +353,8 @@ struct SmallBox {
     for (int k = 0; k < 3; ++k) {  // the edge opposite corner k: b → c, c → a, a → b
       const int p = kFrom[k], q = kTo[k];
       const std::int32_t dx = x[q] - x[p], dy = y[q] - y[p];
-      const std::int32_t bias = (dy < 0 || (dy == 0 && dx < 0)) ? 0 : 1;
-      value[k] = dy * x[p] - dx * y[p] - bias;
+      bias[k] = (dy < 0 || (dy == 0 && dx < 0)) ? 0 : 1;
+      value[k] = dy * x[p] - dx * y[p] - bias[k];
       stepX[k] = -dy * kSubpixelScale;
       stepY[k] = dx * kSubpixelScale;
     }
@@ -380,7 +380,7 @@ struct SmallBox {
 
   // Paints the samples of `mask` (coverage()) with the keys of a triangle without
   // polygon-boundary edges (BoxRaster::paintRows<kMode, false>'s).
-  template <DepthMode kMode>
+  template <DepthMode kMode, bool kRefine>
   [[gnu::always_inline]] void paint(const WindowVertex& a, const WindowVertex& b,
                                     const WindowVertex& c, std::int64_t area, EdgeMask boundary,
                                     std::uint32_t mask, std::int32_t polygonId,
@@ -399,7 +399,14 @@ struct SmallBox {
         const int next = std::countr_zero(columns);
         for (; x < next; ++x)
           key += keyPerPixel;
-        writeFragment<kMode>(row + next, toDepthKey(key), polygonId, planes, counts);
+        double refined = key;
+        if constexpr (kRefine) {
+          std::int64_t snapped[3];
+          for (int k = 0; k < 3; ++k)
+            snapped[k] = value[k] + next * stepX[k] + y * stepY[k] + bias[k];
+          refined = depth.refine(key, sampleX + std::int64_t{next} * kSubpixelScale, rowY, snapped);
+        }
+        writeFragment<kMode>(row + next, toDepthKey(refined), polygonId, planes, counts);
       }
     }
   }
@@ -408,7 +415,7 @@ struct SmallBox {
   std::int32_t sampleX, sampleY;  // the box's first sample, grid units
   // Per edge (opposite a, b, c): its function at the first sample, biased by −1 off the
   // top-left edges (as Edge), and its steps to the next sample right and up.
-  std::int32_t value[3], stepX[3], stepY[3];
+  std::int32_t value[3], stepX[3], stepY[3], bias[3];
 };
 
 // Below this many samples in its box a triangle is cheaper to depth-test pixel by pixel than
@@ -528,10 +535,15 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
-  if (boundary == 0 && fitsSmallPath(extent, box)) {
+  if (fitsSmallPath(extent, box)) {
+    if (kRejectHidden && losesEverywhereInline(a, b, c, box, planes)) return;
     const SmallBox small(a, b, c, box);
     if (const std::uint32_t mask = small.coverage()) {
-      small.paint<kMode>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+      if (boundary == 0) {
+        small.paint<kMode, false>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+      } else {
+        small.paint<kMode, true>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+      }
     }
     return;
   }

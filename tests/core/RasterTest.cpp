@@ -56,20 +56,21 @@ std::size_t differingKeysOrIds(const Planes32& small, const Planes32& walked) {
 }
 
 // paintTriangle (with its small-box path) against the box walk it replaces for boxes of at
-// most 4 × 4 samples without polygon-boundary edges: a random stream of small triangles
-// (residues, steep and flat depth planes, many polygon ids), and slivers whose bounding box is
-// wider than the lanes' 64 pixels but whose samples in the tile are few (the tile's corner cuts
-// them: they go to the walk), painted into a tile that is not at the image's origin, in runs of
-// 200 (the planes compared, then cleared). The same keys, ids and counts, with and without the
-// depth test.
+// most 4 × 4 samples: a random stream of small triangles (residues, steep and flat depth
+// planes, no polygon-boundary edge or random ones, many polygon ids), and slivers whose
+// bounding box is wider than the lanes' 64 pixels but whose samples in the tile are few (the
+// tile's corner cuts them: they go to the walk), painted into a tile that is not at the
+// image's origin, in runs of 200 (the planes compared, then cleared). The same keys, ids and
+// counts, with and without the depth test, and with the depth test and the reject of hidden
+// triangles (losesEverywhere) too.
 template <detail::DepthMode kMode>
 void compareSmallBoxPath(unsigned seed) {
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 5 * 256),
-      residue(-127, 127), polygon(0, 99), kind(0, 9);
+      residue(-127, 127), polygon(0, 99), kind(0, 9), mask(0, 13);
   std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
   const PixelBounds tile{8, 4, 27, 23};
-  Painted small, walked;
+  Painted small, walked, rejecting;
   std::size_t painted = 0, slivers = 0, differing = 0;
   for (int t = 0; t < 40000; ++t) {
     WindowVertex v[3];
@@ -91,16 +92,23 @@ void compareSmallBoxPath(unsigned seed) {
     if (area != 0) {
       if (area < 0) std::swap(v[1], v[2]);
       const std::int32_t id = polygon(random);
-      detail::paintTriangle<kMode>(v[0], v[1], v[2], 0, id, tile, small.planes.planes(),
+      const auto boundary = static_cast<detail::EdgeMask>(std::max(0, mask(random) - 6));
+      detail::paintTriangle<kMode>(v[0], v[1], v[2], boundary, id, tile, small.planes.planes(),
                                    small.counts);
-      detail::paintTriangleWalkingBox<kMode>(v[0], v[1], v[2], 0, id, tile, walked.planes.planes(),
-                                             walked.counts);
+      detail::paintTriangleWalkingBox<kMode>(v[0], v[1], v[2], boundary, id, tile,
+                                             walked.planes.planes(), walked.counts);
+      if constexpr (kMode == detail::DepthMode::Test) {
+        detail::paintTriangle<kMode, true>(v[0], v[1], v[2], boundary, id, tile,
+                                           rejecting.planes.planes(), rejecting.counts);
+      }
       ++painted;
       slivers += sliver;
     }
     if (t % 200 == 199) {
       differing += differingKeysOrIds(small.planes, walked.planes);
-      small.planes = walked.planes = Planes32{};
+      if (kMode == detail::DepthMode::Test)
+        differing += differingKeysOrIds(rejecting.planes, walked.planes);
+      small.planes = walked.planes = rejecting.planes = Planes32{};
     }
   }
   EXPECT_GT(painted, 35000u);
@@ -108,6 +116,10 @@ void compareSmallBoxPath(unsigned seed) {
   EXPECT_GT(walked.counts.written, 20000u);
   EXPECT_EQ(small.counts.written, walked.counts.written);
   EXPECT_EQ(small.counts.covered, walked.counts.covered);
+  if (kMode == detail::DepthMode::Test) {
+    EXPECT_EQ(rejecting.counts.written, walked.counts.written);
+    EXPECT_EQ(rejecting.counts.covered, walked.counts.covered);
+  }
   EXPECT_EQ(differing, 0u);
 }
 
