@@ -20,23 +20,29 @@ void clearTile(const RasterContext& context, const PixelBounds& tile) {
 
 // The polygons the tile's final image shows, read from its id plane while it is in cache:
 // only they need a color. Flagging winners as they were painted also shaded every polygon that
-// won a pixel and lost it again to a nearer one (the back faces under the front ones, with
-// every face drawn), and cost an atomic access per fragment. Tiles sharing a polygon may
-// store the same 1 at once: relaxed atomics make that benign. One store per pixel, without a
-// branch (a test for a run of one id would be a coin toss on a dense mesh's few-pixel
-// triangles); the background's store goes to a byte of its own.
+// won a pixel and lost it again to a nearer one, and cost a load, a test and a store per
+// fragment. Tiles sharing a polygon may store the same 1 at once: relaxed atomics make that
+// benign. Four pixels at a time: a run of background (−1, all bits set) is skipped whole.
 void markShownPolygons(const RasterContext& context, const PixelBounds& tile) {
-  std::uint8_t background = 0;
+  static_assert(Framebuffer::kBackgroundId == -1);
   std::uint8_t* const shown = context.shown.data();
+  const auto mark = [shown](std::int32_t id) {
+    if (id != Framebuffer::kBackgroundId) {
+      std::atomic_ref<std::uint8_t>(shown[static_cast<std::size_t>(id)])
+          .store(1, std::memory_order_relaxed);
+    }
+  };
   const int columns = tile.x1 - tile.x0 + 1;
   for (int y = tile.y0; y <= tile.y1; ++y) {
     const std::int32_t* ids =
         context.polygonId + static_cast<std::size_t>(y) * context.width + tile.x0;
-    for (int x = 0; x < columns; ++x) {
-      const std::int32_t id = ids[x];
-      std::uint8_t* flag = id == Framebuffer::kBackgroundId ? &background : shown + id;
-      std::atomic_ref<std::uint8_t>(*flag).store(1, std::memory_order_relaxed);
+    int x = 0;
+    for (; x + 4 <= columns; x += 4) {
+      if ((ids[x] & ids[x + 1] & ids[x + 2] & ids[x + 3]) == Framebuffer::kBackgroundId) continue;
+      mark(ids[x]), mark(ids[x + 1]), mark(ids[x + 2]), mark(ids[x + 3]);
     }
+    for (; x < columns; ++x)
+      mark(ids[x]);
   }
 }
 
