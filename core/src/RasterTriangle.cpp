@@ -306,8 +306,9 @@ struct BoxRaster {
 // covered. Here a row of four samples' edge functions is tested at once in 32-bit lanes,
 // giving the box's coverage as a mask, bit (y − y0)·kSmallSide + (x − x0); the depth plane is
 // set up only when a sample is covered, and only covered samples are visited. The same edge
-// functions and fill rule (the lanes start from BoxRaster's Edge values), and the same keys:
-// a row's key is stepped from its first sample by the same additions as BoxRaster::paintRows.
+// functions and fill rule as BoxRaster's Edge, and the same keys: a row's key is stepped from
+// its first sample by the same additions as BoxRaster::paintRows, and refined near a polygon
+// boundary from the same snapped edge values.
 //
 // 32-bit lanes are exact when the triangle's bounding box is below kMaxLaneExtent = 2^14 grid
 // steps (64 pixels) across in each axis: the lanes' samples lie in the box's rows, and at most
@@ -378,8 +379,8 @@ struct SmallBox {
     return mask;
   }
 
-  // Paints the samples of `mask` (coverage()) with the keys of a triangle without
-  // polygon-boundary edges (BoxRaster::paintRows<kMode, false>'s).
+  // Paints the samples of `mask` (coverage()) with BoxRaster::paintRows<kMode, kRefine>'s keys
+  // (kRefine: the triangle has polygon-boundary edges).
   template <DepthMode kMode, bool kRefine>
   [[gnu::always_inline]] void paint(const WindowVertex& a, const WindowVertex& b,
                                     const WindowVertex& c, std::int64_t area, EdgeMask boundary,
@@ -413,8 +414,8 @@ struct SmallBox {
 
   PixelBounds box;
   std::int32_t sampleX, sampleY;  // the box's first sample, grid units
-  // Per edge (opposite a, b, c): its function at the first sample, biased by −1 off the
-  // top-left edges (as Edge), and its steps to the next sample right and up.
+  // Per edge (opposite a, b, c): its function at the first sample, biased by −1 (bias 1) off
+  // the top-left edges, as Edge; its steps to the next sample right and up.
   std::int32_t value[3], stepX[3], stepY[3], bias[3];
 };
 
