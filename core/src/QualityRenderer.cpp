@@ -1,7 +1,7 @@
 // Quality modes by visibility-buffer shading (QualityRenderer.h): the Renderer paints the
 // sample grid's polygon ids; the passes below read them.
-//   1. visible polygons: those the Renderer lit (Renderer::shownPolygons), a superset of the
-//      ids the samples show;
+//   1. visible polygons: those the Renderer lit (Renderer::shownPolygons), the ids the
+//      samples show;
 //   2. per visible polygon: its flat-shading bound (estimate, adaptive) and, for Gouraud,
 //      its lit corners;
 //   3. the estimate per sample and per pixel (it reads the flat colors, so it runs before

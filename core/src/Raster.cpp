@@ -1,6 +1,7 @@
 #include "Raster.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "facet/Framebuffer.h"
 
@@ -14,6 +15,34 @@ void clearTile(const RasterContext& context, const PixelBounds& tile) {
               kBackgroundDepthKey);
     std::fill(context.polygonId + row + tile.x0, context.polygonId + row + tile.x1 + 1,
               Framebuffer::kBackgroundId);
+  }
+}
+
+// The polygons the tile's final image shows, read from its id plane while it is in cache:
+// only they need a color. Flagging winners as they were painted also shaded every polygon that
+// won a pixel and lost it again to a nearer one, and cost a load, a test and a store per
+// fragment. Tiles sharing a polygon may store the same 1 at once: relaxed atomics make that
+// benign. Four pixels at a time: a run of background (−1, all bits set) is skipped whole.
+void markShownPolygons(const RasterContext& context, const PixelBounds& tile) {
+  static_assert(Framebuffer::kBackgroundId == -1);
+  std::uint8_t* const shown = context.shown.data();
+  const auto mark = [shown](std::int32_t id) {
+    if (id != Framebuffer::kBackgroundId) {
+      std::atomic_ref<std::uint8_t>(shown[static_cast<std::size_t>(id)])
+          .store(1, std::memory_order_relaxed);
+    }
+  };
+  const int columns = tile.x1 - tile.x0 + 1;
+  for (int y = tile.y0; y <= tile.y1; ++y) {
+    const std::int32_t* ids =
+        context.polygonId + static_cast<std::size_t>(y) * context.width + tile.x0;
+    int x = 0;
+    for (; x + 4 <= columns; x += 4) {
+      if ((ids[x] & ids[x + 1] & ids[x + 2] & ids[x + 3]) == Framebuffer::kBackgroundId) continue;
+      mark(ids[x]), mark(ids[x + 1]), mark(ids[x + 2]), mark(ids[x + 3]);
+    }
+    for (; x < columns; ++x)
+      mark(ids[x]);
   }
 }
 
@@ -49,8 +78,7 @@ constexpr std::size_t kPrefetchVertices = 4;
 template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
   clearTile(context, tile);
-  const Planes planes{context.color, context.depth, context.polygonId, context.width,
-                      context.shown.data()};
+  const Planes planes{context.color, context.depth, context.polygonId, context.width};
   PaintCounts counts;
   CoarseDepth coarse(tile);
   for (const Chunk& chunk : context.chunks) {
@@ -82,6 +110,7 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
       }
     }
   }
+  markShownPolygons(context, tile);
   return counts;
 }
 

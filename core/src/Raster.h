@@ -1,8 +1,8 @@
 #pragma once
 
 // Phase 3: raster. Each tile, on one thread: cleared, then its bins' triangles painted in
-// draw order (depth key and polygon id per pixel, RasterTriangle.h), marking the polygons
-// that win a pixel.
+// draw order (depth key and polygon id per pixel, RasterTriangle.h), then the polygons its
+// final image shows marked.
 
 #include <cstdint>
 #include <span>
@@ -22,7 +22,7 @@ struct RasterContext {
   float* depth;
   std::int32_t* polygonId;
   int width;
-  std::span<std::uint8_t> shown;  // out, per polygon id: it won a pixel
+  std::span<std::uint8_t> shown;  // out, per polygon id: a pixel of the image shows it
 };
 
 // One tile's painting, specialized once per render (llvmpipe's lp_rast_tri_tab).

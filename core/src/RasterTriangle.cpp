@@ -1,9 +1,14 @@
 #include "RasterTriangle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <iterator>
 #include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "Assert.h"
 #include "facet/Conventions.h"
@@ -20,7 +25,8 @@ struct Edge {
   std::int64_t value;  // biased value at the first sample
   bool biased;         // value is the edge function − 1 (not a top-left edge)
 
-  Edge(const WindowVertex& p, const WindowVertex& q, std::int64_t sampleX, std::int64_t sampleY) {
+  [[gnu::always_inline]] Edge(const WindowVertex& p, const WindowVertex& q, std::int64_t sampleX,
+                              std::int64_t sampleY) {
     const std::int64_t dx = q.x - p.x;
     const std::int64_t dy = q.y - p.y;
     stepX = -dy * kSubpixelScale;
@@ -63,8 +69,9 @@ double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) 
 // edge functions at the sample (snapped or unsnapped), in double.
 class TriangleDepth {
  public:
-  TriangleDepth(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                std::int64_t snappedArea, EdgeMask boundary)
+  [[gnu::always_inline]] TriangleDepth(const WindowVertex& a, const WindowVertex& b,
+                                       const WindowVertex& c, std::int64_t snappedArea,
+                                       EdgeMask boundary)
       : key0_(a.depth),
         dk1_(static_cast<double>(b.depth) - a.depth),
         dk2_(static_cast<double>(c.depth) - a.depth),
@@ -91,7 +98,8 @@ class TriangleDepth {
   }
 
   // For many samples: the key stepped along a row, keyAt() near boundary edges only.
-  void prepareRows(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+  [[gnu::always_inline]] void prepareRows(const WindowVertex& a, const WindowVertex& b,
+                                          const WindowVertex& c) {
     const FinePoint pa = unsnapped_ ? fa_ : finePoint(a, false);
     const FinePoint pb = unsnapped_ ? fb_ : finePoint(b, false);
     const FinePoint pc = unsnapped_ ? fc_ : finePoint(c, false);
@@ -99,7 +107,8 @@ class TriangleDepth {
     x0_ = pa.x, y0_ = pa.y;
     perX_ = (dk1_ * (pc.y - pa.y) - dk2_ * (pb.y - pa.y)) * inverse;
     perY_ = (dk2_ * (pb.x - pa.x) - dk1_ * (pc.x - pa.x)) * inverse;
-    if (unsnapped_) boundSurelyInside(a, b, c);
+    // Without boundary edges refine() is never asked (paint() steps the keys alone).
+    if (unsnapped_ && boundary_ != 0) boundSurelyInside(a, b, c);
   }
   double at(std::int64_t sampleX, std::int64_t sampleY) const {
     const FinePoint s = finePoint(sampleX, sampleY);
@@ -290,6 +299,126 @@ struct BoxRaster {
   TriangleDepth depth;
 };
 
+// The small-box path: a box of at most kSmallSide × kSmallSide samples (every triangle of a
+// dense mesh the set-up did not bin as a fragment; ~200k a frame of a 500k-triangle sphere,
+// 1.5 covered samples each) costs BoxRaster's walk ~550 instructions, nearly all per triangle:
+// 64-bit edges stepped sample by sample, the depth plane set up whether or not a sample is
+// covered. Here a row of four samples' edge functions is tested at once in 32-bit lanes,
+// giving the box's coverage as a mask, bit (y − y0)·kSmallSide + (x − x0); the depth plane is
+// set up only when a sample is covered, and only covered samples are visited. The same edge
+// functions and fill rule as BoxRaster's Edge, and the same keys: a row's key is stepped from
+// its first sample by the same additions as BoxRaster::paintRows, and refined near a polygon
+// boundary from the same snapped edge values.
+//
+// 32-bit lanes are exact when the triangle's bounding box is below kMaxLaneExtent = 2^14 grid
+// steps (64 pixels) across in each axis: the lanes' samples lie in the box's rows, and at most
+// three pixels (768 steps) right of its first column, so |s − p| < 2^14 + 2^10 in each axis for
+// a vertex p, and an edge function |dx·(s.y − p.y) − dy·(s.x − p.x)| + 1 < 2^29.1, with room for
+// the step past the last row; int32's bound is 2^31. Wider triangles (clipped by the tile to a
+// small box: rare) are walked.
+constexpr int kSmallSide = 4;
+constexpr std::int32_t kMaxLaneExtent = 1 << 14;
+
+// `extent`: the triangle's bounding box; `box`: its samples in the tile.
+bool fitsSmallPath(const GridBox& extent, const PixelBounds& box) {
+  // Window coordinates are below 2^23 in magnitude (FrameTransform.h): no overflow.
+  return box.x1 - box.x0 < kSmallSide && box.y1 - box.y0 < kSmallSide &&
+         extent.x1 - extent.x0 < kMaxLaneExtent && extent.y1 - extent.y0 < kMaxLaneExtent;
+}
+
+// Four samples of a row, one per lane (GCC and Clang vector extensions: SSE2, on every x86-64).
+using RowLanes = std::int32_t __attribute__((vector_size(4 * sizeof(std::int32_t))));
+
+// Bit i set where lane i is negative.
+unsigned negativeLanes(RowLanes lanes) {
+#if defined(__SSE2__)
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(reinterpret_cast<__m128i>(lanes))));
+#else
+  return (lanes[0] < 0 ? 1u : 0u) | (lanes[1] < 0 ? 2u : 0u) | (lanes[2] < 0 ? 4u : 0u) |
+         (lanes[3] < 0 ? 8u : 0u);
+#endif
+}
+
+// A triangle over a box of at most kSmallSide × kSmallSide samples that fitsSmallPath: its
+// edge functions as BoxRaster's Edge has them, in 32 bits, from vertices taken relative to
+// the box's first sample (within the bounding box, so below 2^14 in magnitude).
+struct SmallBox {
+  [[gnu::always_inline]] SmallBox(const WindowVertex& a, const WindowVertex& b,
+                                  const WindowVertex& c, const PixelBounds& samples)
+      : box(samples),
+        sampleX(samples.x0 * kSubpixelScale + kHalfPixel),
+        sampleY(samples.y0 * kSubpixelScale + kHalfPixel) {
+    const std::int32_t x[3] = {a.x - sampleX, b.x - sampleX, c.x - sampleX};
+    const std::int32_t y[3] = {a.y - sampleY, b.y - sampleY, c.y - sampleY};
+    constexpr int kFrom[3] = {1, 2, 0}, kTo[3] = {2, 0, 1};
+    for (int k = 0; k < 3; ++k) {  // the edge opposite corner k: b → c, c → a, a → b
+      const int p = kFrom[k], q = kTo[k];
+      const std::int32_t dx = x[q] - x[p], dy = y[q] - y[p];
+      bias[k] = (dy < 0 || (dy == 0 && dx < 0)) ? 0 : 1;
+      value[k] = dy * x[p] - dx * y[p] - bias[k];
+      stepX[k] = -dy * kSubpixelScale;
+      stepY[k] = dx * kSubpixelScale;
+    }
+  }
+
+  // The covered samples, bit (y − box.y0)·kSmallSide + (x − box.x0).
+  [[gnu::always_inline]] std::uint32_t coverage() const {
+    RowLanes w[3];
+    for (int k = 0; k < 3; ++k) {
+      w[k] =
+          RowLanes{value[k], value[k] + stepX[k], value[k] + 2 * stepX[k], value[k] + 3 * stepX[k]};
+    }
+    const unsigned columns = (1u << (box.x1 - box.x0 + 1)) - 1;
+    std::uint32_t mask = 0;
+    for (int y = 0; y <= box.y1 - box.y0; ++y) {
+      // Covered where every biased edge function is ≥ 0: the sign bit of their OR is clear.
+      mask |= (~negativeLanes(w[0] | w[1] | w[2]) & columns) << (y * kSmallSide);
+      for (int k = 0; k < 3; ++k)
+        w[k] += stepY[k];
+    }
+    return mask;
+  }
+
+  // Paints the samples of `mask` (coverage()) with BoxRaster::paintRows<kMode, kRefine>'s keys
+  // (kRefine: the triangle has polygon-boundary edges).
+  template <DepthMode kMode, bool kRefine>
+  [[gnu::always_inline]] void paint(const WindowVertex& a, const WindowVertex& b,
+                                    const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                    std::uint32_t mask, std::int32_t polygonId,
+                                    const Planes& planes, PaintCounts& counts) const {
+    TriangleDepth depth(a, b, c, area, boundary);
+    depth.prepareRows(a, b, c);
+    const double keyPerPixel = depth.perPixelX();
+    constexpr std::uint32_t kRow = (1u << kSmallSide) - 1;
+    for (int y = 0; mask != 0; ++y, mask >>= kSmallSide) {
+      if ((mask & kRow) == 0) continue;
+      const std::int64_t rowY = sampleY + std::int64_t{y} * kSubpixelScale;
+      double key = depth.at(sampleX, rowY);
+      const std::size_t row = static_cast<std::size_t>(box.y0 + y) * planes.width + box.x0;
+      int x = 0;
+      for (std::uint32_t columns = mask & kRow; columns != 0; columns &= columns - 1) {
+        const int next = std::countr_zero(columns);
+        for (; x < next; ++x)
+          key += keyPerPixel;
+        double refined = key;
+        if constexpr (kRefine) {
+          std::int64_t snapped[3];
+          for (int k = 0; k < 3; ++k)
+            snapped[k] = value[k] + next * stepX[k] + y * stepY[k] + bias[k];
+          refined = depth.refine(key, sampleX + std::int64_t{next} * kSubpixelScale, rowY, snapped);
+        }
+        writeFragment<kMode>(row + next, toDepthKey(refined), polygonId, planes, counts);
+      }
+    }
+  }
+
+  PixelBounds box;
+  std::int32_t sampleX, sampleY;  // the box's first sample, grid units
+  // Per edge (opposite a, b, c): its function at the first sample, biased by −1 (bias 1) off
+  // the top-left edges, as Edge; its steps to the next sample right and up.
+  std::int32_t value[3], stepX[3], stepY[3], bias[3];
+};
+
 // Below this many samples in its box a triangle is cheaper to depth-test pixel by pixel than
 // to test against the coarse depth first.
 constexpr std::size_t kSamplesForCoarseDepth = 16;
@@ -342,6 +471,21 @@ float floatBelow(double key) {
 // may save; larger ones meet the coarse depth, when it is on).
 constexpr std::size_t kSamplesForLosesEverywhere = 16;
 
+// A box of two or more samples, walked row by row (BoxRaster).
+template <DepthMode kMode, bool kRejectHidden>
+[[gnu::always_inline]] inline void walkBox(const WindowVertex& a, const WindowVertex& b,
+                                           const WindowVertex& c, std::int64_t area,
+                                           EdgeMask boundary, const PixelBounds& box,
+                                           std::int32_t polygonId, const Planes& planes,
+                                           PaintCounts& counts) {
+  if (kRejectHidden && box.area() <= kSamplesForLosesEverywhere &&
+      losesEverywhereInline(a, b, c, box, planes)) {
+    return;
+  }
+  BoxRaster raster(a, b, c, area, boundary, box);
+  raster.paint<kMode>(polygonId, planes, counts, boundary);
+}
+
 }  // namespace
 
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
@@ -385,18 +529,41 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   static_assert(kMode == DepthMode::Test || !kRejectHidden);
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
+  const GridBox extent = gridBoxOf(a, b, c);
+  const PixelBounds box = samplesInGridBox(extent, tile);
+  if (box.empty()) return;
+  if (box.x0 == box.x1 && box.y0 == box.y1) {
+    paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
+    return;
+  }
+  if (fitsSmallPath(extent, box)) {
+    if (kRejectHidden && losesEverywhereInline(a, b, c, box, planes)) return;
+    const SmallBox small(a, b, c, box);
+    if (const std::uint32_t mask = small.coverage()) {
+      if (boundary == 0) {
+        small.paint<kMode, false>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+      } else {
+        small.paint<kMode, true>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+      }
+    }
+    return;
+  }
+  walkBox<kMode, kRejectHidden>(a, b, c, area, boundary, box, polygonId, planes, counts);
+}
+
+template <DepthMode kMode>
+void paintTriangleWalkingBox(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                             EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                             const Planes& planes, PaintCounts& counts) {
+  const std::int64_t area = doubleSignedArea(a, b, c);
+  FACET_ASSERT(area > 0);
   const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
   if (box.empty()) return;
   if (box.x0 == box.x1 && box.y0 == box.y1) {
     paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
-  if (kRejectHidden && box.area() <= kSamplesForLosesEverywhere &&
-      losesEverywhereInline(a, b, c, box, planes)) {
-    return;
-  }
-  BoxRaster raster(a, b, c, area, boundary, box);
-  raster.paint<kMode>(polygonId, planes, counts, boundary);
+  walkBox<kMode, false>(a, b, c, area, boundary, box, polygonId, planes, counts);
 }
 
 void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,
@@ -483,6 +650,15 @@ template void paintTriangle<DepthMode::Test, false>(const WindowVertex&, const W
 template void paintTriangle<DepthMode::Test, true>(const WindowVertex&, const WindowVertex&,
                                                    const WindowVertex&, EdgeMask, std::int32_t,
                                                    const PixelBounds&, const Planes&, PaintCounts&);
+template void paintTriangleWalkingBox<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
+                                                       const WindowVertex&, EdgeMask, std::int32_t,
+                                                       const PixelBounds&, const Planes&,
+                                                       PaintCounts&);
+template void paintTriangleWalkingBox<DepthMode::Overwrite>(const WindowVertex&,
+                                                            const WindowVertex&,
+                                                            const WindowVertex&, EdgeMask,
+                                                            std::int32_t, const PixelBounds&,
+                                                            const Planes&, PaintCounts&);
 template void paintTriangle<DepthMode::Overwrite, false>(const WindowVertex&, const WindowVertex&,
                                                          const WindowVertex&, EdgeMask,
                                                          std::int32_t, const PixelBounds&,

@@ -13,7 +13,6 @@
 //   them owns the samples on it (D3D10 / OpenGL rasterization rules, llvmpipe's approach).
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -38,24 +37,33 @@ inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& 
          static_cast<std::int64_t>(c.x - a.x) * (b.y - a.y);
 }
 
+// A triangle's bounding box in grid units (fixed point), inclusive.
+struct GridBox {
+  std::int32_t x0, y0, x1, y1;
+};
+inline GridBox gridBoxOf(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+  return {std::min(std::min(a.x, b.x), c.x), std::min(std::min(a.y, b.y), c.y),
+          std::max(std::max(a.x, b.x), c.x), std::max(std::max(a.y, b.y), c.y)};
+}
+
+// The pixels whose centers lie in a grid box, clipped to `clip`.
+inline PixelBounds samplesInGridBox(const GridBox& grid, const PixelBounds& clip) {
+  // Smallest px with px·256 + 128 ≥ min, largest with px·256 + 128 ≤ max: ceil and floor of
+  // (v − 128)/256 by arithmetic shifts (C++20 >> is arithmetic). Window coordinates are below
+  // 2^23 in magnitude (FrameTransform.h): no overflow in 32 bits.
+  constexpr std::int32_t kHalf = kSubpixelScale / 2;
+  const auto ceilPixel = [](std::int32_t v) { return -((kHalf - v) >> kSubpixelBits); };
+  const auto floorPixel = [](std::int32_t v) { return (v - kHalf) >> kSubpixelBits; };
+  return {std::max(ceilPixel(grid.x0), clip.x0), std::max(ceilPixel(grid.y0), clip.y0),
+          std::min(floorPixel(grid.x1), clip.x1), std::min(floorPixel(grid.y1), clip.y1)};
+}
+
 // The pixels whose centers lie in the triangle's bounding box, clipped to `clip`. Inline:
 // set-up and raster call it once per triangle (per tile), and out of line its call and
 // std::min's initializer lists cost ~60 instructions a call (callgrind, 500k triangles).
 inline PixelBounds samplesInBoundingBox(const WindowVertex& a, const WindowVertex& b,
                                         const WindowVertex& c, const PixelBounds& clip) {
-  // Smallest px with px·256 + 128 ≥ min, largest with px·256 + 128 ≤ max: ceil and floor of
-  // (v − 128)/256 by arithmetic shifts (C++20 >> is arithmetic), in 64 bits (no overflow).
-  constexpr std::int64_t kHalf = kSubpixelScale / 2;
-  const auto ceilPixel = [](std::int64_t v) { return -((kHalf - v) >> kSubpixelBits); };
-  const auto floorPixel = [](std::int64_t v) { return (v - kHalf) >> kSubpixelBits; };
-  const std::int64_t minX = std::min(std::min(a.x, b.x), c.x);
-  const std::int64_t maxX = std::max(std::max(a.x, b.x), c.x);
-  const std::int64_t minY = std::min(std::min(a.y, b.y), c.y);
-  const std::int64_t maxY = std::max(std::max(a.y, b.y), c.y);
-  return {static_cast<int>(std::max<std::int64_t>(ceilPixel(minX), clip.x0)),
-          static_cast<int>(std::max<std::int64_t>(ceilPixel(minY), clip.y0)),
-          static_cast<int>(std::min<std::int64_t>(floorPixel(maxX), clip.x1)),
-          static_cast<int>(std::min<std::int64_t>(floorPixel(maxY), clip.y1))};
+  return samplesInGridBox(gridBoxOf(a, b, c), clip);
 }
 
 // coversAnySample for bounds of 2 to 4 samples.
@@ -79,14 +87,12 @@ std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& 
                                      int x, int y);
 
 // Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom; depth keys
-// while painting), and one flag per polygon, set when the polygon wins a pixel (it will
-// need shading).
+// while painting).
 struct Planes {
   Rgba8* color;
   float* depth;
   std::int32_t* polygonId;
   int width;
-  std::uint8_t* shown;
 };
 
 enum class DepthMode { Test, Overwrite };
@@ -141,9 +147,6 @@ void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Pla
     planes.depth[i] = depth;
     planes.polygonId[i] = polygonId;
     ++counts.written;
-    // Tiles sharing a polygon may race to store the same 1: relaxed atomics make it benign.
-    std::atomic_ref<std::uint8_t> shown(planes.shown[static_cast<std::size_t>(polygonId)]);
-    if (shown.load(std::memory_order_relaxed) == 0) shown.store(1, std::memory_order_relaxed);
   }
 }
 
@@ -161,11 +164,19 @@ bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowV
 // says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
 // fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
 // is painter's order. kRejectHidden (depth test only): a triangle of a few samples that
-// losesEverywhere is skipped before its set-up; the same pixels.
+// losesEverywhere is skipped before its depth plane is set up; the same pixels.
 template <DepthMode kMode, bool kRejectHidden = false>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);
+
+// paintTriangle without its small-box path (RasterTriangle.cpp): every box of two or more
+// samples walked row by row in 64-bit edge functions. The reference the small-box path is
+// tested against: the same pixels, keys and counts.
+template <DepthMode kMode>
+void paintTriangleWalkingBox(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                             EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                             const Planes& planes, PaintCounts& counts);
 
 // The same with the depth test and the tile's coarse depth (Rule::HiddenGeometry): a
 // triangle of a few samples is painted as above (its per-pixel test costs no more); a larger

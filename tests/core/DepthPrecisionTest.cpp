@@ -220,13 +220,12 @@ namespace {
 using detail::PixelBounds;
 using detail::WindowVertex;
 
-// One tile's planes for the raster's internals: depth keys, polygon ids, shown flags.
+// One tile's planes for the raster's internals: depth keys, polygon ids.
 struct TilePlanes {
   static constexpr int kSide = 16;
   std::vector<float> depth = std::vector<float>(kSide * kSide, detail::kBackgroundDepthKey);
   std::vector<std::int32_t> ids = std::vector<std::int32_t>(kSide * kSide, -1);
-  std::vector<std::uint8_t> shown = std::vector<std::uint8_t>(1, 0);
-  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide, shown.data()}; }
+  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide}; }
 };
 
 // What a run of random triangles did under losesEverywhere (RasterTriangle.h).
@@ -342,8 +341,7 @@ TEST(DepthPrecision, RejectMarginKeepsAKeyNearerThanEveryVertex) {
       ASSERT_EQ(written.ids[atA], 0);
       ASSERT_GT(written.depth[atA], nearest) << "the premise: a key nearer than every vertex's";
 
-      TilePlanes tied;          // every pixel one float farther than the triangle's key at a
-      tied.shown.assign(2, 0);  // polygons 0 and 1
+      TilePlanes tied;  // every pixel one float farther than the triangle's key at a
       const float farther = std::nextafter(written.depth[atA], -1.0f);
       std::fill(tied.depth.begin(), tied.depth.end(), farther);
       EXPECT_FALSE(detail::losesEverywhere(a, b, c, box, tied.planes()))
@@ -364,8 +362,7 @@ TEST(DepthPrecision, RejectMarginKeepsAKeyNearerThanEveryVertex) {
 
 // The reject end to end: a random stream of small and mid-sized triangles (steep and flat
 // depth planes, every boundary-edge mask, many polygon ids) painted with the depth test into
-// one tile with the reject and into another without it: the same keys, ids, shown flags and
-// writes.
+// one tile with the reject and into another without it: the same keys, ids and writes.
 TEST(DepthPrecision, RejectingHiddenTrianglesPaintsTheSamePixels) {
   std::mt19937 random(11);
   std::uniform_int_distribution<int> corner(0, TilePlanes::kSide * 256), spread(1, 6 * 256),
@@ -373,7 +370,6 @@ TEST(DepthPrecision, RejectingHiddenTrianglesPaintsTheSamePixels) {
   std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
   const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
   TilePlanes with, without;
-  with.shown.assign(64, 0), without.shown.assign(64, 0);
   detail::PaintCounts withCounts, withoutCounts;
   std::size_t painted = 0;
   for (int t = 0; t < 40000; ++t) {
@@ -403,7 +399,6 @@ TEST(DepthPrecision, RejectingHiddenTrianglesPaintsTheSamePixels) {
   EXPECT_GT(withoutCounts.written, 0u);
   EXPECT_TRUE(with.depth == without.depth) << "depth keys differ";
   EXPECT_TRUE(with.ids == without.ids) << "polygon ids differ";
-  EXPECT_TRUE(with.shown == without.shown) << "shown flags differ";
 }
 
 }  // namespace

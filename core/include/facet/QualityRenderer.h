@@ -108,8 +108,8 @@ struct QualityStats {
   double estimateSeconds = 0.0;  ///< the error estimate (bounds and the per-pixel image)
   double totalSeconds = 0.0;
   std::size_t samplesReshaded = 0;  ///< samples shaded again (not kept flat)
-  /// Polygons shaded per sample or per corner: those the renderer lit (Renderer::shownPolygons,
-  /// which includes any that won a pixel while painting and lost it later).
+  /// Polygons shaded per sample or per corner: those the renderer lit (Renderer::shownPolygons:
+  /// the polygons its image shows).
   std::size_t polygonsReshaded = 0;
   /// The estimate (when asked): per pixel, an upper bound on how far the flat-shaded pixel is
   /// from the converged Phong image of the scene (the mesh reference, MeshReference.h), in

@@ -115,10 +115,9 @@ class Renderer {
   RenderStats render(const Scene& scene, const Camera& camera, const FramebufferView& target);
 
   /// Per polygon id of the last render's scene (its meshes' polygons in order), nonzero for
-  /// every polygon a pixel of the image shows — and for any that won a pixel while painting
-  /// and lost it later: the polygons the render lit. For work on the rendered image (the
-  /// error estimate of QualityRenderer); valid until the next render, and only after a render
-  /// that completed (an aborted one leaves them partial).
+  /// exactly the polygons a pixel of the image shows: the polygons the render lit. For work on
+  /// the rendered image (the error estimate of QualityRenderer); valid until the next render,
+  /// and only after a render that completed (an aborted one leaves them partial).
   std::span<const std::uint8_t> shownPolygons() const;
 
   /// Runs work(begin, end) over [0, count) in blocks of `grain`, on the renderer's threads

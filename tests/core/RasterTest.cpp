@@ -1,0 +1,164 @@
+// The raster's paths against each other, and the shown flags it hands to the shade phase.
+
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <random>
+#include <set>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+#include "RasterTriangle.h"
+#include "facet/Renderer.h"
+
+namespace facet::testing {
+namespace {
+
+using detail::PixelBounds;
+using detail::WindowVertex;
+
+// A 32 × 32 image's depth keys and polygon ids.
+struct Planes32 {
+  static constexpr int kSide = 32;
+  std::vector<float> depth = std::vector<float>(kSide * kSide, detail::kBackgroundDepthKey);
+  std::vector<std::int32_t> ids = std::vector<std::int32_t>(kSide * kSide, -1);
+  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide}; }
+};
+
+// What a stream of triangles painted through one path.
+struct Painted {
+  Planes32 planes;
+  detail::PaintCounts counts;
+};
+
+// The pixels where two images differ (key bits or id); the first few reported.
+std::size_t differingKeysOrIds(const Planes32& small, const Planes32& walked) {
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < small.depth.size(); ++i) {
+    if (small.ids[i] == walked.ids[i] && std::bit_cast<std::uint32_t>(small.depth[i]) ==
+                                             std::bit_cast<std::uint32_t>(walked.depth[i])) {
+      continue;
+    }
+    if (++differing <= 5) {
+      ADD_FAILURE() << "pixel (" << i % Planes32::kSide << ", " << i / Planes32::kSide
+                    << "): small-box path id " << small.ids[i] << " key " << small.depth[i]
+                    << ", box walk id " << walked.ids[i] << " key " << walked.depth[i];
+    }
+  }
+  return differing;
+}
+
+// paintTriangle (with its small-box path) against the box walk it replaces for boxes of at
+// most 4 × 4 samples: a random stream of small triangles (residues, steep and flat depth
+// planes, no polygon-boundary edge or random ones, many polygon ids), and slivers whose
+// bounding box is wider than the lanes' 64 pixels but whose samples in the tile are few (the
+// tile's corner cuts them: they go to the walk), painted into a tile that is not at the
+// image's origin, in runs of 200 (the planes compared, then cleared). The same keys, ids and
+// counts, with and without the depth test, and with the depth test and the reject of hidden
+// triangles (losesEverywhere) too.
+template <detail::DepthMode kMode>
+void compareSmallBoxPath(unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 5 * 256),
+      residue(-127, 127), polygon(0, 99), kind(0, 9), mask(0, 13);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
+  const PixelBounds tile{8, 4, 27, 23};
+  Painted small, walked, rejecting;
+  std::size_t painted = 0, slivers = 0, differing = 0;
+  for (int t = 0; t < 40000; ++t) {
+    WindowVertex v[3];
+    const bool sliver = kind(random) == 0;
+    const int cx = corner(random), cy = corner(random), size = spread(random);
+    const float base = key(random);
+    for (WindowVertex& c : v) {
+      c.x = cx + std::uniform_int_distribution<int>(-size, size)(random);
+      c.y = cy + std::uniform_int_distribution<int>(-size, size)(random);
+      c.residueX = static_cast<std::int8_t>(residue(random));
+      c.residueY = static_cast<std::int8_t>(residue(random));
+      c.depth = base + (t % 3 ? steep(random) : steep(random) * 1e-4f);
+    }
+    if (sliver) {  // one corner 100 pixels away, down and to the left of the tile
+      v[0].x = tile.x0 * 256 - 100 * 256 + cx % 256;
+      v[0].y = tile.y0 * 256 - 100 * 256 + cy % 256;
+    }
+    const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
+    if (area != 0) {
+      if (area < 0) std::swap(v[1], v[2]);
+      const std::int32_t id = polygon(random);
+      const auto boundary = static_cast<detail::EdgeMask>(std::max(0, mask(random) - 6));
+      detail::paintTriangle<kMode>(v[0], v[1], v[2], boundary, id, tile, small.planes.planes(),
+                                   small.counts);
+      detail::paintTriangleWalkingBox<kMode>(v[0], v[1], v[2], boundary, id, tile,
+                                             walked.planes.planes(), walked.counts);
+      if constexpr (kMode == detail::DepthMode::Test) {
+        detail::paintTriangle<kMode, true>(v[0], v[1], v[2], boundary, id, tile,
+                                           rejecting.planes.planes(), rejecting.counts);
+      }
+      ++painted;
+      slivers += sliver;
+    }
+    if (t % 200 == 199) {
+      differing += differingKeysOrIds(small.planes, walked.planes);
+      if (kMode == detail::DepthMode::Test)
+        differing += differingKeysOrIds(rejecting.planes, walked.planes);
+      small.planes = walked.planes = rejecting.planes = Planes32{};
+    }
+  }
+  EXPECT_GT(painted, 35000u);
+  EXPECT_GT(slivers, 3000u);
+  EXPECT_GT(walked.counts.written, 20000u);
+  EXPECT_EQ(small.counts.written, walked.counts.written);
+  EXPECT_EQ(small.counts.covered, walked.counts.covered);
+  if (kMode == detail::DepthMode::Test) {
+    EXPECT_EQ(rejecting.counts.written, walked.counts.written);
+    EXPECT_EQ(rejecting.counts.covered, walked.counts.covered);
+  }
+  EXPECT_EQ(differing, 0u);
+}
+
+TEST(Raster, SmallBoxPathPaintsWhatTheBoxWalkPaintsWithTheDepthTest) {
+  compareSmallBoxPath<detail::DepthMode::Test>(3);
+}
+
+TEST(Raster, SmallBoxPathPaintsWhatTheBoxWalkPaintsInPaintersOrder) {
+  compareSmallBoxPath<detail::DepthMode::Overwrite>(5);
+}
+
+// The shown flags are the polygons of the final image: the far squares of a stack listed far
+// to near each win every pixel they cover and lose all of them to the next; only the nearest
+// is shown, and exactly the ids in the image are flagged, for any thread count.
+TEST(Raster, ShownPolygonsAreThoseOfTheFinalImage) {
+  const Mesh stack = makeStackedSquares(4, 6, false);
+  const Scene scene = oneMeshScene(stack.view());
+  const Camera camera = fitCamera(stack);
+  for (const int threads : {1, 2, 3}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    Renderer renderer;
+    renderer.setThreadCount(threads);
+    Framebuffer framebuffer(200, 150);
+    const RenderStats stats = renderer.render(scene, camera, framebuffer);
+    ASSERT_GT(stats.fragmentsWritten, 2 * stats.pixelsCovered) << "the premise: overdraw";
+    std::set<std::int32_t> inImage;
+    for (const std::int32_t id : framebuffer.polygonId())
+      if (id != Framebuffer::kBackgroundId) inImage.insert(id);
+    const std::span<const std::uint8_t> shown = renderer.shownPolygons();
+    ASSERT_EQ(shown.size(), stack.polygonCount());
+    std::size_t flagged = 0;
+    for (std::size_t id = 0; id < shown.size(); ++id) {
+      flagged += shown[id] != 0;
+      EXPECT_EQ(shown[id] != 0, inImage.count(static_cast<std::int32_t>(id)) == 1)
+          << "polygon " << id;
+    }
+    EXPECT_EQ(flagged, 36u) << "the nearest square's 6 × 6 cells";
+  }
+}
+
+}  // namespace
+}  // namespace facet::testing
