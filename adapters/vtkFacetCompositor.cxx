@@ -554,14 +554,25 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   const bool withEstimate = this->Current.WithEstimate;
   if (withEstimate)
   {
+    // A pixel whose center sample shows no polygon may still have an estimate (with
+    // supersampling, a silhouette's other samples): it goes at kEdgeDepth, behind every
+    // surface (their depths are halved, at most 0.5) and before the background.
+    constexpr float kEdgeDepth = 0.75f;
     icet.EstimateDepths.assign(icet.Depths.begin(), icet.Depths.end());
-    icet.Estimates.resize(pixels);
-    const bool has =
-      rendered && estimate && static_cast<std::size_t>(estimate->GetNumberOfValues()) == pixels;
-    std::fill(icet.Estimates.begin(), icet.Estimates.end(), 0.0f);
-    if (has)
+    icet.Estimates.assign(pixels, 0.0f);
+    if (rendered && estimate && static_cast<std::size_t>(estimate->GetNumberOfValues()) == pixels)
     {
-      std::copy_n(estimate->GetPointer(0), pixels, icet.Estimates.begin());
+      const float* values = estimate->GetPointer(0);
+      image.ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          icet.Estimates[i] = values[i];
+          if (values[i] != 0.0f && icet.EstimateDepths[i] == 1.0f)
+          {
+            icet.EstimateDepths[i] = kEdgeDepth;
+          }
+        }
+      });
     }
   }
   cost.PackSeconds = SecondsSince(start);
@@ -585,6 +596,13 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
                 cost,
                 messages) &&
       ranHere;
+    if (this->Rank == this->Current.Target)
+    {
+      for (std::size_t i = 0; i < pixels; ++i)
+      {
+        icet.Estimates[i] = icet.EstimateDepths[i] < 1.0f ? icet.Estimates[i] : 0.0f;
+      }
+    }
   }
   const long long local[2] = { cost.BytesSent, ranHere ? 0 : 1 };
   long long global[2] = { 0, 0 };
@@ -636,7 +654,7 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
         }
         if (estimates)
         {
-          estimates[i] = depths[i] < 1.0f ? icet.Estimates[i] : 0.0f;
+          estimates[i] = icet.Estimates[i];
         }
       }
     });

@@ -17,7 +17,6 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkIntArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
@@ -311,22 +310,21 @@ void vtkFacetRenderFilter::vtkInternals::RemoveArraysNotAsked(vtkFacetRenderFilt
 void vtkFacetRenderFilter::vtkInternals::SummarizeCompositedEstimate(vtkImageData* output)
 {
   auto* estimate = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate"));
-  auto* rankIds = vtkIntArray::SafeDownCast(output->GetPointData()->GetArray("RankId"));
   auto* summary =
     vtkDoubleArray::SafeDownCast(output->GetFieldData()->GetArray("FacetErrorEstimate"));
-  if (!estimate || !rankIds || !summary ||
-    estimate->GetNumberOfValues() != rankIds->GetNumberOfValues())
+  if (!estimate || !summary || !output->GetPointData()->GetArray("RankId"))
   {
-    return; // not the rank that received the image, or no estimate
+    return; // not the rank that received the composited image, or no estimate
   }
-  // QualityStats' definition: over the pixels a polygon shows.
+  // QualityStats' definition: over the pixels with an estimate (a polygon covers one of
+  // their samples).
   double sumOfSquares = 0.0, maximum = 0.0;
   vtkIdType covered = 0;
   for (vtkIdType i = 0; i < estimate->GetNumberOfValues(); ++i)
   {
-    if (rankIds->GetValue(i) >= 0)
+    const double value = estimate->GetValue(i);
+    if (value != 0.0)
     {
-      const double value = estimate->GetValue(i);
       sumOfSquares += value * value;
       maximum = std::max(maximum, value);
       ++covered;
@@ -641,7 +639,10 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
       rendered,
       messages,
       vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate")));
-    internals.SummarizeCompositedEstimate(output);
+    if (vtkFacetCompositor::IsAvailable())
+    {
+      internals.SummarizeCompositedEstimate(output);
+    }
     internals.RemoveArraysNotAsked(this, output);
     if (this->ComputeError)
     {
