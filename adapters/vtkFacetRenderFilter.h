@@ -59,13 +59,13 @@
  * data adds `FacetCompositeSeconds` (Total, Pack, IceT, Unpack), `FacetCompositeBytes`
  * (SentByThisRank, SentByAllRanks) and `FacetCompositeStrategy`; the render plan says the
  * same. The error estimate composites with the image (a second IceT composite, 8 bytes a
- * covered pixel): each pixel's is that of the piece it shows, and `FacetErrorEstimate` on the
- * target summarizes the whole image (on the other processes, their own piece); a cell with a
- * corner in another piece has its vertex normals from its own piece's cells. Every process must
- * execute the filter with the same settings; one whose input is bad reports its error and adds
- * nothing to the image (the target warns of the missing piece), and the others do not wait for it.
- * A build without IceT (or without VTK's ParallelMPI) renders every process's own piece and says so
- * once.
+ * covered pixel, about doubling the composite's time: bench/mpi_estimate_cost.py): each pixel's is
+ * that of the piece it shows, and `FacetErrorEstimate` on the target summarizes the whole image (on
+ * the other processes, their own piece); a cell with a corner in another piece has its vertex
+ * normals from its own piece's cells. Every process must execute the filter with the same settings;
+ * one whose input is bad reports its error and adds nothing to the image (the target warns of the
+ * missing piece), and the others do not wait for it. A build without IceT (or without VTK's
+ * ParallelMPI) renders every process's own piece and says so once.
  *
  * The pieces that make the scene are the ones vtkFacetRendererToImageFilter uses for each
  * actor of a vtkRenderer: the input is converted as an actor's mapper input is, colored as
