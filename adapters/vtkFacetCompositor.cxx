@@ -93,6 +93,8 @@ public:
     void* Colors;
     std::size_t Bytes;
     float* Depths;
+    bool ReturnDepths; // else only the colors come back (the background's: zeros), and the
+                       // estimate's context composites it
   };
   /// Composites a layer of Depths.size() pixels; adds its time and bytes to `cost`.
   bool Run(const vtkFacetCompositor::Settings& settings,
@@ -136,6 +138,7 @@ private:
   void Destroy();
 
   IceTContext Context = nullptr;
+  IceTContext EstimateContext = nullptr;
   MPI_Comm Communicator = MPI_COMM_NULL;
 };
 
@@ -159,9 +162,12 @@ bool vtkFacetCompositor::vtkIceT::Bind(vtkMultiProcessController* controller,
   }
   this->Destroy();
   const IceTContext previous = icetGetContext();
-  // The context duplicates the communicator (a collective call on every rank).
+  // A context duplicates the communicator (a collective call on every rank). The estimate
+  // has a context of its own: switching one context's color format every frame costs IceT
+  // more than the estimate's bytes (bench/mpi_estimate_cost.py).
   IceTCommunicator icetCommunicator = icetCreateMPICommunicator(handle);
   this->Context = icetCreateContext(icetCommunicator);
+  this->EstimateContext = icetCreateContext(icetCommunicator);
   icetDestroyMPICommunicator(icetCommunicator);
   this->Communicator = handle;
   if (previous)
@@ -184,9 +190,11 @@ void vtkFacetCompositor::vtkIceT::Destroy()
   MPI_Finalized(&finalized);
   if (!finalized)
   {
-    icetDestroyContext(this->Context); // restores the current context unless it was this one
+    // Each restores the current context unless it was itself.
+    icetDestroyContext(this->EstimateContext);
+    icetDestroyContext(this->Context);
   }
-  this->Context = nullptr;
+  this->Context = this->EstimateContext = nullptr;
   this->Communicator = MPI_COMM_NULL;
 }
 
@@ -201,14 +209,21 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
     ICET_SINGLE_IMAGE_STRATEGY_BSWAP,
     ICET_SINGLE_IMAGE_STRATEGY_TREE,
     ICET_SINGLE_IMAGE_STRATEGY_RADIXK };
-  CurrentContext current(this->Context);
+  CurrentContext current(layer.ReturnDepths ? this->Context : this->EstimateContext);
   icetResetTiles();
   icetAddTile(0, 0, settings.Width, settings.Height, settings.Target);
   icetPhysicalRenderSize(settings.Width, settings.Height);
   icetSetColorFormat(layer.Format);
   icetSetDepthFormat(ICET_IMAGE_DEPTH_FLOAT);
   icetCompositeMode(ICET_COMPOSITE_MODE_Z_BUFFER);
-  icetDisable(ICET_COMPOSITE_ONE_BUFFER); // the depth comes back too
+  if (layer.ReturnDepths)
+  {
+    icetDisable(ICET_COMPOSITE_ONE_BUFFER); // the depth comes back too
+  }
+  else
+  {
+    icetEnable(ICET_COMPOSITE_ONE_BUFFER);
+  }
   // One tile: the sequential strategy is one single-image composite over every rank.
   icetStrategy(ICET_STRATEGY_SEQUENTIAL);
   icetSingleImageStrategy(strategies[static_cast<int>(settings.Method)]);
@@ -255,7 +270,10 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
       ? static_cast<const void*>(icetImageGetColorcf(result))
       : static_cast<const void*>(icetImageGetColorcui(result));
     std::memcpy(layer.Colors, colors, pixels * layer.Bytes);
-    std::memcpy(layer.Depths, icetImageGetDepthcf(result), pixels * sizeof(float));
+    if (layer.ReturnDepths)
+    {
+      std::memcpy(layer.Depths, icetImageGetDepthcf(result), pixels * sizeof(float));
+    }
   }
   return true;
 }
@@ -581,7 +599,7 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   // rank gives up: the broadcast below is collective too.
   bool ranHere = icet.Run(this->Current,
     this->Ranks,
-    { ICET_IMAGE_COLOR_RGBA_FLOAT, colors, sizeof(Payload), depths },
+    { ICET_IMAGE_COLOR_RGBA_FLOAT, colors, sizeof(Payload), depths, true },
     cost,
     messages);
   if (withEstimate)
@@ -592,17 +610,11 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
                 { ICET_IMAGE_COLOR_RGBA_UBYTE,
                   icet.Estimates.data(),
                   sizeof(float),
-                  icet.EstimateDepths.data() },
+                  icet.EstimateDepths.data(),
+                  false },
                 cost,
                 messages) &&
       ranHere;
-    if (this->Rank == this->Current.Target)
-    {
-      for (std::size_t i = 0; i < pixels; ++i)
-      {
-        icet.Estimates[i] = icet.EstimateDepths[i] < 1.0f ? icet.Estimates[i] : 0.0f;
-      }
-    }
   }
   const long long local[2] = { cost.BytesSent, ranHere ? 0 : 1 };
   long long global[2] = { 0, 0 };

@@ -59,7 +59,7 @@
  * data adds `FacetCompositeSeconds` (Total, Pack, IceT, Unpack), `FacetCompositeBytes`
  * (SentByThisRank, SentByAllRanks) and `FacetCompositeStrategy`; the render plan says the
  * same. The error estimate composites with the image (a second IceT composite, 8 bytes a
- * covered pixel, about doubling the composite's time: bench/mpi_estimate_cost.py): each pixel's is
+ * covered pixel, about +40 % of the composite's time: bench/mpi_estimate_cost.py): each pixel's is
  * that of the piece it shows, and `FacetErrorEstimate` on the target summarizes the whole image (on
  * the other processes, their own piece); a cell with a corner in another piece has its vertex
  * normals from its own piece's cells. Every process must execute the filter with the same settings;
