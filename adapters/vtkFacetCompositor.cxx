@@ -85,21 +85,18 @@ public:
   /// A context on `controller`'s MPI communicator; false, with an error, without MPI.
   bool Bind(vtkMultiProcessController* controller, vtkFacetMessages& messages);
 
-  /// One image IceT composites in place on the target: a color per pixel in `format`
-  /// (`bytes` each), and the depths.
-  struct Layer
+  /// What a composite carries: the image (Colors at Depths, both back on the target), or the
+  /// estimate (Estimates at EstimateDepths, in a context of its own; the colors alone come
+  /// back, the background's as zeros).
+  enum class Layer
   {
-    IceTEnum Format;
-    void* Colors;
-    std::size_t Bytes;
-    float* Depths;
-    bool ReturnDepths; // else only the colors come back (the background's: zeros), and the
-                       // estimate's context composites it
+    Image,
+    Estimate
   };
-  /// Composites a layer of Depths.size() pixels; adds its time and bytes to `cost`.
+  /// Composites a layer in place on the target; adds its time and bytes to `cost`.
   bool Run(const vtkFacetCompositor::Settings& settings,
     int ranks,
-    const Layer& layer,
+    Layer layer,
     vtkFacetCompositor::Cost& cost,
     vtkFacetMessages& messages);
 
@@ -201,7 +198,7 @@ void vtkFacetCompositor::vtkIceT::Destroy()
 //------------------------------------------------------------------------------
 bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settings,
   int ranks,
-  const Layer& layer,
+  Layer layer,
   vtkFacetCompositor::Cost& cost,
   vtkFacetMessages& messages)
 {
@@ -209,14 +206,17 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
     ICET_SINGLE_IMAGE_STRATEGY_BSWAP,
     ICET_SINGLE_IMAGE_STRATEGY_TREE,
     ICET_SINGLE_IMAGE_STRATEGY_RADIXK };
-  CurrentContext current(layer.ReturnDepths ? this->Context : this->EstimateContext);
+  const bool image = layer == Layer::Image;
+  void* colors = image ? static_cast<void*>(this->Colors.data()) : this->Estimates.data();
+  float* depths = image ? this->Depths.data() : this->EstimateDepths.data();
+  CurrentContext current(image ? this->Context : this->EstimateContext);
   icetResetTiles();
   icetAddTile(0, 0, settings.Width, settings.Height, settings.Target);
   icetPhysicalRenderSize(settings.Width, settings.Height);
-  icetSetColorFormat(layer.Format);
+  icetSetColorFormat(image ? ICET_IMAGE_COLOR_RGBA_FLOAT : ICET_IMAGE_COLOR_RGBA_UBYTE);
   icetSetDepthFormat(ICET_IMAGE_DEPTH_FLOAT);
   icetCompositeMode(ICET_COMPOSITE_MODE_Z_BUFFER);
-  if (layer.ReturnDepths)
+  if (image)
   {
     icetDisable(ICET_COMPOSITE_ONE_BUFFER); // the depth comes back too
   }
@@ -241,8 +241,7 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
   static constexpr IceTDouble identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   static constexpr IceTFloat background[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
   const Clock::time_point start = Clock::now();
-  IceTImage result =
-    icetCompositeImage(layer.Colors, layer.Depths, nullptr, identity, identity, background);
+  IceTImage result = icetCompositeImage(colors, depths, nullptr, identity, identity, background);
   cost.IceTSeconds += SecondsSince(start);
   IceTInt bytes = 0;
   icetGetIntegerv(ICET_BYTES_SENT, &bytes);
@@ -266,13 +265,14 @@ bool vtkFacetCompositor::vtkIceT::Run(const vtkFacetCompositor::Settings& settin
         std::to_string(icetImageGetNumPixels(result)) + " pixels for " + std::to_string(pixels));
       return false;
     }
-    const void* colors = layer.Format == ICET_IMAGE_COLOR_RGBA_FLOAT
-      ? static_cast<const void*>(icetImageGetColorcf(result))
-      : static_cast<const void*>(icetImageGetColorcui(result));
-    std::memcpy(layer.Colors, colors, pixels * layer.Bytes);
-    if (layer.ReturnDepths)
+    if (image)
     {
-      std::memcpy(layer.Depths, icetImageGetDepthcf(result), pixels * sizeof(float));
+      std::memcpy(colors, icetImageGetColorcf(result), pixels * sizeof(Payload));
+      std::memcpy(depths, icetImageGetDepthcf(result), pixels * sizeof(float));
+    }
+    else
+    {
+      std::memcpy(colors, icetImageGetColorcui(result), pixels * sizeof(float));
     }
   }
   return true;
@@ -597,24 +597,12 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
 
   // Every rank learns whether every rank composited, and the bytes they sent, before any
   // rank gives up: the broadcast below is collective too.
-  bool ranHere = icet.Run(this->Current,
-    this->Ranks,
-    { ICET_IMAGE_COLOR_RGBA_FLOAT, colors, sizeof(Payload), depths, true },
-    cost,
-    messages);
+  bool ranHere = icet.Run(this->Current, this->Ranks, vtkIceT::Layer::Image, cost, messages);
   if (withEstimate)
   {
     // Run even when the first failed here: the others are in it.
-    ranHere = icet.Run(this->Current,
-                this->Ranks,
-                { ICET_IMAGE_COLOR_RGBA_UBYTE,
-                  icet.Estimates.data(),
-                  sizeof(float),
-                  icet.EstimateDepths.data(),
-                  false },
-                cost,
-                messages) &&
-      ranHere;
+    ranHere =
+      icet.Run(this->Current, this->Ranks, vtkIceT::Layer::Estimate, cost, messages) && ranHere;
   }
   const long long local[2] = { cost.BytesSent, ranHere ? 0 : 1 };
   long long global[2] = { 0, 0 };

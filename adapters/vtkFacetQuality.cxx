@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <initializer_list>
 #include <memory>
 #include <span>
@@ -238,5 +239,41 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
   catch (const facet::Error& e)
   {
     messages.AddWarning(std::string("cannot compute the error: ") + e.what());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkFacetQuality::SummarizeEstimateArray(vtkImageData* output)
+{
+  auto* estimate = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate"));
+  auto* summary =
+    vtkDoubleArray::SafeDownCast(output->GetFieldData()->GetArray("FacetErrorEstimate"));
+  if (!estimate || !summary)
+  {
+    return;
+  }
+  // QualityStats' definition: over the pixels with an estimate (a polygon covers one of
+  // their samples).
+  double sumOfSquares = 0.0, maximum = 0.0;
+  vtkIdType estimated = 0;
+  for (vtkIdType i = 0; i < estimate->GetNumberOfValues(); ++i)
+  {
+    const double value = estimate->GetValue(i);
+    if (value != 0.0)
+    {
+      sumOfSquares += value * value;
+      maximum = std::max(maximum, value);
+      ++estimated;
+    }
+  }
+  const double rmse =
+    estimated > 0 ? std::sqrt(sumOfSquares / static_cast<double>(estimated)) : 0.0;
+  for (int c = 0; c < summary->GetNumberOfComponents(); ++c)
+  {
+    const std::string name = summary->GetComponentName(c) ? summary->GetComponentName(c) : "";
+    if (name == "PredictedRMSE" || name == "PredictedMax")
+    {
+      summary->SetComponent(0, c, name == "PredictedRMSE" ? rmse : maximum);
+    }
   }
 }

@@ -79,6 +79,13 @@ public:
     vtkImageData* output,
     vtkFacetMessages& messages);
 
+  /**
+   * Makes `output`'s FacetErrorEstimate (PredictedRMSE, PredictedMax) summarize its
+   * ErrorEstimate array as the core summarizes its estimate (over the pixels with one): after
+   * compositing, the whole image's rather than this process's piece's. Nothing without both.
+   */
+  static void SummarizeEstimateArray(vtkImageData* output);
+
 private:
   // What a mesh's ShadingMesh is made of: its arrays (points, offsets, connectivity and their
   // sizes: two inputs may share their points and their version, the latest MTime of both),

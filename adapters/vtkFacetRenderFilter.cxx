@@ -2,7 +2,6 @@
 
 #include "vtkAbstractMapper.h"
 #include "vtkCamera.h"
-#include "vtkDoubleArray.h"
 #include "vtkFacetActorConverter.h"
 #include "vtkFacetColoringMapper.h"
 #include "vtkFacetCompositor.h"
@@ -11,7 +10,6 @@
 #include "vtkFacetPolyDataConverter.h"
 #include "vtkFacetQuality.h"
 #include "vtkFacetSceneConverter.h"
-#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -30,7 +28,6 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -81,9 +78,6 @@ public:
   // the rank in RankId); nothing without CellId.
   vtkFacetImageRenderer::IdMap CellLabels(vtkPolyData* input,
     const vtkFacetImageRenderer::Settings& settings);
-  // On the rank that received the composited image: FacetErrorEstimate's PredictedRMSE and
-  // PredictedMax of its composited ErrorEstimate, in place of this rank's piece's.
-  static void SummarizeCompositedEstimate(vtkImageData* output);
   // Across processes Depth, CellId and ErrorEstimate are made to composite by: removed if not
   // asked for.
   static void RemoveArraysNotAsked(vtkFacetRenderFilter* filter, vtkImageData* output);
@@ -303,41 +297,6 @@ void vtkFacetRenderFilter::vtkInternals::RemoveArraysNotAsked(vtkFacetRenderFilt
   if (!filter->ErrorEstimateArray)
   {
     output->GetPointData()->RemoveArray("ErrorEstimate");
-  }
-}
-
-//------------------------------------------------------------------------------
-void vtkFacetRenderFilter::vtkInternals::SummarizeCompositedEstimate(vtkImageData* output)
-{
-  auto* estimate = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate"));
-  auto* summary =
-    vtkDoubleArray::SafeDownCast(output->GetFieldData()->GetArray("FacetErrorEstimate"));
-  if (!estimate || !summary || !output->GetPointData()->GetArray("RankId"))
-  {
-    return; // not the rank that received the composited image, or no estimate
-  }
-  // QualityStats' definition: over the pixels with an estimate (a polygon covers one of
-  // their samples).
-  double sumOfSquares = 0.0, maximum = 0.0;
-  vtkIdType covered = 0;
-  for (vtkIdType i = 0; i < estimate->GetNumberOfValues(); ++i)
-  {
-    const double value = estimate->GetValue(i);
-    if (value != 0.0)
-    {
-      sumOfSquares += value * value;
-      maximum = std::max(maximum, value);
-      ++covered;
-    }
-  }
-  const double rmse = covered > 0 ? std::sqrt(sumOfSquares / static_cast<double>(covered)) : 0.0;
-  for (int c = 0; c < summary->GetNumberOfComponents(); ++c)
-  {
-    const std::string name = summary->GetComponentName(c) ? summary->GetComponentName(c) : "";
-    if (name == "PredictedRMSE" || name == "PredictedMax")
-    {
-      summary->SetComponent(0, c, name == "PredictedRMSE" ? rmse : maximum);
-    }
   }
 }
 
@@ -639,9 +598,9 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
       rendered,
       messages,
       vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("ErrorEstimate")));
-    if (vtkFacetCompositor::IsAvailable())
+    if (vtkFacetCompositor::IsAvailable() && output->GetNumberOfPoints() > 0)
     {
-      internals.SummarizeCompositedEstimate(output);
+      vtkFacetQuality::SummarizeEstimateArray(output); // the composited image's, not the piece's
     }
     internals.RemoveArraysNotAsked(this, output);
     if (this->ComputeError)

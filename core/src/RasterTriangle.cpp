@@ -522,10 +522,11 @@ bool coversAnyOfFewSamples(const WindowVertex& a, const WindowVertex& b, const W
   return false;
 }
 
-template <DepthMode kMode, bool kRejectHidden>
-void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                   EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
-                   const Planes& planes, PaintCounts& counts) {
+// paintTriangle, and with kSmallBoxes false its reference, paintTriangleWalkingBox.
+template <DepthMode kMode, bool kRejectHidden, bool kSmallBoxes>
+[[gnu::always_inline]] inline void paintTriangleThrough(
+    const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, EdgeMask boundary,
+    std::int32_t polygonId, const PixelBounds& tile, const Planes& planes, PaintCounts& counts) {
   static_assert(kMode == DepthMode::Test || !kRejectHidden);
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
@@ -536,7 +537,7 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
     paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
     return;
   }
-  if (fitsSmallPath(extent, box)) {
+  if (kSmallBoxes && fitsSmallPath(extent, box)) {
     if (kRejectHidden && losesEverywhereInline(a, b, c, box, planes)) return;
     const SmallBox small(a, b, c, box);
     if (const std::uint32_t mask = small.coverage()) {
@@ -551,19 +552,19 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   walkBox<kMode, kRejectHidden>(a, b, c, area, boundary, box, polygonId, planes, counts);
 }
 
+template <DepthMode kMode, bool kRejectHidden>
+void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                   EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                   const Planes& planes, PaintCounts& counts) {
+  paintTriangleThrough<kMode, kRejectHidden, true>(a, b, c, boundary, polygonId, tile, planes,
+                                                   counts);
+}
+
 template <DepthMode kMode>
 void paintTriangleWalkingBox(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                              EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                              const Planes& planes, PaintCounts& counts) {
-  const std::int64_t area = doubleSignedArea(a, b, c);
-  FACET_ASSERT(area > 0);
-  const PixelBounds box = samplesInBoundingBox(a, b, c, tile);
-  if (box.empty()) return;
-  if (box.x0 == box.x1 && box.y0 == box.y1) {
-    paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
-    return;
-  }
-  walkBox<kMode, false>(a, b, c, area, boundary, box, polygonId, planes, counts);
+  paintTriangleThrough<kMode, false, false>(a, b, c, boundary, polygonId, tile, planes, counts);
 }
 
 void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "../support/SquarePlanes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "RasterTriangle.h"
@@ -221,12 +222,7 @@ using detail::PixelBounds;
 using detail::WindowVertex;
 
 // One tile's planes for the raster's internals: depth keys, polygon ids.
-struct TilePlanes {
-  static constexpr int kSide = 16;
-  std::vector<float> depth = std::vector<float>(kSide * kSide, detail::kBackgroundDepthKey);
-  std::vector<std::int32_t> ids = std::vector<std::int32_t>(kSide * kSide, -1);
-  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide}; }
-};
+using TilePlanes = SquarePlanes<16>;
 
 // What a run of random triangles did under losesEverywhere (RasterTriangle.h).
 struct RejectTally {

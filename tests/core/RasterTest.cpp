@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/SquarePlanes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "RasterTriangle.h"
@@ -25,12 +26,7 @@ using detail::PixelBounds;
 using detail::WindowVertex;
 
 // A 32 × 32 image's depth keys and polygon ids.
-struct Planes32 {
-  static constexpr int kSide = 32;
-  std::vector<float> depth = std::vector<float>(kSide * kSide, detail::kBackgroundDepthKey);
-  std::vector<std::int32_t> ids = std::vector<std::int32_t>(kSide * kSide, -1);
-  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide}; }
-};
+using Planes32 = SquarePlanes<32>;
 
 // What a stream of triangles painted through one path.
 struct Painted {
