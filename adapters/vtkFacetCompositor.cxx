@@ -66,17 +66,30 @@ class vtkFacetCompositor::vtkIceT
 {
 public:
   /// What IceT carries for a pixel as its RGBA_FLOAT "color": copied, never interpreted.
+  /// Label and Extra hold the rank and the CellId's high half, or, with the estimate packed
+  /// (vtkFacetCompositor::PackEstimate), the rank and the CellId's bits 32-47 in Label and
+  /// the estimate's float in Extra.
   struct Payload
   {
-    std::uint32_t Rgba; // the RGBA bytes, in memory order
-    std::int32_t Rank;
-    std::uint32_t CellLow; // the 64-bit CellId, two halves
-    std::uint32_t CellHigh;
+    std::uint32_t Rgba;    // the RGBA bytes, in memory order
+    std::uint32_t Label;   // the rank (packed: rank << 16 | CellId bits 32-47)
+    std::uint32_t CellLow; // the CellId's bits 0-31
+    std::uint32_t Extra;   // the CellId's bits 32-63 (packed: the estimate's float bits)
   };
   static_assert(sizeof(Payload) == 4 * sizeof(IceTFloat), "a payload is one RGBA_FLOAT color");
 
-  /// What one composite sends a covered pixel, with the depth; the estimate's adds its float
-  /// (the bits of an RGBA_UBYTE color, which IceT copies as it copies the payload).
+  /// A packed Label that names no rank: the pixel carries an estimate but shows no polygon
+  /// (a supersampled silhouette whose center sample is background). So 65535 ranks at most.
+  static constexpr std::uint32_t EstimateOnly = 0xFFFFu;
+  static constexpr int MaxPackedRanks = static_cast<int>(EstimateOnly);
+  static std::uint32_t PackedLabel(int rank, std::uint64_t cell)
+  {
+    return static_cast<std::uint32_t>(rank) << 16 |
+      static_cast<std::uint32_t>(cell >> 32 & 0xFFFFu);
+  }
+
+  /// What one composite sends a covered pixel, with the depth; the estimate's second one adds
+  /// its float (the bits of an RGBA_UBYTE color, which IceT copies as it copies the payload).
   static constexpr int BytesPerPixel = sizeof(Payload) + sizeof(float);
   static constexpr int EstimateBytesPerPixel = sizeof(float) + sizeof(float);
 
@@ -328,7 +341,8 @@ void vtkFacetCompositor::Prepare(vtkMultiProcessController* controller,
     static_cast<double>(settings.Method),
     settings.WithEstimate ? 1.0 : 0.0 };
   constexpr int settingCount = static_cast<int>(std::size(agreed));
-  double local[6 + 2 * settingCount], global[6 + 2 * settingCount];
+  constexpr int fitsAt = 6 + 2 * settingCount; // CellIdsFit48Bits: all ranks' minimum
+  double local[fitsAt + 1], global[fitsAt + 1];
   for (int axis = 0; axis < 3; ++axis)
   {
     local[axis] = hasBounds ? bounds[2 * axis] : none;
@@ -339,7 +353,8 @@ void vtkFacetCompositor::Prepare(vtkMultiProcessController* controller,
     local[6 + i] = agreed[i];
     local[6 + settingCount + i] = -agreed[i];
   }
-  controller->AllReduce(local, global, 6 + 2 * settingCount, vtkCommunicator::MIN_OP);
+  local[fitsAt] = settings.CellIdsFit48Bits ? 1.0 : 0.0;
+  controller->AllReduce(local, global, fitsAt + 1, vtkCommunicator::MIN_OP);
 
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -350,6 +365,10 @@ void vtkFacetCompositor::Prepare(vtkMultiProcessController* controller,
   {
     vtkMath::UninitializeBounds(bounds);
   }
+#if FACET_HAVE_ICET
+  this->PackEstimate =
+    settings.WithEstimate && global[fitsAt] == 1.0 && this->Ranks <= vtkIceT::MaxPackedRanks;
+#endif
   this->Agreed = true;
   for (int i = 0; i < settingCount; ++i)
   {
@@ -394,6 +413,18 @@ vtkDataArray* vtkFacetCompositor::GlobalIdsOf(vtkPolyData* input, vtkFacetMessag
     return nullptr;
   }
   return ids;
+}
+
+//------------------------------------------------------------------------------
+bool vtkFacetCompositor::CellIdsFit48Bits(vtkDataArray* globalIds)
+{
+  if (!globalIds || globalIds->GetNumberOfTuples() == 0)
+  {
+    return true; // a piece's own cell ids: fewer than 2^48 cells fit in memory
+  }
+  double range[2];
+  globalIds->GetRange(range, 0); // cached by VTK until the array changes
+  return range[0] >= 0.0 && range[1] < 0x1p48;
 }
 
 //------------------------------------------------------------------------------
@@ -540,7 +571,17 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   float* depths = icet.Depths.data();
 
   // This rank's pixels: a covered one (RankId set) carries its payload at half its window
-  // depth; the others are background (depth 1), whose payload IceT never reads.
+  // depth; the others are background (depth 1), whose payload IceT never reads. A pixel
+  // whose center sample shows no polygon may still have an estimate (with supersampling, a
+  // silhouette's other samples): it goes at kEdgeDepth, behind every surface (their depths
+  // are halved, at most 0.5) and before the background.
+  constexpr float kEdgeDepth = 0.75f;
+  const bool withEstimate = this->Current.WithEstimate;
+  const std::size_t estimateValues =
+    estimate ? static_cast<std::size_t>(estimate->GetNumberOfValues()) : 0;
+  const float* ownEstimates =
+    rendered && withEstimate && estimateValues == pixels ? estimate->GetPointer(0) : nullptr;
+  const bool packed = this->PackEstimate;
   Clock::time_point start = Clock::now();
   if (rendered)
   {
@@ -551,16 +592,26 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
     image.ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
+        const float own = packed && ownEstimates ? ownEstimates[i] : 0.0f;
+        std::memcpy(&colors[i].Extra, &own, sizeof own);
         if (rankIds[i] < 0)
         {
-          depths[i] = 1.0f;
+          depths[i] = own != 0.0f ? kEdgeDepth : 1.0f;
+          colors[i].Label = vtkIceT::EstimateOnly;
           continue;
         }
         const auto cell = static_cast<std::uint64_t>(cellIds[i]);
         std::memcpy(&colors[i].Rgba, rgba + 4 * i, 4);
-        colors[i].Rank = rankIds[i];
         colors[i].CellLow = static_cast<std::uint32_t>(cell);
-        colors[i].CellHigh = static_cast<std::uint32_t>(cell >> 32);
+        if (packed)
+        {
+          colors[i].Label = vtkIceT::PackedLabel(rankIds[i], cell);
+        }
+        else
+        {
+          colors[i].Label = static_cast<std::uint32_t>(rankIds[i]);
+          colors[i].Extra = static_cast<std::uint32_t>(cell >> 32);
+        }
         depths[i] = 0.5f * depth[i]; // exact: a power of two
       }
     });
@@ -569,18 +620,13 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   {
     std::fill(icet.Depths.begin(), icet.Depths.end(), 1.0f);
   }
-  const bool withEstimate = this->Current.WithEstimate;
-  if (withEstimate)
+  if (withEstimate && !packed)
   {
-    // A pixel whose center sample shows no polygon may still have an estimate (with
-    // supersampling, a silhouette's other samples): it goes at kEdgeDepth, behind every
-    // surface (their depths are halved, at most 0.5) and before the background.
-    constexpr float kEdgeDepth = 0.75f;
     icet.EstimateDepths.assign(icet.Depths.begin(), icet.Depths.end());
     icet.Estimates.assign(pixels, 0.0f);
-    if (rendered && estimate && static_cast<std::size_t>(estimate->GetNumberOfValues()) == pixels)
+    if (ownEstimates)
     {
-      const float* values = estimate->GetPointer(0);
+      const float* values = ownEstimates;
       image.ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType i = begin; i < end; ++i)
         {
@@ -598,7 +644,7 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   // Every rank learns whether every rank composited, and the bytes they sent, before any
   // rank gives up: the broadcast below is collective too.
   bool ranHere = icet.Run(this->Current, this->Ranks, vtkIceT::Layer::Image, cost, messages);
-  if (withEstimate)
+  if (withEstimate && !packed)
   {
     // Run even when the first failed here: the others are in it.
     ranHere =
@@ -625,7 +671,7 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
       static_cast<vtkIdType>(pixels * sizeof(Payload) / sizeof(int)),
       target);
     this->Controller->Broadcast(depths, static_cast<vtkIdType>(pixels), target);
-    if (withEstimate)
+    if (withEstimate && !packed)
     {
       this->Controller->Broadcast(icet.Estimates.data(), static_cast<vtkIdType>(pixels), target);
     }
@@ -637,25 +683,32 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
     float* depth = image.GetDepth()->GetPointer(0);
     vtkIdType* cellIds = image.GetCellIds()->GetPointer(0);
     int* rankIds = image.GetRankIds()->GetPointer(0);
-    float* estimates =
-      withEstimate && estimate && static_cast<std::size_t>(estimate->GetNumberOfValues()) == pixels
-      ? estimate->GetPointer(0)
-      : nullptr;
+    float* estimates = withEstimate && estimateValues == pixels ? estimate->GetPointer(0) : nullptr;
     image.ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
-        if (depths[i] < 1.0f)
-        {
-          std::memcpy(rgba + 4 * i, &colors[i].Rgba, 4);
-          depth[i] = 2.0f * depths[i];
-          rankIds[i] = colors[i].Rank;
-          cellIds[i] = static_cast<vtkIdType>(
-            (static_cast<std::uint64_t>(colors[i].CellHigh) << 32) | colors[i].CellLow);
-        }
         if (estimates)
         {
-          estimates[i] = icet.Estimates[i];
+          // Packed: no rank's estimate reached a pixel left at depth 1, so it keeps its own 0.
+          if (!packed)
+          {
+            estimates[i] = icet.Estimates[i];
+          }
+          else if (depths[i] < 1.0f)
+          {
+            std::memcpy(estimates + i, &colors[i].Extra, sizeof(float));
+          }
         }
+        if (depths[i] >= 1.0f || (packed && colors[i].Label == vtkIceT::EstimateOnly))
+        {
+          continue;
+        }
+        std::memcpy(rgba + 4 * i, &colors[i].Rgba, 4);
+        depth[i] = 2.0f * depths[i];
+        const std::uint32_t label = colors[i].Label;
+        rankIds[i] = static_cast<int>(packed ? label >> 16 : label);
+        const std::uint64_t high = packed ? label & 0xFFFFu : colors[i].Extra;
+        cellIds[i] = static_cast<vtkIdType>(high << 32 | colors[i].CellLow);
       }
     });
   }
@@ -702,10 +755,13 @@ void vtkFacetCompositor::Report(vtkFacetImageRenderer& image,
   fieldData->AddArray(name);
 
   std::ostringstream plan;
+  const bool secondComposite = this->Current.WithEstimate && !this->PackEstimate;
   plan << "  composite: " << strategy.str() << "; "
-       << vtkIceT::BytesPerPixel + (this->Current.WithEstimate ? vtkIceT::EstimateBytesPerPixel : 0)
+       << vtkIceT::BytesPerPixel + (secondComposite ? vtkIceT::EstimateBytesPerPixel : 0)
        << " bytes a covered pixel"
-       << (this->Current.WithEstimate ? " (the error estimate's 8 in a second composite), " : ", ")
+       << (this->PackEstimate   ? " (the error estimate in the payload), "
+              : secondComposite ? " (the error estimate's 8 in a second composite), "
+                                : ", ")
        << cost.BytesSentByAll << " sent by all ranks (" << cost.BytesSent << " by rank "
        << this->Rank << "), " << seconds << " s\n";
   image.AddToReport(output, plan.str());

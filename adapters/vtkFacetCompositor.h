@@ -18,7 +18,8 @@
  * smaller depth and treats depth 1 as background (not sent); it copies colors, never blends
  * them (IceT's cc_composite_func_body.h, compress_func_body.h). So an RGBA_FLOAT color
  * carries 16 bytes of ours per pixel, their bits untouched: the RGBA bytes, the rank and
- * the 64-bit CellId. The depth sent is the window depth halved, exact for every float
+ * the 64-bit CellId, or with the error estimate the RGBA bytes, a 16-bit rank, a 48-bit
+ * CellId and the estimate's float (Settings::WithEstimate). The depth sent is the window depth halved, exact for every float
  * depth and order-preserving, so that a polygon at window depth 1 (a tiny near plane rounds
  * every depth to 1) is not taken for background.
  *
@@ -69,9 +70,15 @@ public:
     int Target = 0;          ///< the rank that receives the image
     bool ToAllRanks = false; ///< every rank receives it
     Strategy Method = Strategy::Automatic;
-    /// Composite each pixel's error estimate too (a second IceT composite of 8 bytes a
-    /// covered pixel, with the same depths: the same rank wins every pixel).
+    /// Composite each pixel's error estimate too: in the image's own payload (the rank in 16
+    /// bits, the CellId in 48, the estimate's float in the 32 bits this frees) when every
+    /// rank's cell ids fit and there are at most 65535 ranks; else in a second IceT
+    /// composite of 8 bytes a covered pixel, with the same depths (the same rank wins).
     bool WithEstimate = false;
+    /// Every CellId this rank labels a pixel with is in [0, 2^48): true for the piece's own
+    /// cell ids (see CellIdsFitPayload for global ids). Not required to agree: the ranks
+    /// pack the estimate only if it holds on all of them.
+    bool CellIdsFit48Bits = true;
   };
 
   vtkFacetCompositor();
@@ -98,6 +105,10 @@ public:
   /// The input's global cell ids (vtkCellData::GetGlobalIds) if it has usable ones: one
   /// integer per cell; else none, with a warning if it has unusable ones.
   static vtkDataArray* GlobalIdsOf(vtkPolyData* input, vtkFacetMessages& messages);
+
+  /// Whether every label of `globalIds` (GlobalIdsOf's; null: the piece's own cell ids)
+  /// is in [0, 2^48), as Settings::CellIdsFit48Bits asks.
+  static bool CellIdsFit48Bits(vtkDataArray* globalIds);
 
   /**
    * Labels the pixels [begin, end) of this process's render: RankId is this rank where a
@@ -160,7 +171,8 @@ private:
   int Rank = 0;
   int Ranks = 1;
   bool Agreed = false;
-  std::string FailedRanks; // "1 and 3": ranks whose pieces are missing from the image
+  bool PackEstimate = false; // the estimate rides in the image's payload (Settings::WithEstimate)
+  std::string FailedRanks;   // "1 and 3": ranks whose pieces are missing from the image
 
   std::unique_ptr<vtkIceT> IceT;
 };

@@ -41,7 +41,8 @@ public:
   vtkNew<vtkFacetColoringMapper> Coloring; // the coloring settings, a vtkMapper's
   vtkNew<vtkCamera> AutomaticCamera;       // fitted at every execution without a camera
   vtkFacetMessages Messages;
-  vtkFacetCompositor Compositor; // with other processes: one camera, one image
+  vtkFacetCompositor Compositor;     // with other processes: one camera, one image
+  vtkDataArray* GlobalIds = nullptr; // across processes: the input's usable global cell ids
 
   // The mapper's coloring, with the array an input array to process names (ParaView's array
   // selection) in place of the mapper's.
@@ -72,12 +73,12 @@ public:
     vtkImageData* output);
 
   // The bounds to fit the automatic camera to: the input's finite points, across processes
-  // those of every piece (this is where the processes first meet: the compositor's Prepare).
-  void BoundsOf(vtkFacetRenderFilter* filter, bool parallel, double bounds[6]);
+  // those of every piece (this is where the processes first meet: the compositor's Prepare,
+  // which also learns whether the input's global cell ids fit the compositor's payload).
+  void BoundsOf(vtkFacetRenderFilter* filter, vtkPolyData* input, bool parallel, double bounds[6]);
   // Turns polygon ids into CellId (across processes: global ids if the input has them, and
   // the rank in RankId); nothing without CellId.
-  vtkFacetImageRenderer::IdMap CellLabels(vtkPolyData* input,
-    const vtkFacetImageRenderer::Settings& settings);
+  vtkFacetImageRenderer::IdMap CellLabels(const vtkFacetImageRenderer::Settings& settings);
   // Across processes Depth, CellId and ErrorEstimate are made to composite by: removed if not
   // asked for.
   static void RemoveArraysNotAsked(vtkFacetRenderFilter* filter, vtkImageData* output);
@@ -191,14 +192,17 @@ vtkFacetQuality::Settings vtkFacetRenderFilter::vtkInternals::QualityOf(
 
 //------------------------------------------------------------------------------
 void vtkFacetRenderFilter::vtkInternals::BoundsOf(vtkFacetRenderFilter* filter,
+  vtkPolyData* input,
   bool parallel,
   double bounds[6])
 {
   this->Actor.GetFiniteBounds(bounds);
+  this->GlobalIds = nullptr;
   if (!parallel)
   {
     return;
   }
+  this->GlobalIds = vtkFacetCompositor::GlobalIdsOf(input, this->Messages);
   if (this->Messages.HasErrors())
   {
     vtkMath::UninitializeBounds(bounds); // this piece adds nothing
@@ -210,6 +214,7 @@ void vtkFacetRenderFilter::vtkInternals::BoundsOf(vtkFacetRenderFilter* filter,
   composite.ToAllRanks = filter->CompositeToAllRanks != 0;
   composite.Method = static_cast<vtkFacetCompositor::Strategy>(filter->CompositeStrategy);
   composite.WithEstimate = Estimates(filter);
+  composite.CellIdsFit48Bits = vtkFacetCompositor::CellIdsFit48Bits(this->GlobalIds);
   this->Compositor.Prepare(filter->Controller, composite, bounds, this->Messages);
 }
 
@@ -239,13 +244,8 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
   const int conversions = this->Actor.GetNumberOfConversions();
   settings.RenderWith =
     this->Quality.Prepare(QualityOf(filter, settings.Composited), this->Messages);
-  if (!this->Image.Render(scene,
-        camera,
-        settings,
-        output,
-        this->CellLabels(input, settings),
-        conversions,
-        this->Messages))
+  if (!this->Image.Render(
+        scene, camera, settings, output, this->CellLabels(settings), conversions, this->Messages))
   {
     return false;
   }
@@ -261,7 +261,7 @@ bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
 }
 
 //------------------------------------------------------------------------------
-vtkFacetImageRenderer::IdMap vtkFacetRenderFilter::vtkInternals::CellLabels(vtkPolyData* input,
+vtkFacetImageRenderer::IdMap vtkFacetRenderFilter::vtkInternals::CellLabels(
   const vtkFacetImageRenderer::Settings& settings)
 {
   if (!settings.CellIds)
@@ -269,8 +269,7 @@ vtkFacetImageRenderer::IdMap vtkFacetRenderFilter::vtkInternals::CellLabels(vtkP
     return {};
   }
   const bool ranks = settings.RankIds;
-  vtkDataArray* globalIds =
-    ranks ? vtkFacetCompositor::GlobalIdsOf(input, this->Messages) : nullptr;
+  vtkDataArray* globalIds = ranks ? this->GlobalIds : nullptr;
   return [this, ranks, globalIds](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
     vtkIdType* cellIds = this->Image.GetCellIds()->GetPointer(0);
     this->Actor.CellIdsOf(polygonIds, cellIds, begin, end);
@@ -585,7 +584,7 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   // view), and the lights.
   const bool parallel = vtkFacetCompositor::IsParallel(this->Controller);
   double bounds[6];
-  internals.BoundsOf(this, parallel, bounds);
+  internals.BoundsOf(this, input, parallel, bounds);
   const facet::Camera camera = internals.ViewOf(this, bounds, scene);
 
   // Render straight into the output's arrays, then composite across processes.

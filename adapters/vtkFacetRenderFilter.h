@@ -58,9 +58,9 @@
  * (vtkCellData::GetGlobalIds). Equal depths from two pieces go to the lower rank. Field
  * data adds `FacetCompositeSeconds` (Total, Pack, IceT, Unpack), `FacetCompositeBytes`
  * (SentByThisRank, SentByAllRanks) and `FacetCompositeStrategy`; the render plan says the
- * same. The error estimate composites with the image (a second IceT composite, 8 bytes a
- * covered pixel, about +40 % of the composite's time: bench/mpi_estimate_cost.py): each pixel's is
- * that of the piece it shows, and `FacetErrorEstimate` on the target summarizes the whole image (on
+ * same. The error estimate composites with the image, in the same 20 bytes a covered pixel
+ * (with at most 65535 ranks and every CellId below 2^48; else in a second IceT composite of 8
+ * bytes a covered pixel: bench/mpi_estimate_cost.py): each pixel's is that of the piece it shows, and `FacetErrorEstimate` on the target summarizes the whole image (on
  * the other processes, their own piece); a cell with a corner in another piece has its vertex
  * normals from its own piece's cells. Every process must execute the filter with the same settings;
  * one whose input is bad reports its error and adds nothing to the image (the target warns of the

@@ -1,19 +1,24 @@
 #!/usr/bin/env python3
 """The error estimate's composite cost across MPI ranks: the bytes IceT sent and the
-composite's seconds with EstimateError off and on, alternately (two rounds each), for a
-1M-triangle UV sphere split in halves of longitude (one per rank) at 1920x1080, the camera
-turning a degree a frame; the median of frames 2 to 6.
+composite's seconds (total, and its pack, IceT and unpack parts; the total also waits for
+the slowest rank's render) without the estimate, with it in the image's payload, and with it
+in a second composite (the pieces' global cell ids from 2^48, which the payload cannot
+carry), in turn (two rounds), for a 1M-triangle UV sphere split in halves of longitude (one
+per rank) at 1920x1080, the camera turning a degree a frame; the median of frames 2 to 6.
 
     PYTHONPATH=build/lib/python3.11/dist-packages mpirun --allow-run-as-root --oversubscribe \\
         -np 2 /usr/bin/python3 bench/mpi_estimate_cost.py
 """
 import statistics
 
+import numpy
+
 from mpi4py import MPI  # noqa: F401 (initializes MPI before VTK's controller takes it over)
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 from vtkmodules.vtkParallelMPI import vtkMPIController
 from vtkmodules.vtkRenderingCore import vtkCamera
+from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray
 
 from facet import vtkFacetRenderFilter
 
@@ -30,8 +35,19 @@ def piece(rank, ranks):
     return sphere.GetOutput()
 
 
+def with_global_ids(data, first):
+    """A shallow copy of `data` whose cells have global ids first, first + 1, ..."""
+    copy = type(data)()
+    copy.ShallowCopy(data)
+    ids = numpy_to_vtkIdTypeArray(first + numpy.arange(data.GetNumberOfCells(), dtype=numpy.int64),
+                                  deep=1)
+    copy.GetCellData().SetGlobalIds(ids)
+    return copy
+
+
 def measure(data, estimate):
-    """(bytes sent by all ranks, composite ms, IceT ms) of one filter's frames."""
+    """(bytes sent by all ranks, [total, pack, IceT, unpack] composite ms) of one filter's
+    frames."""
     render = vtkFacetRenderFilter()
     render.SetInputData(data)
     render.SetSize(1920, 1080)
@@ -41,16 +57,15 @@ def measure(data, estimate):
     camera.SetPosition(0.0, 0.3, 3.0)
     render.SetCamera(camera)
     render.FitCameraToInputOn()
-    total, icet = [], []
+    parts = []
     for _ in range(FRAMES):
         camera.Azimuth(1.0)
         render.Modified()
         render.Update()
         seconds = render.GetOutput().GetFieldData().GetArray("FacetCompositeSeconds")
-        total.append(seconds.GetComponent(0, 0))
-        icet.append(seconds.GetComponent(0, 2))
+        parts.append([seconds.GetComponent(0, c) for c in range(4)])
     sent = render.GetOutput().GetFieldData().GetArray("FacetCompositeBytes").GetComponent(0, 1)
-    return sent, 1e3 * statistics.median(total[1:]), 1e3 * statistics.median(icet[1:])
+    return sent, [1e3 * statistics.median(frame[c] for frame in parts[1:]) for c in range(4)]
 
 
 def main():
@@ -59,11 +74,16 @@ def main():
     vtkMultiProcessController.SetGlobalController(controller)
     rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
     data = piece(rank, ranks)
-    for estimate in (0, 1, 0, 1):
-        sent, total, icet = measure(data, estimate)
-        if rank == 0:
-            print("EstimateError %d: IceT sent %d bytes (all ranks), composite %.1f ms (IceT %.1f)"
-                  % (estimate, sent, total, icet), flush=True)
+    wide = with_global_ids(data, 2**48 + rank * data.GetNumberOfCells())
+    modes = (("no estimate", data, 0), ("estimate in the payload", data, 1),
+             ("estimate in a second composite", wide, 1))
+    for _ in range(2):
+        for name, piece_data, estimate in modes:
+            sent, (total, pack, icet, unpack) = measure(piece_data, estimate)
+            if rank == 0:
+                print("%-31s IceT sent %d bytes (all ranks), composite %.1f ms (pack %.1f, "
+                      "IceT %.1f, unpack %.1f)" % (name, sent, total, pack, icet, unpack),
+                      flush=True)
 
 
 if __name__ == "__main__":

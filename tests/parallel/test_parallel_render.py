@@ -123,12 +123,23 @@ def scene_mesh():
     return arrays_of(triangles.GetOutput())
 
 
-def piece_of(points, triangles, first, last, with_global_ids):
-    """Cells [first, last) with only the points they use, as one rank's piece."""
+def piece_of(points, triangles, first, last, with_global_ids, first_global_id=0):
+    """Cells [first, last) with only the points they use, as one rank's piece; cell i's
+    global id is first_global_id + i."""
     cells = triangles[first:last]
     used, local = numpy.unique(cells.ravel(), return_inverse=True)
-    ids = numpy.arange(first, last) if with_global_ids else None
+    ids = first_global_id + numpy.arange(first, last) if with_global_ids else None
     return polydata(points[used], local.reshape(-1, 3), ids)
+
+
+# How the compositor carries the error estimate, and global ids that make it: in the image's
+# payload while every CellId fits 48 bits (these reach 2^48 - 1), else in a second composite
+# (the last rank's ids from 2^48: one rank decides for all).
+ESTIMATE_LAYOUTS = {
+    "the error estimate in the payload": lambda rank, count: 2**48 - count,
+    "the error estimate's 8 in a second composite":
+        lambda rank, count: 2**48 if rank == RANKS - 1 else 0,
+}
 
 
 def cell_range(count, rank, ranks):
@@ -540,10 +551,17 @@ def the_error_estimate_is_the_composited_images():
     summarizes the composited image (the other ranks keep their own piece's): the estimate one
     process gives for the whole input, away from the seams between pieces — a pixel whose
     3 x 3 neighbours show another piece, or whose cell has a corner in another piece too (its
-    vertex normals there see only its own piece's cells)."""
+    vertex normals there see only its own piece's cells). In either of the compositor's
+    layouts, whose CellIds are the global ids to the last bit."""
+    for layout, first_id in ESTIMATE_LAYOUTS.items():
+        error_estimate_composites(layout, first_id)
+
+
+def error_estimate_composites(layout, first_id):
     points, triangles = MESH
     first, last = cell_range(len(triangles), RANK, RANKS)
-    piece = piece_of(points, triangles, first, last, with_global_ids=True)
+    piece = piece_of(points, triangles, first, last, with_global_ids=True,
+                     first_global_id=first_id(RANK, len(triangles)))
     render = Render(piece, ErrorEstimateArray=True)
     summary_only = Render(piece)  # EstimateError is on by default; no array asked for
     if RANK != 0:
@@ -552,13 +570,19 @@ def the_error_estimate_is_the_composited_images():
               "the other ranks keep their piece's estimate")
         return
     check("ErrorEstimate" not in summary_only.planes, "ErrorEstimate without being asked for")
-    check("the error estimate's 8 in a second composite" in render.filter.GetRenderPlan(),
-          render.filter.GetRenderPlan())
+    check(layout in render.filter.GetRenderPlan(),
+          "not '%s': %s" % (layout, render.filter.GetRenderPlan()))
     estimate, rank_id = render.planes["ErrorEstimate"], render.planes["RankId"]
     covered = rank_id >= 0
     check(numpy.array_equal(estimate != 0, covered), "an estimate on the background, or none")
     for result in (render, summary_only):
         check_estimate_summary(result, estimate)
+    cell_id = render.planes["CellId"]
+    firsts = numpy.array([first_id(r, len(triangles)) for r in range(RANKS)], dtype=numpy.int64)
+    local = cell_id[covered] - firsts[rank_id[covered]]
+    first_cells = numpy.array([cell_range(len(triangles), r, RANKS)[0] for r in range(RANKS)])
+    check(numpy.all((local >= first_cells[rank_id[covered]]) & (local < len(triangles))),
+          "%s: CellIds that are not the shown pieces' global ids" % layout)
     owner = numpy.repeat(numpy.arange(RANKS), [numpy.diff(cell_range(len(triangles), r, RANKS))[0]
                                                for r in range(RANKS)])
     lowest = numpy.full(len(points), RANKS)
@@ -589,22 +613,30 @@ def the_error_estimate_is_the_composited_images():
 def with_supersampling_the_silhouettes_keep_their_estimate():
     """With 4 samples a pixel whose center shows no polygon may still mix one in: its estimate
     composites too (behind every surface), so the composited image has an estimate exactly
-    where one process's render of the whole input has one, and the summary counts them."""
+    where one process's render of the whole input has one, and the summary counts them; in
+    either layout, and such a pixel stays background in the image."""
     points, triangles = MESH
     first, last = cell_range(len(triangles), RANK, RANKS)
-    render = Render(piece_of(points, triangles, first, last, with_global_ids=True),
-                    ErrorEstimateArray=True, SamplesPerPixel=4)
-    if RANK != 0:
-        return
-    estimate, rank_id = render.planes["ErrorEstimate"], render.planes["RankId"]
     whole = serial(polydata(points, triangles), ErrorEstimateArray=True, SamplesPerPixel=4)
-    expected = whole.planes["ErrorEstimate"] != 0
-    check(numpy.array_equal(estimate != 0, expected),
-          "%d pixels with an estimate, %d in one process's render"
-          % (numpy.count_nonzero(estimate), numpy.count_nonzero(expected)))
-    edges = numpy.count_nonzero((rank_id < 0) & (estimate != 0))
-    check(edges > 100, "%d silhouette pixels (center on the background) with an estimate" % edges)
-    check_estimate_summary(render, estimate)
+    for layout, first_id in ESTIMATE_LAYOUTS.items():
+        piece = piece_of(points, triangles, first, last, with_global_ids=True,
+                         first_global_id=first_id(RANK, len(triangles)))
+        render = Render(piece, ErrorEstimateArray=True, SamplesPerPixel=4)
+        if RANK != 0:
+            continue
+        check(layout in render.filter.GetRenderPlan(), "not '%s'" % layout)
+        estimate, rank_id = render.planes["ErrorEstimate"], render.planes["RankId"]
+        expected = whole.planes["ErrorEstimate"] != 0
+        check(numpy.array_equal(estimate != 0, expected),
+              "%s: %d pixels with an estimate, %d in one process's render"
+              % (layout, numpy.count_nonzero(estimate), numpy.count_nonzero(expected)))
+        edges = (rank_id < 0) & (estimate != 0)
+        check(numpy.count_nonzero(edges) > 100, "%s: %d silhouette pixels (center on the "
+              "background) with an estimate" % (layout, numpy.count_nonzero(edges)))
+        check(numpy.all(render.planes["Depth"][edges] == 1.0)
+              and numpy.all(render.planes["CellId"][edges] == -1),
+              "%s: a silhouette pixel with only an estimate is not background" % layout)
+        check_estimate_summary(render, estimate)
 
 
 @case
