@@ -73,13 +73,15 @@ def timed_update(render):
     return time.perf_counter() - wall, time.process_time() - cpu
 
 
-def facet_seconds_per_frame(theta, frames, threads, detect_closed):
+def facet_seconds_per_frame(theta, frames, threads, detect_closed, turn_degrees=0.5):
+    """(median seconds of `frames` Update()s, the camera turning turn_degrees before each;
+    the first Update()'s seconds)."""
     render, camera = facet_filter(sphere_of(theta), threads, detect_closed)
     render.Update()  # first frame: converts the mesh (and checks closedness once)
     first = render.GetOutput().GetFieldData().GetArray("FacetRenderSeconds").GetValue(0)
     times = []
     for _ in range(frames):
-        camera.Azimuth(0.5)
+        camera.Azimuth(turn_degrees)
         start = time.perf_counter()
         render.Update()
         times.append(time.perf_counter() - start)

@@ -17,8 +17,9 @@ light at the camera, at 1920x1080 with one sample per pixel (except "VTK default
   core         Facet's core, facet_bench's BM_Sphere (Google Benchmark mean; every face drawn
                / closed-surface hint): the filter's frame without the filter, a versioned mesh
                and the camera turning a degree per frame (bench/TurningView.h)
-  Update       vtkFacetRenderFilter.Update() from Python with the camera turning every frame,
-               RGBA + Depth + CellId output (bench/filter_speed.py; every face / closed check)
+  Update       vtkFacetRenderFilter.Update() from Python, the camera turning 360/--frames
+               degrees before each (the median frame of a whole turn), RGBA + Depth + CellId
+               output (bench/filter_speed.py; every face / closed check)
   limit        the memory-bound limit: bytes a frame must move over the measured bandwidth
 
 llvmpipe (VTK, OSMesa) rasterizes on LP_NUM_THREADS = --threads threads; it transforms
@@ -81,8 +82,11 @@ def measure_size(triangles, theta, args, bin_dir, update_seconds):
     vtk_default = vtk_seconds_per_frame(theta, args.vtk_frames)
     if vtk_off.samples != 1:
         sys.exit(f"VTK with multisampling off still drew {vtk_off.samples} samples per pixel")
-    every_face, _ = update_seconds(theta, args.frames, args.threads, False)
-    closed, _ = update_seconds(theta, args.frames, args.threads, True)
+    # Around the whole sphere: drawn every face, the mesh's order puts the back faces first
+    # from some sides and last from others (bench/core-frame-issue11.md, section 9).
+    turn = 360.0 / args.frames
+    every_face, _ = update_seconds(theta, args.frames, args.threads, False, turn)
+    closed, _ = update_seconds(theta, args.frames, args.threads, True, turn)
     return {
         "VTK 1x": vtk_off.seconds,
         "VTK default": vtk_default.seconds,
