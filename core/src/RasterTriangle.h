@@ -170,6 +170,41 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);
 
+// The small-box path (RasterTriangle.cpp): boxes of at most kSmallSide × kSmallSide samples.
+inline constexpr int kSmallSide = 4;
+
+// A triangle set up whole by the set-up's lanes (SetupBatch.cpp): one of a mesh drawn without
+// polygon-boundary edges (back faces skipped) whose box of pixel centers lies in one tile and
+// is at most kSmallSide × kSmallSide less one sample (RasterTriangle.h), so that the tile
+// paints it from this record alone, read in sequence, without its three scattered vertices
+// or any set-up of its own (paintSmallTriangle: the same pixels and keys as paintTriangle).
+struct SmallTriangle {
+  // The depth plane as TriangleDepth (RasterTriangle.cpp) steps it: the key at the box's
+  // first sample is firstKey + keyPerFine · (firstRowFine + y · kSubpixelScale · kResidueScale)
+  // for row y (in this order of operations: the key TriangleDepth::at gives), stepped by
+  // keyPerPixel along the row.
+  double firstKey, keyPerFine, keyPerPixel;
+  std::int32_t firstRowFine;
+  // Per edge (opposite corners a, b, c): its function at the box's first sample, biased by
+  // −1 off the top-left edges, and its steps to the next sample right and up (SmallBox).
+  std::int32_t value[3], stepX[3], stepY[3];
+  std::uint16_t x0, y0;              // the box's first pixel
+  std::uint8_t lastColumn, lastRow;  // the box's size, less one
+  std::int32_t polygon;
+};
+
+// Paints a SmallTriangle: paintTriangle<kMode>'s pixels, keys and counts for the triangle the
+// set-up made it from.
+template <DepthMode kMode>
+void paintSmallTriangle(const SmallTriangle& triangle, const Planes& planes, PaintCounts& counts);
+
+// The SmallTriangle of a counter-clockwise triangle without polygon-boundary edges over its
+// samples in `tile`, as the set-up's lanes make it; nothing when its box there is not a small
+// one of 2 to kSmallSide² − 1 samples. The reference for the set-up's records (tests).
+std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
+                                             const WindowVertex& c, const PixelBounds& tile,
+                                             std::int32_t polygonId);
+
 // paintTriangle without its small-box path (RasterTriangle.cpp): every box of two or more
 // samples walked row by row in 64-bit edge functions. The reference the small-box path is
 // tested against: the same pixels, keys and counts.

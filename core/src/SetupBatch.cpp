@@ -121,6 +121,9 @@ struct VertexLanes {
 struct KeyInputs {
   alignas(64) std::int32_t bx[kBatchSize], by[kBatchSize], cx[kBatchSize], cy[kBatchSize];
   alignas(64) std::int32_t sx[kBatchSize], sy[kBatchSize];
+  // The same in grid steps, without residues (the snapped plane's).
+  alignas(64) std::int32_t gridBx[kBatchSize], gridBy[kBatchSize], gridCx[kBatchSize],
+      gridCy[kBatchSize], gridSx[kBatchSize], gridSy[kBatchSize];
   alignas(64) std::int32_t edge1[kBatchSize], edge2[kBatchSize], area[kBatchSize];
   alignas(64) float keyA[kBatchSize], keyB[kBatchSize], keyC[kBatchSize];
 };
@@ -135,7 +138,8 @@ V toFine(V grid, V residue) {
 // is exact for boxes of at most 4 pixel centers (samplesInBoundingBox, coversAnySample)
 // and assumed true for larger ones; a kept triangle whose box holds one center is a fragment.
 void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const TileGrid& grid,
-                   bool skipBackFaces, BatchVerdicts& verdicts, KeyInputs& keys) {
+                   bool skipBackFaces, bool boundaryEdges, BatchVerdicts& verdicts,
+                   KeyInputs& keys) {
   const PixelBounds viewport = grid.viewport();
   const V zero = hn::Zero(d);
   const VertexLanes a(d, batch.v[0] + lane), b0(d, batch.v[1] + lane), c0(d, batch.v[2] + lane);
@@ -204,12 +208,37 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   // of a kept lane are in the viewport: not negative).
   const V tileX = hn::ShiftRight<kTileBits>(x0), tileY = hn::ShiftRight<kTileBits>(y0);
   hn::Store(tileY * hn::Set(d, grid.tilesX()) + tileX, d, verdicts.tile + lane);
-  verdicts.oneTile |= laneBits(d, hn::And(tileX == hn::ShiftRight<kTileBits>(x1),
-                                          tileY == hn::ShiftRight<kTileBits>(y1)))
-                      << lane;
-  if (fragments == 0) return;
+  const M oneTile =
+      hn::And(tileX == hn::ShiftRight<kTileBits>(x1), tileY == hn::ShiftRight<kTileBits>(y1));
+  verdicts.oneTile |= laneBits(d, oneTile) << lane;
+  // SmallTriangle records (SetupBatch.h): boxes of 2 to 15 centers, at most 4 on a side.
+  const V three = hn::Set(d, 3);
+  const M smallBox =
+      hn::AndNot(hn::And(width == three, height == three), hn::And(width < four, height < four));
+  const M small = boundaryEdges ? hn::FirstN(d, 0)
+                                : hn::And(hn::AndNot(single, kept), hn::And(oneTile, smallBox));
+  const std::uint32_t smalls = laneBits(d, small) << lane;
+  verdicts.small |= smalls;
+  if ((fragments | smalls) == 0) return;
 
-  // The fragments' keys' inputs, b and c (and their residues and keys) swapped as above.
+  // The first center of a kept lane's box, relative to a: in its bounding box, so below 2^14
+  // in magnitude (the edges' 32-bit range above holds).
+  const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
+  const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
+  if (smalls != 0) {
+    // SmallBox's edges: the same integers as EdgeLanes' (a sample's edge function is the
+    // same whatever the origin of the coordinates).
+    const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
+                                   EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
+                                   EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
+    for (int k = 0; k < 3; ++k) {
+      hn::Store(boxEdges[k].value, d, verdicts.smallPlane.value[k] + lane);
+      hn::Store(boxEdges[k].stepX, d, verdicts.smallPlane.stepX[k] + lane);
+      hn::Store(boxEdges[k].stepY, d, verdicts.smallPlane.stepY[k] + lane);
+    }
+  }
+
+  // The keys' and planes' inputs, b and c (and their residues and keys) swapped as above.
   const V bResidueX = hn::IfThenElse(clockwise, c0.residueX(), b0.residueX());
   const V bResidueY = hn::IfThenElse(clockwise, c0.residueY(), b0.residueY());
   const V cResidueX = hn::IfThenElse(clockwise, b0.residueX(), c0.residueX());
@@ -219,8 +248,14 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   hn::Store(toFine(uy, bResidueY - aResidueY), d, keys.by + lane);
   hn::Store(toFine(vx, cResidueX - aResidueX), d, keys.cx + lane);
   hn::Store(toFine(vy, cResidueY - aResidueY), d, keys.cy + lane);
-  hn::Store(toFine(sx, zero - aResidueX), d, keys.sx + lane);
-  hn::Store(toFine(sy, zero - aResidueY), d, keys.sy + lane);
+  hn::Store(toFine(firstX, zero - aResidueX), d, keys.sx + lane);  // sx in fragment lanes
+  hn::Store(toFine(firstY, zero - aResidueY), d, keys.sy + lane);
+  hn::Store(ux, d, keys.gridBx + lane);
+  hn::Store(uy, d, keys.gridBy + lane);
+  hn::Store(vx, d, keys.gridCx + lane);
+  hn::Store(vy, d, keys.gridCy + lane);
+  hn::Store(firstX, d, keys.gridSx + lane);
+  hn::Store(firstY, d, keys.gridSy + lane);
   hn::Store(edges[1].exact, d, keys.edge1 + lane);
   hn::Store(edges[2].exact, d, keys.edge2 + lane);
   hn::Store(hn::Abs(signedArea), d, keys.area + lane);
@@ -268,14 +303,49 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
   hn::Store(hn::DemoteTo(df, hn::Min(hn::Max(key, hn::Neg(largest)), largest)), df, keys + lane);
 }
 
+// A SmallTriangle's depth plane (RasterTriangle.cpp: TriangleDepth's constructor,
+// prepareRows and stepsFrom, without boundary edges) for the lanes from `lane` on: the
+// unsnapped plane where the fine area is positive, else the snapped one.
+void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, BatchVerdicts& verdicts) {
+  const hn::Rebind<std::int32_t, DD> di;
+  const hn::Rebind<float, DD> df;
+  const auto load = [&](const std::int32_t* p) {
+    return hn::PromoteTo(dd, hn::Load(di, p + lane));
+  };
+  const VD toFine = hn::Set(dd, kResidueScale);
+  const auto fineOr = [&](auto unsnapped, const std::int32_t* fine, const std::int32_t* grid) {
+    return hn::IfThenElse(unsnapped, load(fine), load(grid) * toFine);  // exact integers
+  };
+  const VD fineArea = load(in.bx) * load(in.cy) - load(in.by) * load(in.cx);
+  const auto unsnapped = fineArea > hn::Zero(dd);
+  const VD bx = fineOr(unsnapped, in.bx, in.gridBx), by = fineOr(unsnapped, in.by, in.gridBy);
+  const VD cx = fineOr(unsnapped, in.cx, in.gridCx), cy = fineOr(unsnapped, in.cy, in.gridCy);
+  const VD sx = fineOr(unsnapped, in.sx, in.gridSx), sy = fineOr(unsnapped, in.sy, in.gridSy);
+  const VD one = hn::Set(dd, 1.0);
+  const VD finePerGrid2 = hn::Set(dd, double{kResidueScale} * kResidueScale);
+  const VD inverse =
+      hn::IfThenElse(unsnapped, one / fineArea, one / (load(in.area) * finePerGrid2));
+  const VD keyA = hn::PromoteTo(dd, hn::Load(df, in.keyA + lane));
+  const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
+  const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
+  const VD perX = (dk1 * cy - dk2 * by) * inverse;
+  const VD perY = (dk2 * bx - dk1 * cx) * inverse;
+  auto& out = verdicts.smallPlane;
+  hn::Store(keyA + perX * sx, dd, out.firstKey + lane);
+  hn::Store(perY, dd, out.keyPerFine + lane);
+  hn::Store(perX * hn::Set(dd, kSubpixelScale) * toFine, dd, out.keyPerPixel + lane);
+  hn::Store(hn::DemoteTo(di, sy), di, out.firstRowFine + lane);
+}
+
 void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts) {
   const D d;
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
   verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
+  verdicts.small = 0;
   KeyInputs keys;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
-    classifyLanes(d, batch, lane, grid, skipBackFaces, verdicts, keys);
+    classifyLanes(d, batch, lane, grid, skipBackFaces, boundaryEdges, verdicts, keys);
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
@@ -284,6 +354,7 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
     if ((verdicts.fragment >> lane) & laneMask)
       keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
+    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, verdicts);
   }
 }
 
