@@ -65,8 +65,9 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
 
 // Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile.
 [[gnu::always_inline]] inline void binSmall(Chunk& chunk, std::size_t tile,
+                                            const PixelBounds& samples,
                                             const SmallTriangle& triangle) {
-  chunk.counts.boxSamples += std::size_t{triangle.lastColumn + 1u} * (triangle.lastRow + 1u);
+  chunk.counts.boxSamples += samples.area();
   chunk.bins[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
                              kSmallTriangleBit);
   chunk.smallTriangles.push_back(triangle);

@@ -63,7 +63,7 @@ constexpr std::size_t kPrefetchVertices = 4;
     if (entry & kFragmentBit) {
       __builtin_prefetch(&chunk.fragments[entry & kBinIndexMask]);
     } else if (entry & kSmallTriangleBit) {
-      // 80 bytes: two cache lines, unless it starts a line.
+      // 40 bytes: sometimes across two cache lines.
       const auto* record =
           reinterpret_cast<const char*>(&chunk.smallTriangles[entry & kBinIndexMask]);
       __builtin_prefetch(record);

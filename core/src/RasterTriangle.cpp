@@ -523,12 +523,11 @@ template <DepthMode kMode, bool kRejectHidden>
 
 template <DepthMode kMode>
 void paintSmallTriangle(const SmallTriangle& t, const Planes& planes, PaintCounts& counts) {
-  const std::uint32_t mask = smallBoxCoverage(t.value, t.stepX, t.stepY, t.lastColumn, t.lastRow);
   const auto rowKey = [&t](int y) {
     return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
   };
   const auto sameKey = [](double key, int, int) { return key; };
-  paintSmallMask<kMode>(mask, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
+  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
                         counts);
 }
 
@@ -544,19 +543,13 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   }
   const SmallBox edges(a, b, c, box);
   SmallTriangle small;
-  for (int k = 0; k < 3; ++k) {
-    small.value[k] = edges.value[k];
-    small.stepX[k] = edges.stepX[k];
-    small.stepY[k] = edges.stepY[k];
-  }
   TriangleDepth depth(a, b, c, area, 0);
   depth.prepareRows(a, b, c);
   depth.stepsFrom(edges.sampleX, edges.sampleY, small);
+  small.polygon = polygonId;
   small.x0 = static_cast<std::uint16_t>(box.x0);
   small.y0 = static_cast<std::uint16_t>(box.y0);
-  small.lastColumn = static_cast<std::uint8_t>(box.x1 - box.x0);
-  small.lastRow = static_cast<std::uint8_t>(box.y1 - box.y0);
-  small.polygon = polygonId;
+  small.coverage = static_cast<std::uint16_t>(edges.coverage());
   return small;
 }
 

@@ -185,12 +185,11 @@ struct SmallTriangle {
   // keyPerPixel along the row.
   double firstKey, keyPerFine, keyPerPixel;
   std::int32_t firstRowFine;
-  // Per edge (opposite corners a, b, c): its function at the box's first sample, biased by
-  // −1 off the top-left edges, and its steps to the next sample right and up (SmallBox).
-  std::int32_t value[3], stepX[3], stepY[3];
-  std::uint16_t x0, y0;              // the box's first pixel
-  std::uint8_t lastColumn, lastRow;  // the box's size, less one
   std::int32_t polygon;
+  std::uint16_t x0, y0;  // the box's first pixel
+  // The samples the triangle covers, bit y·kSmallSide + x for the pixel (x0 + x, y0 + y): its
+  // box's, by the fill rule (SmallBox::coverage).
+  std::uint16_t coverage;
 };
 
 // Paints a SmallTriangle: paintTriangle<kMode>'s pixels, keys and counts for the triangle the

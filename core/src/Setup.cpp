@@ -234,7 +234,9 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
-      binSmall(chunk_, tile, smallTriangleOfLane(verdicts, lane, polygonId));  // never back
+      binSmall(chunk_, tile,
+               {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
+               smallTriangleOfLane(verdicts, lane, polygonId));  // never back-facing
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).
       const auto reference = [&](std::size_t corner) {

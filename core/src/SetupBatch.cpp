@@ -89,6 +89,31 @@ struct FewSamples {
   M square, wide;
 };
 
+// SmallBox::coverage (RasterTriangle.cpp) of boxes of (width + 1) × (height + 1) centers, at
+// most 4 × 4: bit y·4 + x where center (x, y) of the box is inside all three edges (their
+// biased values, ≥ 0 by the fill rule). The same integers: a sample's edge function is the
+// same whatever the origin of the coordinates, and the centers tested lie in the box, where
+// the range above holds (the last steps go at most 4 · 2^8 beyond it, into 2^29.3 still).
+V smallBoxCoverage(D d, const EdgeLanes (&e)[3], V width, V height) {
+  const V minusOne = hn::Set(d, -1);
+  V mask = hn::Zero(d);
+  V row[3] = {e[0].value, e[1].value, e[2].value};
+  for (int y = 0; y < 4; ++y) {
+    const M rowInBox = height > hn::Set(d, y - 1);  // Highway 1.0 has no integer <=
+    V at[3] = {row[0], row[1], row[2]};
+    for (int x = 0; x < 4; ++x) {
+      const M inside =
+          hn::And(hn::And(rowInBox, width > hn::Set(d, x - 1)), (at[0] | at[1] | at[2]) > minusOne);
+      mask = mask | hn::IfThenElseZero(inside, hn::Set(d, 1 << (4 * y + x)));
+      for (int k = 0; k < 3; ++k)
+        at[k] = at[k] + e[k].stepX;
+    }
+    for (int k = 0; k < 3; ++k)
+      row[k] = row[k] + e[k].stepY;
+  }
+  return mask;
+}
+
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
 V ceilToPixel(D d, V v) {
   return hn::Zero(d) - hn::ShiftRight<kSubpixelBits>(hn::Zero(d) - v);
@@ -226,16 +251,10 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
   const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
   if (smalls != 0) {
-    // SmallBox's edges: the same integers as EdgeLanes' (a sample's edge function is the
-    // same whatever the origin of the coordinates).
     const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
                                    EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
                                    EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
-    for (int k = 0; k < 3; ++k) {
-      hn::Store(boxEdges[k].value, d, verdicts.smallPlane.value[k] + lane);
-      hn::Store(boxEdges[k].stepX, d, verdicts.smallPlane.stepX[k] + lane);
-      hn::Store(boxEdges[k].stepY, d, verdicts.smallPlane.stepY[k] + lane);
-    }
+    hn::Store(smallBoxCoverage(d, boxEdges, width, height), d, verdicts.smallPlane.coverage + lane);
   }
 
   // The keys' and planes' inputs, b and c (and their residues and keys) swapped as above.

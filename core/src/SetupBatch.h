@@ -68,11 +68,10 @@ struct BatchVerdicts {
   } samples;
   alignas(64) std::int32_t tile[kBatchSize];  // per kept lane: the tile of its first center
   alignas(64) float key[kBatchSize];          // per fragment lane
-  // Per small lane: its SmallTriangle's depth plane and edges (by edge, then lane).
+  // Per small lane: its SmallTriangle's depth plane and coverage.
   struct {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
-    alignas(64) std::int32_t firstRowFine[kBatchSize];
-    alignas(64) std::int32_t value[3][kBatchSize], stepX[3][kBatchSize], stepY[3][kBatchSize];
+    alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
   } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
   std::uint32_t kept() const { return fragment | triangle; }
@@ -88,16 +87,10 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
   t.keyPerFine = plane.keyPerFine[lane];
   t.keyPerPixel = plane.keyPerPixel[lane];
   t.firstRowFine = plane.firstRowFine[lane];
-  for (int k = 0; k < 3; ++k) {
-    t.value[k] = plane.value[k][lane];
-    t.stepX[k] = plane.stepX[k][lane];
-    t.stepY[k] = plane.stepY[k][lane];
-  }
+  t.polygon = polygonId;
   t.x0 = static_cast<std::uint16_t>(samples.x0[lane]);
   t.y0 = static_cast<std::uint16_t>(samples.y0[lane]);
-  t.lastColumn = static_cast<std::uint8_t>(samples.x1[lane] - samples.x0[lane]);
-  t.lastRow = static_cast<std::uint8_t>(samples.y1[lane] - samples.y0[lane]);
-  t.polygon = polygonId;
+  t.coverage = static_cast<std::uint16_t>(plane.coverage[lane]);
   return t;
 }
 

@@ -143,14 +143,9 @@ int verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
 // Whether two SmallTriangle records are the same, every value to the bit.
 bool sameRecord(const detail::SmallTriangle& a, const detail::SmallTriangle& b) {
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
-  bool same = bits(a.firstKey) == bits(b.firstKey) && bits(a.keyPerFine) == bits(b.keyPerFine) &&
-              bits(a.keyPerPixel) == bits(b.keyPerPixel) && a.firstRowFine == b.firstRowFine &&
-              a.x0 == b.x0 && a.y0 == b.y0 && a.lastColumn == b.lastColumn &&
-              a.lastRow == b.lastRow && a.polygon == b.polygon;
-  for (int k = 0; k < 3; ++k) {
-    same = same && a.value[k] == b.value[k] && a.stepX[k] == b.stepX[k] && a.stepY[k] == b.stepY[k];
-  }
-  return same;
+  return bits(a.firstKey) == bits(b.firstKey) && bits(a.keyPerFine) == bits(b.keyPerFine) &&
+         bits(a.keyPerPixel) == bits(b.keyPerPixel) && a.firstRowFine == b.firstRowFine &&
+         a.polygon == b.polygon && a.x0 == b.x0 && a.y0 == b.y0 && a.coverage == b.coverage;
 }
 
 // A kept triangle lane's SmallTriangle: made exactly when back faces are skipped (no boundary
