@@ -83,20 +83,20 @@ int run(int triangles, bool closed, int frames, int threads, double turn, std::u
   Framebuffer framebuffer(1920, 1080);
   renderer.render(scene, camera, framebuffer);  // warm: buffers grow
   Phases best;
+  RenderStats last;
   for (int i = 0; i < frames; ++i) {
     if (turn != 0.0) bench::turnView(camera, scene, turn);
-    best.keepBest(renderer.render(scene, camera, framebuffer));
+    last = renderer.render(scene, camera, framebuffer);
+    best.keepBest(last);
   }
   const double* s = best.seconds;
   std::printf(
       "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, best of %d frames, ms: "
-      "validate "
-      "%.3f "
-      "transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last frame's planes "
-      "%016llx\n",
+      "validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
+      "frame: %zu fragments written, planes %016llx\n",
       triangles, int(closed), threads, turn, start, static_cast<unsigned long long>(version),
       frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3,
-      static_cast<unsigned long long>(fingerprint(framebuffer)));
+      last.fragmentsWritten, static_cast<unsigned long long>(fingerprint(framebuffer)));
   return 0;
 }
 

@@ -63,13 +63,14 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
   chunk.boundaryEdges.push_back(boundary);
 }
 
-// Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile.
+// Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile: the box of
+// `samples`; in the chunk's backBins when `last` (Chunk::binsFor).
 [[gnu::always_inline]] inline void binSmall(Chunk& chunk, std::size_t tile,
                                             const PixelBounds& samples,
-                                            const SmallTriangle& triangle) {
+                                            const SmallTriangle& triangle, bool last) {
   chunk.counts.boxSamples += samples.area();
-  chunk.bins[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
-                             kSmallTriangleBit);
+  chunk.binsFor(last)[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
+                                      kSmallTriangleBit);
   chunk.smallTriangles.push_back(triangle);
 }
 

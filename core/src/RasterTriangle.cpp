@@ -54,6 +54,16 @@ double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) 
   return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
 }
 
+// refine()'s bound for edge i (opposite corner i) of a triangle, grid units².
+std::int64_t surelyInsideBound(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                               int i) {
+  const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
+                           std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
+  const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
+  const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
+  return (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+}
+
 // The depth keys of one triangle. Coverage is decided on the snapped vertices (exact, VTK's
 // 1/256 pixel); keys come from the plane through the unsnapped ones (snapped + residue):
 // snapping moves a vertex by up to 1/512 pixel, which on a steep surface moves its key by
@@ -165,13 +175,8 @@ class TriangleDepth {
            (isBoundary(2) && fine[2] < 0.0);
   }
   void boundSurelyInside(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
-    const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
-                             std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
-    const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
     for (int i = 0; i < 3; ++i) {
-      if (!isBoundary(i)) continue;
-      const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
-      sureInside_[i] = (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+      if (isBoundary(i)) sureInside_[i] = surelyInsideBound(a, b, c, i);
     }
   }
 
@@ -532,8 +537,8 @@ void paintSmallTriangle(const SmallTriangle& t, const Planes& planes, PaintCount
 }
 
 std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
-                                             const WindowVertex& c, const PixelBounds& tile,
-                                             std::int32_t polygonId) {
+                                             const WindowVertex& c, EdgeMask boundary,
+                                             const PixelBounds& tile, std::int32_t polygonId) {
   const std::int64_t area = doubleSignedArea(a, b, c);
   const GridBox extent = gridBoxOf(a, b, c);
   const PixelBounds box = samplesInGridBox(extent, tile);
@@ -542,14 +547,25 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
     return std::nullopt;
   }
   const SmallBox edges(a, b, c, box);
+  const std::uint32_t coverage = edges.coverage();
+  for (int k = 0; k < 3; ++k) {  // every covered sample surely inside the boundary edges
+    if (!((boundary >> k) & 1u)) continue;
+    const std::int64_t bound = surelyInsideBound(a, b, c, k);
+    for (std::uint32_t rest = coverage; rest != 0; rest &= rest - 1) {
+      const int x = std::countr_zero(rest) % kSmallSide, y = std::countr_zero(rest) / kSmallSide;
+      const std::int64_t snapped =
+          std::int64_t{edges.value[k]} + x * edges.stepX[k] + y * edges.stepY[k] + edges.bias[k];
+      if (snapped < bound) return std::nullopt;
+    }
+  }
   SmallTriangle small;
-  TriangleDepth depth(a, b, c, area, 0);
+  TriangleDepth depth(a, b, c, area, 0);  // the plane without refine(): the same
   depth.prepareRows(a, b, c);
   depth.stepsFrom(edges.sampleX, edges.sampleY, small);
   small.polygon = polygonId;
   small.x0 = static_cast<std::uint16_t>(box.x0);
   small.y0 = static_cast<std::uint16_t>(box.y0);
-  small.coverage = static_cast<std::uint16_t>(edges.coverage());
+  small.coverage = static_cast<std::uint16_t>(coverage);
   return small;
 }
 

@@ -173,11 +173,13 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
 // The small-box path (RasterTriangle.cpp): boxes of at most kSmallSide × kSmallSide samples.
 inline constexpr int kSmallSide = 4;
 
-// A triangle set up whole by the set-up's lanes (SetupBatch.cpp): one of a mesh drawn without
-// polygon-boundary edges (back faces skipped) whose box of pixel centers lies in one tile and
-// is at most kSmallSide × kSmallSide less one sample (RasterTriangle.h), so that the tile
-// paints it from this record alone, read in sequence, without its three scattered vertices
-// or any set-up of its own (paintSmallTriangle: the same pixels and keys as paintTriangle).
+// A triangle set up whole by the set-up's lanes (SetupBatch.cpp): one whose box of pixel
+// centers lies in one tile and is at most kSmallSide × kSmallSide less one sample, and whose
+// covered samples all take the stepped key (with polygon-boundary edges, every face drawn:
+// each is surely inside them, smallTriangleOf), so that the tile paints it from this record
+// alone, read in sequence, without its three scattered vertices or any set-up of its own
+// (paintSmallTriangle: the same pixels and keys as paintTriangle). The full 4 × 4 box is
+// left to the tiles: with the coarse depth on, it meets the coarse depth there.
 struct SmallTriangle {
   // The depth plane as TriangleDepth (RasterTriangle.cpp) steps it: the key at the box's
   // first sample is firstKey + keyPerFine · (firstRowFine + y · kSubpixelScale · kResidueScale)
@@ -197,12 +199,14 @@ struct SmallTriangle {
 template <DepthMode kMode>
 void paintSmallTriangle(const SmallTriangle& triangle, const Planes& planes, PaintCounts& counts);
 
-// The SmallTriangle of a counter-clockwise triangle without polygon-boundary edges over its
-// samples in `tile`, as the set-up's lanes make it; nothing when its box there is not a small
-// one of 2 to kSmallSide² − 1 samples. The reference for the set-up's records (tests).
+// The SmallTriangle of a counter-clockwise triangle over its samples in `tile`, as the set-up's
+// lanes make it; nothing when its box there is not a small one of 2 to kSmallSide² − 1
+// samples, or when a covered sample is not surely inside a polygon-boundary edge (`boundary`)
+// by TriangleDepth::refine's bound (there refine may take another key than the stepped one).
+// The reference for the set-up's records (tests).
 std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
-                                             const WindowVertex& c, const PixelBounds& tile,
-                                             std::int32_t polygonId);
+                                             const WindowVertex& c, EdgeMask boundary,
+                                             const PixelBounds& tile, std::int32_t polygonId);
 
 // paintTriangle without its small-box path (RasterTriangle.cpp): every box of two or more
 // samples walked row by row in 64-bit edge functions. The reference the small-box path is

@@ -236,7 +236,7 @@ class PolygonSetup {
     } else if ((verdicts.small >> lane) & 1u) {
       binSmall(chunk_, tile,
                {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
-               smallTriangleOfLane(verdicts, lane, polygonId));  // never back-facing
+               smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).
       const auto reference = [&](std::size_t corner) {

@@ -94,24 +94,42 @@ struct FewSamples {
 // biased values, ≥ 0 by the fill rule). The same integers: a sample's edge function is the
 // same whatever the origin of the coordinates, and the centers tested lie in the box, where
 // the range above holds (the last steps go at most 4 · 2^8 beyond it, into 2^29.3 still).
-V smallBoxCoverage(D d, const EdgeLanes (&e)[3], V width, V height) {
-  const V minusOne = hn::Set(d, -1);
-  V mask = hn::Zero(d);
-  V row[3] = {e[0].value, e[1].value, e[2].value};
-  for (int y = 0; y < 4; ++y) {
-    const M rowInBox = height > hn::Set(d, y - 1);  // Highway 1.0 has no integer <=
-    V at[3] = {row[0], row[1], row[2]};
-    for (int x = 0; x < 4; ++x) {
-      const M inside =
-          hn::And(hn::And(rowInBox, width > hn::Set(d, x - 1)), (at[0] | at[1] | at[2]) > minusOne);
-      mask = mask | hn::IfThenElseZero(inside, hn::Set(d, 1 << (4 * y + x)));
+// `unsure`: the covered centers where a biased edge value is at most sureAbove (a center
+// there may not be surely inside a boundary edge: smallTriangleOf).
+struct BoxCoverage {
+  V covered, unsure;
+  BoxCoverage(D d, const EdgeLanes (&e)[3], V width, V height, const V (&sureAbove)[3]) {
+    const V minusOne = hn::Set(d, -1);
+    covered = unsure = hn::Zero(d);
+    V row[3] = {e[0].value, e[1].value, e[2].value};
+    for (int y = 0; y < 4; ++y) {
+      const M rowInBox = height > hn::Set(d, y - 1);  // Highway 1.0 has no integer <=
+      V at[3] = {row[0], row[1], row[2]};
+      for (int x = 0; x < 4; ++x) {
+        const M inside = hn::And(hn::And(rowInBox, width > hn::Set(d, x - 1)),
+                                 (at[0] | at[1] | at[2]) > minusOne);
+        const M sure =
+            hn::And(hn::And(at[0] > sureAbove[0], at[1] > sureAbove[1]), at[2] > sureAbove[2]);
+        const V bit = hn::Set(d, 1 << (4 * y + x));
+        covered = covered | hn::IfThenElseZero(inside, bit);
+        unsure = unsure | hn::IfThenElseZero(hn::AndNot(sure, inside), bit);
+        for (int k = 0; k < 3; ++k)
+          at[k] = at[k] + e[k].stepX;
+      }
       for (int k = 0; k < 3; ++k)
-        at[k] = at[k] + e[k].stepX;
+        row[k] = row[k] + e[k].stepY;
     }
-    for (int k = 0; k < 3; ++k)
-      row[k] = row[k] + e[k].stepY;
   }
-  return mask;
+};
+
+// For a boundary edge p → q: the biased value at or below which a sample may not be surely
+// inside it, TriangleDepth::refine's bound (surelyInsideBound, RasterTriangle.cpp: the
+// unbiased value must reach ⌊(|dx| + |dy| + 1)/2⌋ + extent + 2, extent the width plus the
+// height of the bounding box; below 2^16) less the edge's bias, less 1.
+V sureAbove(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
+  const V bound =
+      hn::ShiftRight<1>(hn::Abs(dx) + hn::Abs(dy) + hn::Set(d, 1)) + extent + hn::Set(d, 2);
+  return bound - (edge.exact - edge.value) - hn::Set(d, 1);
 }
 
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
@@ -240,22 +258,32 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const V three = hn::Set(d, 3);
   const M smallBox =
       hn::AndNot(hn::And(width == three, height == three), hn::And(width < four, height < four));
-  const M small = boundaryEdges ? hn::FirstN(d, 0)
-                                : hn::And(hn::AndNot(single, kept), hn::And(oneTile, smallBox));
-  const std::uint32_t smalls = laneBits(d, small) << lane;
-  verdicts.small |= smalls;
-  if ((fragments | smalls) == 0) return;
+  M small = hn::And(hn::AndNot(single, kept), hn::And(oneTile, smallBox));
+  if ((fragments | (laneBits(d, small) << lane)) == 0) return;
 
   // The first center of a kept lane's box, relative to a: in its bounding box, so below 2^14
   // in magnitude (the edges' 32-bit range above holds).
   const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
   const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
-  if (smalls != 0) {
+  if (!hn::AllFalse(d, small)) {
     const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
                                    EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
                                    EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
-    hn::Store(smallBoxCoverage(d, boxEdges, width, height), d, verdicts.smallPlane.coverage + lane);
+    // With boundary edges (a triangle polygon's three), a lane some covered center of which
+    // is not surely inside them is left to the tile; without, every center is sure.
+    const V extent = (maxX - minX) + (maxY - minY);
+    const V never = hn::Set(d, std::numeric_limits<std::int32_t>::min());
+    const V sure[3] = {
+        boundaryEdges ? sureAbove(d, vx - ux, vy - uy, extent, boxEdges[0]) : never,
+        boundaryEdges ? sureAbove(d, zero - vx, zero - vy, extent, boxEdges[1]) : never,
+        boundaryEdges ? sureAbove(d, ux, uy, extent, boxEdges[2]) : never};
+    const BoxCoverage coverage(d, boxEdges, width, height, sure);
+    small = hn::And(small, coverage.unsure == zero);
+    hn::Store(coverage.covered, d, verdicts.smallPlane.coverage + lane);
   }
+  const std::uint32_t smalls = laneBits(d, small) << lane;
+  verdicts.small |= smalls;
+  if ((fragments | smalls) == 0) return;
 
   // The keys' and planes' inputs, b and c (and their residues and keys) swapped as above.
   const V bResidueX = hn::IfThenElse(clockwise, c0.residueX(), b0.residueX());

@@ -56,10 +56,9 @@ struct BatchVerdicts {
   std::uint32_t clockwise = 0;
   // Kept lanes whose box overlaps one tile, tile[l].
   std::uint32_t oneTile = 0;
-  // Triangle lanes set up whole, as SmallTriangle (RasterTriangle.h) records: without
-  // polygon-boundary edges, in one tile, 2 to kSmallSide² − 1 centers in a box at most
-  // kSmallSide on each side (the full 4 × 4 box is left to the tiles: with the coarse depth
-  // on, it meets the coarse depth there).
+  // Triangle lanes set up whole, as SmallTriangle (RasterTriangle.h) records: in one tile,
+  // 2 to kSmallSide² − 1 centers in a box at most kSmallSide on each side, and with
+  // polygon-boundary edges every covered center surely inside them (smallTriangleOf).
   std::uint32_t small = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   // Per kept lane: the pixel centers of its box, clipped to the viewport (inclusive).

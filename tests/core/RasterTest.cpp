@@ -60,8 +60,7 @@ std::size_t differingKeysOrIds(const Planes32& small, const Planes32& walked) {
 // image's origin, in runs of 200 (the planes compared, then cleared). The same keys, ids and
 // counts, with and without the depth test, and with the depth test and the reject of hidden
 // triangles (losesEverywhere) too; and through SmallTriangle records (smallTriangleOf,
-// paintSmallTriangle: what the set-up's lanes hand the tiles) for the triangles without
-// boundary edges whose box is one.
+// paintSmallTriangle: what the set-up's lanes hand the tiles) for the triangles that have one.
 template <detail::DepthMode kMode>
 void compareSmallBoxPath(unsigned seed) {
   std::mt19937 random(seed);
@@ -100,8 +99,7 @@ void compareSmallBoxPath(unsigned seed) {
         detail::paintTriangle<kMode, true>(v[0], v[1], v[2], boundary, id, tile,
                                            rejecting.planes.planes(), rejecting.counts);
       }
-      const auto record =
-          boundary == 0 ? detail::smallTriangleOf(v[0], v[1], v[2], tile, id) : std::nullopt;
+      const auto record = detail::smallTriangleOf(v[0], v[1], v[2], boundary, tile, id);
       if (record) {
         detail::paintSmallTriangle<kMode>(*record, recorded.planes.planes(), recorded.counts);
       } else {
