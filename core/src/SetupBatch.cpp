@@ -94,42 +94,52 @@ struct FewSamples {
 // biased values, ≥ 0 by the fill rule). The same integers: a sample's edge function is the
 // same whatever the origin of the coordinates, and the centers tested lie in the box, where
 // the range above holds (the last steps go at most 4 · 2^8 beyond it, into 2^29.3 still).
-// `unsure`: the covered centers where a biased edge value is at most sureAbove (a center
-// there may not be surely inside a boundary edge: smallTriangleOf).
+// `unsure` (kSure): the covered centers where a biased edge value is below sureFrom (a
+// center there may not be surely inside a boundary edge: smallTriangleOf). Only the rows and
+// columns some lane of `small` has are visited; a center beyond a lane's box is not covered.
+template <bool kSure>
 struct BoxCoverage {
   V covered, unsure;
-  BoxCoverage(D d, const EdgeLanes (&e)[3], V width, V height, const V (&sureAbove)[3]) {
-    const V minusOne = hn::Set(d, -1);
-    covered = unsure = hn::Zero(d);
+  BoxCoverage(D d, M small, const EdgeLanes (&e)[3], V width, V height, const V (&sureFrom)[3]) {
+    const int columns = hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElseZero(small, width))) + 1;
+    const int rows = hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElseZero(small, height))) + 1;
+    V outside = hn::Zero(d), notSure = hn::Zero(d);
     V row[3] = {e[0].value, e[1].value, e[2].value};
-    for (int y = 0; y < 4; ++y) {
-      const M rowInBox = height > hn::Set(d, y - 1);  // Highway 1.0 has no integer <=
+    for (int y = 0; y < rows; ++y) {
       V at[3] = {row[0], row[1], row[2]};
-      for (int x = 0; x < 4; ++x) {
-        const M inside = hn::And(hn::And(rowInBox, width > hn::Set(d, x - 1)),
-                                 (at[0] | at[1] | at[2]) > minusOne);
-        const M sure =
-            hn::And(hn::And(at[0] > sureAbove[0], at[1] > sureAbove[1]), at[2] > sureAbove[2]);
+      for (int x = 0; x < columns; ++x) {
+        // A bit per center: the sign of a value (all ones when negative, by the shift).
         const V bit = hn::Set(d, 1 << (4 * y + x));
-        covered = covered | hn::IfThenElseZero(inside, bit);
-        unsure = unsure | hn::IfThenElseZero(hn::AndNot(sure, inside), bit);
+        outside = outside | hn::And(hn::ShiftRight<31>(at[0] | at[1] | at[2]), bit);
+        if constexpr (kSure) {
+          const V margin = (at[0] - sureFrom[0]) | (at[1] - sureFrom[1]) | (at[2] - sureFrom[2]);
+          notSure = notSure | hn::And(hn::ShiftRight<31>(margin), bit);
+        }
         for (int k = 0; k < 3; ++k)
           at[k] = at[k] + e[k].stepX;
       }
       for (int k = 0; k < 3; ++k)
         row[k] = row[k] + e[k].stepY;
     }
+    // The box's centers: (width + 1) bits in each of (height + 1) rows of 4.
+    const V zero = hn::Zero(d);
+    const V rowBits = (hn::Set(d, 2) << width) - hn::Set(d, 1);
+    const V box = rowBits | hn::IfThenElseZero(height > zero, hn::ShiftLeft<4>(rowBits)) |
+                  hn::IfThenElseZero(height > hn::Set(d, 1), hn::ShiftLeft<8>(rowBits)) |
+                  hn::IfThenElseZero(height > hn::Set(d, 2), hn::ShiftLeft<12>(rowBits));
+    covered = hn::AndNot(outside, box);
+    unsure = hn::And(notSure, covered);
   }
 };
 
-// For a boundary edge p → q: the biased value at or below which a sample may not be surely
-// inside it, TriangleDepth::refine's bound (surelyInsideBound, RasterTriangle.cpp: the
-// unbiased value must reach ⌊(|dx| + |dy| + 1)/2⌋ + extent + 2, extent the width plus the
-// height of the bounding box; below 2^16) less the edge's bias, less 1.
-V sureAbove(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
+// For a boundary edge p → q: the biased value from which a sample is surely inside it,
+// TriangleDepth::refine's bound (surelyInsideBound, RasterTriangle.cpp: the unbiased value
+// must reach ⌊(|dx| + |dy| + 1)/2⌋ + extent + 2, extent the width plus the height of the
+// bounding box; below 2^16) less the edge's bias. A biased value less this is below 2^30.
+V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
   const V bound =
       hn::ShiftRight<1>(hn::Abs(dx) + hn::Abs(dy) + hn::Set(d, 1)) + extent + hn::Set(d, 2);
-  return bound - (edge.exact - edge.value) - hn::Set(d, 1);
+  return bound - (edge.exact - edge.value);
 }
 
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
@@ -271,15 +281,19 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
                                    EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
     // With boundary edges (a triangle polygon's three), a lane some covered center of which
     // is not surely inside them is left to the tile; without, every center is sure.
-    const V extent = (maxX - minX) + (maxY - minY);
-    const V never = hn::Set(d, std::numeric_limits<std::int32_t>::min());
-    const V sure[3] = {
-        boundaryEdges ? sureAbove(d, vx - ux, vy - uy, extent, boxEdges[0]) : never,
-        boundaryEdges ? sureAbove(d, zero - vx, zero - vy, extent, boxEdges[1]) : never,
-        boundaryEdges ? sureAbove(d, ux, uy, extent, boxEdges[2]) : never};
-    const BoxCoverage coverage(d, boxEdges, width, height, sure);
-    small = hn::And(small, coverage.unsure == zero);
-    hn::Store(coverage.covered, d, verdicts.smallPlane.coverage + lane);
+    V covered;
+    if (boundaryEdges) {
+      const V extent = (maxX - minX) + (maxY - minY);
+      const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
+                         sureFrom(d, zero - vx, zero - vy, extent, boxEdges[1]),
+                         sureFrom(d, ux, uy, extent, boxEdges[2])};
+      const BoxCoverage<true> coverage(d, small, boxEdges, width, height, sure);
+      small = hn::And(small, coverage.unsure == zero);
+      covered = coverage.covered;
+    } else {
+      covered = BoxCoverage<false>(d, small, boxEdges, width, height, {zero, zero, zero}).covered;
+    }
+    hn::Store(covered, d, verdicts.smallPlane.coverage + lane);
   }
   const std::uint32_t smalls = laneBits(d, small) << lane;
   verdicts.small |= smalls;
