@@ -138,7 +138,9 @@ class CoarseDepth {
 };
 
 // Writes one fragment of `polygonId` at pixel i if it passes the depth test: strictly nearer
-// (a larger key), so an exact tie keeps the polygon drawn first.
+// (a larger key), so an exact tie keeps the polygon painted first. A tile paints every front
+// face before any back face (Raster.cpp, Chunk::backBins), each facing in draw order: an
+// exact tie keeps the front face; among polygons facing the same way, the one drawn first.
 template <DepthMode kMode>
 void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
                    PaintCounts& counts) {
@@ -162,9 +164,9 @@ bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowV
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
 // (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
 // says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
-// fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
-// is painter's order. kRejectHidden (depth test only): a triangle of a few samples that
-// losesEverywhere is skipped before its depth plane is set up; the same pixels.
+// fragment (strictly greater key: an exact tie keeps the fragment painted first, writeFragment);
+// DepthMode::Overwrite is painter's order. kRejectHidden (depth test only): a triangle of a few
+// samples that losesEverywhere is skipped before its depth plane is set up; the same pixels.
 template <DepthMode kMode, bool kRejectHidden = false>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,

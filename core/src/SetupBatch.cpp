@@ -269,13 +269,14 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const M smallBox =
       hn::AndNot(hn::And(width == three, height == three), hn::And(width < four, height < four));
   M small = hn::And(hn::AndNot(single, kept), hn::And(oneTile, smallBox));
-  if ((fragments | (laneBits(d, small) << lane)) == 0) return;
+  const bool anySmall = !hn::AllFalse(d, small);
+  if (fragments == 0 && !anySmall) return;
 
   // The first center of a kept lane's box, relative to a: in its bounding box, so below 2^14
   // in magnitude (the edges' 32-bit range above holds).
   const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
   const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
-  if (!hn::AllFalse(d, small)) {
+  if (anySmall) {
     const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
                                    EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
                                    EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
@@ -311,12 +312,14 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   hn::Store(toFine(vy, cResidueY - aResidueY), d, keys.cy + lane);
   hn::Store(toFine(firstX, zero - aResidueX), d, keys.sx + lane);  // sx in fragment lanes
   hn::Store(toFine(firstY, zero - aResidueY), d, keys.sy + lane);
-  hn::Store(ux, d, keys.gridBx + lane);
-  hn::Store(uy, d, keys.gridBy + lane);
-  hn::Store(vx, d, keys.gridCx + lane);
-  hn::Store(vy, d, keys.gridCy + lane);
-  hn::Store(firstX, d, keys.gridSx + lane);
-  hn::Store(firstY, d, keys.gridSy + lane);
+  if (smalls != 0) {
+    hn::Store(ux, d, keys.gridBx + lane);
+    hn::Store(uy, d, keys.gridBy + lane);
+    hn::Store(vx, d, keys.gridCx + lane);
+    hn::Store(vy, d, keys.gridCy + lane);
+    hn::Store(firstX, d, keys.gridSx + lane);
+    hn::Store(firstY, d, keys.gridSy + lane);
+  }
   hn::Store(edges[1].exact, d, keys.edge1 + lane);
   hn::Store(edges[2].exact, d, keys.edge2 + lane);
   hn::Store(hn::Abs(signedArea), d, keys.area + lane);
