@@ -142,6 +142,31 @@ V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
   return bound - (edge.exact - edge.value);
 }
 
+// The coverage of the small lanes (SetupBatch.h; b and c relative to a, the first center
+// relative to a, the box in centers less one, `extent` the bounding box's width plus height),
+// stored to `coverage`; with boundary edges (a triangle polygon's three), a lane some covered
+// center of which is not surely inside them is left to the tile (without, every center is
+// sure): the lanes that stay small. Out of line: most batches of a dense mesh have none, and
+// inlined it cost their lanes 4 % more instructions (8M triangles).
+HWY_NOINLINE M smallLanes(D d, M small, V ux, V uy, V vx, V vy, V firstX, V firstY, V width,
+                          V height, V extent, bool boundaryEdges, std::int32_t* coverage) {
+  const V zero = hn::Zero(d);
+  const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
+                                 EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
+                                 EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
+  if (boundaryEdges) {
+    const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
+                       sureFrom(d, zero - vx, zero - vy, extent, boxEdges[1]),
+                       sureFrom(d, ux, uy, extent, boxEdges[2])};
+    const BoxCoverage<true> box(d, small, boxEdges, width, height, sure);
+    hn::Store(box.covered, d, coverage);
+    return hn::And(small, box.unsure == zero);
+  }
+  hn::Store(BoxCoverage<false>(d, small, boxEdges, width, height, {zero, zero, zero}).covered, d,
+            coverage);
+  return small;
+}
+
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
 V ceilToPixel(D d, V v) {
   return hn::Zero(d) - hn::ShiftRight<kSubpixelBits>(hn::Zero(d) - v);
@@ -277,24 +302,9 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
   const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
   if (anySmall) {
-    const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
-                                   EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
-                                   EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
-    // With boundary edges (a triangle polygon's three), a lane some covered center of which
-    // is not surely inside them is left to the tile; without, every center is sure.
-    V covered;
-    if (boundaryEdges) {
-      const V extent = (maxX - minX) + (maxY - minY);
-      const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
-                         sureFrom(d, zero - vx, zero - vy, extent, boxEdges[1]),
-                         sureFrom(d, ux, uy, extent, boxEdges[2])};
-      const BoxCoverage<true> coverage(d, small, boxEdges, width, height, sure);
-      small = hn::And(small, coverage.unsure == zero);
-      covered = coverage.covered;
-    } else {
-      covered = BoxCoverage<false>(d, small, boxEdges, width, height, {zero, zero, zero}).covered;
-    }
-    hn::Store(covered, d, verdicts.smallPlane.coverage + lane);
+    small = smallLanes(d, small, ux, uy, vx, vy, firstX, firstY, width, height,
+                       (maxX - minX) + (maxY - minY), boundaryEdges,
+                       verdicts.smallPlane.coverage + lane);
   }
   const std::uint32_t smalls = laneBits(d, small) << lane;
   verdicts.small |= smalls;
