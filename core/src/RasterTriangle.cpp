@@ -131,7 +131,7 @@ class TriangleDepth {
     small.firstKey = key0_ + perX_ * (s.x - x0_);
     small.keyPerFine = perY_;
     small.keyPerPixel = perPixelX();
-    small.firstRowFine = static_cast<std::int32_t>(s.y - y0_);  // exact: below 2^23 (.h)
+    small.firstRowFine = static_cast<std::int32_t>(s.y - y0_);  // exact (SmallTriangle)
   }
   // After prepareRows: bounds on every key at(), refine() and keyAt() give for a sample of
   // the snapped triangle in a box `extent` pixels across. The vertices' keys, widened by the

@@ -187,6 +187,9 @@ struct SmallTriangle {
   // first sample is firstKey + keyPerFine · (firstRowFine + y · kSubpixelScale · kResidueScale)
   // for row y (in this order of operations: the key TriangleDepth::at gives), stepped by
   // keyPerPixel along the row.
+  // firstRowFine is in fine units from the plane's origin (vertex a, unsnapped or snapped):
+  // the sample lies in the bounding box, below 2^14 grid steps across, so it is below
+  // 2^14 · kResidueScale + 2^7 < 2^22.1, and the fourth row's below 2^22.3.
   double firstKey, keyPerFine, keyPerPixel;
   std::int32_t firstRowFine;
   std::int32_t polygon;

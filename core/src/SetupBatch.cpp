@@ -121,9 +121,10 @@ struct BoxCoverage {
       for (int k = 0; k < 3; ++k)
         row[k] = row[k] + e[k].stepY;
     }
-    // The box's centers: (width + 1) bits in each of (height + 1) rows of 4.
+    // The box's centers: (width + 1) bits in each of (height + 1) rows of 4 (the shift in
+    // range in every lane: other lanes' widths may be anything).
     const V zero = hn::Zero(d);
-    const V rowBits = (hn::Set(d, 2) << width) - hn::Set(d, 1);
+    const V rowBits = (hn::Set(d, 2) << hn::IfThenElseZero(small, width)) - hn::Set(d, 1);
     const V box = rowBits | hn::IfThenElseZero(height > zero, hn::ShiftLeft<4>(rowBits)) |
                   hn::IfThenElseZero(height > hn::Set(d, 1), hn::ShiftLeft<8>(rowBits)) |
                   hn::IfThenElseZero(height > hn::Set(d, 2), hn::ShiftLeft<12>(rowBits));
@@ -378,8 +379,10 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
 }
 
 // A SmallTriangle's depth plane (RasterTriangle.cpp: TriangleDepth's constructor,
-// prepareRows and stepsFrom, without boundary edges) for the lanes from `lane` on: the
-// unsnapped plane where the fine area is positive, else the snapped one.
+// prepareRows and stepsFrom; the boundary edges change only refine(), which a record's
+// samples do not need) for the lanes from `lane` on: the unsnapped plane where the fine area
+// is positive, else the snapped one. Every difference of positions is an exact integer in
+// double (below 2^23), so only the operations that round follow the scalar order.
 void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, BatchVerdicts& verdicts) {
   const hn::Rebind<std::int32_t, DD> di;
   const hn::Rebind<float, DD> df;
