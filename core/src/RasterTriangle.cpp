@@ -353,7 +353,8 @@ unsigned negativeLanes(RowLanes lanes) {
 
 // The covered samples of a box of (lastColumn + 1) × (lastRow + 1) samples, at most
 // kSmallSide × kSmallSide, bit y·kSmallSide + x, from its three biased edge functions at its
-// first sample and their steps (SmallBox, SmallTriangle).
+// first sample and their steps (SmallBox; SetupBatch.cpp's BoxCoverage decides the same in
+// the set-up's lanes).
 [[gnu::always_inline]] inline std::uint32_t smallBoxCoverage(const std::int32_t (&value)[3],
                                                              const std::int32_t (&stepX)[3],
                                                              const std::int32_t (&stepY)[3],

@@ -210,7 +210,7 @@ TEST(Raster, AnExactDepthTieKeepsTheFrontFaceInEitherOrder) {
     SCOPED_TRACE(backFirst ? "back faces listed first" : "front faces listed first");
     const auto [mesh, front] = tiedPairs(backFirst);
     const Scene scene = oneMeshScene(mesh.view());
-    std::vector<std::int32_t> ids1;
+    std::vector<std::byte> oneThread;  // color, depth and id planes
     for (const int threads : {1, 2, 8}) {
       SCOPED_TRACE(std::to_string(threads) + " threads");
       Renderer renderer;
@@ -226,11 +226,16 @@ TEST(Raster, AnExactDepthTieKeepsTheFrontFaceInEitherOrder) {
       }
       EXPECT_GT(covered, 5000u);
       EXPECT_EQ(backShown, 0u) << "pixels showing a back face, of " << covered;
-      const std::span<const std::int32_t> ids = framebuffer.polygonId();
+      std::vector<std::byte> bytes;
+      for (const std::span<const std::byte> plane :
+           {std::as_bytes(framebuffer.color()), std::as_bytes(framebuffer.depth()),
+            std::as_bytes(framebuffer.polygonId())}) {
+        bytes.insert(bytes.end(), plane.begin(), plane.end());
+      }
       if (threads == 1) {
-        ids1.assign(ids.begin(), ids.end());
+        oneThread = std::move(bytes);
       } else {
-        EXPECT_TRUE(std::equal(ids.begin(), ids.end(), ids1.begin(), ids1.end()));
+        EXPECT_TRUE(bytes == oneThread) << "not the bytes of one thread";
       }
     }
   }
