@@ -8,8 +8,11 @@
 // (and the light at its eye) turning TURN = 1 degree about the sphere's axis every frame.
 // TURN 0 keeps the camera still (a versioned mesh's frame is then reused: RenderPath::Resolve);
 // VERSION 0 renders the mesh unversioned, validated and its normals computed every frame.
+// START turns the camera that many degrees before the first frame: past 90 the sphere's far
+// half comes first in mesh order (every face drawn: its back faces are binned before the
+// front faces over them).
 //
-//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION]
+//   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -56,7 +59,8 @@ std::uint64_t fingerprint(const Framebuffer& framebuffer) {
   return hash;
 }
 
-int run(int triangles, bool closed, int frames, int threads, double turn, std::uint64_t version) {
+int run(int triangles, bool closed, int frames, int threads, double turn, std::uint64_t version,
+        double start) {
   // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles, as
   // CoreBench's sphereWithTriangles picks it (the same spheres as facet_bench's).
   const int theta = static_cast<int>(std::lround(std::sqrt(triangles / 2.0)));
@@ -73,24 +77,26 @@ int run(int triangles, bool closed, int frames, int threads, double turn, std::u
   scene.lights.ambient.intensity = 0.0;
   scene.lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
 
+  if (start != 0.0) bench::turnView(camera, scene, start);
   Renderer renderer;
   renderer.setThreadCount(threads);
   Framebuffer framebuffer(1920, 1080);
   renderer.render(scene, camera, framebuffer);  // warm: buffers grow
   Phases best;
+  RenderStats last;
   for (int i = 0; i < frames; ++i) {
     if (turn != 0.0) bench::turnView(camera, scene, turn);
-    best.keepBest(renderer.render(scene, camera, framebuffer));
+    last = renderer.render(scene, camera, framebuffer);
+    best.keepBest(last);
   }
   const double* s = best.seconds;
   std::printf(
-      "%d triangles, closed %d, %d threads, turn %g, version %llu, best of %d frames, ms: validate "
-      "%.3f "
-      "transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last frame's planes "
-      "%016llx\n",
-      triangles, int(closed), threads, turn, static_cast<unsigned long long>(version), frames,
-      s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3,
-      static_cast<unsigned long long>(fingerprint(framebuffer)));
+      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, best of %d frames, ms: "
+      "validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
+      "frame: %zu fragments written, planes %016llx\n",
+      triangles, int(closed), threads, turn, start, static_cast<unsigned long long>(version),
+      frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3,
+      last.fragmentsWritten, static_cast<unsigned long long>(fingerprint(framebuffer)));
   return 0;
 }
 
@@ -102,12 +108,14 @@ int main(int argc, char** argv) {
     std::fprintf(
         stderr,
         "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
-        "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned]\n",
+        "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned] "
+        "[START degrees turned before the first frame, default 0]\n",
         argv[0], bench::kTurnDegreesPerFrame);
     return 2;
   }
   return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
              argc > 4 ? std::atoi(argv[4]) : 2,
              argc > 5 ? std::atof(argv[5]) : bench::kTurnDegreesPerFrame,
-             argc > 6 ? std::strtoull(argv[6], nullptr, 10) : 1);
+             argc > 6 ? std::strtoull(argv[6], nullptr, 10) : 1,
+             argc > 7 ? std::atof(argv[7]) : 0.0);
 }

@@ -19,7 +19,7 @@ EdgeMask swapEdges12(EdgeMask boundary) {
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon) {
+                       std::int32_t polygon, bool last) {
   if (area == 0) return BinOutcome::ZeroArea;
   const WindowVertex* second = &b;
   const WindowVertex* third = &c;
@@ -33,18 +33,20 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
     const std::optional<float> key = keyOfOnlySample(a, *second, *third, area < 0 ? -area : area,
                                                      boundary, bounds.x0, bounds.y0);
     if (!key) return BinOutcome::CoversNoSample;
-    binFragment(chunk, tileOf(grid, bounds.x0, bounds.y0), bounds.x0, bounds.y0, *key, polygon);
+    binFragment(chunk, tileOf(grid, bounds.x0, bounds.y0), bounds.x0, bounds.y0, *key, polygon,
+                last);
     return BinOutcome::Binned;
   }
   if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
     return BinOutcome::CoversNoSample;
   }
-  binCovering(chunk, grid, r0, r1, r2, bounds, boundary, polygon);
+  binCovering(chunk, grid, r0, r1, r2, bounds, boundary, polygon, last);
   return BinOutcome::Binned;
 }
 
-void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t clippedVertices) {
-  static_assert(kMaxBinnedPerChunk == kFragmentBit && kMaxBinnedPerChunk == kClippedVertexBit);
+void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t smallTriangles,
+                      std::size_t clippedVertices) {
+  static_assert(kMaxBinnedPerChunk == kSmallTriangleBit && kMaxBinnedPerChunk < kClippedVertexBit);
   const auto check = [](std::size_t count, const char* what) {
     if (count >= kMaxBinnedPerChunk) {
       throw Error("a set-up chunk holds " + std::to_string(count) + " " + what +
@@ -54,6 +56,7 @@ void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t 
   };
   check(triangles, "binned triangles");
   check(fragments, "binned fragments");
+  check(smallTriangles, "binned small triangles");
   check(clippedVertices, "clipped vertices");
 }
 
@@ -61,9 +64,12 @@ void clearBins(Chunk& chunk, const TileGrid& grid) {
   chunk.triangles.clear();
   chunk.boundaryEdges.clear();
   chunk.fragments.clear();
-  chunk.bins.resize(grid.count());
-  for (auto& bin : chunk.bins)
-    bin.clear();
+  chunk.smallTriangles.clear();
+  for (auto* bins : {&chunk.bins, &chunk.backBins}) {
+    bins->resize(grid.count());
+    for (auto& bin : *bins)
+      bin.clear();
+  }
 }
 
 }  // namespace facet::detail

@@ -16,11 +16,12 @@ enum class BinOutcome { Binned, ZeroArea, CoversNoSample };
 // One triangle of `polygon`, given as vertex references (Frame.h) with their window
 // vertices, in either winding, `area` its doubleSignedArea and `boundary` its polygon-edge
 // mask (RasterTriangle.h). Kept counter-clockwise (corners 1 and 2 swapped if need be)
-// unless it has zero area or covers no pixel center.
+// unless it has zero area or covers no pixel center; in the chunk's backBins when `last`
+// (Chunk::binsFor).
 BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std::uint32_t r1,
                        std::uint32_t r2, const WindowVertex& a, const WindowVertex& b,
                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
-                       std::int32_t polygon);
+                       std::int32_t polygon, bool last);
 
 // The tile of pixel (x, y) in the viewport.
 inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
@@ -34,9 +35,10 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
 // binCovering: the set-up's batches bin most triangles, and out of line their eight
 // arguments and the call cost as much as the appends.
 [[gnu::always_inline]] inline void binFragment(Chunk& chunk, std::size_t tile, int x, int y,
-                                               float key, std::int32_t polygon) {
+                                               float key, std::int32_t polygon, bool last) {
   ++chunk.counts.boxSamples;
-  chunk.bins[tile].push_back(static_cast<std::uint32_t>(chunk.fragments.size()) | kFragmentBit);
+  chunk.binsFor(last)[tile].push_back(static_cast<std::uint32_t>(chunk.fragments.size()) |
+                                      kFragmentBit);
   chunk.fragments.push_back(
       {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), key, polygon});
 }
@@ -47,27 +49,41 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
 [[gnu::always_inline]] inline void binCovering(Chunk& chunk, const TileGrid& grid, std::uint32_t r0,
                                                std::uint32_t r1, std::uint32_t r2,
                                                const PixelBounds& samples, EdgeMask boundary,
-                                               std::int32_t polygon, std::int64_t onlyTile = -1) {
+                                               std::int32_t polygon, bool last,
+                                               std::int64_t onlyTile = -1) {
   chunk.counts.boxSamples += samples.area();
   const auto index = static_cast<std::uint32_t>(chunk.triangles.size());
+  auto& bins = chunk.binsFor(last);
   if (onlyTile >= 0) {
-    chunk.bins[static_cast<std::size_t>(onlyTile)].push_back(index);
+    bins[static_cast<std::size_t>(onlyTile)].push_back(index);
   } else {
-    grid.forEachTile(samples, [&](std::size_t t) { chunk.bins[t].push_back(index); });
+    grid.forEachTile(samples, [&](std::size_t t) { bins[t].push_back(index); });
   }
   chunk.triangles.push_back({{r0, r1, r2}, polygon});
   chunk.boundaryEdges.push_back(boundary);
 }
 
-// A bin entry is 32 bits with the top one telling a fragment from a triangle (kFragmentBit),
-// and a vertex reference has its top bit for a clipped vertex (kClippedVertexBit): a chunk
-// can index fewer than 2^31 triangles, fragments and clipped vertices each. Its 2^20
-// polygons stay far below that unless they are huge polygons, each a fan of triangles.
-inline constexpr std::size_t kMaxBinnedPerChunk = std::size_t{1} << 31;
+// Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile: the box of
+// `samples`; in the chunk's backBins when `last` (Chunk::binsFor).
+[[gnu::always_inline]] inline void binSmall(Chunk& chunk, std::size_t tile,
+                                            const PixelBounds& samples,
+                                            const SmallTriangle& triangle, bool last) {
+  chunk.counts.boxSamples += samples.area();
+  chunk.binsFor(last)[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
+                                      kSmallTriangleBit);
+  chunk.smallTriangles.push_back(triangle);
+}
+
+// A bin entry is 32 bits with the top two telling a fragment (kFragmentBit), a small
+// triangle (kSmallTriangleBit) and a triangle apart, and a vertex reference has its top bit
+// for a clipped vertex (kClippedVertexBit): a chunk can index fewer than 2^30 of each. Its
+// 2^20 polygons stay far below that unless they are huge polygons, each a fan of triangles.
+inline constexpr std::size_t kMaxBinnedPerChunk = kBinIndexMask + std::size_t{1};
 
 // Throws facet::Error naming the count when a chunk holds kMaxBinnedPerChunk or more of any
-// of the three (its indices have wrapped: the raster must not read them).
-void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t clippedVertices);
+// of the four (its indices have wrapped: the raster must not read them).
+void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t smallTriangles,
+                      std::size_t clippedVertices);
 
 // Empties a chunk's triangles and bins for a new frame, with one bin per tile.
 void clearBins(Chunk& chunk, const TileGrid& grid);

@@ -97,6 +97,11 @@ struct BinnedFragment {
 };
 inline constexpr std::uint32_t kFragmentBit = 0x80000000u;
 
+// A bin entry with kSmallTriangleBit set (and kFragmentBit clear) indexes its chunk's
+// smallTriangles (SmallTriangle, RasterTriangle.h).
+inline constexpr std::uint32_t kSmallTriangleBit = 0x40000000u;
+inline constexpr std::uint32_t kBinIndexMask = kSmallTriangleBit - 1;
+
 struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
@@ -111,8 +116,14 @@ struct Chunk {
   HugePageVector<BinnedTriangle> triangles;
   HugePageVector<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   HugePageVector<BinnedFragment> fragments;
+  HugePageVector<SmallTriangle> smallTriangles;
   std::vector<WindowVertex> clippedVertices;
   std::vector<std::vector<std::uint32_t>> bins;
+  // With the depth test, the back-facing polygons' entries (every face drawn), per tile: a
+  // tile paints them after every chunk's `bins`, so that most fail losesEverywhere behind the
+  // front faces already painted, and an exact depth tie keeps the front face (writeFragment).
+  std::vector<std::vector<std::uint32_t>> backBins;
+  std::vector<std::vector<std::uint32_t>>& binsFor(bool last) { return last ? backBins : bins; }
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;

@@ -50,8 +50,8 @@ void markShownPolygons(const RasterContext& context, const PixelBounds& tile) {
 // mesh), and their vertices through the frame's: read in bin order, nearly every triangle
 // waited for memory twice (perf annotate: half of paintTile's cycles on the load of its first
 // vertex reference). So the entry kPrefetchTriangle places ahead is fetched, and the
-// vertices of the one kPrefetchVertices ahead, whose record arrived meanwhile (a fragment has
-// none).
+// vertices of the one kPrefetchVertices ahead, whose record arrived meanwhile (a fragment or
+// a small triangle has none).
 constexpr std::size_t kPrefetchTriangle = 8;
 constexpr std::size_t kPrefetchVertices = 4;
 
@@ -61,54 +61,74 @@ constexpr std::size_t kPrefetchVertices = 4;
   if (k + kPrefetchTriangle < bin.size()) {
     const std::uint32_t entry = bin[k + kPrefetchTriangle];
     if (entry & kFragmentBit) {
-      __builtin_prefetch(&chunk.fragments[entry & ~kFragmentBit]);
+      __builtin_prefetch(&chunk.fragments[entry & kBinIndexMask]);
+    } else if (entry & kSmallTriangleBit) {
+      // 40 bytes: sometimes across two cache lines.
+      const auto* record =
+          reinterpret_cast<const char*>(&chunk.smallTriangles[entry & kBinIndexMask]);
+      __builtin_prefetch(record);
+      __builtin_prefetch(record + sizeof(SmallTriangle) - 1);
     } else {
       __builtin_prefetch(&chunk.triangles[entry]);
     }
   }
   if (k + kPrefetchVertices < bin.size()) {
     const std::uint32_t entry = bin[k + kPrefetchVertices];
-    if (entry & kFragmentBit) return;
+    if (entry & (kFragmentBit | kSmallTriangleBit)) return;
     for (const std::uint32_t reference : chunk.triangles[entry].vertex)
       __builtin_prefetch(&vertexOf(vertices, chunk, reference));
   }
 }
 
-// kCoarse: with the tile's coarse depth (Rule::HiddenGeometry, depth test only).
+// Paints one bin's entries in order. kCoarse: with the tile's coarse depth
+// (Rule::HiddenGeometry, depth test only).
+template <DepthMode kMode, bool kCoarse>
+[[gnu::always_inline]] inline void paintBin(const RasterContext& context, const Chunk& chunk,
+                                            const std::vector<std::uint32_t>& bin,
+                                            const PixelBounds& tile, const Planes& planes,
+                                            PaintCounts& counts, CoarseDepth& coarse) {
+  for (std::size_t k = 0; k < bin.size(); ++k) {
+    prefetchAhead(context.vertices, chunk, bin, k);
+    const std::uint32_t index = bin[k];
+    if (index & kFragmentBit) {
+      const BinnedFragment& f = chunk.fragments[index & kBinIndexMask];
+      writeFragment<kMode>(static_cast<std::size_t>(f.y) * context.width + f.x, f.key, f.polygon,
+                           planes, counts);
+      continue;
+    }
+    if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
+      paintSmallTriangle<kMode>(chunk.smallTriangles[index & kBinIndexMask], planes, counts);
+      continue;
+    }
+    const BinnedTriangle& tri = chunk.triangles[index];
+    const WindowVertex& a = vertexOf(context.vertices, chunk, tri.vertex[0]);
+    const WindowVertex& b = vertexOf(context.vertices, chunk, tri.vertex[1]);
+    const WindowVertex& c = vertexOf(context.vertices, chunk, tri.vertex[2]);
+    const EdgeMask boundary = chunk.boundaryEdges[index];
+    if constexpr (kCoarse) {
+      paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts, coarse);
+    } else if (kMode == DepthMode::Test && boundary != 0) {
+      // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
+      // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
+      // triangles would only pay for the test.
+      paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes, counts);
+    } else {
+      paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
+    }
+  }
+}
+
+// Every chunk's front bins, then (the depth test) every chunk's back bins: chunks in draw
+// order each time, so that within either facing the polygon drawn first keeps an exact tie.
 template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
   clearTile(context, tile);
   const Planes planes{context.color, context.depth, context.polygonId, context.width};
   PaintCounts counts;
   CoarseDepth coarse(tile);
-  for (const Chunk& chunk : context.chunks) {
-    const std::vector<std::uint32_t>& bin = chunk.bins[t];
-    for (std::size_t k = 0; k < bin.size(); ++k) {
-      prefetchAhead(context.vertices, chunk, bin, k);
-      const std::uint32_t index = bin[k];
-      if (index & kFragmentBit) {
-        const BinnedFragment& f = chunk.fragments[index & ~kFragmentBit];
-        writeFragment<kMode>(static_cast<std::size_t>(f.y) * context.width + f.x, f.key, f.polygon,
-                             planes, counts);
-        continue;
-      }
-      const BinnedTriangle& tri = chunk.triangles[index];
-      const WindowVertex& a = vertexOf(context.vertices, chunk, tri.vertex[0]);
-      const WindowVertex& b = vertexOf(context.vertices, chunk, tri.vertex[1]);
-      const WindowVertex& c = vertexOf(context.vertices, chunk, tri.vertex[2]);
-      const EdgeMask boundary = chunk.boundaryEdges[index];
-      if constexpr (kCoarse) {
-        paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts,
-                                       coarse);
-      } else if (kMode == DepthMode::Test && boundary != 0) {
-        // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
-        // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
-        // triangles would only pay for the test.
-        paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes, counts);
-      } else {
-        paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
-      }
-    }
+  for (const auto bins : {&Chunk::bins, &Chunk::backBins}) {
+    for (const Chunk& chunk : context.chunks)
+      paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse);
   }
   markShownPolygons(context, tile);
   return counts;

@@ -1,7 +1,9 @@
 #pragma once
 
 // Phase 3: raster. Each tile, on one thread: cleared, then its bins' triangles painted in
-// draw order (depth key and polygon id per pixel, RasterTriangle.h), then the polygons its
+// draw order (depth key and polygon id per pixel, RasterTriangle.h) — with the depth test,
+// the front faces' first, then the back faces' (so that an exact tie keeps the front face, and
+// back faces mostly fail against the front faces already there) — then the polygons its
 // final image shows marked.
 
 #include <cstdint>

@@ -54,6 +54,16 @@ double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) 
   return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
 }
 
+// refine()'s bound for edge i (opposite corner i) of a triangle, grid units².
+std::int64_t surelyInsideBound(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                               int i) {
+  const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
+                           std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
+  const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
+  const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
+  return (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+}
+
 // The depth keys of one triangle. Coverage is decided on the snapped vertices (exact, VTK's
 // 1/256 pixel); keys come from the plane through the unsnapped ones (snapped + residue):
 // snapping moves a vertex by up to 1/512 pixel, which on a steep surface moves its key by
@@ -115,6 +125,14 @@ class TriangleDepth {
     return key0_ + perX_ * (s.x - x0_) + perY_ * (s.y - y0_);
   }
   double perPixelX() const { return perX_ * kSubpixelScale * kResidueScale; }
+  // After prepareRows: the plane as a SmallTriangle steps it from sample (sampleX, sampleY).
+  void stepsFrom(std::int64_t sampleX, std::int64_t sampleY, SmallTriangle& small) const {
+    const FinePoint s = finePoint(sampleX, sampleY);
+    small.firstKey = key0_ + perX_ * (s.x - x0_);
+    small.keyPerFine = perY_;
+    small.keyPerPixel = perPixelX();
+    small.firstRowFine = static_cast<std::int32_t>(s.y - y0_);  // exact (SmallTriangle)
+  }
   // After prepareRows: bounds on every key at(), refine() and keyAt() give for a sample of
   // the snapped triangle in a box `extent` pixels across. The vertices' keys, widened by the
   // plane's change over one grid step (a sample of the snapped triangle is within half a
@@ -157,13 +175,8 @@ class TriangleDepth {
            (isBoundary(2) && fine[2] < 0.0);
   }
   void boundSurelyInside(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
-    const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
-                             std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
-    const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
     for (int i = 0; i < 3; ++i) {
-      if (!isBoundary(i)) continue;
-      const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
-      sureInside_[i] = (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+      if (isBoundary(i)) sureInside_[i] = surelyInsideBound(a, b, c, i);
     }
   }
 
@@ -316,7 +329,6 @@ struct BoxRaster {
 // a vertex p, and an edge function |dx·(s.y − p.y) − dy·(s.x − p.x)| + 1 < 2^29.1, with room for
 // the step past the last row; int32's bound is 2^31. Wider triangles (clipped by the tile to a
 // small box: rare) are walked.
-constexpr int kSmallSide = 4;
 constexpr std::int32_t kMaxLaneExtent = 1 << 14;
 
 // `extent`: the triangle's bounding box; `box`: its samples in the tile.
@@ -337,6 +349,52 @@ unsigned negativeLanes(RowLanes lanes) {
   return (lanes[0] < 0 ? 1u : 0u) | (lanes[1] < 0 ? 2u : 0u) | (lanes[2] < 0 ? 4u : 0u) |
          (lanes[3] < 0 ? 8u : 0u);
 #endif
+}
+
+// The covered samples of a box of (lastColumn + 1) × (lastRow + 1) samples, at most
+// kSmallSide × kSmallSide, bit y·kSmallSide + x, from its three biased edge functions at its
+// first sample and their steps (SmallBox; SetupBatch.cpp's BoxCoverage decides the same in
+// the set-up's lanes).
+[[gnu::always_inline]] inline std::uint32_t smallBoxCoverage(const std::int32_t (&value)[3],
+                                                             const std::int32_t (&stepX)[3],
+                                                             const std::int32_t (&stepY)[3],
+                                                             int lastColumn, int lastRow) {
+  RowLanes w[3];
+  for (int k = 0; k < 3; ++k)
+    w[k] =
+        RowLanes{value[k], value[k] + stepX[k], value[k] + 2 * stepX[k], value[k] + 3 * stepX[k]};
+  const unsigned columns = (2u << lastColumn) - 1;
+  std::uint32_t mask = 0;
+  for (int y = 0; y <= lastRow; ++y) {
+    // Covered where every biased edge function is ≥ 0: the sign bit of their OR is clear.
+    mask |= (~negativeLanes(w[0] | w[1] | w[2]) & columns) << (y * kSmallSide);
+    for (int k = 0; k < 3; ++k)
+      w[k] += stepY[k];
+  }
+  return mask;
+}
+
+// Writes the samples of a small box's coverage `mask` whose first pixel is (x0, y0): row y's
+// key starts at rowKey(y) and steps by keyPerPixel sample by sample, as BoxRaster::paintRows
+// steps it; refine(key, x, y) gives a covered sample's (x, y from the box's first).
+template <DepthMode kMode, class RowKey, class Refine>
+[[gnu::always_inline]] inline void paintSmallMask(std::uint32_t mask, int x0, int y0,
+                                                  double keyPerPixel, const RowKey& rowKey,
+                                                  const Refine& refine, std::int32_t polygonId,
+                                                  const Planes& planes, PaintCounts& counts) {
+  constexpr std::uint32_t kRow = (1u << kSmallSide) - 1;
+  for (int y = 0; mask != 0; ++y, mask >>= kSmallSide) {
+    if ((mask & kRow) == 0) continue;
+    double key = rowKey(y);
+    const std::size_t row = static_cast<std::size_t>(y0 + y) * planes.width + x0;
+    int x = 0;
+    for (std::uint32_t columns = mask & kRow; columns != 0; columns &= columns - 1) {
+      const int next = std::countr_zero(columns);
+      for (; x < next; ++x)
+        key += keyPerPixel;
+      writeFragment<kMode>(row + next, toDepthKey(refine(key, next, y)), polygonId, planes, counts);
+    }
+  }
 }
 
 // A triangle over a box of at most kSmallSide × kSmallSide samples that fitsSmallPath: its
@@ -363,20 +421,7 @@ struct SmallBox {
 
   // The covered samples, bit (y − box.y0)·kSmallSide + (x − box.x0).
   [[gnu::always_inline]] std::uint32_t coverage() const {
-    RowLanes w[3];
-    for (int k = 0; k < 3; ++k) {
-      w[k] =
-          RowLanes{value[k], value[k] + stepX[k], value[k] + 2 * stepX[k], value[k] + 3 * stepX[k]};
-    }
-    const unsigned columns = (1u << (box.x1 - box.x0 + 1)) - 1;
-    std::uint32_t mask = 0;
-    for (int y = 0; y <= box.y1 - box.y0; ++y) {
-      // Covered where every biased edge function is ≥ 0: the sign bit of their OR is clear.
-      mask |= (~negativeLanes(w[0] | w[1] | w[2]) & columns) << (y * kSmallSide);
-      for (int k = 0; k < 3; ++k)
-        w[k] += stepY[k];
-    }
-    return mask;
+    return smallBoxCoverage(value, stepX, stepY, box.x1 - box.x0, box.y1 - box.y0);
   }
 
   // Paints the samples of `mask` (coverage()) with BoxRaster::paintRows<kMode, kRefine>'s keys
@@ -388,28 +433,19 @@ struct SmallBox {
                                     const Planes& planes, PaintCounts& counts) const {
     TriangleDepth depth(a, b, c, area, boundary);
     depth.prepareRows(a, b, c);
-    const double keyPerPixel = depth.perPixelX();
-    constexpr std::uint32_t kRow = (1u << kSmallSide) - 1;
-    for (int y = 0; mask != 0; ++y, mask >>= kSmallSide) {
-      if ((mask & kRow) == 0) continue;
-      const std::int64_t rowY = sampleY + std::int64_t{y} * kSubpixelScale;
-      double key = depth.at(sampleX, rowY);
-      const std::size_t row = static_cast<std::size_t>(box.y0 + y) * planes.width + box.x0;
-      int x = 0;
-      for (std::uint32_t columns = mask & kRow; columns != 0; columns &= columns - 1) {
-        const int next = std::countr_zero(columns);
-        for (; x < next; ++x)
-          key += keyPerPixel;
-        double refined = key;
-        if constexpr (kRefine) {
-          std::int64_t snapped[3];
-          for (int k = 0; k < 3; ++k)
-            snapped[k] = value[k] + next * stepX[k] + y * stepY[k] + bias[k];
-          refined = depth.refine(key, sampleX + std::int64_t{next} * kSubpixelScale, rowY, snapped);
-        }
-        writeFragment<kMode>(row + next, toDepthKey(refined), polygonId, planes, counts);
-      }
-    }
+    const auto rowKey = [&](int y) {
+      return depth.at(sampleX, sampleY + std::int64_t{y} * kSubpixelScale);
+    };
+    const auto refine = [&](double key, int x, int y) {
+      if constexpr (!kRefine) return key;
+      std::int64_t snapped[3];
+      for (int k = 0; k < 3; ++k)
+        snapped[k] = value[k] + x * stepX[k] + y * stepY[k] + bias[k];
+      return depth.refine(key, sampleX + std::int64_t{x} * kSubpixelScale,
+                          sampleY + std::int64_t{y} * kSubpixelScale, snapped);
+    };
+    paintSmallMask<kMode>(mask, box.x0, box.y0, depth.perPixelX(), rowKey, refine, polygonId,
+                          planes, counts);
   }
 
   PixelBounds box;
@@ -418,6 +454,9 @@ struct SmallBox {
   // the top-left edges, as Edge; its steps to the next sample right and up.
   std::int32_t value[3], stepX[3], stepY[3], bias[3];
 };
+
+// A SmallTriangle's first row starts this many fine units after the previous one.
+constexpr std::int32_t kFinePerRow = kSubpixelScale * kResidueScale;
 
 // Below this many samples in its box a triangle is cheaper to depth-test pixel by pixel than
 // to test against the coarse depth first.
@@ -487,6 +526,49 @@ template <DepthMode kMode, bool kRejectHidden>
 }
 
 }  // namespace
+
+template <DepthMode kMode>
+void paintSmallTriangle(const SmallTriangle& t, const Planes& planes, PaintCounts& counts) {
+  const auto rowKey = [&t](int y) {
+    return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
+  };
+  const auto sameKey = [](double key, int, int) { return key; };
+  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
+                        counts);
+}
+
+std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
+                                             const WindowVertex& c, EdgeMask boundary,
+                                             const PixelBounds& tile, std::int32_t polygonId) {
+  const std::int64_t area = doubleSignedArea(a, b, c);
+  const GridBox extent = gridBoxOf(a, b, c);
+  const PixelBounds box = samplesInGridBox(extent, tile);
+  if (area <= 0 || box.empty() || box.area() < 2 || box.area() >= kSmallSide * kSmallSide ||
+      !fitsSmallPath(extent, box)) {
+    return std::nullopt;
+  }
+  const SmallBox edges(a, b, c, box);
+  const std::uint32_t coverage = edges.coverage();
+  for (int k = 0; k < 3; ++k) {  // every covered sample surely inside the boundary edges
+    if (!((boundary >> k) & 1u)) continue;
+    const std::int64_t bound = surelyInsideBound(a, b, c, k);
+    for (std::uint32_t rest = coverage; rest != 0; rest &= rest - 1) {
+      const int x = std::countr_zero(rest) % kSmallSide, y = std::countr_zero(rest) / kSmallSide;
+      const std::int64_t snapped =
+          std::int64_t{edges.value[k]} + x * edges.stepX[k] + y * edges.stepY[k] + edges.bias[k];
+      if (snapped < bound) return std::nullopt;
+    }
+  }
+  SmallTriangle small;
+  TriangleDepth depth(a, b, c, area, 0);  // the plane without refine(): the same
+  depth.prepareRows(a, b, c);
+  depth.stepsFrom(edges.sampleX, edges.sampleY, small);
+  small.polygon = polygonId;
+  small.x0 = static_cast<std::uint16_t>(box.x0);
+  small.y0 = static_cast<std::uint16_t>(box.y0);
+  small.coverage = static_cast<std::uint16_t>(coverage);
+  return small;
+}
 
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                      const PixelBounds& box, const Planes& planes) {
@@ -660,6 +742,10 @@ template void paintTriangleWalkingBox<DepthMode::Overwrite>(const WindowVertex&,
                                                             const WindowVertex&, EdgeMask,
                                                             std::int32_t, const PixelBounds&,
                                                             const Planes&, PaintCounts&);
+template void paintSmallTriangle<DepthMode::Test>(const SmallTriangle&, const Planes&,
+                                                  PaintCounts&);
+template void paintSmallTriangle<DepthMode::Overwrite>(const SmallTriangle&, const Planes&,
+                                                       PaintCounts&);
 template void paintTriangle<DepthMode::Overwrite, false>(const WindowVertex&, const WindowVertex&,
                                                          const WindowVertex&, EdgeMask,
                                                          std::int32_t, const PixelBounds&,

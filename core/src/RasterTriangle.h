@@ -138,7 +138,9 @@ class CoarseDepth {
 };
 
 // Writes one fragment of `polygonId` at pixel i if it passes the depth test: strictly nearer
-// (a larger key), so an exact tie keeps the polygon drawn first.
+// (a larger key), so an exact tie keeps the polygon painted first. A tile paints every front
+// face before any back face (Raster.cpp, Chunk::backBins), each facing in draw order: an
+// exact tie keeps the front face; among polygons facing the same way, the one drawn first.
 template <DepthMode kMode>
 void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
                    PaintCounts& counts) {
@@ -162,13 +164,54 @@ bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowV
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
 // (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
 // says, which needs the triangle's polygon-boundary edges. DepthMode::Test keeps the nearest
-// fragment (strictly greater key: an exact tie keeps the polygon drawn first); DepthMode::Overwrite
-// is painter's order. kRejectHidden (depth test only): a triangle of a few samples that
-// losesEverywhere is skipped before its depth plane is set up; the same pixels.
+// fragment (strictly greater key: an exact tie keeps the fragment painted first, writeFragment);
+// DepthMode::Overwrite is painter's order. kRejectHidden (depth test only): a triangle of a few
+// samples that losesEverywhere is skipped before its depth plane is set up; the same pixels.
 template <DepthMode kMode, bool kRejectHidden = false>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);
+
+// The small-box path (RasterTriangle.cpp): boxes of at most kSmallSide × kSmallSide samples.
+inline constexpr int kSmallSide = 4;
+
+// A triangle set up whole by the set-up's lanes (SetupBatch.cpp): one whose box of pixel
+// centers lies in one tile and is at most kSmallSide × kSmallSide less one sample, and whose
+// covered samples all take the stepped key (with polygon-boundary edges, every face drawn:
+// each is surely inside them, smallTriangleOf), so that the tile paints it from this record
+// alone, read in sequence, without its three scattered vertices or any set-up of its own
+// (paintSmallTriangle: the same pixels and keys as paintTriangle). The full 4 × 4 box is
+// left to the tiles: with the coarse depth on, it meets the coarse depth there.
+struct SmallTriangle {
+  // The depth plane as TriangleDepth (RasterTriangle.cpp) steps it: the key at the box's
+  // first sample is firstKey + keyPerFine · (firstRowFine + y · kSubpixelScale · kResidueScale)
+  // for row y (in this order of operations: the key TriangleDepth::at gives), stepped by
+  // keyPerPixel along the row.
+  // firstRowFine is in fine units from the plane's origin (vertex a, unsnapped or snapped):
+  // the sample lies in the bounding box, below 2^14 grid steps across, so it is below
+  // 2^14 · kResidueScale + 2^7 < 2^22.1, and the fourth row's below 2^22.3.
+  double firstKey, keyPerFine, keyPerPixel;
+  std::int32_t firstRowFine;
+  std::int32_t polygon;
+  std::uint16_t x0, y0;  // the box's first pixel
+  // The samples the triangle covers, bit y·kSmallSide + x for the pixel (x0 + x, y0 + y): its
+  // box's, by the fill rule (SmallBox::coverage).
+  std::uint16_t coverage;
+};
+
+// Paints a SmallTriangle: paintTriangle<kMode>'s pixels, keys and counts for the triangle the
+// set-up made it from.
+template <DepthMode kMode>
+void paintSmallTriangle(const SmallTriangle& triangle, const Planes& planes, PaintCounts& counts);
+
+// The SmallTriangle of a counter-clockwise triangle over its samples in `tile`, as the set-up's
+// lanes make it; nothing when its box there is not a small one of 2 to kSmallSide² − 1
+// samples, or when a covered sample is not surely inside a polygon-boundary edge (`boundary`)
+// by TriangleDepth::refine's bound (there refine may take another key than the stepped one).
+// The reference for the set-up's records (tests).
+std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
+                                             const WindowVertex& c, EdgeMask boundary,
+                                             const PixelBounds& tile, std::int32_t polygonId);
 
 // paintTriangle without its small-box path (RasterTriangle.cpp): every box of two or more
 // samples walked row by row in 64-bit edge functions. The reference the small-box path is

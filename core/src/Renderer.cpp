@@ -105,8 +105,8 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
   }
   stats.transformSeconds = runner.lap();
 
-  const detail::SetupContext setupContext{meshes, *transform, vertices.data(),
-                                          order,  grid,       polygons.backFacing.data()};
+  const detail::SetupContext setupContext{
+      meshes, *transform, vertices.data(), order, grid, polygons.backFacing.data(), plan.depthTest};
   completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
   stats.setupSeconds = runner.lap();
 

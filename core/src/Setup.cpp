@@ -207,6 +207,7 @@ class PolygonSetup {
   // the viewer sees.
   template <class AddTriangles>
   void emit(bool back, const AddTriangles& addTriangles) {
+    last_ = back && context_.backFacesLast;
     Tally tally;
     addTriangles(tally);
     if (tally.binned == 0) {
@@ -226,10 +227,16 @@ class PolygonSetup {
   void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
     const bool back = (verdicts.clockwise >> lane) & 1u;
+    const bool last = back && context_.backFacesLast;
     const auto& samples = verdicts.samples;
     const std::size_t tile = static_cast<std::size_t>(verdicts.tile[lane]);
     if ((verdicts.fragment >> lane) & 1u) {
-      binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId);
+      binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
+                  last);
+    } else if ((verdicts.small >> lane) & 1u) {
+      binSmall(chunk_, tile,
+               {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
+               smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).
       const auto reference = [&](std::size_t corner) {
@@ -238,7 +245,7 @@ class PolygonSetup {
       binCovering(
           chunk_, context_.grid, reference(0), reference(back ? 2 : 1), reference(back ? 1 : 2),
           {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
-          polygonId, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
+          polygonId, last, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
     countDrawn(polygonId, back, 1);
   }
@@ -317,7 +324,8 @@ class PolygonSetup {
             const WindowVertex& b, const WindowVertex& c, std::int64_t area, EdgeMask boundary,
             Tally& tally) {
     const EdgeMask edges = kSkipBackFaces ? EdgeMask{0} : boundary;
-    switch (binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_)) {
+    switch (
+        binTriangle(chunk_, context_.grid, r0, r1, r2, a, b, c, area, edges, polygonId_, last_)) {
       case BinOutcome::ZeroArea:
         ++tally.zeroArea;
         break;
@@ -346,6 +354,7 @@ class PolygonSetup {
   const WindowVertex* meshVertices_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
+  bool last_ = false;  // the polygon's triangles join the back bins (Chunk::binsFor)
 };
 
 // The mesh a global polygon id belongs to.
@@ -467,7 +476,8 @@ bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads
                                     [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
   // Here, on the caller's thread, before any tile reads a wrapped index.
   for (const Chunk& chunk : buffers.chunks)
-    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.clippedVertices.size());
+    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
+                     chunk.clippedVertices.size());
   return completed;
 }
 

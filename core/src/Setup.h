@@ -22,6 +22,9 @@ struct SetupContext {
   const DrawOrder& order;
   const TileGrid& grid;
   std::uint8_t* backFacing;  // out, per polygon id: set for every polygon drawn
+  // The depth test is on: back-facing polygons are binned in the chunks' backBins, which the
+  // tiles paint after the front faces (Chunk::backBins); painter's order keeps one order.
+  bool backFacesLast;
 };
 
 // The set-up's chunks (its output) and their ranges.

@@ -89,6 +89,85 @@ struct FewSamples {
   M square, wide;
 };
 
+// SmallBox::coverage (RasterTriangle.cpp) of boxes of (width + 1) × (height + 1) centers, at
+// most 4 × 4: bit y·4 + x where center (x, y) of the box is inside all three edges (their
+// biased values, ≥ 0 by the fill rule). The same integers: a sample's edge function is the
+// same whatever the origin of the coordinates, and the centers tested lie in the box, where
+// the range above holds (the last steps go at most 4 · 2^8 beyond it, into 2^29.3 still).
+// `unsure` (kSure): the covered centers where a biased edge value is below sureFrom (a
+// center there may not be surely inside a boundary edge: smallTriangleOf). Only the rows and
+// columns some lane of `small` has are visited; a center beyond a lane's box is not covered.
+template <bool kSure>
+struct BoxCoverage {
+  V covered, unsure;
+  BoxCoverage(D d, M small, const EdgeLanes (&e)[3], V width, V height, const V (&sureFrom)[3]) {
+    const int columns = hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElseZero(small, width))) + 1;
+    const int rows = hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElseZero(small, height))) + 1;
+    V outside = hn::Zero(d), notSure = hn::Zero(d);
+    V row[3] = {e[0].value, e[1].value, e[2].value};
+    for (int y = 0; y < rows; ++y) {
+      V at[3] = {row[0], row[1], row[2]};
+      for (int x = 0; x < columns; ++x) {
+        // A bit per center: the sign of a value (all ones when negative, by the shift).
+        const V bit = hn::Set(d, 1 << (4 * y + x));
+        outside = outside | hn::And(hn::ShiftRight<31>(at[0] | at[1] | at[2]), bit);
+        if constexpr (kSure) {
+          const V margin = (at[0] - sureFrom[0]) | (at[1] - sureFrom[1]) | (at[2] - sureFrom[2]);
+          notSure = notSure | hn::And(hn::ShiftRight<31>(margin), bit);
+        }
+        for (int k = 0; k < 3; ++k)
+          at[k] = at[k] + e[k].stepX;
+      }
+      for (int k = 0; k < 3; ++k)
+        row[k] = row[k] + e[k].stepY;
+    }
+    // The box's centers: (width + 1) bits in each of (height + 1) rows of 4 (the shift in
+    // range in every lane: other lanes' widths may be anything).
+    const V zero = hn::Zero(d);
+    const V rowBits = (hn::Set(d, 2) << hn::IfThenElseZero(small, width)) - hn::Set(d, 1);
+    const V box = rowBits | hn::IfThenElseZero(height > zero, hn::ShiftLeft<4>(rowBits)) |
+                  hn::IfThenElseZero(height > hn::Set(d, 1), hn::ShiftLeft<8>(rowBits)) |
+                  hn::IfThenElseZero(height > hn::Set(d, 2), hn::ShiftLeft<12>(rowBits));
+    covered = hn::AndNot(outside, box);
+    unsure = hn::And(notSure, covered);
+  }
+};
+
+// For a boundary edge p → q: the biased value from which a sample is surely inside it,
+// TriangleDepth::refine's bound (surelyInsideBound, RasterTriangle.cpp: the unbiased value
+// must reach ⌊(|dx| + |dy| + 1)/2⌋ + extent + 2, extent the width plus the height of the
+// bounding box; below 2^16) less the edge's bias. A biased value less this is below 2^30.
+V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
+  const V bound =
+      hn::ShiftRight<1>(hn::Abs(dx) + hn::Abs(dy) + hn::Set(d, 1)) + extent + hn::Set(d, 2);
+  return bound - (edge.exact - edge.value);
+}
+
+// The coverage of the small lanes (SetupBatch.h; b and c relative to a, the first center
+// relative to a, the box in centers less one, `extent` the bounding box's width plus height),
+// stored to `coverage`; with boundary edges (a triangle polygon's three), a lane some covered
+// center of which is not surely inside them is left to the tile (without, every center is
+// sure): the lanes that stay small. Out of line: most batches of a dense mesh have none, and
+// inlined it cost their lanes 4 % more instructions (8M triangles).
+HWY_NOINLINE M smallLanes(D d, M small, V ux, V uy, V vx, V vy, V firstX, V firstY, V width,
+                          V height, V extent, bool boundaryEdges, std::int32_t* coverage) {
+  const V zero = hn::Zero(d);
+  const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
+                                 EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
+                                 EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
+  if (boundaryEdges) {
+    const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
+                       sureFrom(d, zero - vx, zero - vy, extent, boxEdges[1]),
+                       sureFrom(d, ux, uy, extent, boxEdges[2])};
+    const BoxCoverage<true> box(d, small, boxEdges, width, height, sure);
+    hn::Store(box.covered, d, coverage);
+    return hn::And(small, box.unsure == zero);
+  }
+  hn::Store(BoxCoverage<false>(d, small, boxEdges, width, height, {zero, zero, zero}).covered, d,
+            coverage);
+  return small;
+}
+
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
 V ceilToPixel(D d, V v) {
   return hn::Zero(d) - hn::ShiftRight<kSubpixelBits>(hn::Zero(d) - v);
@@ -121,6 +200,9 @@ struct VertexLanes {
 struct KeyInputs {
   alignas(64) std::int32_t bx[kBatchSize], by[kBatchSize], cx[kBatchSize], cy[kBatchSize];
   alignas(64) std::int32_t sx[kBatchSize], sy[kBatchSize];
+  // The same in grid steps, without residues (the snapped plane's).
+  alignas(64) std::int32_t gridBx[kBatchSize], gridBy[kBatchSize], gridCx[kBatchSize],
+      gridCy[kBatchSize], gridSx[kBatchSize], gridSy[kBatchSize];
   alignas(64) std::int32_t edge1[kBatchSize], edge2[kBatchSize], area[kBatchSize];
   alignas(64) float keyA[kBatchSize], keyB[kBatchSize], keyC[kBatchSize];
 };
@@ -135,7 +217,8 @@ V toFine(V grid, V residue) {
 // is exact for boxes of at most 4 pixel centers (samplesInBoundingBox, coversAnySample)
 // and assumed true for larger ones; a kept triangle whose box holds one center is a fragment.
 void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const TileGrid& grid,
-                   bool skipBackFaces, BatchVerdicts& verdicts, KeyInputs& keys) {
+                   bool skipBackFaces, bool boundaryEdges, BatchVerdicts& verdicts,
+                   KeyInputs& keys) {
   const PixelBounds viewport = grid.viewport();
   const V zero = hn::Zero(d);
   const VertexLanes a(d, batch.v[0] + lane), b0(d, batch.v[1] + lane), c0(d, batch.v[2] + lane);
@@ -204,12 +287,31 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   // of a kept lane are in the viewport: not negative).
   const V tileX = hn::ShiftRight<kTileBits>(x0), tileY = hn::ShiftRight<kTileBits>(y0);
   hn::Store(tileY * hn::Set(d, grid.tilesX()) + tileX, d, verdicts.tile + lane);
-  verdicts.oneTile |= laneBits(d, hn::And(tileX == hn::ShiftRight<kTileBits>(x1),
-                                          tileY == hn::ShiftRight<kTileBits>(y1)))
-                      << lane;
-  if (fragments == 0) return;
+  const M oneTile =
+      hn::And(tileX == hn::ShiftRight<kTileBits>(x1), tileY == hn::ShiftRight<kTileBits>(y1));
+  verdicts.oneTile |= laneBits(d, oneTile) << lane;
+  // SmallTriangle records (SetupBatch.h): boxes of 2 to 15 centers, at most 4 on a side.
+  const V three = hn::Set(d, 3);
+  const M smallBox =
+      hn::AndNot(hn::And(width == three, height == three), hn::And(width < four, height < four));
+  M small = hn::And(hn::AndNot(single, kept), hn::And(oneTile, smallBox));
+  const bool anySmall = !hn::AllFalse(d, small);
+  if (fragments == 0 && !anySmall) return;
 
-  // The fragments' keys' inputs, b and c (and their residues and keys) swapped as above.
+  // The first center of a kept lane's box, relative to a: in its bounding box, so below 2^14
+  // in magnitude (the edges' 32-bit range above holds).
+  const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
+  const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
+  if (anySmall) {
+    small = smallLanes(d, small, ux, uy, vx, vy, firstX, firstY, width, height,
+                       (maxX - minX) + (maxY - minY), boundaryEdges,
+                       verdicts.smallPlane.coverage + lane);
+  }
+  const std::uint32_t smalls = laneBits(d, small) << lane;
+  verdicts.small |= smalls;
+  if ((fragments | smalls) == 0) return;
+
+  // The keys' and planes' inputs, b and c (and their residues and keys) swapped as above.
   const V bResidueX = hn::IfThenElse(clockwise, c0.residueX(), b0.residueX());
   const V bResidueY = hn::IfThenElse(clockwise, c0.residueY(), b0.residueY());
   const V cResidueX = hn::IfThenElse(clockwise, b0.residueX(), c0.residueX());
@@ -219,8 +321,16 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   hn::Store(toFine(uy, bResidueY - aResidueY), d, keys.by + lane);
   hn::Store(toFine(vx, cResidueX - aResidueX), d, keys.cx + lane);
   hn::Store(toFine(vy, cResidueY - aResidueY), d, keys.cy + lane);
-  hn::Store(toFine(sx, zero - aResidueX), d, keys.sx + lane);
-  hn::Store(toFine(sy, zero - aResidueY), d, keys.sy + lane);
+  hn::Store(toFine(firstX, zero - aResidueX), d, keys.sx + lane);  // sx in fragment lanes
+  hn::Store(toFine(firstY, zero - aResidueY), d, keys.sy + lane);
+  if (smalls != 0) {
+    hn::Store(ux, d, keys.gridBx + lane);
+    hn::Store(uy, d, keys.gridBy + lane);
+    hn::Store(vx, d, keys.gridCx + lane);
+    hn::Store(vy, d, keys.gridCy + lane);
+    hn::Store(firstX, d, keys.gridSx + lane);
+    hn::Store(firstY, d, keys.gridSy + lane);
+  }
   hn::Store(edges[1].exact, d, keys.edge1 + lane);
   hn::Store(edges[2].exact, d, keys.edge2 + lane);
   hn::Store(hn::Abs(signedArea), d, keys.area + lane);
@@ -268,14 +378,51 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
   hn::Store(hn::DemoteTo(df, hn::Min(hn::Max(key, hn::Neg(largest)), largest)), df, keys + lane);
 }
 
+// A SmallTriangle's depth plane (RasterTriangle.cpp: TriangleDepth's constructor,
+// prepareRows and stepsFrom; the boundary edges change only refine(), which a record's
+// samples do not need) for the lanes from `lane` on: the unsnapped plane where the fine area
+// is positive, else the snapped one. Every difference of positions is an exact integer in
+// double (below 2^23), so only the operations that round follow the scalar order.
+void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, BatchVerdicts& verdicts) {
+  const hn::Rebind<std::int32_t, DD> di;
+  const hn::Rebind<float, DD> df;
+  const auto load = [&](const std::int32_t* p) {
+    return hn::PromoteTo(dd, hn::Load(di, p + lane));
+  };
+  const VD toFine = hn::Set(dd, kResidueScale);
+  const auto fineOr = [&](auto unsnapped, const std::int32_t* fine, const std::int32_t* grid) {
+    return hn::IfThenElse(unsnapped, load(fine), load(grid) * toFine);  // exact integers
+  };
+  const VD fineArea = load(in.bx) * load(in.cy) - load(in.by) * load(in.cx);
+  const auto unsnapped = fineArea > hn::Zero(dd);
+  const VD bx = fineOr(unsnapped, in.bx, in.gridBx), by = fineOr(unsnapped, in.by, in.gridBy);
+  const VD cx = fineOr(unsnapped, in.cx, in.gridCx), cy = fineOr(unsnapped, in.cy, in.gridCy);
+  const VD sx = fineOr(unsnapped, in.sx, in.gridSx), sy = fineOr(unsnapped, in.sy, in.gridSy);
+  const VD one = hn::Set(dd, 1.0);
+  const VD finePerGrid2 = hn::Set(dd, double{kResidueScale} * kResidueScale);
+  const VD inverse =
+      hn::IfThenElse(unsnapped, one / fineArea, one / (load(in.area) * finePerGrid2));
+  const VD keyA = hn::PromoteTo(dd, hn::Load(df, in.keyA + lane));
+  const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
+  const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
+  const VD perX = (dk1 * cy - dk2 * by) * inverse;
+  const VD perY = (dk2 * bx - dk1 * cx) * inverse;
+  auto& out = verdicts.smallPlane;
+  hn::Store(keyA + perX * sx, dd, out.firstKey + lane);
+  hn::Store(perY, dd, out.keyPerFine + lane);
+  hn::Store(perX * hn::Set(dd, kSubpixelScale) * toFine, dd, out.keyPerPixel + lane);
+  hn::Store(hn::DemoteTo(di, sy), di, out.firstRowFine + lane);
+}
+
 void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts) {
   const D d;
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
   verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
+  verdicts.small = 0;
   KeyInputs keys;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
-    classifyLanes(d, batch, lane, grid, skipBackFaces, verdicts, keys);
+    classifyLanes(d, batch, lane, grid, skipBackFaces, boundaryEdges, verdicts, keys);
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
@@ -284,6 +431,7 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
     if ((verdicts.fragment >> lane) & laneMask)
       keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
+    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, verdicts);
   }
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "FrameTransform.h"
+#include "RasterTriangle.h"
 #include "TileGrid.h"
 
 namespace facet::detail {
@@ -55,6 +56,10 @@ struct BatchVerdicts {
   std::uint32_t clockwise = 0;
   // Kept lanes whose box overlaps one tile, tile[l].
   std::uint32_t oneTile = 0;
+  // Triangle lanes set up whole, as SmallTriangle (RasterTriangle.h) records: in one tile,
+  // 2 to kSmallSide² − 1 centers in a box at most kSmallSide on each side, and with
+  // polygon-boundary edges every covered center surely inside them (smallTriangleOf).
+  std::uint32_t small = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   // Per kept lane: the pixel centers of its box, clipped to the viewport (inclusive).
   struct {
@@ -62,9 +67,31 @@ struct BatchVerdicts {
   } samples;
   alignas(64) std::int32_t tile[kBatchSize];  // per kept lane: the tile of its first center
   alignas(64) float key[kBatchSize];          // per fragment lane
+  // Per small lane: its SmallTriangle's depth plane and coverage.
+  struct {
+    alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
+    alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
+  } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
   std::uint32_t kept() const { return fragment | triangle; }
 };
+
+// The SmallTriangle record of a small lane (BatchVerdicts::small) of polygon `polygonId`.
+inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane,
+                                         std::int32_t polygonId) {
+  const auto& plane = verdicts.smallPlane;
+  const auto& samples = verdicts.samples;
+  SmallTriangle t;
+  t.firstKey = plane.firstKey[lane];
+  t.keyPerFine = plane.keyPerFine[lane];
+  t.keyPerPixel = plane.keyPerPixel[lane];
+  t.firstRowFine = plane.firstRowFine[lane];
+  t.polygon = polygonId;
+  t.x0 = static_cast<std::uint16_t>(samples.x0[lane]);
+  t.y0 = static_cast<std::uint16_t>(samples.y0[lane]);
+  t.coverage = static_cast<std::uint16_t>(plane.coverage[lane]);
+  return t;
+}
 
 // The verdicts for the tiles' viewport and the mesh's back-face handling (`boundaryEdges`:
 // the depth keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's

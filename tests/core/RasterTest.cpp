@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "../support/SquarePlanes.h"
 #include "../support/TestMeshes.h"
@@ -58,7 +59,8 @@ std::size_t differingKeysOrIds(const Planes32& small, const Planes32& walked) {
 // tile's corner cuts them: they go to the walk), painted into a tile that is not at the
 // image's origin, in runs of 200 (the planes compared, then cleared). The same keys, ids and
 // counts, with and without the depth test, and with the depth test and the reject of hidden
-// triangles (losesEverywhere) too.
+// triangles (losesEverywhere) too; and through SmallTriangle records (smallTriangleOf,
+// paintSmallTriangle: what the set-up's lanes hand the tiles) for the triangles that have one.
 template <detail::DepthMode kMode>
 void compareSmallBoxPath(unsigned seed) {
   std::mt19937 random(seed);
@@ -66,8 +68,8 @@ void compareSmallBoxPath(unsigned seed) {
       residue(-127, 127), polygon(0, 99), kind(0, 9), mask(0, 13);
   std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
   const PixelBounds tile{8, 4, 27, 23};
-  Painted small, walked, rejecting;
-  std::size_t painted = 0, slivers = 0, differing = 0;
+  Painted small, walked, rejecting, recorded;
+  std::size_t painted = 0, slivers = 0, records = 0, differing = 0;
   for (int t = 0; t < 40000; ++t) {
     WindowVertex v[3];
     const bool sliver = kind(random) == 0;
@@ -97,21 +99,33 @@ void compareSmallBoxPath(unsigned seed) {
         detail::paintTriangle<kMode, true>(v[0], v[1], v[2], boundary, id, tile,
                                            rejecting.planes.planes(), rejecting.counts);
       }
+      const auto record = detail::smallTriangleOf(v[0], v[1], v[2], boundary, tile, id);
+      if (record) {
+        detail::paintSmallTriangle<kMode>(*record, recorded.planes.planes(), recorded.counts);
+      } else {
+        detail::paintTriangle<kMode>(v[0], v[1], v[2], boundary, id, tile, recorded.planes.planes(),
+                                     recorded.counts);
+      }
       ++painted;
+      records += record.has_value();
       slivers += sliver;
     }
     if (t % 200 == 199) {
       differing += differingKeysOrIds(small.planes, walked.planes);
+      differing += differingKeysOrIds(recorded.planes, walked.planes);
       if (kMode == detail::DepthMode::Test)
         differing += differingKeysOrIds(rejecting.planes, walked.planes);
-      small.planes = walked.planes = rejecting.planes = Planes32{};
+      small.planes = walked.planes = rejecting.planes = recorded.planes = Planes32{};
     }
   }
   EXPECT_GT(painted, 35000u);
   EXPECT_GT(slivers, 3000u);
+  EXPECT_GT(records, 4000u);
   EXPECT_GT(walked.counts.written, 20000u);
   EXPECT_EQ(small.counts.written, walked.counts.written);
   EXPECT_EQ(small.counts.covered, walked.counts.covered);
+  EXPECT_EQ(recorded.counts.written, walked.counts.written);
+  EXPECT_EQ(recorded.counts.covered, walked.counts.covered);
   if (kMode == detail::DepthMode::Test) {
     EXPECT_EQ(rejecting.counts.written, walked.counts.written);
     EXPECT_EQ(rejecting.counts.covered, walked.counts.covered);
@@ -153,6 +167,77 @@ TEST(Raster, ShownPolygonsAreThoseOfTheFinalImage) {
           << "polygon " << id;
     }
     EXPECT_EQ(flagged, 36u) << "the nearest square's 6 × 6 cells";
+  }
+}
+
+// Pairs of triangles on the same points (each its own copy: the mesh is open, so every face is
+// drawn), one facing the viewer and one its back, in the plane z = 0 that a parallel camera
+// sees square on: every key of both is the same, an exact tie at every pixel they cover. Sizes
+// from below a pixel (fragments) to 40 pixels (triangles over several tiles); `backFirst`
+// lists each pair's back face first. Returns the mesh and, per polygon id, whether it faces
+// the viewer.
+std::pair<Mesh, std::vector<bool>> tiedPairs(bool backFirst) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> x(2.0, 190.0), y(2.0, 126.0), size(0.3, 40.0),
+      corner(-1.0, 1.0);
+  Mesh mesh;
+  std::vector<bool> front;
+  for (int pair = 0; pair < 300; ++pair) {
+    const glm::dvec3 center{x(random), y(random), 0.0};
+    const double s = size(random);
+    glm::dvec3 corners[3];
+    for (glm::dvec3& c : corners)
+      c = center + glm::dvec3{s * corner(random), s * corner(random), 0.0};
+    const glm::dvec3 normal = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
+    if (normal.z < 0.0) std::swap(corners[1], corners[2]);  // counter-clockwise: the front
+    for (const bool isFront : {!backFirst, backFirst}) {
+      const std::int64_t a = mesh.addPoint(corners[0]);
+      const std::int64_t b = mesh.addPoint(corners[isFront ? 1 : 2]);
+      const std::int64_t c = mesh.addPoint(corners[isFront ? 2 : 1]);
+      mesh.addPolygon({a, b, c});
+      front.push_back(isFront);
+    }
+  }
+  return {std::move(mesh), std::move(front)};
+}
+
+// With the depth test an exact tie keeps the front face, whichever of the two was listed
+// first (RasterTriangle.h, writeFragment): the back faces are painted after every front face
+// of the tile. The same bytes for 1, 2 and 8 threads.
+TEST(Raster, AnExactDepthTieKeepsTheFrontFaceInEitherOrder) {
+  const Camera camera = pixelCamera(192, 128);
+  for (const bool backFirst : {false, true}) {
+    SCOPED_TRACE(backFirst ? "back faces listed first" : "front faces listed first");
+    const auto [mesh, front] = tiedPairs(backFirst);
+    const Scene scene = oneMeshScene(mesh.view());
+    std::vector<std::byte> oneThread;  // color, depth and id planes
+    for (const int threads : {1, 2, 8}) {
+      SCOPED_TRACE(std::to_string(threads) + " threads");
+      Renderer renderer;
+      renderer.setThreadCount(threads);
+      Framebuffer framebuffer(192, 128);
+      const RenderStats stats = renderer.render(scene, camera, framebuffer);
+      ASSERT_EQ(stats.polygonsCulled, 0u) << "the premise: every face drawn";
+      std::size_t covered = 0, backShown = 0;
+      for (const std::int32_t id : framebuffer.polygonId()) {
+        if (id == Framebuffer::kBackgroundId) continue;
+        ++covered;
+        backShown += !front[static_cast<std::size_t>(id)];
+      }
+      EXPECT_GT(covered, 5000u);
+      EXPECT_EQ(backShown, 0u) << "pixels showing a back face, of " << covered;
+      std::vector<std::byte> bytes;
+      for (const std::span<const std::byte> plane :
+           {std::as_bytes(framebuffer.color()), std::as_bytes(framebuffer.depth()),
+            std::as_bytes(framebuffer.polygonId())}) {
+        bytes.insert(bytes.end(), plane.begin(), plane.end());
+      }
+      if (threads == 1) {
+        oneThread = std::move(bytes);
+      } else {
+        EXPECT_TRUE(bytes == oneThread) << "not the bytes of one thread";
+      }
+    }
   }
 }
 

@@ -140,6 +140,33 @@ int verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
   return verdict;
 }
 
+// Whether two SmallTriangle records are the same, every value to the bit.
+bool sameRecord(const detail::SmallTriangle& a, const detail::SmallTriangle& b) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  return bits(a.firstKey) == bits(b.firstKey) && bits(a.keyPerFine) == bits(b.keyPerFine) &&
+         bits(a.keyPerPixel) == bits(b.keyPerPixel) && a.firstRowFine == b.firstRowFine &&
+         a.polygon == b.polygon && a.x0 == b.x0 && a.y0 == b.y0 && a.coverage == b.coverage;
+}
+
+// A kept triangle lane's SmallTriangle: made exactly when smallTriangleOf makes one from the
+// triangle (counter-clockwise, with its three boundary edges unless back faces are skipped)
+// and the tile of its box, when that is its only tile; then the same, bit for bit.
+bool smallRecordRight(const detail::BatchVerdicts& verdicts, int lane, const WindowVertex (&v)[3],
+                      const detail::TileGrid& grid, bool skipBackFaces, std::size_t& records) {
+  const bool clockwise = (verdicts.clockwise >> lane) & 1u;
+  const bool oneTile = (verdicts.oneTile >> lane) & 1u;
+  const std::optional<detail::SmallTriangle> expected =
+      oneTile
+          ? detail::smallTriangleOf(v[0], v[clockwise ? 2 : 1], v[clockwise ? 1 : 2],
+                                    skipBackFaces ? detail::EdgeMask{0} : detail::kAllEdges,
+                                    grid.bounds(static_cast<std::size_t>(verdicts.tile[lane])), 7)
+          : std::nullopt;
+  const bool made = (verdicts.small >> lane) & 1u;
+  if (made != expected.has_value()) return false;
+  records += made;
+  return !made || sameRecord(detail::smallTriangleOfLane(verdicts, lane, 7), *expected);
+}
+
 TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
   const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
   const PixelBounds viewport = grid.viewport();
@@ -149,7 +176,7 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
     SCOPED_TRACE(target.name);
     use(target);
     for (bool skipBackFaces : {false, true}) {
-      std::size_t mismatches = 0, counts[6] = {};
+      std::size_t mismatches = 0, counts[6] = {}, records = 0;
       for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
         TriangleBatch batch{};
         for (int lane = 0; lane < kBatchSize; ++lane) {
@@ -191,6 +218,10 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
           if (right && verdict == kFragment)
             right = std::bit_cast<std::uint32_t>(verdicts.key[lane]) ==
                     std::bit_cast<std::uint32_t>(exact.key);
+          // A small box's record, made from the same triangle.
+          if (right && verdict == kTriangle)
+            right = smallRecordRight(verdicts, lane, v, grid, skipBackFaces, records);
+          right = right && (verdict == kTriangle || ((verdicts.small >> lane) & 1u) == 0);
           if (!right && ++mismatches <= 5) {
             ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << ") (" << v[1].x << ","
                           << v[1].y << ") (" << v[2].x << "," << v[2].y << "), triangle "
@@ -204,6 +235,7 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
         }
       }
       EXPECT_EQ(mismatches, 0u);
+      EXPECT_GT(records, triangles / 200) << "small records met too seldom";
       // Every kind is met (culled only when back faces are skipped).
       for (int k = kUntested; k <= kTriangle; ++k) {
         if (k == kCulled && !skipBackFaces) {
@@ -318,16 +350,16 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
   expectSameRenders(cases, targets());
 }
 
-// A bin entry's 31 bits of index (Binning.h): at the limit the set-up throws facet::Error
-// naming the count rather than bin an index that wrapped into the fragment bit.
+// A bin entry's 30 bits of index (Binning.h): at the limit the set-up throws facet::Error
+// naming the count rather than bin an index that wrapped into the kind bits.
 TEST(Binning, ChunksBeyondTheBinIndexThrowNamingTheCount) {
   const std::size_t limit = detail::kMaxBinnedPerChunk;
-  EXPECT_NO_THROW(detail::requireIndexable(limit - 1, limit - 1, limit - 1));
-  for (int which = 0; which < 3; ++which) {
-    const std::size_t counts[3] = {which == 0 ? limit : 0, which == 1 ? limit : 0,
-                                   which == 2 ? limit : 0};
+  EXPECT_NO_THROW(detail::requireIndexable(limit - 1, limit - 1, limit - 1, limit - 1));
+  for (int which = 0; which < 4; ++which) {
+    const std::size_t counts[4] = {which == 0 ? limit : 0, which == 1 ? limit : 0,
+                                   which == 2 ? limit : 0, which == 3 ? limit : 0};
     try {
-      detail::requireIndexable(counts[0], counts[1], counts[2]);
+      detail::requireIndexable(counts[0], counts[1], counts[2], counts[3]);
       ADD_FAILURE() << "no error for " << limit << " of kind " << which;
     } catch (const Error& error) {
       EXPECT_NE(std::string(error.what()).find(std::to_string(limit)), std::string::npos)

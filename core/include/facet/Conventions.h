@@ -32,7 +32,8 @@
 /// the near plane). Keys are interpolated in double across each triangle from its unsnapped
 /// vertex positions (for a mesh whose back faces are drawn, samples within 1/512 pixel
 /// outside a polygon's edge use the snapped ones, so that silhouettes fold as culling would)
-/// and rounded to float once per fragment. An exact tie keeps the polygon drawn first:
+/// and rounded to float once per fragment. An exact tie keeps the front face over a back face
+/// (where back faces are drawn); among polygons facing the same way, the polygon drawn first:
 /// polygon order in z-buffer mode (scene order: mesh 0's polygons, then mesh 1's, ...).
 ///
 /// **Angles.** Degrees in the public API wherever VTK uses degrees (view angle, cone angle,
