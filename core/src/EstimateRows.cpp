@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "EstimateHook.h"
 #include "EstimateRows.h"
 
 #ifndef FACET_ESTIMATE_ROWS_SCALAR
@@ -40,10 +41,9 @@ inline std::uint32_t scaledChannel(std::uint32_t word, int j) {
 }
 
 // The scalar definitions; the SIMD loops below end with them.
-inline void fieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int x, std::uint32_t* fields, std::size_t stride) {
-  const std::int32_t id = ids[x];
-  const std::uint32_t word = wordOf(colors[x]);
+inline void fieldsOf(Rgba8 color, std::int32_t id, const float* polygonBounds, int x,
+                     std::uint32_t* fields, std::size_t stride) {
+  const std::uint32_t word = wordOf(color);
   const std::uint32_t q = id < 0 ? 0 : fixedBound(polygonBounds[id]);
   for (int j = 0; j < 3; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
@@ -100,8 +100,11 @@ HWY_INLINE hn::Vec<DU> scaledChannels(hn::Vec<DU> words) {
   }
 }
 
-void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+// kById: each sample's color gathered from its polygon's (polygonColors[id]), as the resolve
+// gathers it; else read from the row of colors.
+template <bool kById>
+HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                         int begin, int end, std::uint32_t* fields, std::size_t stride) {
   const DU du;
   const DI di;
   const DF df;
@@ -112,13 +115,15 @@ void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* 
     const auto id = hn::LoadU(di, ids + x);
     const auto backgroundI = id < hn::Zero(di);
     const auto background = hn::RebindMask(du, backgroundI);
-    const auto bound = hn::GatherIndex(df, polygonBounds, hn::IfThenZeroElse(backgroundI, id));
+    const auto index = hn::IfThenZeroElse(backgroundI, id);
+    const auto bound = hn::GatherIndex(df, polygonBounds, index);
     const auto capped = hn::IfThenElse(bound < hn::Set(df, 255.0f), hn::Max(bound, hn::Zero(df)),
                                        hn::Set(df, 255.0f));
     const auto q =
         hn::BitCast(du, hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit)))) +
         hn::Set(du, 1u);
-    const auto word = hn::IfThenZeroElse(background, hn::LoadU(du, words + x));
+    const auto color = kById ? hn::GatherIndex(du, words, index) : hn::LoadU(du, words + x);
+    const auto word = hn::IfThenZeroElse(background, color);
     const auto plus = hn::IfThenZeroElse(background, q);
     const auto minus = hn::IfThenZeroElse(background, q + hn::Set(du, kEstimateCap));
     const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
@@ -128,8 +133,22 @@ void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* 
       hn::StoreU(minus - channels[j], du, fields + (2 * j + 1) * stride + x);
     }
   }
-  for (; x < end; ++x)
-    fieldsOf(colors, ids, polygonBounds, x, fields, stride);
+  for (; x < end; ++x) {
+    const std::int32_t id = ids[x];
+    const Rgba8 color = !kById ? colors[x] : id < 0 ? Rgba8{} : colors[id];
+    fieldsOf(color, id, polygonBounds, x, fields, stride);
+  }
+}
+
+void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+  FieldsOf<false>(colors, ids, polygonBounds, begin, end, fields, stride);
+}
+
+void NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const float* polygonBounds, int begin, int end, std::uint32_t* fields,
+                         std::size_t stride) {
+  FieldsOf<true>(polygonColors, ids, polygonBounds, begin, end, fields, stride);
 }
 
 void RowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
@@ -225,6 +244,7 @@ HWY_AFTER_NAMESPACE();
 namespace facet::detail {
 
 HWY_EXPORT(NeighbourFields);
+HWY_EXPORT(NeighbourFieldsById);
 HWY_EXPORT(RowMaxima);
 HWY_EXPORT(SampleEstimates);
 HWY_EXPORT(SumEstimates);
@@ -238,6 +258,13 @@ void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* 
   HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, polygonBounds, begin, end, fields, stride);
 }
 
+void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const float* polygonBounds, int begin, int end, std::uint32_t* fields,
+                         std::size_t stride) {
+  HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)
+  (polygonColors, ids, polygonBounds, begin, end, fields, stride);
+}
+
 void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
                std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(RowMaxima)(in, begin, end, out, stride);
@@ -247,6 +274,121 @@ void sampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
                      const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
   HWY_DYNAMIC_DISPATCH(SampleEstimates)(above, row, below, stride, colors, ids, begin, end, out);
+}
+
+namespace {
+// Whole blocks of background skipped by the sign of their AND (negative when every id is), one
+// branch per sixteen ids where find_if takes one per id (a row of 1080p is often half
+// background).
+constexpr int kSpanBlock = 16;
+bool allBackground(const std::int32_t* ids) {
+  std::int32_t all = -1;
+  for (int i = 0; i < kSpanBlock; ++i)
+    all &= ids[i];
+  return all < 0;
+}
+}  // namespace
+
+std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
+  int first = 0, last = width;
+  while (first + kSpanBlock <= width && allBackground(ids + first))
+    first += kSpanBlock;
+  while (first < width && ids[first] < 0)
+    ++first;
+  while (last - kSpanBlock >= first && allBackground(ids + last - kSpanBlock))
+    last -= kSpanBlock;
+  while (last > first && ids[last - 1] < 0)
+    --last;
+  return {first, last};
+}
+
+void EstimateSpace::resize(int sampleWidth, int gridSide) {
+  if (sampleWidth == width && gridSide == side) return;
+  width = sampleWidth;
+  side = gridSide;
+  stride = static_cast<std::size_t>(width) + 2;
+  const std::size_t planes = kEstimateFields * stride;
+  fields.assign(planes, 0);
+  for (std::vector<std::uint32_t>& row : maxima)
+    row.assign(planes, 0);
+  written = {};
+  zeros.assign(planes, 0);
+  samples.assign(static_cast<std::size_t>(side) * width, 0);
+  pixels.assign(static_cast<std::size_t>(width / side), 0);
+}
+
+void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
+  const std::size_t row = static_cast<std::size_t>(r) * width;
+  const std::int32_t* ids = grid.ids + row;
+  const auto [first, last] = coveredSpan(ids, width);
+  std::uint32_t* out = at(maxima[r % 3]);
+  const auto [wasFirst, wasLast] = written[r % 3];
+  for (int k = 0; k < kEstimateFields; ++k)
+    std::fill(out + k * stride + wasFirst, out + k * stride + wasLast, 0u);
+  spans[r % 3] = {first, last};
+  written[r % 3] = {0, 0};
+  if (first >= last) return;  // no polygon in the row
+  const int fieldsBegin = std::max(0, first - 2), fieldsEnd = std::min(width, last + 2);
+  if (grid.polygonColors) {
+    neighbourFieldsById(grid.polygonColors, ids, grid.polygonBounds, fieldsBegin, fieldsEnd,
+                        at(fields), stride);
+  } else {
+    neighbourFields(grid.colors + row, ids, grid.polygonBounds, fieldsBegin, fieldsEnd, at(fields),
+                    stride);
+  }
+  const int begin = std::max(0, first - 1), end = std::min(width, last + 1);
+  rowMaxima(at(fields), begin, end, out, stride);
+  written[r % 3] = {begin, end};
+}
+
+void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole) {
+  const std::size_t row = static_cast<std::size_t>(r) * width;
+  std::uint32_t* out = samples.data() + static_cast<std::size_t>(r % side) * width;
+  const auto [first, last] = spans[r % 3];
+  if (whole) {
+    std::fill(out, out + first, 0u);
+    std::fill(out + last, out + width, 0u);
+  }
+  sampleEstimates(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
+                  maximaOf(r + 1, grid.height), stride, grid.colors + row, grid.ids + row, first,
+                  last, out);
+}
+
+const std::uint32_t* EstimateSpace::pixelEstimates() {
+  if (side == 1) return samples.data();
+  const std::uint32_t area = static_cast<std::uint32_t>(side * side);
+  for (std::size_t x = 0; x < pixels.size(); ++x) {
+    std::uint32_t sum = 0;
+    for (int j = 0; j < side; ++j) {
+      const std::uint32_t* s = samples.data() + static_cast<std::size_t>(j) * width + x * side;
+      for (int i = 0; i < side; ++i)
+        sum += s[i];
+    }
+    pixels[x] = sum == 0 ? 0 : std::min((sum + area - 1) / area + kEstimateUnit / 2, kEstimateCap);
+  }
+  return pixels.data();
+}
+
+void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, const Rgba8* colors,
+                          const std::int32_t* ids, int width, int y0, int y1) {
+  // One space per thread, kept: the resolve's tasks are bands, not threads.
+  thread_local EstimateSpace space;
+  space.resize(width, 1);
+  const EstimateGrid grid{ids, colors, hook.bounds, polygonColors, width, hook.height};
+  const bool image = hook.image != nullptr;
+  for (int r = y0 - 1; r <= y1 + 1; ++r) {
+    if (r >= 0 && r < hook.height) space.findMaxima(grid, r);
+    const int y = r - 1;
+    if (y < y0) continue;
+    space.estimateSamples(grid, y, image);  // else only the span is read
+    const std::uint32_t* pixels = space.pixelEstimates();
+    const auto [first, last] = space.spans[y % 3];
+    hook.rows[y] = estimateSums(pixels, first, last);
+    if (!image) continue;
+    float* out = hook.image + static_cast<std::size_t>(y) * width;
+    for (int x = 0; x < width; ++x)  // exact: a power-of-two scale
+      out[x] = static_cast<float>(pixels[x]) / static_cast<float>(kEstimateUnit);
+  }
 }
 
 }  // namespace facet::detail

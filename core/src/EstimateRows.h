@@ -21,8 +21,10 @@
 // every field is an unsigned integer below 2^16, and a field of the background is 0, below
 // any polygon's.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "facet/Color.h"
 
@@ -61,5 +63,61 @@ struct EstimateSums {
   std::uint32_t largest = 0, covered = 0;
 };
 EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end);
+
+// neighbourFields with each sample's color its polygon's, polygonColors[ids[x]] (the resolve's
+// gather), in place of a row of colors.
+void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const float* polygonBounds, int begin, int end, std::uint32_t* fields,
+                         std::size_t stride);
+
+// The span [first, last) of a row's covered samples (ids ≥ 0).
+std::array<int, 2> coveredSpan(const std::int32_t* ids, int width);
+
+// Where a pass over the sample grid reads its samples: the planes of ids and colors (width ×
+// height), and the bounds per polygon id. With `polygonColors`, the fields of a sample take
+// its polygon's color from there (rows whose colors another task may be writing); the sample
+// rows estimated read their own colors from `colors` all the same.
+struct EstimateGrid {
+  const std::int32_t* ids;
+  const Rgba8* colors;
+  const float* polygonBounds;
+  const Rgba8* polygonColors = nullptr;
+  int width = 0, height = 0;
+};
+
+// One task's space for the estimate's pass (QualityRenderer.cpp, EstimateHook.h), kept from
+// frame to frame. Every row of fields holds kEstimateFields planes of `stride` words, a zero
+// either side of a sample row's `width`.
+struct EstimateSpace {
+  int width = 0, side = 0;  // sample row width, samples per pixel side
+  std::size_t stride = 0;
+  std::vector<std::uint32_t> fields;  // one sample row's fields
+  // The row maxima of three consecutive sample rows (row r in maxima[r % 3]), each 0 outside
+  // the samples `written` says; and a row of zeros, for the rows outside the grid.
+  std::array<std::vector<std::uint32_t>, 3> maxima;
+  std::array<std::array<int, 2>, 3> written{};
+  std::array<std::array<int, 2>, 3> spans{};  // the covered samples of each of those rows
+  std::vector<std::uint32_t> zeros;
+  std::vector<std::uint32_t> samples;  // the estimates of a pixel row's sample rows
+  std::vector<std::uint32_t> pixels;   // a pixel row's, with more than one sample
+
+  void resize(int sampleWidth, int gridSide);
+  // Sample row r's row maxima into maxima[r % 3]: the fields of its covered span and of two
+  // samples either side (the neighbours' fields that maxima read), the maxima over one sample
+  // either side; zero elsewhere.
+  void findMaxima(const EstimateGrid& grid, int r);
+  // The estimates of sample row r (its maxima and its neighbours' found) into samples' row
+  // r % side; 0 outside its covered span where `whole` (else left as they were).
+  void estimateSamples(const EstimateGrid& grid, int r, bool whole);
+  // Pixel row y's estimates (samples holds its sample rows): the mean of its samples',
+  // rounded up, plus 0.5 for rounding that mean, capped; 0 where no sample is covered.
+  const std::uint32_t* pixelEstimates();
+
+ private:
+  static std::uint32_t* at(std::vector<std::uint32_t>& row) { return row.data() + 1; }
+  const std::uint32_t* maximaOf(int r, int height) {
+    return r < 0 || r >= height ? at(zeros) : at(maxima[r % 3]);
+  }
+};
 
 }  // namespace facet::detail

@@ -186,38 +186,6 @@ void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& materia
     boundLanes(d, lighting, material, batch, lane);
 }
 
-// The fields of a BoundExtent as doubles and floats from its start (checked below).
-constexpr int kExtentDoubles = sizeof(BoundExtent) / sizeof(double);
-constexpr int kExtentFloats = sizeof(BoundExtent) / sizeof(float);
-constexpr int kNormalFloat = 6, kRadiusFloat = 9, kSpreadFloat = 10;
-
-void GatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
-                   BoundBatch& batch) {
-  const D d;
-  const hn::Rebind<std::int32_t, D> di;
-  const hn::Rebind<std::int64_t, D> dl;
-  const hn::Rebind<float, D> df;
-  const auto* doubles = reinterpret_cast<const double*>(extents);
-  const auto* floats = reinterpret_cast<const float*>(extents);
-  HWY_ALIGN std::int32_t ids[kBoundBatchSize];
-  for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane)
-    ids[lane] = static_cast<std::int32_t>(polygons[lane < count ? lane : 0]);
-  for (std::size_t lane = 0; lane < kBoundBatchSize; lane += hn::Lanes(d)) {
-    const auto id = hn::Load(di, ids + lane);
-    const auto inDoubles = hn::PromoteTo(dl, id * hn::Set(di, kExtentDoubles));
-    const auto inFloats = id * hn::Set(di, kExtentFloats);
-    for (int k = 0; k < 3; ++k) {
-      hn::Store(hn::GatherIndex(d, doubles + k, inDoubles), d, batch.center[k] + lane);
-      hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kNormalFloat + k, inFloats)), d,
-                batch.normal[k] + lane);
-    }
-    hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kRadiusFloat, inFloats)), d,
-              batch.radius + lane);
-    hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kSpreadFloat, inFloats)), d,
-              batch.sinNormalSpread + lane);
-  }
-}
-
 }  // namespace facet::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -226,25 +194,64 @@ HWY_AFTER_NAMESPACE();
 
 #include "Overloaded.h"
 #include "Radiance.h"
+#include "facet/FlatErrorBound.h"
 
 namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
-HWY_EXPORT(GatherExtents);
-
-static_assert(sizeof(BoundExtent) == 48 && offsetof(BoundExtent, normal) == 24 &&
-                  offsetof(BoundExtent, radius) == 36 &&
-                  offsetof(BoundExtent, sinNormalSpread) == 40,
-              "GatherExtents reads the fields at these offsets");
-
-void gatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
-                   BoundBatch& batch) {
-  HWY_DYNAMIC_DISPATCH(GatherExtents)(extents, polygons, count, batch);
-}
 
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count) {
   HWY_DYNAMIC_DISPATCH(BoundBatchLanes)(lighting, material, batch, count);
+}
+
+ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh,
+                                         std::size_t firstPolygon, bool centers)
+    : first_(firstPolygon), centers_(centers) {
+  if (!hook) return;
+  mesh_ = hook->meshOf(mesh);
+  if (mesh_ == hook->meshCount || !hook->terms[mesh_]) return;
+  hook_ = hook;
+  hook_->bounded[mesh_].store(true, std::memory_order_relaxed);
+  terms_ = hook->terms[mesh_];
+  // Without centers the lights are directional and the normal already faces the side seen:
+  // the bound of the polygon as lit, as under a parallel view (FlatErrorBoundBatch.h).
+  lighting_ = centers ? hook->lighting : hook->facingLighting;
+  if (lighting_ && hook->materials[mesh_]) material_ = &*hook->materials[mesh_];
+}
+
+void ShadeBoundCollector::boundAlone(std::size_t polygon, const glm::dvec3& cornerSum,
+                                     double corners, const glm::dvec3& normal) {
+  const glm::dvec3 center = cornerSum / corners;
+  hook_->bounds[first_ + polygon] =
+      hook_->boundOne(mesh_, polygon, centers_ ? &center : nullptr, normal);
+}
+
+// The batch's lanes, their centers divided out (as the extents' sum / n), rounded up to
+// float; lanes the batch leaves NaN and degenerate polygons bounded alone.
+void ShadeBoundCollector::flush() {
+  if (count_ == 0) return;
+  for (std::size_t lane = 0; lane < count_; ++lane) {
+    for (int k = 0; k < 3; ++k)
+      batch_.center[k][lane] /= corners_[lane];
+  }
+  boundBatch(*lighting_, *material_, batch_, count_);
+  for (std::size_t lane = 0; lane < count_; ++lane) {
+    const double bound = batch_.bound[lane];
+    float& out = hook_->bounds[first_ + polygons_[lane]];
+    if (batch_.radius[lane] < 0.0) {
+      out = 255.0f;  // no normal: FlatErrorBound::bound's largest
+    } else if (std::isnan(bound)) {
+      const glm::dvec3 center(batch_.center[0][lane], batch_.center[1][lane],
+                              batch_.center[2][lane]);
+      const glm::dvec3 normal(batch_.normal[0][lane], batch_.normal[1][lane],
+                              batch_.normal[2][lane]);
+      out = hook_->boundOne(mesh_, polygons_[lane], centers_ ? &center : nullptr, normal);
+    } else {
+      out = roundedUp(bound);
+    }
+  }
+  count_ = 0;
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "EstimateHook.h"
 #include "MeshCache.h"
 #include "facet/Camera.h"
 #include "facet/Framebuffer.h"
@@ -27,6 +28,7 @@ struct FrameInputs {
   Rgba8 background;
   bool depthOutput;
   const RenderRules& rules;
+  EstimateHook* estimate = nullptr;  // QualityRenderer's, for shade and resolve (not compared)
 };
 
 struct PathChoice {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "EstimateHook.h"
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
@@ -19,6 +20,8 @@ struct ResolveContext {
   float* depth;
   const std::int32_t* polygonId;
   int width;
+  // The error estimate, taken by each band after it is resolved (EstimateHook.h); null: none.
+  const EstimateHook* estimate = nullptr;
 };
 
 // The resolve of a box of pixels, chosen once per render: colors and window depths, or colors

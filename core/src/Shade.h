@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "EstimateHook.h"
 #include "Frame.h"
 #include "PhaseRunner.h"
 #include "ShownPolygons.h"
@@ -26,6 +27,8 @@ struct ShadeContext {
   const std::uint8_t* shown;       // per polygon id (Raster.h)
   const std::uint8_t* backFacing;  // per polygon id (Setup.h)
   Rgba8* colors;                   // out, per shown polygon id
+  // The error estimate's bounds, taken as the polygons are lit (EstimateHook.h); null: none.
+  EstimateHook* estimate = nullptr;
 };
 
 // Shades the shown polygons among one mesh's polygons [begin, end); returns how many.

@@ -7,6 +7,7 @@
 // cores waited for.
 
 #include "FaceNormal.h"
+#include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "Shade.h"
 #include "ShadeBatch.h"
@@ -86,6 +87,7 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   ShadeBatchColors colors;
   std::size_t ids[kShadeBatchSize];
   std::size_t shaded = 0;
+  ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
   const auto flush = [&] {
     shadeBatch(context.shader, mesh.material, batch, colors);
     for (std::size_t i = 0; i < batch.count; ++i)
@@ -99,6 +101,10 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
     const GatheredSample gathered = gatherSample<kCenters, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
     batch.add(gathered.sample, gathered.corners);
+    if (bounds.active()) {
+      bounds.add(polygon, gathered.sample.position, gathered.corners, gathered.sample.normal,
+                 gathered.sample.color);
+    }
     if (batch.full()) flush();
   });
   flush();
@@ -125,12 +131,14 @@ FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const Frame
   }
   const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
   std::size_t shaded = 0;
+  ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
   forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ++shaded;
     const SurfaceSample sample = litSample<kCenters, kSpecular, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
     context.colors[id] = toRgba8(shade(context.shader, sample, mesh.material));
+    if (bounds.active()) bounds.add(polygon, sample.position, 1.0, sample.normal, sample.color);
   });
   return shaded;
 }
