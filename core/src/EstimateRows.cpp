@@ -197,6 +197,26 @@ void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
     out[x] = sampleEstimateOf(above, row, below, stride, colors, ids, x);
 }
 
+// coveredSpan: whole groups of background skipped a vector at a time (a row of 1080p is often
+// half background; one branch per id was most of the time of finding the span).
+std::array<int, 2> CoveredSpan(const std::int32_t* ids, int width) {
+  const DI di;
+  const int lanes = static_cast<int>(hn::Lanes(di));
+  const auto background = [&](int x) {
+    return hn::AllTrue(di, hn::LoadU(di, ids + x) < hn::Zero(di));
+  };
+  int first = 0, last = width;
+  while (first + lanes <= width && background(first))
+    first += lanes;
+  while (first < width && ids[first] < 0)
+    ++first;
+  while (last - lanes >= first && background(last - lanes))
+    last -= lanes;
+  while (last > first && ids[last - 1] < 0)
+    --last;
+  return {first, last};
+}
+
 EstimateSums SumEstimates(const std::uint32_t* estimates, int begin, int end) {
   EstimateSums sums;
   int x = begin;
@@ -248,6 +268,7 @@ HWY_EXPORT(NeighbourFieldsById);
 HWY_EXPORT(RowMaxima);
 HWY_EXPORT(SampleEstimates);
 HWY_EXPORT(SumEstimates);
+HWY_EXPORT(CoveredSpan);
 
 EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
   return HWY_DYNAMIC_DISPATCH(SumEstimates)(estimates, begin, end);
@@ -276,30 +297,8 @@ void sampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
   HWY_DYNAMIC_DISPATCH(SampleEstimates)(above, row, below, stride, colors, ids, begin, end, out);
 }
 
-namespace {
-// Whole blocks of background skipped by the sign of their AND (negative when every id is), one
-// branch per sixteen ids where find_if takes one per id (a row of 1080p is often half
-// background).
-constexpr int kSpanBlock = 16;
-bool allBackground(const std::int32_t* ids) {
-  std::int32_t all = -1;
-  for (int i = 0; i < kSpanBlock; ++i)
-    all &= ids[i];
-  return all < 0;
-}
-}  // namespace
-
 std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
-  int first = 0, last = width;
-  while (first + kSpanBlock <= width && allBackground(ids + first))
-    first += kSpanBlock;
-  while (first < width && ids[first] < 0)
-    ++first;
-  while (last - kSpanBlock >= first && allBackground(ids + last - kSpanBlock))
-    last -= kSpanBlock;
-  while (last > first && ids[last - 1] < 0)
-    --last;
-  return {first, last};
+  return HWY_DYNAMIC_DISPATCH(CoveredSpan)(ids, width);
 }
 
 void EstimateSpace::resize(int sampleWidth, int gridSide) {
@@ -329,7 +328,7 @@ void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
   written[r % 3] = {0, 0};
   if (first >= last) return;  // no polygon in the row
   const int fieldsBegin = std::max(0, first - 2), fieldsEnd = std::min(width, last + 2);
-  if (grid.polygonColors) {
+  if (grid.polygonColors && (r < grid.ownFirst || r > grid.ownLast)) {
     neighbourFieldsById(grid.polygonColors, ids, grid.polygonBounds, fieldsBegin, fieldsEnd,
                         at(fields), stride);
   } else {
@@ -374,7 +373,7 @@ void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, 
   // One space per thread, kept: the resolve's tasks are bands, not threads.
   thread_local EstimateSpace space;
   space.resize(width, 1);
-  const EstimateGrid grid{ids, colors, hook.bounds, polygonColors, width, hook.height};
+  const EstimateGrid grid{ids, colors, hook.bounds, polygonColors, width, hook.height, y0, y1};
   const bool image = hook.image != nullptr;
   for (int r = y0 - 1; r <= y1 + 1; ++r) {
     if (r >= 0 && r < hook.height) space.findMaxima(grid, r);

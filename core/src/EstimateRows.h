@@ -74,15 +74,16 @@ void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
 std::array<int, 2> coveredSpan(const std::int32_t* ids, int width);
 
 // Where a pass over the sample grid reads its samples: the planes of ids and colors (width ×
-// height), and the bounds per polygon id. With `polygonColors`, the fields of a sample take
-// its polygon's color from there (rows whose colors another task may be writing); the sample
-// rows estimated read their own colors from `colors` all the same.
+// height), and the bounds per polygon id. With `polygonColors`, the rows outside [ownFirst,
+// ownLast] take each sample's color from its polygon's there (rows whose colors another task
+// may be writing, EstimateHook.h); the others read `colors`.
 struct EstimateGrid {
   const std::int32_t* ids;
   const Rgba8* colors;
   const float* polygonBounds;
   const Rgba8* polygonColors = nullptr;
   int width = 0, height = 0;
+  int ownFirst = 0, ownLast = -1;
 };
 
 // One task's space for the estimate's pass (QualityRenderer.cpp, EstimateHook.h), kept from

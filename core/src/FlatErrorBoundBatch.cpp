@@ -102,15 +102,18 @@ HWY_INLINE V diffuseOf(D d, const BatchMaterial& material, V cosine) {
          hn::Set(d, material.lerpFull - material.lerpAmbient) * lit;
 }
 
-// The lanes [lane, lane + Lanes(d)) of the batch.
-void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& material,
-                BoundBatch& batch, std::size_t lane) {
+// One group of lanes' polygons: center, unit normal, radius, spread (a sine), surface color.
+struct Lanes {
+  V center[3], normal[3], radius, sine, surface[3];
+};
+
+// The bounds of a group of lanes; NaN where the scalar bound treats the polygon apart.
+HWY_INLINE V boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& material,
+                        const Lanes& in) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
-  const V cx = hn::Load(d, batch.center[0] + lane), cy = hn::Load(d, batch.center[1] + lane),
-          cz = hn::Load(d, batch.center[2] + lane);
-  V nx = hn::Load(d, batch.normal[0] + lane), ny = hn::Load(d, batch.normal[1] + lane),
-    nz = hn::Load(d, batch.normal[2] + lane);
-  const V radius = hn::Load(d, batch.radius + lane);
+  const V cx = in.center[0], cy = in.center[1], cz = in.center[2];
+  V nx = in.normal[0], ny = in.normal[1], nz = in.normal[2];
+  const V radius = in.radius;
   // A zero normal (degenerate) is the scalar bound's to bound.
   M bounded = hn::Not(hn::And(hn::And(nx == zero, ny == zero), nz == zero));
 
@@ -131,7 +134,7 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
     nz = hn::IfThenElse(back, hn::Neg(nz), nz);
   }
   // The normal's cone: the kept sine as a cosine (cosineOfSpread), then as an Angle.
-  const V sine = hn::Load(d, batch.sinNormalSpread + lane);
+  const V sine = in.sine;
   const V cosSpread = hn::IfThenZeroElse(sine >= one, hn::Sqrt(one - sine * sine));
   const Angles normalAngle = select(cosSpread > zero, ofCosine(d, cosSpread), straight(d));
 
@@ -171,19 +174,59 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
   const V kd = hn::Set(d, material.diffuse);
   V largest = zero;
   for (int c = 0; c < 3; ++c) {
-    const V total = hn::Min(kd * hn::Load(d, batch.surface[c] + lane) * sum[c], one);
+    const V total = hn::Min(kd * in.surface[c] * sum[c], one);
     largest = c == 0 ? total : hn::Max(largest, total);
   }
   const V bound =
       hn::IfThenElse(hn::IsFinite(largest), hn::Set(d, 255.0) * largest, hn::Set(d, 255.0));
-  hn::Store(hn::IfThenElse(bounded, bound, hn::NaN(d)), d, batch.bound + lane);
+  return hn::IfThenElse(bounded, bound, hn::NaN(d));
 }
 
 void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& material,
                      BoundBatch& batch, std::size_t count) {
   const D d;
-  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d))
-    boundLanes(d, lighting, material, batch, lane);
+  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
+    Lanes in;
+    for (int k = 0; k < 3; ++k) {
+      in.center[k] = hn::Load(d, batch.center[k] + lane);
+      in.normal[k] = hn::Load(d, batch.normal[k] + lane);
+      in.surface[k] = hn::Load(d, batch.surface[k] + lane);
+    }
+    in.radius = hn::Load(d, batch.radius + lane);
+    in.sine = hn::Load(d, batch.sinNormalSpread + lane);
+    hn::Store(boundLanes(d, lighting, material, in), d, batch.bound + lane);
+  }
+}
+
+// The shade phase's columns (ShadeBatch.h): centers divided out as the shade's lanes divide
+// them, surfaces as FlatErrorBound::bound reads them (capped), bounds rounded up to float
+// (roundedUp: a float below the double goes one step up; NaN stays NaN).
+void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& material,
+                       const ShadeBatch& batch, const float* radius, const float* sine,
+                       std::size_t count, float* bounds) {
+  const D d;
+  const hn::Rebind<float, D> df;
+  const hn::Rebind<std::uint32_t, D> du;
+  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
+    Lanes in;
+    const V corners = hn::Load(d, batch.corners + lane);
+    for (int k = 0; k < 3; ++k) {
+      in.center[k] = hn::Load(d, batch.cornerSum[k] + lane) / corners;
+      in.normal[k] = hn::Load(d, batch.normal[k] + lane);
+      in.surface[k] = hn::Min(hn::PromoteTo(d, hn::LoadU(df, batch.color[k] + lane)) + hn::Zero(d),
+                              hn::Set(d, kMaxRadiance));
+    }
+    in.radius = hn::PromoteTo(d, hn::LoadU(df, radius + lane));
+    in.sine = hn::PromoteTo(d, hn::LoadU(df, sine + lane));
+    const V bound = boundLanes(d, lighting, material, in);
+    const auto nearest = hn::DemoteTo(df, bound);
+    // Masks do not change lane width here: the comparison carried over as 1 or 0.
+    const V belowD = hn::IfThenElseZero(hn::PromoteTo(d, nearest) < bound, hn::Set(d, 1.0));
+    const auto below = hn::RebindMask(du, hn::DemoteTo(df, belowD) > hn::Zero(df));
+    const auto bits = hn::BitCast(du, nearest);
+    const auto up = hn::IfThenElse(below, bits + hn::Set(du, 1u), bits);  // bounds are ≥ 0
+    hn::StoreU(hn::BitCast(df, up), df, bounds + lane);
+  }
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -194,15 +237,22 @@ HWY_AFTER_NAMESPACE();
 
 #include "Overloaded.h"
 #include "Radiance.h"
-#include "facet/FlatErrorBound.h"
 
 namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
+HWY_EXPORT(ShadeColumnsLanes);
 
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count) {
   HWY_DYNAMIC_DISPATCH(BoundBatchLanes)(lighting, material, batch, count);
+}
+
+void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
+                       const ShadeBatch& batch, const float* radius, const float* sine,
+                       float* bounds) {
+  HWY_DYNAMIC_DISPATCH(ShadeColumnsLanes)
+  (lighting, material, batch, radius, sine, batch.count, bounds);
 }
 
 ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh,
@@ -215,43 +265,25 @@ ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* me
   hook_->bounded[mesh_].store(true, std::memory_order_relaxed);
   terms_ = hook->terms[mesh_];
   // Without centers the lights are directional and the normal already faces the side seen:
-  // the bound of the polygon as lit, as under a parallel view (FlatErrorBoundBatch.h).
+  // the bound of the polygon as lit, as under a parallel view (EstimateHook.h).
   lighting_ = centers ? hook->lighting : hook->facingLighting;
   if (lighting_ && hook->materials[mesh_]) material_ = &*hook->materials[mesh_];
 }
 
-void ShadeBoundCollector::boundAlone(std::size_t polygon, const glm::dvec3& cornerSum,
-                                     double corners, const glm::dvec3& normal) {
-  const glm::dvec3 center = cornerSum / corners;
-  hook_->bounds[first_ + polygon] =
-      hook_->boundOne(mesh_, polygon, centers_ ? &center : nullptr, normal);
-}
-
-// The batch's lanes, their centers divided out (as the extents' sum / n), rounded up to
-// float; lanes the batch leaves NaN and degenerate polygons bounded alone.
-void ShadeBoundCollector::flush() {
-  if (count_ == 0) return;
-  for (std::size_t lane = 0; lane < count_; ++lane) {
-    for (int k = 0; k < 3; ++k)
-      batch_.center[k][lane] /= corners_[lane];
-  }
-  boundBatch(*lighting_, *material_, batch_, count_);
-  for (std::size_t lane = 0; lane < count_; ++lane) {
-    const double bound = batch_.bound[lane];
+void ShadeBoundCollector::bound(const ShadeBatch& batch) {
+  if (material_) boundShadeColumns(*lighting_, *material_, batch, radius_, sine_, lanes_);
+  for (std::size_t lane = 0; lane < batch.count; ++lane) {
     float& out = hook_->bounds[first_ + polygons_[lane]];
-    if (batch_.radius[lane] < 0.0) {
+    if (radius_[lane] < 0.0f) {
       out = 255.0f;  // no normal: FlatErrorBound::bound's largest
-    } else if (std::isnan(bound)) {
-      const glm::dvec3 center(batch_.center[0][lane], batch_.center[1][lane],
-                              batch_.center[2][lane]);
-      const glm::dvec3 normal(batch_.normal[0][lane], batch_.normal[1][lane],
-                              batch_.normal[2][lane]);
-      out = hook_->boundOne(mesh_, polygons_[lane], centers_ ? &center : nullptr, normal);
+    } else if (!material_ || std::isnan(lanes_[lane])) {
+      const SurfaceSample sample = batch.sample(lane);
+      out = hook_->boundOne(mesh_, polygons_[lane], centers_ ? &sample.position : nullptr,
+                            sample.normal);
     } else {
-      out = roundedUp(bound);
+      out = lanes_[lane];
     }
   }
-  count_ = 0;
 }
 
 namespace {

@@ -25,6 +25,7 @@
 #include "facet/Lighting.h"
 
 #include "EstimateHook.h"
+#include "ShadeBatch.h"
 
 namespace facet::detail {
 
@@ -92,10 +93,18 @@ inline float roundedUp(double value) {
   return f < value ? nextUp(f) : f;
 }
 
+// The bounds of a shade batch's polygons (ShadeBatch.h: centers as sums of corners, normals
+// as lit, surface colors), each with its terms (radius and sine, per lane), rounded up to
+// float: bounds[lane] for lanes [0, batch.count), NaN where the batch leaves it to the scalar
+// bound. The same bytes as roundedUp(boundBatch) of the centers divided out.
+void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
+                       const ShadeBatch& batch, const float* radius, const float* sine,
+                       float* bounds);
+
 // The bounds of one shade task's polygons of one mesh (the fused estimate, EstimateHook.h),
-// taken in batches as the shade phase lights them, into hook.bounds. Polygons the batch does
-// not take (a mesh whose material it leaves out, a frame whose lights it leaves out, lanes
-// it leaves NaN) go to hook.boundOne.
+// taken batch by batch as the shade phase lights them, into hook.bounds. Polygons the batch
+// does not take (a mesh whose material it leaves out, a frame whose lights it leaves out,
+// lanes it leaves NaN) go to hook.boundOne.
 class ShadeBoundCollector {
  public:
   // Inactive without a hook, or for a mesh that is not one of the hook's. `centers`: the
@@ -103,44 +112,45 @@ class ShadeBoundCollector {
   // the viewer, and needs no center: the lights are directional).
   ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh, std::size_t firstPolygon,
                       bool centers);
-  ~ShadeBoundCollector() { flush(); }
   ShadeBoundCollector(const ShadeBoundCollector&) = delete;
   ShadeBoundCollector& operator=(const ShadeBoundCollector&) = delete;
 
   bool active() const { return hook_ != nullptr; }
-  // Polygon `polygon` of the mesh, `cornerSum` the sum of its `corners` corners (read only
-  // with centers), lit with unit `normal` and surface color `surface`.
-  void add(std::size_t polygon, const glm::dvec3& cornerSum, double corners,
-           const glm::dvec3& normal, const Color& surface) {
-    if (!material_) return boundAlone(polygon, cornerSum, corners, normal);
+  // Polygon `polygon` of the mesh is lane `lane` of the shade batch to come.
+  void note(std::size_t lane, std::size_t polygon) {
     const BoundTerms& t = terms_[polygon];
-    for (int k = 0; k < 3; ++k) {
-      batch_.center[k][count_] = cornerSum[k];
-      batch_.normal[k][count_] = normal[k];
-      batch_.surface[k][count_] = std::min(static_cast<double>(surface[k]) + 0.0, kMaxRadiance);
-    }
-    batch_.radius[count_] = t.radius;
-    batch_.sinNormalSpread[count_] = t.sinNormalSpread;
-    corners_[count_] = corners;
-    polygons_[count_] = polygon;
-    if (++count_ == kBoundBatchSize) flush();
+    radius_[lane] = t.radius;
+    sine_[lane] = t.sinNormalSpread;
+    polygons_[lane] = polygon;
   }
-  void flush();
+  // The bounds of the batch's polygons, noted lane by lane.
+  void bound(const ShadeBatch& batch);
+
+  // For the routines that light polygon by polygon: the polygon, lit at `sample` (its
+  // position the center), batched here.
+  void add(std::size_t polygon, const SurfaceSample& sample) {
+    note(own_.count, polygon);
+    own_.add(sample, 1.0);
+    if (own_.full()) flush();
+  }
+  void flush() {
+    if (own_.count > 0) bound(own_);
+    own_.count = 0;
+  }
 
  private:
-  void boundAlone(std::size_t polygon, const glm::dvec3& cornerSum, double corners,
-                  const glm::dvec3& normal);
-
   EstimateHook* hook_ = nullptr;
   std::size_t mesh_ = 0, first_ = 0;
   bool centers_ = true;
   const BoundTerms* terms_ = nullptr;
   const BatchLighting* lighting_ = nullptr;
-  const BatchMaterial* material_ = nullptr;  // null: every polygon to boundAlone
-  BoundBatch batch_{};  // lanes past count_ compute on zeros, or an earlier batch
-  double corners_[kBoundBatchSize];
-  std::size_t polygons_[kBoundBatchSize];
-  std::size_t count_ = 0;
+  const BatchMaterial* material_ = nullptr;  // null: every polygon to boundOne
+  // Per lane; past a batch's count, zeros or an earlier batch's (computed, not read).
+  alignas(64) float radius_[kShadeBatchSize] = {};
+  alignas(64) float sine_[kShadeBatchSize] = {};
+  alignas(64) float lanes_[kShadeBatchSize] = {};
+  std::size_t polygons_[kShadeBatchSize] = {};
+  ShadeBatch own_;  // add()'s
 };
 
 }  // namespace facet::detail

@@ -90,6 +90,7 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
   const auto flush = [&] {
     shadeBatch(context.shader, mesh.material, batch, colors);
+    if (bounds.active()) bounds.bound(batch);
     for (std::size_t i = 0; i < batch.count; ++i)
       context.colors[ids[i]] = colors[i];
     shaded += batch.count;
@@ -100,11 +101,8 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
     ids[batch.count] = id;
     const GatheredSample gathered = gatherSample<kCenters, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
+    if (bounds.active()) bounds.note(batch.count, polygon);
     batch.add(gathered.sample, gathered.corners);
-    if (bounds.active()) {
-      bounds.add(polygon, gathered.sample.position, gathered.corners, gathered.sample.normal,
-                 gathered.sample.color);
-    }
     if (batch.full()) flush();
   });
   flush();
@@ -138,8 +136,9 @@ FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const Frame
     const SurfaceSample sample = litSample<kCenters, kSpecular, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
     context.colors[id] = toRgba8(shade(context.shader, sample, mesh.material));
-    if (bounds.active()) bounds.add(polygon, sample.position, 1.0, sample.normal, sample.color);
+    if (bounds.active()) bounds.add(polygon, sample);
   });
+  if (bounds.active()) bounds.flush();
   return shaded;
 }
 
