@@ -198,20 +198,19 @@ void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& materia
   }
 }
 
-// The shade phase's columns (ShadeBatch.h): centers divided out as the shade's lanes divide
-// them, surfaces as FlatErrorBound::bound reads them (capped), bounds rounded up to float
-// (roundedUp: a float below the double goes one step up; NaN stays NaN).
+// The shade phase's columns (ShadeBatch.h) and the centers its lanes divided out, surfaces as
+// FlatErrorBound::bound reads them (capped), bounds rounded up to float (roundedUp: a float below
+// the double goes one step up; NaN stays NaN).
 void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& material,
-                       const ShadeBatch& batch, const float* radius, const float* sine,
-                       std::size_t count, float* bounds) {
+                       const ShadeBatch& batch, const ShadeBatchCenters& centers,
+                       const float* radius, const float* sine, std::size_t count, float* bounds) {
   const D d;
   const hn::Rebind<float, D> df;
   const hn::Rebind<std::uint32_t, D> du;
   for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
     Lanes in;
-    const V corners = hn::Load(d, batch.corners + lane);
     for (int k = 0; k < 3; ++k) {
-      in.center[k] = hn::Load(d, batch.cornerSum[k] + lane) / corners;
+      in.center[k] = hn::Load(d, centers.xyz[k] + lane);
       in.normal[k] = hn::Load(d, batch.normal[k] + lane);
       in.surface[k] = hn::Min(hn::PromoteTo(d, hn::LoadU(df, batch.color[k] + lane)) + hn::Zero(d),
                               hn::Set(d, kMaxRadiance));
@@ -249,15 +248,15 @@ void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, Bo
 }
 
 void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
-                       const ShadeBatch& batch, const float* radius, const float* sine,
-                       float* bounds) {
+                       const ShadeBatch& batch, const ShadeBatchCenters& centers,
+                       const float* radius, const float* sine, float* bounds) {
   HWY_DYNAMIC_DISPATCH(ShadeColumnsLanes)
-  (lighting, material, batch, radius, sine, batch.count, bounds);
+  (lighting, material, batch, centers, radius, sine, batch.count, bounds);
 }
 
 ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh,
                                          std::size_t firstPolygon, bool centers)
-    : first_(firstPolygon), centers_(centers) {
+    : first_(firstPolygon), hasCenters_(centers) {
   if (!hook) return;
   mesh_ = hook->meshOf(mesh);
   if (mesh_ == hook->meshCount || !hook->terms[mesh_]) return;
@@ -271,15 +270,15 @@ ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* me
 }
 
 void ShadeBoundCollector::bound(const ShadeBatch& batch) {
-  if (material_) boundShadeColumns(*lighting_, *material_, batch, radius_, sine_, lanes_);
+  if (material_) boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_);
   for (std::size_t lane = 0; lane < batch.count; ++lane) {
     float& out = hook_->bounds[first_ + polygons_[lane]];
     if (radius_[lane] < 0.0f) {
       out = 255.0f;  // no normal: FlatErrorBound::bound's largest
     } else if (!material_ || std::isnan(lanes_[lane])) {
-      const SurfaceSample sample = batch.sample(lane);
-      out = hook_->boundOne(mesh_, polygons_[lane], centers_ ? &sample.position : nullptr,
-                            sample.normal);
+      const glm::dvec3 center(centers_.xyz[0][lane], centers_.xyz[1][lane], centers_.xyz[2][lane]);
+      const glm::dvec3 normal(batch.normal[0][lane], batch.normal[1][lane], batch.normal[2][lane]);
+      out = hook_->boundOne(mesh_, polygons_[lane], hasCenters_ ? &center : nullptr, normal);
     } else {
       out = lanes_[lane];
     }

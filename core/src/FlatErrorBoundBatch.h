@@ -93,13 +93,13 @@ inline float roundedUp(double value) {
   return f < value ? nextUp(f) : f;
 }
 
-// The bounds of a shade batch's polygons (ShadeBatch.h: centers as sums of corners, normals
-// as lit, surface colors), each with its terms (radius and sine, per lane), rounded up to
-// float: bounds[lane] for lanes [0, batch.count), NaN where the batch leaves it to the scalar
-// bound. The same bytes as roundedUp(boundBatch) of the centers divided out.
+// The bounds of a shade batch's polygons (ShadeBatch.h: normals as lit, surface colors; their
+// centers as the shade's lanes divided them out), each with its terms (radius and sine, per
+// lane), rounded up to float: bounds[lane] for lanes [0, batch.count), NaN where the batch
+// leaves it to the scalar bound. The same bytes as roundedUp(boundBatch).
 void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
-                       const ShadeBatch& batch, const float* radius, const float* sine,
-                       float* bounds);
+                       const ShadeBatch& batch, const ShadeBatchCenters& centers,
+                       const float* radius, const float* sine, float* bounds);
 
 // The bounds of one shade task's polygons of one mesh (the fused estimate, EstimateHook.h),
 // taken batch by batch as the shade phase lights them, into hook.bounds. Polygons the batch
@@ -123,13 +123,17 @@ class ShadeBoundCollector {
     sine_[lane] = t.sinNormalSpread;
     polygons_[lane] = polygon;
   }
-  // The bounds of the batch's polygons, noted lane by lane.
+  // Where the shade batch's lanes leave their centers (shadeBatch).
+  ShadeBatchCenters* centers() { return &centers_; }
+  // The bounds of the batch's polygons, noted lane by lane, their centers left in centers().
   void bound(const ShadeBatch& batch);
 
   // For the routines that light polygon by polygon: the polygon, lit at `sample` (its
   // position the center), batched here.
   void add(std::size_t polygon, const SurfaceSample& sample) {
     note(own_.count, polygon);
+    for (int k = 0; k < 3; ++k)
+      centers_.xyz[k][own_.count] = sample.position[k];
     own_.add(sample, 1.0);
     if (own_.full()) flush();
   }
@@ -141,7 +145,7 @@ class ShadeBoundCollector {
  private:
   EstimateHook* hook_ = nullptr;
   std::size_t mesh_ = 0, first_ = 0;
-  bool centers_ = true;
+  bool hasCenters_ = true;
   const BoundTerms* terms_ = nullptr;
   const BatchLighting* lighting_ = nullptr;
   const BatchMaterial* material_ = nullptr;  // null: every polygon to boundOne
@@ -150,6 +154,7 @@ class ShadeBoundCollector {
   alignas(64) float sine_[kShadeBatchSize] = {};
   alignas(64) float lanes_[kShadeBatchSize] = {};
   std::size_t polygons_[kShadeBatchSize] = {};
+  ShadeBatchCenters centers_;
   ShadeBatch own_;  // add()'s
 };
 

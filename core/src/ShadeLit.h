@@ -89,7 +89,8 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   std::size_t shaded = 0;
   ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
   const auto flush = [&] {
-    shadeBatch(context.shader, mesh.material, batch, colors);
+    shadeBatch(context.shader, mesh.material, batch, colors,
+               bounds.active() ? bounds.centers() : nullptr);
     if (bounds.active()) bounds.bound(batch);
     for (std::size_t i = 0; i < batch.count; ++i)
       context.colors[ids[i]] = colors[i];
