@@ -8,6 +8,9 @@
 //      the samples are shaded again in place);
 //   4. per output pixel: shade its samples again where the mode asks, average, round.
 // Each pass writes only its own elements, so every thread count gives the same bytes.
+// Flat at one sample per pixel, 2 and 3 are the render's own (EstimateHook.h): its shade
+// phase bounds the polygons it lights, its resolve estimates each band of rows it resolves;
+// here only what it did not bound (meshes lit without direct light) and the rows' sums.
 
 #include "facet/QualityRenderer.h"
 

@@ -116,7 +116,10 @@ void validate(const QualitySettings& settings);
 struct QualityStats {
   RenderStats render;            ///< the Renderer's pass (at the sample grid's size)
   double shadeSeconds = 0.0;     ///< re-shading and resolving the samples
-  double estimateSeconds = 0.0;  ///< the error estimate (bounds and the per-pixel image)
+  /// The error estimate's time outside the render (bounds and the per-pixel image); flat at one
+  /// sample per pixel the render's shade and resolve take it (EstimateHook.h), and this is
+  /// only the summing of its rows.
+  double estimateSeconds = 0.0;
   double totalSeconds = 0.0;
   std::size_t samplesReshaded = 0;  ///< samples shaded again (not kept flat)
   /// Polygons shaded per sample or per corner: those the renderer lit (Renderer::shownPolygons:
@@ -147,8 +150,8 @@ class QualityRenderer {
   /// Renders the scene in the mode the settings ask for. `shading` holds one ShadingMesh per
   /// scene mesh (prepared once, kept while the meshes do not change), or is empty: shading
   /// per sample or per corner (Gouraud, Phong, adaptive) then computes them here, every
-  /// render; flat shading with the estimate needs only each polygon's normal, extent and
-  /// normal spread, which this object keeps per mesh version (MeshView::version, which then
+  /// render; flat shading with the estimate needs only each polygon's radius and normal
+  /// spread, which this object keeps per mesh version (MeshView::version, which then
   /// also covers MeshView::pointNormals; an unversioned mesh is measured every render).
   /// Throws facet::Error for bad settings, a shading list that does not match the scene, or
   /// an image side that a 2× or 4× sample grid would take beyond kMaxImageSide; and whatever
