@@ -42,25 +42,26 @@ inline std::uint32_t scaledChannel(std::uint32_t word, int j) {
 
 // The scalar definitions; the SIMD loops below end with them.
 inline void fieldsOf(Rgba8 color, std::int32_t id, const float* polygonBounds, int x,
-                     std::uint32_t* fields, std::size_t stride) {
+                     EstimateField* fields, std::size_t stride) {
   const std::uint32_t word = wordOf(color);
   const std::uint32_t q = id < 0 ? 0 : fixedBound(polygonBounds[id]);
   for (int j = 0; j < 3; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
-    fields[2 * j * stride + x] = id < 0 ? 0 : c + q;
-    fields[(2 * j + 1) * stride + x] = id < 0 ? 0 : kEstimateCap - c + q;
+    fields[2 * j * stride + x] = static_cast<EstimateField>(id < 0 ? 0 : c + q);
+    fields[(2 * j + 1) * stride + x] =
+        static_cast<EstimateField>(id < 0 ? 0 : kEstimateCap - c + q);
   }
 }
 
-inline void rowMaximumOf(const std::uint32_t* in, int x, std::uint32_t* out, std::size_t stride) {
+inline void rowMaximumOf(const EstimateField* in, int x, EstimateField* out, std::size_t stride) {
   for (int k = 0; k < kEstimateFields; ++k) {
-    const std::uint32_t* plane = in + k * stride;
+    const EstimateField* plane = in + k * stride;
     out[k * stride + x] = std::max({plane[x - 1], plane[x], plane[x + 1]});
   }
 }
 
-inline std::uint32_t sampleEstimateOf(const std::uint32_t* above, const std::uint32_t* row,
-                                      const std::uint32_t* below, std::size_t stride,
+inline std::uint32_t sampleEstimateOf(const EstimateField* above, const EstimateField* row,
+                                      const EstimateField* below, std::size_t stride,
                                       const Rgba8* colors, const std::int32_t* ids, int x) {
   if (ids[x] < 0) return 0;
   const std::uint32_t word = wordOf(colors[x]);
@@ -68,7 +69,7 @@ inline std::uint32_t sampleEstimateOf(const std::uint32_t* above, const std::uin
   for (int k = 0; k < kEstimateFields; ++k) {
     const std::size_t i = k * stride + x;
     const std::uint32_t c = scaledChannel(word, k / 2);
-    const std::uint32_t m = std::max({above[i], row[i], below[i]});
+    const std::uint32_t m = std::max({above[i], row[i], below[i]});  // promoted
     // No wrap: the sample's own field is part of the maximum.
     largest = std::max(largest, m - (k % 2 == 0 ? c : kEstimateCap - c));
   }
@@ -87,6 +88,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 using DU = hn::ScalableTag<std::uint32_t>;
 using DI = hn::RebindToSigned<DU>;
 using DF = hn::RebindToFloat<DU>;
+using DH = hn::Rebind<EstimateField, DU>;  // the fields of as many samples
 
 // Channel j of color words, scaled by kEstimateUnit (a shift of 7).
 template <int j>
@@ -104,8 +106,9 @@ HWY_INLINE hn::Vec<DU> scaledChannels(hn::Vec<DU> words) {
 // gathers it; else read from the row of colors.
 template <bool kById>
 HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                         int begin, int end, std::uint32_t* fields, std::size_t stride) {
+                         int begin, int end, EstimateField* fields, std::size_t stride) {
   const DU du;
+  const DH dh;
   const DI di;
   const DF df;
   const int lanes = static_cast<int>(hn::Lanes(du));
@@ -128,9 +131,11 @@ HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const flo
     const auto minus = hn::IfThenZeroElse(background, q + hn::Set(du, kEstimateCap));
     const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
                                      scaledChannels<2>(word)};
+    // Below 2^16 (EstimateRows.h): narrowed exactly.
+    const auto narrow = [&](hn::Vec<DU> v) { return hn::DemoteTo(dh, hn::BitCast(di, v)); };
     for (int j = 0; j < 3; ++j) {
-      hn::StoreU(channels[j] + plus, du, fields + 2 * j * stride + x);
-      hn::StoreU(minus - channels[j], du, fields + (2 * j + 1) * stride + x);
+      hn::StoreU(narrow(channels[j] + plus), dh, fields + 2 * j * stride + x);
+      hn::StoreU(narrow(minus - channels[j]), dh, fields + (2 * j + 1) * stride + x);
     }
   }
   for (; x < end; ++x) {
@@ -141,37 +146,38 @@ HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const flo
 }
 
 void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+                     int begin, int end, EstimateField* fields, std::size_t stride) {
   FieldsOf<false>(colors, ids, polygonBounds, begin, end, fields, stride);
 }
 
 void NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, std::uint32_t* fields,
+                         const float* polygonBounds, int begin, int end, EstimateField* fields,
                          std::size_t stride) {
   FieldsOf<true>(polygonColors, ids, polygonBounds, begin, end, fields, stride);
 }
 
-void RowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
+void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
                std::size_t stride) {
-  const DU du;
-  const int lanes = static_cast<int>(hn::Lanes(du));
+  const hn::ScalableTag<EstimateField> d16;  // whole vectors of fields
+  const int lanes = static_cast<int>(hn::Lanes(d16));
   int x = begin;
   for (; x + lanes <= end; x += lanes) {
     for (int k = 0; k < kEstimateFields; ++k) {
-      const std::uint32_t* plane = in + k * stride + x;
-      const auto m = hn::Max(hn::Max(hn::LoadU(du, plane - 1), hn::LoadU(du, plane)),
-                             hn::LoadU(du, plane + 1));
-      hn::StoreU(m, du, out + k * stride + x);
+      const EstimateField* plane = in + k * stride + x;
+      const auto m = hn::Max(hn::Max(hn::LoadU(d16, plane - 1), hn::LoadU(d16, plane)),
+                             hn::LoadU(d16, plane + 1));
+      hn::StoreU(m, d16, out + k * stride + x);
     }
   }
   for (; x < end; ++x)
     rowMaximumOf(in, x, out, stride);
 }
 
-void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
-                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+void SampleEstimates(const EstimateField* above, const EstimateField* row,
+                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
   const DU du;
+  const DH dh;
   const DI di;
   const int lanes = static_cast<int>(hn::Lanes(du));
   const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
@@ -184,8 +190,9 @@ void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
     auto largest = hn::Zero(du);
     for (int k = 0; k < kEstimateFields; ++k) {
       const std::size_t i = k * stride + x;
-      const auto m = hn::Max(hn::Max(hn::LoadU(du, above + i), hn::LoadU(du, row + i)),
-                             hn::LoadU(du, below + i));
+      const auto m =
+          hn::PromoteTo(du, hn::Max(hn::Max(hn::LoadU(dh, above + i), hn::LoadU(dh, row + i)),
+                                    hn::LoadU(dh, below + i)));
       const auto own = k % 2 == 0 ? channels[k / 2] : cap - channels[k / 2];
       largest = hn::Max(largest, m - own);
     }
@@ -275,24 +282,24 @@ EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
 }
 
 void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+                     int begin, int end, EstimateField* fields, std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, polygonBounds, begin, end, fields, stride);
 }
 
 void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, std::uint32_t* fields,
+                         const float* polygonBounds, int begin, int end, EstimateField* fields,
                          std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)
   (polygonColors, ids, polygonBounds, begin, end, fields, stride);
 }
 
-void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
+void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
                std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(RowMaxima)(in, begin, end, out, stride);
 }
 
-void sampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
-                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+void sampleEstimates(const EstimateField* above, const EstimateField* row,
+                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
   HWY_DYNAMIC_DISPATCH(SampleEstimates)(above, row, below, stride, colors, ids, begin, end, out);
 }
@@ -308,7 +315,7 @@ void EstimateSpace::resize(int sampleWidth, int gridSide) {
   stride = static_cast<std::size_t>(width) + 2;
   const std::size_t planes = kEstimateFields * stride;
   fields.assign(planes, 0);
-  for (std::vector<std::uint32_t>& row : maxima)
+  for (std::vector<EstimateField>& row : maxima)
     row.assign(planes, 0);
   written = {};
   zeros.assign(planes, 0);
@@ -320,7 +327,7 @@ void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
   const std::size_t row = static_cast<std::size_t>(r) * width;
   const std::int32_t* ids = grid.ids + row;
   const auto [first, last] = coveredSpan(ids, width);
-  std::uint32_t* out = at(maxima[r % 3]);
+  EstimateField* out = at(maxima[r % 3]);
   const auto [wasFirst, wasLast] = written[r % 3];
   for (int k = 0; k < kEstimateFields; ++k)
     std::fill(out + k * stride + wasFirst, out + k * stride + wasLast, 0u);

@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "EstimateHook.h"
 #include "MeshCache.h"
 #include "facet/Camera.h"
 #include "facet/Framebuffer.h"
@@ -17,6 +16,8 @@
 #include "facet/Scene.h"
 
 namespace facet::detail {
+
+struct EstimateHook;  // EstimateHook.h
 
 // What a render is asked to draw.
 struct FrameInputs {

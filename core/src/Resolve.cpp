@@ -14,6 +14,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "EstimateHook.h"
 #include "Resolve.h"
 
 HWY_BEFORE_NAMESPACE();

@@ -5,13 +5,14 @@
 
 #include <cstdint>
 
-#include "EstimateHook.h"
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
 #include "facet/Color.h"
 
 namespace facet::detail {
+
+struct EstimateHook;  // EstimateHook.h
 
 struct ResolveContext {
   const Rgba8* colors;  // per polygon id (Shade.h)

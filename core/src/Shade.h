@@ -13,12 +13,13 @@
 #include <span>
 #include <vector>
 
-#include "EstimateHook.h"
 #include "Frame.h"
 #include "PhaseRunner.h"
 #include "ShownPolygons.h"
 
 namespace facet::detail {
+
+struct EstimateHook;  // EstimateHook.h
 
 struct ShadeContext {
   const FrameTransform& transform;
