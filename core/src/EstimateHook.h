@@ -16,7 +16,8 @@
 //    shade), never from another band's color rows (written at the same time): the same
 //    bytes as the pass over the finished image, in place of a second read of the planes.
 //
-// One sample per pixel only; QualityRenderer runs the separate passes otherwise.
+// The resolve's part at one sample per pixel only; QualityRenderer runs the pass over the
+// samples otherwise.
 
 #include <atomic>
 #include <cstddef>
@@ -66,7 +67,8 @@ struct EstimateHook {
   float* bounds = nullptr;
   std::unique_ptr<std::atomic<bool>[]> bounded;  // per mesh: the shade phase bounded it
 
-  // The resolve's part. Out: per pixel row its sums, and the estimate image when not null.
+  // The resolve's part, at one sample per pixel (null rows: none). Out: per pixel row its
+  // sums, and the estimate image when not null.
   int height = 0;
   EstimateSums* rows = nullptr;
   float* image = nullptr;

@@ -744,10 +744,14 @@ void QualityRenderer::hookUp(
   for (const MeshTerms& terms : frame.terms)
     meshTerms_.push_back(terms.polygons.data());
   polygonBounds_.resize(frame.firstPolygon.back());
-  rowSums_.assign(static_cast<std::size_t>(frame.samples.height), {});
-  const bool image = frame.settings.errorEstimateImage;
-  estimate_.resize(image ? static_cast<std::size_t>(frame.samples.width) * frame.samples.height
-                         : 0);
+  // The pixels' part at one sample per pixel only (a pixel of more samples needs them all).
+  const bool pixels = frame.grid == 1;
+  rowSums_.assign(pixels ? static_cast<std::size_t>(frame.samples.height) : 0, {});
+  const bool image = pixels && frame.settings.errorEstimateImage;
+  if (pixels) {
+    estimate_.resize(image ? static_cast<std::size_t>(frame.samples.width) * frame.samples.height
+                           : 0);
+  }
   hook.meshes = frame.scene.meshes.data();
   hook.meshCount = meshCount;
   hook.terms = meshTerms_.data();
@@ -758,15 +762,16 @@ void QualityRenderer::hookUp(
   hook.bounds = polygonBounds_.data();
   hook.bounded = std::make_unique<std::atomic<bool>[]>(meshCount);
   hook.height = frame.samples.height;
-  hook.rows = rowSums_.data();
+  hook.rows = pixels ? rowSums_.data() : nullptr;
   hook.image = image ? estimate_.data() : nullptr;
 }
 
 // After a render that took the estimate: the polygons of meshes its shade phase did not bound
-// (lit without direct light) bounded here, and then, if there were any, the estimate's own
-// pass over the image (their bounds came after the resolve); else the rows' sums.
+// (lit without direct light) bounded here, and then, if there were any or the samples are more
+// than one per pixel, the estimate's own pass over the samples (their bounds came after the
+// resolve); else the rows' sums.
 void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook& hook,
-                                  QualityStats& stats) {
+                                  const FramebufferView& target, QualityStats& stats) {
   const Clock::time_point start = Clock::now();
   FACET_ASSERT(renderer_.shownPolygons().size() == frame.firstPolygon.back());
   shown_ = renderer_.shownPolygons().data();
@@ -780,8 +785,8 @@ void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook
                             late += boundFromCorners(frame, begin, end, hook.bounded.get());
                           });
   }
-  if (late > 0) {
-    estimate(frame, frame.samples, frame.settings.errorEstimateImage, stats);
+  if (late > 0 || !hook.rows) {
+    estimate(frame, target, frame.settings.errorEstimateImage, stats);
   } else {
     setPredicted(rowSums_, stats);
   }
@@ -864,10 +869,10 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     samples_.resize(target.width * g, target.height * g);
     grid = samples_.view();
   }
-  // Flat at one sample per pixel: the estimate taken by the render's shade and resolve
-  // (EstimateHook.h). Validated first: the frame's lights and camera are checked as the
-  // Renderer checks them, so the same error comes first.
-  const bool fused = settings.estimateError && g == 1 && shading.empty();
+  // Flat: the bounds taken by the render's shade phase, and at one sample per pixel the
+  // per-pixel estimate by its resolve (EstimateHook.h). Validated first: the frame's lights
+  // and camera are checked as the Renderer checks them, so the same error comes first.
+  const bool fused = settings.estimateError && shading.empty();
   if (fused) detail::validateRenderInputs(scene, camera, grid, renderer_.depthOutput());
   std::optional<Frame> fusedFrame;
   std::optional<detail::BatchLighting> facing;
@@ -895,8 +900,11 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     return stats;
   }
   if (fused && stats.render.plan.path != RenderPath::Resolve) {
-    finishFused(*fusedFrame, hook, stats);
+    finishFused(*fusedFrame, hook, target, stats);
     estimatedFor_ = estimateFor;
+    const Clock::time_point phase = Clock::now();
+    if (g > 1) shadeAndResolve(*fusedFrame, target, stats);
+    stats.shadeSeconds = secondsSince(phase);
     stats.totalSeconds = secondsSince(start);
     return stats;
   }

@@ -151,7 +151,7 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
     const int y0 = viewport.y0 + static_cast<int>(b) * kRowsPerTask;
     const int y1 = std::min(viewport.y1, y0 + kRowsPerTask - 1);
     routine(context, {viewport.x0, y0, viewport.x1, y1}, transform);
-    if (context.estimate) {  // its rows' ids still in cache
+    if (context.estimate && context.estimate->rows) {  // its rows' ids still in cache
       estimateResolvedRows(*context.estimate, context.colors, context.color, context.polygonId,
                            context.width, y0, y1);
     }

@@ -114,8 +114,8 @@ struct QualitySettings {
 void validate(const QualitySettings& settings);
 
 struct QualityStats {
-  RenderStats render;            ///< the Renderer's pass (at the sample grid's size)
-  double shadeSeconds = 0.0;     ///< re-shading and resolving the samples
+  RenderStats render;         ///< the Renderer's pass (at the sample grid's size)
+  double shadeSeconds = 0.0;  ///< re-shading and resolving the samples
   /// The error estimate's time outside the render (bounds and the per-pixel image); flat at one
   /// sample per pixel the render's shade and resolve take it (EstimateHook.h), and this is
   /// only the summing of its rows.
@@ -186,7 +186,8 @@ class QualityRenderer {
       detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
           boundOne,
       detail::EstimateHook& hook);
-  void finishFused(const Frame& frame, const detail::EstimateHook& hook, QualityStats& stats);
+  void finishFused(const Frame& frame, const detail::EstimateHook& hook,
+                   const FramebufferView& target, QualityStats& stats);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
 
   Renderer& renderer_;
