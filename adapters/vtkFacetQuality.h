@@ -10,8 +10,8 @@
  * when it has them, else vtkPolyDataNormals' meaning; the range of each polygon's corner colors),
  * kept per mesh while its points, polygons, normals and point colors are unchanged. Flat shading
  * with the estimate needs no ShadingMesh: the quality renderer keeps, per mesh version, each
- * polygon's radius and normal spread (8 bytes), and at one sample per pixel the render's shade
- * phase bounds the polygons it lights and its resolve takes the per-pixel estimate (a new
+ * polygon's radius and normal spread (8 bytes); the render's shade phase bounds the polygons
+ * it lights and, at one sample per pixel, its resolve takes the per-pixel estimate (a new
  * background alone keeps the last estimate). AddOutputs puts the estimate in the field data
  * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its time outside
  * the render: inside it, at one sample, only its summing) and, on request, as the point-data

@@ -479,12 +479,11 @@ public:
    * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
    * cost outside the render): per pixel a bound on how far flat shading is from the converged
    * Phong image. Once per mesh version (not per frame) it computes the vertex normals (on the
-   * filter's threads) and keeps each polygon's radius and normal spread (8 bytes); per render,
-   * at one sample per pixel, the render's shade phase bounds the polygons it lights as it
-   * lights them (in SIMD lanes for point and directional lights and a material without
-   * specular) and its resolve estimates each band of pixels as it resolves it, in integers,
-   * writing no image unless ErrorEstimateArray asks; a new background alone keeps the last
-   * estimate. Not free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080,
+   * filter's threads) and keeps each polygon's radius and normal spread (8 bytes); per render
+   * the render's shade phase bounds the polygons it lights as it lights them (in SIMD lanes
+   * for point and directional lights and a material without specular) and, at one sample per
+   * pixel, its resolve estimates each band of pixels as it resolves it, in integers, writing
+   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate. Not free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080,
    * about 8-11 % of the core's frame (bench/estimate-cost.md) and 6-9 % of an Update() (every
    * face drawn; bench/filter_speed.py --overhead), and once per mesh about as much as its first
    * conversion (README, "An estimate of a render's error";
