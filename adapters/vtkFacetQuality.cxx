@@ -84,7 +84,7 @@ vtkFacetQuality::RenderFunction vtkFacetQuality::Prepare(const Settings& setting
     return {};
   }
   // Flat shading with the estimate needs no ShadingMesh: the quality renderer keeps each
-  // polygon's normal, extent, normal spread and center per mesh version, 48 bytes per polygon.
+  // polygon's radius and normal spread per mesh version, 8 bytes per polygon.
   const bool shading = reshades || settings.ComputeError;
   if (!shading)
   {

@@ -10,10 +10,12 @@
  * when it has them, else vtkPolyDataNormals' meaning; the range of each polygon's corner colors),
  * kept per mesh while its points, polygons, normals and point colors are unchanged. Flat shading
  * with the estimate needs no ShadingMesh: the quality renderer keeps, per mesh version, each
- * polygon's normal, extent, normal spread and center (48 bytes), and per render bounds only the
- * polygons that won a pixel (a new background alone keeps the last estimate). AddOutputs puts the
- * estimate in the field data (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and
- * Seconds, what it took) and, on request, as the point-data array `ErrorEstimate`; with
+ * polygon's radius and normal spread (8 bytes); the render's shade phase bounds the polygons
+ * it lights and, at one sample per pixel, its resolve takes the per-pixel estimate (a new
+ * background alone keeps the last estimate). AddOutputs puts the estimate in the field data
+ * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its time outside
+ * the render: inside it, at one sample, only its summing) and, on request, as the point-data
+ * array `ErrorEstimate`; with
  * ShadingMeshes, how many the render built and how many it kept (`FacetShadingMeshes`: Built,
  * Kept). With ComputeError it renders the converged Phong mesh reference and adds `FacetError`
  * (RMSE, Max, PSNR, SSIM, SilhouetteFraction, ReferenceSeconds, RenderSeconds) and the per-pixel

@@ -477,14 +477,14 @@ public:
   /**
    * Estimate the render's flat-shading error and put it in the field data
    * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
-   * cost): per pixel a bound on how far flat shading is from the converged Phong image. Once
-   * per mesh version (not per frame) it computes the vertex normals (on the filter's threads)
-   * and keeps each polygon's normal, extent, normal spread and center (48 bytes); per render
-   * it bounds the polygons the render lit (in SIMD batches for point and directional lights
-   * and a material without specular) and takes one pass over the pixels in integers, writing
-   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate.
-   * Not free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080, about
-   * 12-16 % of the core's frame (bench/estimate-cost.md) and 12-18 % of an Update() (every
+   * cost outside the render): per pixel a bound on how far flat shading is from the converged
+   * Phong image. Once per mesh version (not per frame) it computes the vertex normals (on the
+   * filter's threads) and keeps each polygon's radius and normal spread (8 bytes); per render
+   * the render's shade phase bounds the polygons it lights as it lights them (in SIMD lanes
+   * for point and directional lights and a material without specular) and, at one sample per
+   * pixel, its resolve estimates each band of pixels as it resolves it, in integers, writing
+   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate. Not free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080,
+   * about 8-11 % of the core's frame (bench/estimate-cost.md) and 6-9 % of an Update() (every
    * face drawn; bench/filter_speed.py --overhead), and once per mesh about as much as its first
    * conversion (README, "An estimate of a render's error";
    * bench/estimate-cost.md). Off, a flat one-sample render is the plain rasterizer (default: on).

@@ -7,9 +7,11 @@
 //   facet_estimate_cost [segments...] [--frames N] [--rounds R]
 //
 // Per sphere (segments around; ~2·segments² triangles: 500 → 500k, 1000 → 2M) and round:
-// the median CPU of a frame off and on and the ratio, the estimate's own wall time, and the
-// first frame's CPU off and on, and its wall time on (on: the vertex normals and the
-// polygons' extents, found once per mesh version). bench/estimate-cost.md has the figures.
+// the median CPU of a frame off and on and the ratio, the estimate's own wall time outside the
+// render (QualityStats::estimateSeconds: 0.0 when the render's shade and resolve take it, as
+// here), and the first frame's CPU off and on, and its wall time on (on: the vertex normals
+// and the polygons' bound terms, found once per mesh version). bench/estimate-cost.md has the
+// figures.
 
 #include <algorithm>
 #include <chrono>
@@ -44,7 +46,7 @@ void measure(int segments, int frames, int round) {
   Camera camera = testing::fitCamera(sphere);
   Scene scene;
   SceneMesh mesh{sphere.view(), Material{}};
-  mesh.mesh.version = 1;  // as the filter's input: the extents kept from frame to frame
+  mesh.mesh.version = 1;  // as the filter's input: the bound terms kept from frame to frame
   scene.meshes.push_back(mesh);
   PointLight light;
   light.position = camera.position;

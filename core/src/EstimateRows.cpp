@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "EstimateHook.h"
 #include "EstimateRows.h"
 
 #ifndef FACET_ESTIMATE_ROWS_SCALAR
@@ -40,27 +41,27 @@ inline std::uint32_t scaledChannel(std::uint32_t word, int j) {
 }
 
 // The scalar definitions; the SIMD loops below end with them.
-inline void fieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int x, std::uint32_t* fields, std::size_t stride) {
-  const std::int32_t id = ids[x];
-  const std::uint32_t word = wordOf(colors[x]);
+inline void fieldsOf(Rgba8 color, std::int32_t id, const float* polygonBounds, int x,
+                     EstimateField* fields, std::size_t stride) {
+  const std::uint32_t word = wordOf(color);
   const std::uint32_t q = id < 0 ? 0 : fixedBound(polygonBounds[id]);
   for (int j = 0; j < 3; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
-    fields[2 * j * stride + x] = id < 0 ? 0 : c + q;
-    fields[(2 * j + 1) * stride + x] = id < 0 ? 0 : kEstimateCap - c + q;
+    fields[2 * j * stride + x] = static_cast<EstimateField>(id < 0 ? 0 : c + q);
+    fields[(2 * j + 1) * stride + x] =
+        static_cast<EstimateField>(id < 0 ? 0 : kEstimateCap - c + q);
   }
 }
 
-inline void rowMaximumOf(const std::uint32_t* in, int x, std::uint32_t* out, std::size_t stride) {
+inline void rowMaximumOf(const EstimateField* in, int x, EstimateField* out, std::size_t stride) {
   for (int k = 0; k < kEstimateFields; ++k) {
-    const std::uint32_t* plane = in + k * stride;
+    const EstimateField* plane = in + k * stride;
     out[k * stride + x] = std::max({plane[x - 1], plane[x], plane[x + 1]});
   }
 }
 
-inline std::uint32_t sampleEstimateOf(const std::uint32_t* above, const std::uint32_t* row,
-                                      const std::uint32_t* below, std::size_t stride,
+inline std::uint32_t sampleEstimateOf(const EstimateField* above, const EstimateField* row,
+                                      const EstimateField* below, std::size_t stride,
                                       const Rgba8* colors, const std::int32_t* ids, int x) {
   if (ids[x] < 0) return 0;
   const std::uint32_t word = wordOf(colors[x]);
@@ -68,7 +69,7 @@ inline std::uint32_t sampleEstimateOf(const std::uint32_t* above, const std::uin
   for (int k = 0; k < kEstimateFields; ++k) {
     const std::size_t i = k * stride + x;
     const std::uint32_t c = scaledChannel(word, k / 2);
-    const std::uint32_t m = std::max({above[i], row[i], below[i]});
+    const std::uint32_t m = std::max({above[i], row[i], below[i]});  // promoted
     // No wrap: the sample's own field is part of the maximum.
     largest = std::max(largest, m - (k % 2 == 0 ? c : kEstimateCap - c));
   }
@@ -87,6 +88,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 using DU = hn::ScalableTag<std::uint32_t>;
 using DI = hn::RebindToSigned<DU>;
 using DF = hn::RebindToFloat<DU>;
+using DH = hn::Rebind<EstimateField, DU>;  // the fields of as many samples
 
 // Channel j of color words, scaled by kEstimateUnit (a shift of 7).
 template <int j>
@@ -100,9 +102,13 @@ HWY_INLINE hn::Vec<DU> scaledChannels(hn::Vec<DU> words) {
   }
 }
 
-void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+// kById: each sample's color gathered from its polygon's (polygonColors[id]), as the resolve
+// gathers it; else read from the row of colors.
+template <bool kById>
+HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                         int begin, int end, EstimateField* fields, std::size_t stride) {
   const DU du;
+  const DH dh;
   const DI di;
   const DF df;
   const int lanes = static_cast<int>(hn::Lanes(du));
@@ -112,47 +118,66 @@ void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* 
     const auto id = hn::LoadU(di, ids + x);
     const auto backgroundI = id < hn::Zero(di);
     const auto background = hn::RebindMask(du, backgroundI);
-    const auto bound = hn::GatherIndex(df, polygonBounds, hn::IfThenZeroElse(backgroundI, id));
+    const auto index = hn::IfThenZeroElse(backgroundI, id);
+    const auto bound = hn::GatherIndex(df, polygonBounds, index);
     const auto capped = hn::IfThenElse(bound < hn::Set(df, 255.0f), hn::Max(bound, hn::Zero(df)),
                                        hn::Set(df, 255.0f));
     const auto q =
         hn::BitCast(du, hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit)))) +
         hn::Set(du, 1u);
-    const auto word = hn::IfThenZeroElse(background, hn::LoadU(du, words + x));
+    const auto color = kById ? hn::GatherIndex(du, words, index) : hn::LoadU(du, words + x);
+    const auto word = hn::IfThenZeroElse(background, color);
     const auto plus = hn::IfThenZeroElse(background, q);
     const auto minus = hn::IfThenZeroElse(background, q + hn::Set(du, kEstimateCap));
     const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
                                      scaledChannels<2>(word)};
+    // Below 2^16 (EstimateRows.h): narrowed exactly.
+    const auto narrow = [&](hn::Vec<DU> v) { return hn::DemoteTo(dh, hn::BitCast(di, v)); };
     for (int j = 0; j < 3; ++j) {
-      hn::StoreU(channels[j] + plus, du, fields + 2 * j * stride + x);
-      hn::StoreU(minus - channels[j], du, fields + (2 * j + 1) * stride + x);
+      hn::StoreU(narrow(channels[j] + plus), dh, fields + 2 * j * stride + x);
+      hn::StoreU(narrow(minus - channels[j]), dh, fields + (2 * j + 1) * stride + x);
     }
   }
-  for (; x < end; ++x)
-    fieldsOf(colors, ids, polygonBounds, x, fields, stride);
+  for (; x < end; ++x) {
+    const std::int32_t id = ids[x];
+    const Rgba8 color = !kById ? colors[x] : id < 0 ? Rgba8{} : colors[id];
+    fieldsOf(color, id, polygonBounds, x, fields, stride);
+  }
 }
 
-void RowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
+void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+                     int begin, int end, EstimateField* fields, std::size_t stride) {
+  FieldsOf<false>(colors, ids, polygonBounds, begin, end, fields, stride);
+}
+
+void NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const float* polygonBounds, int begin, int end, EstimateField* fields,
+                         std::size_t stride) {
+  FieldsOf<true>(polygonColors, ids, polygonBounds, begin, end, fields, stride);
+}
+
+void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
                std::size_t stride) {
-  const DU du;
-  const int lanes = static_cast<int>(hn::Lanes(du));
+  const hn::ScalableTag<EstimateField> d16;  // whole vectors of fields
+  const int lanes = static_cast<int>(hn::Lanes(d16));
   int x = begin;
   for (; x + lanes <= end; x += lanes) {
     for (int k = 0; k < kEstimateFields; ++k) {
-      const std::uint32_t* plane = in + k * stride + x;
-      const auto m = hn::Max(hn::Max(hn::LoadU(du, plane - 1), hn::LoadU(du, plane)),
-                             hn::LoadU(du, plane + 1));
-      hn::StoreU(m, du, out + k * stride + x);
+      const EstimateField* plane = in + k * stride + x;
+      const auto m = hn::Max(hn::Max(hn::LoadU(d16, plane - 1), hn::LoadU(d16, plane)),
+                             hn::LoadU(d16, plane + 1));
+      hn::StoreU(m, d16, out + k * stride + x);
     }
   }
   for (; x < end; ++x)
     rowMaximumOf(in, x, out, stride);
 }
 
-void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
-                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+void SampleEstimates(const EstimateField* above, const EstimateField* row,
+                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
   const DU du;
+  const DH dh;
   const DI di;
   const int lanes = static_cast<int>(hn::Lanes(du));
   const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
@@ -165,8 +190,9 @@ void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
     auto largest = hn::Zero(du);
     for (int k = 0; k < kEstimateFields; ++k) {
       const std::size_t i = k * stride + x;
-      const auto m = hn::Max(hn::Max(hn::LoadU(du, above + i), hn::LoadU(du, row + i)),
-                             hn::LoadU(du, below + i));
+      const auto m =
+          hn::PromoteTo(du, hn::Max(hn::Max(hn::LoadU(dh, above + i), hn::LoadU(dh, row + i)),
+                                    hn::LoadU(dh, below + i)));
       const auto own = k % 2 == 0 ? channels[k / 2] : cap - channels[k / 2];
       largest = hn::Max(largest, m - own);
     }
@@ -176,6 +202,26 @@ void SampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
   }
   for (; x < end; ++x)
     out[x] = sampleEstimateOf(above, row, below, stride, colors, ids, x);
+}
+
+// coveredSpan: whole groups of background skipped a vector at a time (a row of 1080p is often
+// half background; one branch per id was most of the time of finding the span).
+std::array<int, 2> CoveredSpan(const std::int32_t* ids, int width) {
+  const DI di;
+  const int lanes = static_cast<int>(hn::Lanes(di));
+  const auto background = [&](int x) {
+    return hn::AllTrue(di, hn::LoadU(di, ids + x) < hn::Zero(di));
+  };
+  int first = 0, last = width;
+  while (first + lanes <= width && background(first))
+    first += lanes;
+  while (first < width && ids[first] < 0)
+    ++first;
+  while (last - lanes >= first && background(last - lanes))
+    last -= lanes;
+  while (last > first && ids[last - 1] < 0)
+    --last;
+  return {first, last};
 }
 
 EstimateSums SumEstimates(const std::uint32_t* estimates, int begin, int end) {
@@ -225,28 +271,130 @@ HWY_AFTER_NAMESPACE();
 namespace facet::detail {
 
 HWY_EXPORT(NeighbourFields);
+HWY_EXPORT(NeighbourFieldsById);
 HWY_EXPORT(RowMaxima);
 HWY_EXPORT(SampleEstimates);
 HWY_EXPORT(SumEstimates);
+HWY_EXPORT(CoveredSpan);
 
 EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
   return HWY_DYNAMIC_DISPATCH(SumEstimates)(estimates, begin, end);
 }
 
 void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, std::uint32_t* fields, std::size_t stride) {
+                     int begin, int end, EstimateField* fields, std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, polygonBounds, begin, end, fields, stride);
 }
 
-void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out,
+void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const float* polygonBounds, int begin, int end, EstimateField* fields,
+                         std::size_t stride) {
+  HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)
+  (polygonColors, ids, polygonBounds, begin, end, fields, stride);
+}
+
+void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
                std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(RowMaxima)(in, begin, end, out, stride);
 }
 
-void sampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
-                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+void sampleEstimates(const EstimateField* above, const EstimateField* row,
+                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
   HWY_DYNAMIC_DISPATCH(SampleEstimates)(above, row, below, stride, colors, ids, begin, end, out);
+}
+
+std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
+  return HWY_DYNAMIC_DISPATCH(CoveredSpan)(ids, width);
+}
+
+void EstimateSpace::resize(int sampleWidth, int gridSide) {
+  if (sampleWidth == width && gridSide == side) return;
+  width = sampleWidth;
+  side = gridSide;
+  stride = static_cast<std::size_t>(width) + 2;
+  const std::size_t planes = kEstimateFields * stride;
+  fields.assign(planes, 0);
+  for (std::vector<EstimateField>& row : maxima)
+    row.assign(planes, 0);
+  written = {};
+  zeros.assign(planes, 0);
+  samples.assign(static_cast<std::size_t>(side) * width, 0);
+  pixels.assign(static_cast<std::size_t>(width / side), 0);
+}
+
+void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
+  const std::size_t row = static_cast<std::size_t>(r) * width;
+  const std::int32_t* ids = grid.ids + row;
+  const auto [first, last] = coveredSpan(ids, width);
+  EstimateField* out = at(maxima[r % 3]);
+  const auto [wasFirst, wasLast] = written[r % 3];
+  for (int k = 0; k < kEstimateFields; ++k)
+    std::fill(out + k * stride + wasFirst, out + k * stride + wasLast, 0u);
+  spans[r % 3] = {first, last};
+  written[r % 3] = {0, 0};
+  if (first >= last) return;  // no polygon in the row
+  const int fieldsBegin = std::max(0, first - 2), fieldsEnd = std::min(width, last + 2);
+  if (grid.polygonColors && (r < grid.ownFirst || r > grid.ownLast)) {
+    neighbourFieldsById(grid.polygonColors, ids, grid.polygonBounds, fieldsBegin, fieldsEnd,
+                        at(fields), stride);
+  } else {
+    neighbourFields(grid.colors + row, ids, grid.polygonBounds, fieldsBegin, fieldsEnd, at(fields),
+                    stride);
+  }
+  const int begin = std::max(0, first - 1), end = std::min(width, last + 1);
+  rowMaxima(at(fields), begin, end, out, stride);
+  written[r % 3] = {begin, end};
+}
+
+void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole) {
+  const std::size_t row = static_cast<std::size_t>(r) * width;
+  std::uint32_t* out = samples.data() + static_cast<std::size_t>(r % side) * width;
+  const auto [first, last] = spans[r % 3];
+  if (whole) {
+    std::fill(out, out + first, 0u);
+    std::fill(out + last, out + width, 0u);
+  }
+  sampleEstimates(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
+                  maximaOf(r + 1, grid.height), stride, grid.colors + row, grid.ids + row, first,
+                  last, out);
+}
+
+const std::uint32_t* EstimateSpace::pixelEstimates() {
+  if (side == 1) return samples.data();
+  const std::uint32_t area = static_cast<std::uint32_t>(side * side);
+  for (std::size_t x = 0; x < pixels.size(); ++x) {
+    std::uint32_t sum = 0;
+    for (int j = 0; j < side; ++j) {
+      const std::uint32_t* s = samples.data() + static_cast<std::size_t>(j) * width + x * side;
+      for (int i = 0; i < side; ++i)
+        sum += s[i];
+    }
+    pixels[x] = sum == 0 ? 0 : std::min((sum + area - 1) / area + kEstimateUnit / 2, kEstimateCap);
+  }
+  return pixels.data();
+}
+
+void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, const Rgba8* colors,
+                          const std::int32_t* ids, int width, int y0, int y1) {
+  // One space per thread, kept: the resolve's tasks are bands, not threads.
+  thread_local EstimateSpace space;
+  space.resize(width, 1);
+  const EstimateGrid grid{ids, colors, hook.bounds, polygonColors, width, hook.height, y0, y1};
+  const bool image = hook.image != nullptr;
+  for (int r = y0 - 1; r <= y1 + 1; ++r) {
+    if (r >= 0 && r < hook.height) space.findMaxima(grid, r);
+    const int y = r - 1;
+    if (y < y0) continue;
+    space.estimateSamples(grid, y, image);  // else only the span is read
+    const std::uint32_t* pixels = space.pixelEstimates();
+    const auto [first, last] = space.spans[y % 3];
+    hook.rows[y] = estimateSums(pixels, first, last);
+    if (!image) continue;
+    float* out = hook.image + static_cast<std::size_t>(y) * width;
+    for (int x = 0; x < width; ++x)  // exact: a power-of-two scale
+      out[x] = static_cast<float>(pixels[x]) / static_cast<float>(kEstimateUnit);
+  }
 }
 
 }  // namespace facet::detail

@@ -21,8 +21,10 @@
 // every field is an unsigned integer below 2^16, and a field of the background is 0, below
 // any polygon's.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "facet/Color.h"
 
@@ -35,23 +37,27 @@ inline constexpr std::uint32_t kEstimateUnit = 128;
 inline constexpr std::uint32_t kEstimateCap = 255 * kEstimateUnit;
 // Fields per sample: red, green, blue, each as c and as 255 − c.
 inline constexpr int kEstimateFields = 6;
+// A field: at most kEstimateCap + ⌈255·kEstimateUnit⌉ + 1 = 65281, 16 bits (half the memory
+// and twice the lanes of 32: the pass reads six planes of three rows per sample).
+using EstimateField = std::uint16_t;
+static_assert(2 * kEstimateCap + 1 < (1u << 16), "a field fits 16 bits");
 
 // For x in [begin, end): field k of sample x (plane k at fields + k·stride), from its color
 // and its polygon's bound (ids[x] indexes polygonBounds; < 0: the background, whose fields
 // are 0). With q = ⌈min(b, 255)·kEstimateUnit⌉ + 1 (≥ 1: a covered sample is never 0):
 // field 2j is c_j·kEstimateUnit + q and field 2j+1 is (255 − c_j)·kEstimateUnit + q.
 void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, std::uint32_t* fields, std::size_t stride);
+                     int begin, int end, EstimateField* fields, std::size_t stride);
 
 // For x in [begin, end) and every plane: out[x] = max(in[x − 1], in[x], in[x + 1]) (the
 // caller keeps in[begin − 1] and in[end] readable).
-void rowMaxima(const std::uint32_t* in, int begin, int end, std::uint32_t* out, std::size_t stride);
+void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out, std::size_t stride);
 
 // For x in [begin, end): the sample's estimate plus its rounding (0.5), in kEstimateUnit
 // steps and capped at kEstimateCap, from the row maxima of the rows above, of its own and
 // below; 0 for the background (a covered sample's is at least 0.5 unit).
-void sampleEstimates(const std::uint32_t* above, const std::uint32_t* row,
-                     const std::uint32_t* below, std::size_t stride, const Rgba8* colors,
+void sampleEstimates(const EstimateField* above, const EstimateField* row,
+                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out);
 
 // Over [begin, end) of a row of estimates: the sum of their squares, the largest, and how
@@ -61,5 +67,62 @@ struct EstimateSums {
   std::uint32_t largest = 0, covered = 0;
 };
 EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end);
+
+// neighbourFields with each sample's color its polygon's, polygonColors[ids[x]] (the resolve's
+// gather), in place of a row of colors.
+void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const float* polygonBounds, int begin, int end, EstimateField* fields,
+                         std::size_t stride);
+
+// The span [first, last) of a row's covered samples (ids ≥ 0).
+std::array<int, 2> coveredSpan(const std::int32_t* ids, int width);
+
+// Where a pass over the sample grid reads its samples: the planes of ids and colors (width ×
+// height), and the bounds per polygon id. With `polygonColors`, the rows outside [ownFirst,
+// ownLast] take each sample's color from its polygon's there (rows whose colors another task
+// may be writing, EstimateHook.h); the others read `colors`.
+struct EstimateGrid {
+  const std::int32_t* ids;
+  const Rgba8* colors;
+  const float* polygonBounds;
+  const Rgba8* polygonColors = nullptr;
+  int width = 0, height = 0;
+  int ownFirst = 0, ownLast = -1;
+};
+
+// One task's space for the estimate's pass (QualityRenderer.cpp, EstimateHook.h), kept from
+// frame to frame. Every row of fields holds kEstimateFields planes of `stride` words, a zero
+// either side of a sample row's `width`.
+struct EstimateSpace {
+  int width = 0, side = 0;  // sample row width, samples per pixel side
+  std::size_t stride = 0;
+  std::vector<EstimateField> fields;  // one sample row's fields
+  // The row maxima of three consecutive sample rows (row r in maxima[r % 3]), each 0 outside
+  // the samples `written` says; and a row of zeros, for the rows outside the grid.
+  std::array<std::vector<EstimateField>, 3> maxima;
+  std::array<std::array<int, 2>, 3> written{};
+  std::array<std::array<int, 2>, 3> spans{};  // the covered samples of each of those rows
+  std::vector<EstimateField> zeros;
+  std::vector<std::uint32_t> samples;  // the estimates of a pixel row's sample rows
+  std::vector<std::uint32_t> pixels;   // a pixel row's, with more than one sample
+
+  void resize(int sampleWidth, int gridSide);
+  // Sample row r's row maxima into maxima[r % 3]: the fields of its covered span and of two
+  // samples either side (the neighbours' fields that maxima read), the maxima over one sample
+  // either side; zero elsewhere.
+  void findMaxima(const EstimateGrid& grid, int r);
+  // The estimates of sample row r (its maxima and its neighbours' found) into samples' row
+  // r % side; 0 outside its covered span where `whole` (else left as they were).
+  void estimateSamples(const EstimateGrid& grid, int r, bool whole);
+  // Pixel row y's estimates (samples holds its sample rows): the mean of its samples',
+  // rounded up, plus 0.5 for rounding that mean, capped; 0 where no sample is covered.
+  const std::uint32_t* pixelEstimates();
+
+ private:
+  static EstimateField* at(std::vector<EstimateField>& row) { return row.data() + 1; }
+  const EstimateField* maximaOf(int r, int height) {
+    return r < 0 || r >= height ? at(zeros) : at(maxima[r % 3]);
+  }
+};
 
 }  // namespace facet::detail

@@ -102,15 +102,18 @@ HWY_INLINE V diffuseOf(D d, const BatchMaterial& material, V cosine) {
          hn::Set(d, material.lerpFull - material.lerpAmbient) * lit;
 }
 
-// The lanes [lane, lane + Lanes(d)) of the batch.
-void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& material,
-                BoundBatch& batch, std::size_t lane) {
+// One group of lanes' polygons: center, unit normal, radius, spread (a sine), surface color.
+struct Lanes {
+  V center[3], normal[3], radius, sine, surface[3];
+};
+
+// The bounds of a group of lanes; NaN where the scalar bound treats the polygon apart.
+HWY_INLINE V boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& material,
+                        const Lanes& in) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
-  const V cx = hn::Load(d, batch.center[0] + lane), cy = hn::Load(d, batch.center[1] + lane),
-          cz = hn::Load(d, batch.center[2] + lane);
-  V nx = hn::Load(d, batch.normal[0] + lane), ny = hn::Load(d, batch.normal[1] + lane),
-    nz = hn::Load(d, batch.normal[2] + lane);
-  const V radius = hn::Load(d, batch.radius + lane);
+  const V cx = in.center[0], cy = in.center[1], cz = in.center[2];
+  V nx = in.normal[0], ny = in.normal[1], nz = in.normal[2];
+  const V radius = in.radius;
   // A zero normal (degenerate) is the scalar bound's to bound.
   M bounded = hn::Not(hn::And(hn::And(nx == zero, ny == zero), nz == zero));
 
@@ -131,7 +134,7 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
     nz = hn::IfThenElse(back, hn::Neg(nz), nz);
   }
   // The normal's cone: the kept sine as a cosine (cosineOfSpread), then as an Angle.
-  const V sine = hn::Load(d, batch.sinNormalSpread + lane);
+  const V sine = in.sine;
   const V cosSpread = hn::IfThenZeroElse(sine >= one, hn::Sqrt(one - sine * sine));
   const Angles normalAngle = select(cosSpread > zero, ofCosine(d, cosSpread), straight(d));
 
@@ -171,50 +174,57 @@ void boundLanes(D d, const BatchLighting& lighting, const BatchMaterial& materia
   const V kd = hn::Set(d, material.diffuse);
   V largest = zero;
   for (int c = 0; c < 3; ++c) {
-    const V total = hn::Min(kd * hn::Load(d, batch.surface[c] + lane) * sum[c], one);
+    const V total = hn::Min(kd * in.surface[c] * sum[c], one);
     largest = c == 0 ? total : hn::Max(largest, total);
   }
   const V bound =
       hn::IfThenElse(hn::IsFinite(largest), hn::Set(d, 255.0) * largest, hn::Set(d, 255.0));
-  hn::Store(hn::IfThenElse(bounded, bound, hn::NaN(d)), d, batch.bound + lane);
+  return hn::IfThenElse(bounded, bound, hn::NaN(d));
 }
 
 void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& material,
                      BoundBatch& batch, std::size_t count) {
   const D d;
-  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d))
-    boundLanes(d, lighting, material, batch, lane);
+  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
+    Lanes in;
+    for (int k = 0; k < 3; ++k) {
+      in.center[k] = hn::Load(d, batch.center[k] + lane);
+      in.normal[k] = hn::Load(d, batch.normal[k] + lane);
+      in.surface[k] = hn::Load(d, batch.surface[k] + lane);
+    }
+    in.radius = hn::Load(d, batch.radius + lane);
+    in.sine = hn::Load(d, batch.sinNormalSpread + lane);
+    hn::Store(boundLanes(d, lighting, material, in), d, batch.bound + lane);
+  }
 }
 
-// The fields of a BoundExtent as doubles and floats from its start (checked below).
-constexpr int kExtentDoubles = sizeof(BoundExtent) / sizeof(double);
-constexpr int kExtentFloats = sizeof(BoundExtent) / sizeof(float);
-constexpr int kNormalFloat = 6, kRadiusFloat = 9, kSpreadFloat = 10;
-
-void GatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
-                   BoundBatch& batch) {
+// The shade phase's columns (ShadeBatch.h) and the centers its lanes divided out, surfaces as
+// FlatErrorBound::bound reads them (capped), bounds rounded up to float (roundedUp: a float below
+// the double goes one step up; NaN stays NaN).
+void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& material,
+                       const ShadeBatch& batch, const ShadeBatchCenters& centers,
+                       const float* radius, const float* sine, std::size_t count, float* bounds) {
   const D d;
-  const hn::Rebind<std::int32_t, D> di;
-  const hn::Rebind<std::int64_t, D> dl;
   const hn::Rebind<float, D> df;
-  const auto* doubles = reinterpret_cast<const double*>(extents);
-  const auto* floats = reinterpret_cast<const float*>(extents);
-  HWY_ALIGN std::int32_t ids[kBoundBatchSize];
-  for (std::size_t lane = 0; lane < kBoundBatchSize; ++lane)
-    ids[lane] = static_cast<std::int32_t>(polygons[lane < count ? lane : 0]);
-  for (std::size_t lane = 0; lane < kBoundBatchSize; lane += hn::Lanes(d)) {
-    const auto id = hn::Load(di, ids + lane);
-    const auto inDoubles = hn::PromoteTo(dl, id * hn::Set(di, kExtentDoubles));
-    const auto inFloats = id * hn::Set(di, kExtentFloats);
+  const hn::Rebind<std::uint32_t, D> du;
+  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
+    Lanes in;
     for (int k = 0; k < 3; ++k) {
-      hn::Store(hn::GatherIndex(d, doubles + k, inDoubles), d, batch.center[k] + lane);
-      hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kNormalFloat + k, inFloats)), d,
-                batch.normal[k] + lane);
+      in.center[k] = hn::Load(d, centers.xyz[k] + lane);
+      in.normal[k] = hn::Load(d, batch.normal[k] + lane);
+      in.surface[k] = hn::Min(hn::PromoteTo(d, hn::LoadU(df, batch.color[k] + lane)) + hn::Zero(d),
+                              hn::Set(d, kMaxRadiance));
     }
-    hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kRadiusFloat, inFloats)), d,
-              batch.radius + lane);
-    hn::Store(hn::PromoteTo(d, hn::GatherIndex(df, floats + kSpreadFloat, inFloats)), d,
-              batch.sinNormalSpread + lane);
+    in.radius = hn::PromoteTo(d, hn::LoadU(df, radius + lane));
+    in.sine = hn::PromoteTo(d, hn::LoadU(df, sine + lane));
+    const V bound = boundLanes(d, lighting, material, in);
+    const auto nearest = hn::DemoteTo(df, bound);
+    // Masks do not change lane width here: the comparison carried over as 1 or 0.
+    const V belowD = hn::IfThenElseZero(hn::PromoteTo(d, nearest) < bound, hn::Set(d, 1.0));
+    const auto below = hn::RebindMask(du, hn::DemoteTo(df, belowD) > hn::Zero(df));
+    const auto bits = hn::BitCast(du, nearest);
+    const auto up = hn::IfThenElse(below, bits + hn::Set(du, 1u), bits);  // bounds are ≥ 0
+    hn::StoreU(hn::BitCast(df, up), df, bounds + lane);
   }
 }
 
@@ -230,21 +240,49 @@ HWY_AFTER_NAMESPACE();
 namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
-HWY_EXPORT(GatherExtents);
-
-static_assert(sizeof(BoundExtent) == 48 && offsetof(BoundExtent, normal) == 24 &&
-                  offsetof(BoundExtent, radius) == 36 &&
-                  offsetof(BoundExtent, sinNormalSpread) == 40,
-              "GatherExtents reads the fields at these offsets");
-
-void gatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
-                   BoundBatch& batch) {
-  HWY_DYNAMIC_DISPATCH(GatherExtents)(extents, polygons, count, batch);
-}
+HWY_EXPORT(ShadeColumnsLanes);
 
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count) {
   HWY_DYNAMIC_DISPATCH(BoundBatchLanes)(lighting, material, batch, count);
+}
+
+void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
+                       const ShadeBatch& batch, const ShadeBatchCenters& centers,
+                       const float* radius, const float* sine, float* bounds) {
+  HWY_DYNAMIC_DISPATCH(ShadeColumnsLanes)
+  (lighting, material, batch, centers, radius, sine, batch.count, bounds);
+}
+
+ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh,
+                                         std::size_t firstPolygon, bool centers)
+    : first_(firstPolygon), hasCenters_(centers) {
+  if (!hook) return;
+  mesh_ = hook->meshOf(mesh);
+  if (mesh_ == hook->meshCount || !hook->terms[mesh_]) return;
+  hook_ = hook;
+  hook_->bounded[mesh_].store(true, std::memory_order_relaxed);
+  terms_ = hook->terms[mesh_];
+  // Without centers the lights are directional and the normal already faces the side seen:
+  // the bound of the polygon as lit, as under a parallel view (EstimateHook.h).
+  lighting_ = centers ? hook->lighting : hook->facingLighting;
+  if (lighting_ && hook->materials[mesh_]) material_ = &*hook->materials[mesh_];
+}
+
+void ShadeBoundCollector::bound(const ShadeBatch& batch) {
+  if (material_) boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_);
+  for (std::size_t lane = 0; lane < batch.count; ++lane) {
+    float& out = hook_->bounds[first_ + polygons_[lane]];
+    if (radius_[lane] < 0.0f) {
+      out = 255.0f;  // no normal: FlatErrorBound::bound's largest
+    } else if (!material_ || std::isnan(lanes_[lane])) {
+      const glm::dvec3 center(centers_.xyz[0][lane], centers_.xyz[1][lane], centers_.xyz[2][lane]);
+      const glm::dvec3 normal(batch.normal[0][lane], batch.normal[1][lane], batch.normal[2][lane]);
+      out = hook_->boundOne(mesh_, polygons_[lane], hasCenters_ ? &center : nullptr, normal);
+    } else {
+      out = lanes_[lane];
+    }
+  }
 }
 
 namespace {

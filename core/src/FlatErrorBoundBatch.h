@@ -10,8 +10,11 @@
 // the polygon's center, or astronomically far) come out NaN, for the caller to bound one by
 // one.
 
+#include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -20,6 +23,9 @@
 #include "facet/Camera.h"
 #include "facet/Light.h"
 #include "facet/Lighting.h"
+
+#include "EstimateHook.h"
+#include "ShadeBatch.h"
 
 namespace facet::detail {
 
@@ -73,24 +79,83 @@ struct BoundBatch {
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count);
 
-// A polygon's part of the estimate that does not depend on the camera (QualityRenderer.cpp):
-// its center (in double, for data far from the origin) so a frame reads no corners; its
-// normal, flat shading's rounded to float as the Renderer's; its radius and the sine of its
-// corner normals' spread about that normal, both rounded up, so the bound stays a bound.
-struct BoundExtent {
-  glm::dvec3 center{0.0};
-  glm::vec3 normal{0.0f};  // zero: degenerate
-  float radius = 0.0f;
-  float sinNormalSpread = 0.0f;  // 2: 90° or more
+// std::nextafter(f, INFINITY) for a float below +∞, without the library call (a call per
+// visible polygon was a tenth of the bounds' time).
+inline float nextUp(float f) {
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);
+}
+
+// A bound kept as a float: rounded up, so it stays a bound.
+inline float roundedUp(double value) {
+  const float f = static_cast<float>(value);
+  return f < value ? nextUp(f) : f;
+}
+
+// The bounds of a shade batch's polygons (ShadeBatch.h: normals as lit, surface colors; their
+// centers as the shade's lanes divided them out), each with its terms (radius and sine, per
+// lane), rounded up to float: bounds[lane] for lanes [0, batch.count), NaN where the batch
+// leaves it to the scalar bound. The same bytes as roundedUp(boundBatch).
+void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
+                       const ShadeBatch& batch, const ShadeBatchCenters& centers,
+                       const float* radius, const float* sine, float* bounds);
+
+// The bounds of one shade task's polygons of one mesh (the fused estimate, EstimateHook.h),
+// taken batch by batch as the shade phase lights them, into hook.bounds. Polygons the batch
+// does not take (a mesh whose material it leaves out, a frame whose lights it leaves out,
+// lanes it leaves NaN) go to hook.boundOne.
+class ShadeBoundCollector {
+ public:
+  // Inactive without a hook, or for a mesh that is not one of the hook's. `centers`: the
+  // shade phase gathers the polygons' centers (else the bound takes the normal as lit, facing
+  // the viewer, and needs no center: the lights are directional).
+  ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh, std::size_t firstPolygon,
+                      bool centers);
+  ShadeBoundCollector(const ShadeBoundCollector&) = delete;
+  ShadeBoundCollector& operator=(const ShadeBoundCollector&) = delete;
+
+  bool active() const { return hook_ != nullptr; }
+  // Polygon `polygon` of the mesh is lane `lane` of the shade batch to come.
+  void note(std::size_t lane, std::size_t polygon) {
+    const BoundTerms& t = terms_[polygon];
+    radius_[lane] = t.radius;
+    sine_[lane] = t.sinNormalSpread;
+    polygons_[lane] = polygon;
+  }
+  // Where the shade batch's lanes leave their centers (shadeBatch).
+  ShadeBatchCenters* centers() { return &centers_; }
+  // The bounds of the batch's polygons, noted lane by lane, their centers left in centers().
+  void bound(const ShadeBatch& batch);
+
+  // For the routines that light polygon by polygon: the polygon, lit at `sample` (its
+  // position the center), batched here.
+  void add(std::size_t polygon, const SurfaceSample& sample) {
+    note(own_.count, polygon);
+    for (int k = 0; k < 3; ++k)
+      centers_.xyz[k][own_.count] = sample.position[k];
+    own_.add(sample, 1.0);
+    if (own_.full()) flush();
+  }
+  void flush() {
+    if (own_.count > 0) bound(own_);
+    own_.count = 0;
+  }
+
+ private:
+  EstimateHook* hook_ = nullptr;
+  std::size_t mesh_ = 0, first_ = 0;
+  bool hasCenters_ = true;
+  const BoundTerms* terms_ = nullptr;
+  const BatchLighting* lighting_ = nullptr;
+  const BatchMaterial* material_ = nullptr;  // null: every polygon to boundOne
+  // Per lane; past a batch's count, zeros or an earlier batch's (computed, not read).
+  alignas(64) float radius_[kShadeBatchSize] = {};
+  alignas(64) float sine_[kShadeBatchSize] = {};
+  alignas(64) float lanes_[kShadeBatchSize] = {};
+  std::size_t polygons_[kShadeBatchSize] = {};
+  ShadeBatchCenters centers_;
+  ShadeBatch own_;  // add()'s
 };
-
-// The most polygons gatherExtents takes: their fields' offsets fit 32-bit lanes.
-inline constexpr std::size_t kMaxGatheredPolygons = (std::size_t{1} << 31) / sizeof(BoundExtent);
-
-// The center, normal, radius and spread of lanes [0, kBoundBatchSize) from
-// extents[polygons[lane]], gathered in SIMD lanes; the lanes from `count` on repeat lane 0.
-// Every polygon index is below kMaxGatheredPolygons.
-void gatherExtents(const BoundExtent* extents, const std::uint32_t* polygons, std::size_t count,
-                   BoundBatch& batch);
 
 }  // namespace facet::detail

@@ -17,6 +17,8 @@
 
 namespace facet::detail {
 
+struct EstimateHook;  // EstimateHook.h
+
 // What a render is asked to draw.
 struct FrameInputs {
   const Scene& scene;
@@ -27,6 +29,7 @@ struct FrameInputs {
   Rgba8 background;
   bool depthOutput;
   const RenderRules& rules;
+  EstimateHook* estimate = nullptr;  // QualityRenderer's, for shade and resolve (not compared)
 };
 
 struct PathChoice {

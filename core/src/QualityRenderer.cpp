@@ -8,6 +8,9 @@
 //      the samples are shaded again in place);
 //   4. per output pixel: shade its samples again where the mode asks, average, round.
 // Each pass writes only its own elements, so every thread count gives the same bytes.
+// Flat at one sample per pixel, 2 and 3 are the render's own (EstimateHook.h): its shade
+// phase bounds the polygons it lights, its resolve estimates each band of rows it resolves;
+// here only what it did not bound (meshes lit without direct light) and the rows' sums.
 
 #include "facet/QualityRenderer.h"
 
@@ -26,10 +29,12 @@
 #include <glm/geometric.hpp>
 
 #include "Assert.h"
+#include "EstimateHook.h"
 #include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
+#include "RendererInputs.h"
 #include "ShownPolygons.h"
 #include "Validate.h"
 #include "facet/Conventions.h"
@@ -172,19 +177,7 @@ PolygonShape polygonShape(const MeshView& mesh, const Corners& corners) {
   return shape;
 }
 
-// std::nextafter(f, INFINITY) for a float below +∞, without the library call (a call per
-// visible polygon was a tenth of the bounds' time).
-float nextUp(float f) {
-  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
-  const std::uint32_t bits = std::bit_cast<std::uint32_t>(f);
-  return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);
-}
-
-// A bound kept as a float: rounded up, so it stays a bound.
-float roundedUp(double value) {
-  const float f = static_cast<float>(value);
-  return f < value ? nextUp(f) : f;
-}
+using detail::roundedUp;
 
 // The spread is kept as a sine, rounded up: a float cosine near 1 moves in steps of ~3e-4 rad
 // of the angle. sin α of a spread with cosine c, or 2 for α ≥ 90° (no bound).
@@ -217,11 +210,9 @@ glm::dvec3 clampedOnto(glm::dvec3 weights) {
   return sum > 0.0 ? weights / sum : glm::dvec3(1.0 / 3.0);
 }
 
-// A polygon's part of the estimate that does not depend on the camera (FlatErrorBoundBatch.h):
-// a PolygonShape but its point colors, 48 bytes in place of a ShadingMesh's ~250.
-using detail::BoundExtent;
-
-BoundExtent extentOf(const Corners& corners) {
+// A polygon's part of its bound that does not depend on the camera (EstimateHook.h), about
+// the normal flat shading lights it by: the rounded one.
+detail::BoundTerms termsOf(const Corners& corners) {
   if (corners.points.size() < 3) return {};
   const std::span<const glm::dvec3> points = corners.points;
   const std::optional<glm::dvec3> normal =
@@ -234,32 +225,44 @@ BoundExtent extentOf(const Corners& corners) {
   for (const glm::dvec3& c : points)
     radius = std::max(radius, glm::length(c - center));
   if (!normal || !std::isfinite(radius)) return {};  // degenerate: the largest bound
-  // The spread about the normal flat shading lights by: the rounded one.
   const glm::vec3 rounded(*normal);
   const double c = smallestCosine(glm::normalize(glm::dvec3(rounded)), corners.normals);
-  return {center, rounded, roundedUp(radius), sineOfSpread(c)};
+  return {roundedUp(radius), sineOfSpread(c)};
 }
 
-// A polygon's shape from its extent, without colors.
-PolygonShape shapeOf(const BoundExtent& extent) {
-  PolygonShape shape;
-  if (extent.normal == glm::vec3(0.0f)) return shape;  // degenerate: the largest bound
-  shape.normal = glm::dvec3(extent.normal);
-  shape.radius = extent.radius;
-  shape.center = extent.center;
-  shape.cosNormalSpread = cosineOfSpread(extent.sinNormalSpread);
-  return shape;
+// A polygon's center and the normal flat shading lights it by (rounded to float, as the
+// Renderer's), from its corners: for the polygons the shade phase did not bound.
+struct Placement {
+  glm::dvec3 center{0.0}, normal{0.0};
+};
+template <class PointsT, class PolygonsT>
+Placement placementOf(PointsT points, PolygonsT polygons, std::size_t polygon) {
+  const std::size_t n = polygons.size(polygon);
+  const auto corner = [&](std::size_t k) {
+    return glm::dvec3(points[polygons.pointId(polygon, k)]);
+  };
+  Placement placement;
+  for (std::size_t k = 0; k < n; ++k)
+    placement.center += corner(k);
+  placement.center /= static_cast<double>(n);
+  if (const std::optional<glm::dvec3> normal = polygonNormal(n, corner))
+    placement.normal = glm::dvec3(glm::vec3(*normal));
+  return placement;
 }
 
-// The ids in [first, last) whose `shown` flag is set, as offsets from `base`, into `out`;
-// returns how many.
-std::size_t shownAmong(const std::uint8_t* shown, std::size_t first, std::size_t last,
-                       std::size_t base, std::uint32_t* out) {
-  std::size_t count = 0;
-  detail::forEachShownPolygon(shown, first, last, [&](std::size_t id) {
-    out[count++] = static_cast<std::uint32_t>(id - base);
-  });
-  return count;
+// The lights as the shade routines without centers see them (EstimateHook.h): when every one
+// is directional, the same lights under a parallel view, one-sided (the normal as lit already
+// faces the viewer); else nothing.
+std::optional<detail::BatchLighting> facingLighting(
+    const std::optional<detail::BatchLighting>& lighting) {
+  if (!lighting) return std::nullopt;
+  for (const detail::BatchLighting::Source& light : lighting->lights) {
+    if (!light.directional) return std::nullopt;
+  }
+  detail::BatchLighting facing = *lighting;
+  facing.parallel = true;
+  facing.twoSided = false;
+  return facing;
 }
 
 }  // namespace
@@ -293,8 +296,8 @@ ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& option
   });
 }
 
-// Per scene mesh, its polygons' extents for the arrays and version in `key`.
-struct QualityRenderer::MeshExtents {
+// Per scene mesh, its polygons' bound terms for the arrays and version in `key`.
+struct QualityRenderer::MeshTerms {
   struct Key {
     detail::MeshIdentity geometry;
     const void* normals = nullptr;  // MeshView::pointNormals
@@ -303,7 +306,7 @@ struct QualityRenderer::MeshExtents {
     friend bool operator==(const Key&, const Key&) = default;
   };
   Key key;
-  std::vector<BoundExtent> polygons;
+  std::vector<detail::BoundTerms> polygons;
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
@@ -335,6 +338,7 @@ struct QualityRenderer::Frame {
   const Scene& scene;
   std::span<const ShadingMesh> meshes;
   const QualitySettings& settings;
+  const Camera& camera;
   FramebufferView samples;  // the sample grid the Renderer painted
   int grid;                 // samples per pixel side
   CameraRays rays;          // through the sample grid's pixel centers
@@ -344,7 +348,7 @@ struct QualityRenderer::Frame {
   std::vector<std::size_t> firstPolygon;  // per mesh, and the total
   std::vector<std::size_t> firstCorner;   // per mesh
   std::vector<PreparedMaterial> materials;
-  std::span<const MeshExtents> extents;  // per mesh, when `meshes` is empty
+  std::span<const MeshTerms> terms;  // per mesh, when `meshes` is empty
   // When `meshes` is empty: the lighting polygons are bounded in batches by, and per mesh
   // its material's terms; nothing for what is bounded one by one (a spot light; point
   // colors, a specular material).
@@ -353,14 +357,15 @@ struct QualityRenderer::Frame {
   bool reshading;  // some sample may be shaded again (reshadesAny)
 
   Frame(const Scene& s, std::span<const ShadingMesh> m, const QualitySettings& q,
-        const Camera& camera, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
+        const Camera& view, const FramebufferView& sampleGrid, int side, bool twoSidedLighting)
       : scene(s),
         meshes(m),
         settings(q),
+        camera(view),
         samples(sampleGrid),
         grid(side),
-        rays(camera, sampleGrid.width, sampleGrid.height),
-        bounds(s.lights, camera, twoSidedLighting),
+        rays(view, sampleGrid.width, sampleGrid.height),
+        bounds(s.lights, view, twoSidedLighting),
         shader(s.lights),
         twoSided(twoSidedLighting),
         reshading(reshadesAny(q)) {
@@ -373,6 +378,19 @@ struct QualityRenderer::Frame {
       corners += mesh.mesh.polygons.connectivitySize;
     }
     firstPolygon.push_back(polygons);
+  }
+
+  // Flat (no ShadingMeshes): the kept terms, and what the bound's batches take.
+  void prepareBatches(std::span<const MeshTerms> meshTerms) {
+    terms = meshTerms;
+    if (!meshes.empty()) return;
+    batchLighting = detail::batchLighting(scene.lights, camera, twoSided);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      const MeshView& mesh = scene.meshes[m].mesh;
+      batchMaterials.push_back(mesh.pointColors.empty() && mesh.scalarTexture.empty()
+                                   ? detail::batchMaterial(materials[m])
+                                   : std::nullopt);
+    }
   }
 
   bool adaptive() const { return settings.maximumError.has_value(); }
@@ -408,6 +426,30 @@ struct QualityRenderer::Frame {
   }
   double boundOf(std::size_t mesh, std::size_t polygon) const {
     return boundOf(mesh, polygon, meshes[mesh].shapes[polygon]);
+  }
+  // Flat (no ShadingMeshes): a polygon's bound, lit at `center` (null: found from its
+  // corners) with `normal`, from its kept terms; rounded up to float.
+  float boundOne(std::size_t mesh, std::size_t polygon, const glm::dvec3* center,
+                 const glm::dvec3& normal) const {
+    const detail::BoundTerms& t = terms[mesh].polygons[polygon];
+    if (t.radius < 0.0f) return 255.0f;  // no normal: the largest bound
+    PolygonShape shape;
+    shape.normal = normal;
+    shape.radius = t.radius;
+    shape.cosNormalSpread = cosineOfSpread(t.sinNormalSpread);
+    const MeshView& view = scene.meshes[mesh].mesh;
+    const bool pointColors = !view.pointColors.empty() || !view.scalarTexture.empty();
+    if (center && !pointColors) {
+      shape.center = *center;
+    } else {
+      detail::withTypedMesh(view, [&](auto points, auto polygons) {
+        shape.center = center ? *center : placementOf(points, polygons, polygon).center;
+        if (!pointColors) return;
+        addColors(shape, view, polygons.size(polygon),
+                  [&](std::size_t k) { return polygons.pointId(polygon, k); });
+      });
+    }
+    return roundedUp(boundOf(mesh, polygon, shape));
   }
 
   // The normal a polygon is lit by, turned toward the viewer when its back is seen.
@@ -543,126 +585,28 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
                        });
 }
 
+// The predicted RMSE and maximum from the rows' sums of pixel estimates (in fixed point:
+// exact integers, the same in any order).
+void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stats) {
+  std::uint64_t squares = 0, covered = 0;
+  std::uint32_t largest = 0;
+  for (const detail::EstimateSums& row : rows) {
+    squares += row.squares;
+    covered += row.covered;
+    largest = std::max(largest, row.largest);
+  }
+  const double unit = detail::kEstimateUnit;
+  stats.predictedMaxError = largest / unit;
+  stats.predictedRmse =
+      covered > 0 ? std::sqrt(static_cast<double>(squares) / static_cast<double>(covered)) / unit
+                  : 0.0;
+}
+
 // Sample rows per block of the estimate's pass: the rows just above and below a block's are
 // taken by both blocks that read them, 2 in 18.
 constexpr int kSampleRowsPerTask = 16;
 
-// The span [first, last) of a row's covered samples (ids ≥ 0): whole blocks of background
-// skipped by the sign of their AND (negative when every id is), one branch per sixteen ids
-// where find_if takes one per id (a row of 1080p is often half background).
-constexpr int kSpanBlock = 16;
-bool allBackground(const std::int32_t* ids) {
-  std::int32_t all = -1;
-  for (int i = 0; i < kSpanBlock; ++i)
-    all &= ids[i];
-  return all < 0;
-}
-std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
-  int first = 0, last = width;
-  while (first + kSpanBlock <= width && allBackground(ids + first))
-    first += kSpanBlock;
-  while (first < width && ids[first] < 0)
-    ++first;
-  while (last - kSpanBlock >= first && allBackground(ids + last - kSpanBlock))
-    last -= kSpanBlock;
-  while (last > first && ids[last - 1] < 0)
-    --last;
-  return {first, last};
-}
-
 }  // namespace
-
-// One task's space for the estimate's pass (EstimateRows.h), kept from frame to frame by its
-// QualityRenderer, one per thread. Every row of fields holds kEstimateFields
-// planes of `stride` words, a zero either side of a sample row's `width`.
-struct QualityRenderer::EstimateSpace {
-  int width = 0, side = 0;  // sample row width, samples per pixel side
-  std::size_t stride = 0;
-  std::vector<std::uint32_t> fields;  // one sample row's fields
-  // The row maxima of three consecutive sample rows (row r in maxima[r % 3]), each 0 outside
-  // the samples `written` says; and a row of zeros, for the rows outside the grid.
-  std::array<std::vector<std::uint32_t>, 3> maxima;
-  std::array<std::array<int, 2>, 3> written{};
-  std::array<std::array<int, 2>, 3> spans{};  // the covered samples of each of those rows
-  std::vector<std::uint32_t> zeros;
-  std::vector<std::uint32_t> samples;  // the estimates of a pixel row's sample rows
-  std::vector<std::uint32_t> pixels;   // a pixel row's, with more than one sample
-
-  void resize(int sampleWidth, int gridSide) {
-    if (sampleWidth == width && gridSide == side) return;
-    width = sampleWidth;
-    side = gridSide;
-    stride = static_cast<std::size_t>(width) + 2;
-    const std::size_t planes = detail::kEstimateFields * stride;
-    fields.assign(planes, 0);
-    for (std::vector<std::uint32_t>& row : maxima)
-      row.assign(planes, 0);
-    written = {};
-    zeros.assign(planes, 0);
-    samples.assign(static_cast<std::size_t>(side) * width, 0);
-    pixels.assign(static_cast<std::size_t>(width / side), 0);
-  }
-  // Plane 0's sample 0 of a row of fields.
-  static std::uint32_t* at(std::vector<std::uint32_t>& row) { return row.data() + 1; }
-  const std::uint32_t* maximaOf(int r, int height) {
-    return r < 0 || r >= height ? at(zeros) : at(maxima[r % 3]);
-  }
-
-  // Sample row r's row maxima into maxima[r % 3]: the fields of its covered span and of two
-  // samples either side (the neighbours' fields that maxima read), the maxima over one sample
-  // either side; zero elsewhere.
-  void findMaxima(const FramebufferView& grid, const float* polygonBounds, int r) {
-    const std::size_t row = static_cast<std::size_t>(r) * width;
-    const std::int32_t* ids = grid.polygonId + row;
-    const auto [first, last] = coveredSpan(ids, width);
-    std::uint32_t* out = at(maxima[r % 3]);
-    const auto [wasFirst, wasLast] = written[r % 3];
-    for (int k = 0; k < detail::kEstimateFields; ++k)
-      std::fill(out + k * stride + wasFirst, out + k * stride + wasLast, 0u);
-    spans[r % 3] = {first, last};
-    written[r % 3] = {0, 0};
-    if (first >= last) return;  // no polygon in the row
-    detail::neighbourFields(grid.color + row, ids, polygonBounds, std::max(0, first - 2),
-                            std::min(width, last + 2), at(fields), stride);
-    const int begin = std::max(0, first - 1), end = std::min(width, last + 1);
-    detail::rowMaxima(at(fields), begin, end, out, stride);
-    written[r % 3] = {begin, end};
-  }
-
-  // The estimates of sample row r (its maxima and its neighbours' found) into samples' row
-  // r % side; 0 outside its covered span where `whole` (else left as they were).
-  void estimateSamples(const FramebufferView& grid, int r, bool whole) {
-    const std::size_t row = static_cast<std::size_t>(r) * width;
-    std::uint32_t* out = samples.data() + static_cast<std::size_t>(r % side) * width;
-    const auto [first, last] = spans[r % 3];
-    if (whole) {
-      std::fill(out, out + first, 0u);
-      std::fill(out + last, out + width, 0u);
-    }
-    detail::sampleEstimates(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
-                            maximaOf(r + 1, grid.height), stride, grid.color + row,
-                            grid.polygonId + row, first, last, out);
-  }
-
-  // Pixel row y's estimates (samples holds its sample rows): the mean of its samples',
-  // rounded up, plus 0.5 for rounding that mean, capped; 0 where no sample is covered.
-  const std::uint32_t* pixelEstimates() {
-    if (side == 1) return samples.data();
-    const std::uint32_t area = static_cast<std::uint32_t>(side * side);
-    for (std::size_t x = 0; x < pixels.size(); ++x) {
-      std::uint32_t sum = 0;
-      for (int j = 0; j < side; ++j) {
-        const std::uint32_t* s = samples.data() + static_cast<std::size_t>(j) * width + x * side;
-        for (int i = 0; i < side; ++i)
-          sum += s[i];
-      }
-      pixels[x] = sum == 0 ? 0
-                           : std::min((sum + area - 1) / area + detail::kEstimateUnit / 2,
-                                      detail::kEstimateCap);
-    }
-    return pixels.data();
-  }
-};
 
 QualityRenderer::~QualityRenderer() = default;
 QualityRenderer::QualityRenderer(QualityRenderer&&) noexcept = default;
@@ -686,7 +630,7 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   }
   if (bounds && frame.meshes.empty()) {  // flat, one bound per visible polygon and no more
     renderer_.parallelFor(polygons, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
-      boundFromExtents(frame, begin, end);
+      boundFromCorners(frame, begin, end, nullptr);
     });
     return 0;
   }
@@ -711,69 +655,26 @@ std::size_t QualityRenderer::preparePolygons(const Frame& frame, bool bounds, bo
   return total;
 }
 
-// The bounds of the visible polygons among ids [begin, end), from the kept extents: in SIMD
-// batches (FlatErrorBoundBatch.h) where the lighting and the mesh allow, else one by one.
-void QualityRenderer::boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end) {
-  detail::BoundBatch batch;
-  const auto visible = std::make_unique_for_overwrite<std::uint32_t[]>(end - begin);
-  for (std::size_t m = 0; m < frame.extents.size(); ++m) {
+// The bounds of the visible polygons among ids [begin, end) of the meshes `skip` does not
+// mark, from their corners and kept terms, one by one (the shade phase bounds the others:
+// EstimateHook.h); returns how many.
+std::size_t QualityRenderer::boundFromCorners(const Frame& frame, std::size_t begin,
+                                              std::size_t end, const std::atomic<bool>* skip) {
+  std::size_t count = 0;
+  for (std::size_t m = 0; m < frame.terms.size(); ++m) {
     const std::size_t offset = frame.firstPolygon[m], first = std::max(begin, offset),
                       last = std::min(end, frame.firstPolygon[m + 1]);
-    if (first >= last) continue;
-    // The visible polygons, numbered within the mesh.
-    const std::size_t count = shownAmong(shown_, first, last, offset, visible.get());
-    const MeshView& view = frame.scene.meshes[m].mesh;
-    const std::span<const BoundExtent> extents = frame.extents[m].polygons;
-    const std::optional<detail::BatchMaterial>& material = frame.batchMaterials[m];
-    const bool batched =
-        frame.batchLighting && material && extents.size() <= detail::kMaxGatheredPolygons;
-    const bool pointColors = !view.pointColors.empty() || !view.scalarTexture.empty();
-    // As FlatErrorBound::bound reads it.
-    const auto surfaceOf = [&](std::size_t polygon) {
-      return glm::min(glm::dvec3(frame.polygonColor(m, polygon)) + 0.0, glm::dvec3(kMaxRadiance));
-    };
-    const bool polygonColors = !view.polygonColors.empty();
-    detail::withTypedMesh(view, [&](auto, auto polygons) {
-      // One by one: the shape from the extent, with the colors its corners can show.
-      const auto boundOne = [&](std::size_t polygon) {
-        PolygonShape shape = shapeOf(extents[polygon]);
-        if (pointColors && shape.normal != glm::dvec3(0.0)) {
-          addColors(shape, view, polygons.size(polygon),
-                    [&](std::size_t k) { return polygons.pointId(polygon, k); });
-        }
-        return roundedUp(frame.boundOf(m, polygon, shape));
-      };
-      if (!batched) {
-        for (std::size_t i = 0; i < count; ++i)
-          polygonBounds_[offset + visible[i]] = boundOne(visible[i]);
-        return;
-      }
-      // In batches, the extents gathered in SIMD lanes; one color for the mesh set once.
-      const auto setSurface = [&](std::size_t lane, const glm::dvec3& surface) {
-        for (int k = 0; k < 3; ++k)
-          batch.surface[k][lane] = surface[k];
-      };
-      for (std::size_t lane = 0; !polygonColors && lane < detail::kBoundBatchSize; ++lane)
-        setSurface(lane, surfaceOf(0));
-      for (std::size_t i = 0; i < count; i += detail::kBoundBatchSize) {
-        const std::size_t lanes = std::min(detail::kBoundBatchSize, count - i);
-        // The next batch's extents on their way (the visible ones are scattered: a miss each).
-        const std::size_t next = std::min(count, i + 2 * detail::kBoundBatchSize);
-        for (std::size_t j = i + detail::kBoundBatchSize; j < next; ++j)
-          __builtin_prefetch(&extents[visible[j]]);
-        detail::gatherExtents(extents.data(), visible.get() + i, lanes, batch);
-        for (std::size_t lane = 0; polygonColors && lane < detail::kBoundBatchSize; ++lane)
-          setSurface(lane, surfaceOf(visible[i + (lane < lanes ? lane : 0)]));
-        detail::boundBatch(*frame.batchLighting, *material, batch, detail::kBoundBatchSize);
-        for (std::size_t lane = 0; lane < lanes; ++lane) {
-          const std::size_t polygon = visible[i + lane];
-          const double bound = batch.bound[lane];  // NaN: one the scalar bound treats apart
-          polygonBounds_[offset + polygon] =
-              std::isnan(bound) ? boundOne(polygon) : roundedUp(bound);
-        }
-      }
+    if (first >= last || (skip && skip[m].load(std::memory_order_relaxed))) continue;
+    detail::withTypedMesh(frame.scene.meshes[m].mesh, [&](auto points, auto polygons) {
+      detail::forEachShownPolygon(shown_, first, last, [&](std::size_t id) {
+        const std::size_t polygon = id - offset;
+        const Placement placement = placementOf(points, polygons, polygon);
+        polygonBounds_[id] = frame.boundOne(m, polygon, &placement.center, placement.normal);
+        ++count;
+      });
     });
   }
+  return count;
 }
 
 // The estimate per pixel (EstimateRows.h, QualityStats): per sample the largest, over the
@@ -788,9 +689,9 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
   const FramebufferView& grid = frame.samples;
   const int g = frame.grid;
   estimate_.resize(image ? static_cast<std::size_t>(target.width) * target.height : 0);
-  std::vector<std::uint64_t> rowSquares(static_cast<std::size_t>(target.height), 0);
-  std::vector<std::uint32_t> rowLargest(static_cast<std::size_t>(target.height), 0);
-  std::vector<std::uint32_t> rowCovered(static_cast<std::size_t>(target.height), 0);
+  rowSums_.assign(static_cast<std::size_t>(target.height), {});
+  const detail::EstimateGrid samples{grid.polygonId, grid.color, polygonBounds_.data(),
+                                     nullptr,        grid.width, grid.height};
   // Blocks of pixel rows, taken in turn by one task per thread, each with a space of its own
   // (kept from frame to frame): the blocks' results go to their own rows, in any order.
   const std::size_t rowsPerBlock = static_cast<std::size_t>(std::max(1, kSampleRowsPerTask / g));
@@ -798,10 +699,10 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
       (static_cast<std::size_t>(target.height) + rowsPerBlock - 1) / rowsPerBlock;
   const std::size_t tasks = std::min(blocks, static_cast<std::size_t>(renderer_.threadCount()));
   while (spaces_.size() < tasks)
-    spaces_.push_back(std::make_unique<EstimateSpace>());
+    spaces_.push_back(std::make_unique<detail::EstimateSpace>());
   std::atomic<std::size_t> nextBlock{0};
   renderer_.parallelFor(tasks, 1, [&](std::size_t task, std::size_t) {
-    EstimateSpace& space = *spaces_[task];
+    detail::EstimateSpace& space = *spaces_[task];
     space.resize(grid.width, g);
     for (std::size_t block; (block = nextBlock.fetch_add(1)) < blocks;) {
       const std::size_t begin = block * rowsPerBlock;
@@ -811,20 +712,17 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
       // are, a pixel row once its g sample rows are.
       const int firstRow = static_cast<int>(begin) * g, lastRow = static_cast<int>(end) * g;
       for (int r = firstRow - 1; r <= lastRow; ++r) {
-        if (r >= 0 && r < grid.height) space.findMaxima(grid, polygonBounds_.data(), r);
+        if (r >= 0 && r < grid.height) space.findMaxima(samples, r);
         const int estimated = r - 1;
         if (estimated < firstRow) continue;
-        space.estimateSamples(grid, estimated, image || g > 1);  // else only the span is read
+        space.estimateSamples(samples, estimated, image || g > 1);  // else only the span is read
         if ((estimated + 1) % g != 0) continue;
         const int y = estimated / g;
         const std::uint32_t* pixels = space.pixelEstimates();
         // One sample: the pixels outside the row's covered span are 0.
         const auto [first, last] =
             g == 1 ? space.spans[estimated % 3] : std::array<int, 2>{0, target.width};
-        const detail::EstimateSums sums = detail::estimateSums(pixels, first, last);
-        rowSquares[y] = sums.squares;
-        rowLargest[y] = sums.largest;
-        rowCovered[y] = sums.covered;
+        rowSums_[y] = detail::estimateSums(pixels, first, last);
         if (!image) continue;
         float* out = estimate_.data() + static_cast<std::size_t>(y) * target.width;
         for (int x = 0; x < target.width; ++x)  // exact: a power-of-two scale
@@ -832,18 +730,68 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
       }
     }
   });
-  std::uint64_t squares = 0, covered = 0;
-  std::uint32_t largest = 0;
-  for (int y = 0; y < target.height; ++y) {
-    squares += rowSquares[y];
-    covered += rowCovered[y];
-    largest = std::max(largest, rowLargest[y]);
+  setPredicted(rowSums_, stats);
+}
+
+// The hook of a fused estimate (EstimateHook.h) for the render to come.
+void QualityRenderer::hookUp(
+    const Frame& frame, const detail::BatchLighting* facing,
+    detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
+        boundOne,
+    detail::EstimateHook& hook) {
+  const std::size_t meshCount = frame.scene.meshes.size();
+  meshTerms_.clear();
+  for (const MeshTerms& terms : frame.terms)
+    meshTerms_.push_back(terms.polygons.data());
+  polygonBounds_.resize(frame.firstPolygon.back());
+  // The pixels' part at one sample per pixel only (a pixel of more samples needs them all).
+  const bool pixels = frame.grid == 1;
+  rowSums_.assign(pixels ? static_cast<std::size_t>(frame.samples.height) : 0, {});
+  const bool image = pixels && frame.settings.errorEstimateImage;
+  if (pixels) {
+    estimate_.resize(image ? static_cast<std::size_t>(frame.samples.width) * frame.samples.height
+                           : 0);
   }
-  const double unit = detail::kEstimateUnit;
-  stats.predictedMaxError = largest / unit;
-  stats.predictedRmse =
-      covered > 0 ? std::sqrt(static_cast<double>(squares) / static_cast<double>(covered)) / unit
-                  : 0.0;
+  hook.meshes = frame.scene.meshes.data();
+  hook.meshCount = meshCount;
+  hook.terms = meshTerms_.data();
+  hook.lighting = frame.batchLighting ? &*frame.batchLighting : nullptr;
+  hook.facingLighting = facing;
+  hook.materials = frame.batchMaterials.data();
+  hook.boundOne = boundOne;
+  hook.bounds = polygonBounds_.data();
+  hook.bounded = std::make_unique<std::atomic<bool>[]>(meshCount);
+  hook.height = frame.samples.height;
+  hook.rows = pixels ? rowSums_.data() : nullptr;
+  hook.image = image ? estimate_.data() : nullptr;
+}
+
+// After a render that took the estimate: the polygons of meshes its shade phase did not bound
+// (lit without direct light) bounded here, and then, if there were any or the samples are more
+// than one per pixel, the estimate's own pass over the samples (their bounds came after the
+// resolve); else the rows' sums.
+void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook& hook,
+                                  const FramebufferView& target, QualityStats& stats) {
+  const Clock::time_point start = Clock::now();
+  FACET_ASSERT(renderer_.shownPolygons().size() == frame.firstPolygon.back());
+  shown_ = renderer_.shownPolygons().data();
+  std::atomic<std::size_t> late{0};
+  bool all = true;
+  for (std::size_t m = 0; m < hook.meshCount; ++m)
+    all = all && hook.bounded[m].load(std::memory_order_relaxed);
+  if (!all) {
+    renderer_.parallelFor(frame.firstPolygon.back(), kPolygonsPerTask,
+                          [&](std::size_t begin, std::size_t end) {
+                            late += boundFromCorners(frame, begin, end, hook.bounded.get());
+                          });
+  }
+  if (late > 0 || !hook.rows) {
+    estimate(frame, target, frame.settings.errorEstimateImage, stats);
+  } else {
+    setPredicted(rowSums_, stats);
+  }
+  estimated_ = stats;
+  stats.estimateSeconds = secondsSince(start);
 }
 
 // Per output pixel: its samples, shaded again where the mode asks, averaged and rounded once;
@@ -921,23 +869,47 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     samples_.resize(target.width * g, target.height * g);
     grid = samples_.view();
   }
+  // Flat: the bounds taken by the render's shade phase, and at one sample per pixel the
+  // per-pixel estimate by its resolve (EstimateHook.h). Validated first: the frame's lights
+  // and camera are checked as the Renderer checks them, so the same error comes first.
+  const bool fused = settings.estimateError && shading.empty();
+  if (fused) detail::validateRenderInputs(scene, camera, grid, renderer_.depthOutput());
+  std::optional<Frame> fusedFrame;
+  std::optional<detail::BatchLighting> facing;
+  detail::EstimateHook hook;
+  auto boundOne = [&](std::size_t m, std::size_t polygon, const glm::dvec3* center,
+                      const glm::dvec3& normal) {
+    return fusedFrame->boundOne(m, polygon, center, normal);
+  };
+  if (fused) {
+    fusedFrame.emplace(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
+    fusedFrame->prepareBatches(terms_);
+    facing = facingLighting(fusedFrame->batchLighting);
+    hookUp(*fusedFrame, facing ? &*facing : nullptr, boundOne, hook);
+  }
+  struct Unhook {  // also when the render throws
+    Renderer& renderer;
+    ~Unhook() { renderer.estimateHook_ = nullptr; }
+  } unhook{renderer_};
+  renderer_.estimateHook_ = fused ? &hook : nullptr;
   stats.render = renderer_.render(scene, camera, grid);
+  renderer_.estimateHook_ = nullptr;
   if (stats.render.aborted) {
     if (g > 1) renderer_.render(Scene{}, camera, target);  // a valid, empty image
     stats.totalSeconds = secondsSince(start);
     return stats;
   }
-  Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
-  frame.extents = extents_;
-  if (shading.empty()) {
-    frame.batchLighting = detail::batchLighting(scene.lights, camera, frame.twoSided);
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-      const MeshView& mesh = scene.meshes[m].mesh;
-      frame.batchMaterials.push_back(mesh.pointColors.empty() && mesh.scalarTexture.empty()
-                                         ? detail::batchMaterial(frame.materials[m])
-                                         : std::nullopt);
-    }
+  if (fused && stats.render.plan.path != RenderPath::Resolve) {
+    finishFused(*fusedFrame, hook, target, stats);
+    estimatedFor_ = estimateFor;
+    const Clock::time_point phase = Clock::now();
+    if (g > 1) shadeAndResolve(*fusedFrame, target, stats);
+    stats.shadeSeconds = secondsSince(phase);
+    stats.totalSeconds = secondsSince(start);
+    return stats;
   }
+  Frame frame(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
+  frame.prepareBatches(terms_);
   Clock::time_point phase = Clock::now();
   // Only the background changed since this object's last render: same polygons, same flat
   // colors where any polygon shows, so the same estimate (it ignores the background).
@@ -976,7 +948,7 @@ std::span<const ShadingMesh> QualityRenderer::shadingFor(const Scene& scene,
                                                          bool reshades, bool estimates) {
   if (given.empty() && !reshades) {
     owned_.clear();
-    if (estimates) updateExtents(scene);
+    if (estimates) updateTerms(scene);
     return {};
   }
   if (!given.empty() && given.size() != scene.meshes.size()) {
@@ -1003,30 +975,29 @@ std::span<const ShadingMesh> QualityRenderer::shadingFor(const Scene& scene,
 
 namespace facet {
 
-// The extents of the meshes whose arrays or version changed (every render for an
-// unversioned mesh), from their corner normals: a ShadingMesh's shapes without their centers,
-// and without keeping the normals, triangles and shapes themselves.
-void QualityRenderer::updateExtents(const Scene& scene) {
-  extents_.resize(scene.meshes.size());
+// The bound terms of the meshes whose arrays or version changed (every render for an
+// unversioned mesh), from their corner normals: without keeping the normals themselves.
+void QualityRenderer::updateTerms(const Scene& scene) {
+  terms_.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const MeshView& mesh = scene.meshes[m].mesh;
-    const MeshExtents::Key key{detail::MeshIdentity::of(mesh), mesh.pointNormals.data,
-                               mesh.pointNormals.count, mesh.pointNormals.type};
-    MeshExtents& extents = extents_[m];
-    if (key.geometry.version != 0 && extents.key == key) continue;
-    extents = {};  // a mesh that throws leaves nothing behind that claims to be its
+    const MeshTerms::Key key{detail::MeshIdentity::of(mesh), mesh.pointNormals.data,
+                             mesh.pointNormals.count, mesh.pointNormals.type};
+    MeshTerms& terms = terms_[m];
+    if (key.geometry.version != 0 && terms.key == key) continue;
+    terms = {};  // a mesh that throws leaves nothing behind that claims to be its
     validatePointData(mesh);
     const VertexNormals normals = mesh.pointNormals.count > 0
                                       ? fromPointNormals(mesh, mesh.pointNormals)
                                       : computeVertexNormals(mesh, {}, parallelOn(renderer_));
-    extents.polygons.resize(mesh.polygons.count);
+    terms.polygons.resize(mesh.polygons.count);
     renderer_.parallelFor(
         mesh.polygons.count, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
           forEachPolygon(mesh, normals, begin, end, [&](std::size_t p, const Corners& corners) {
-            extents.polygons[p] = extentOf(corners);
+            terms.polygons[p] = termsOf(corners);
           });
         });
-    extents.key = key;
+    terms.key = key;
   }
 }
 

@@ -42,7 +42,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                                twoSidedLighting_,
                                toRgba8(background_, backgroundAlpha_),
                                depthOutput_,
-                               rules_};
+                               rules_,
+                               estimateHook_};
   const detail::PathChoice path = ws.history.choosePath(in);
   const FramebufferView planes = ws.startFrame(in);
   detail::PhaseRunner runner(*ws.pool, progress_, detail::phasesOf(path.path));
@@ -129,7 +130,8 @@ bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
                                           plan.twoSidedLighting,
                                           polygons.shown.data(),
                                           polygons.backFacing.data(),
-                                          polygons.colors.data()};
+                                          polygons.colors.data(),
+                                          in.estimate};
   bool completed =
       detail::shadePolygons(runner, meshes, shading.routines, shadeContext, shadeBuffers);
   countShaded(stats);
@@ -141,8 +143,9 @@ bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
 // Phase 5: the pixels' colors from their polygons'; `depths`: window depths from the keys.
 bool Renderer::Workspace::resolve(const detail::FrameInputs& in, const FramebufferView& planes,
                                   bool depths, detail::PhaseRunner& runner) {
-  const detail::ResolveContext context{polygons.colors.data(), in.background,    planes.color,
-                                       planes.depth,           planes.polygonId, planes.width};
+  const detail::ResolveContext context{
+      polygons.colors.data(), in.background, planes.color, planes.depth,
+      planes.polygonId,       planes.width,  in.estimate};
   const detail::ResolveRoutine routine = detail::chooseResolveRoutine(depths).resolve;
   return detail::resolveTiles(runner, grid, context, routine, *transform);
 }

@@ -14,6 +14,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "EstimateHook.h"
 #include "Resolve.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -148,8 +149,12 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
   const int bands = (viewport.y1 - viewport.y0 + kRowsPerTask) / kRowsPerTask;
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
     const int y0 = viewport.y0 + static_cast<int>(b) * kRowsPerTask;
-    routine(context, {viewport.x0, y0, viewport.x1, std::min(viewport.y1, y0 + kRowsPerTask - 1)},
-            transform);
+    const int y1 = std::min(viewport.y1, y0 + kRowsPerTask - 1);
+    routine(context, {viewport.x0, y0, viewport.x1, y1}, transform);
+    if (context.estimate && context.estimate->rows) {  // its rows' ids still in cache
+      estimateResolvedRows(*context.estimate, context.colors, context.color, context.polygonId,
+                           context.width, y0, y1);
+    }
   });
 }
 

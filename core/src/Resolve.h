@@ -12,6 +12,8 @@
 
 namespace facet::detail {
 
+struct EstimateHook;  // EstimateHook.h
+
 struct ResolveContext {
   const Rgba8* colors;  // per polygon id (Shade.h)
   Rgba8 background;
@@ -19,6 +21,8 @@ struct ResolveContext {
   float* depth;
   const std::int32_t* polygonId;
   int width;
+  // The error estimate, taken by each band after it is resolved (EstimateHook.h); null: none.
+  const EstimateHook* estimate = nullptr;
 };
 
 // The resolve of a box of pixels, chosen once per render: colors and window depths, or colors

@@ -19,6 +19,8 @@
 
 namespace facet::detail {
 
+struct EstimateHook;  // EstimateHook.h
+
 struct ShadeContext {
   const FrameTransform& transform;
   const Shader& shader;
@@ -26,6 +28,8 @@ struct ShadeContext {
   const std::uint8_t* shown;       // per polygon id (Raster.h)
   const std::uint8_t* backFacing;  // per polygon id (Setup.h)
   Rgba8* colors;                   // out, per shown polygon id
+  // The error estimate's bounds, taken as the polygons are lit (EstimateHook.h); null: none.
+  EstimateHook* estimate = nullptr;
 };
 
 // Shades the shown polygons among one mesh's polygons [begin, end); returns how many.

@@ -79,7 +79,7 @@ HWY_INLINE void addLight(const PreparedLight& light, bool directional, const Pre
 }
 
 void ShadeLanes(const Shader& shader, const PreparedMaterial& m, const ShadeBatch& batch,
-                ShadeBatchColors& out) {
+                ShadeBatchColors& out, ShadeBatchCenters* centers) {
   Rgba8* colors = out.data();
   const D d;
   const DF df;
@@ -94,6 +94,7 @@ void ShadeLanes(const Shader& shader, const PreparedMaterial& m, const ShadeBatc
       normal[c] = hn::Load(d, batch.normal[c] + i);
       surface[c] = capped(d, hn::PromoteTo(d, hn::LoadU(df, batch.color[c] + i)));
       sum[c] = hn::Zero(d);
+      if (centers) hn::Store(position[c], d, centers->xyz[c] + i);
     }
     M ordinary = hn::FirstN(d, batch.count - i);
     for (const PreparedLight& light : lights)
@@ -139,8 +140,8 @@ bool shadesInBatches(const Shader& shader) {
 }
 
 void shadeBatch(const Shader& shader, const PreparedMaterial& material, const ShadeBatch& batch,
-                ShadeBatchColors& colors) {
-  HWY_DYNAMIC_DISPATCH(ShadeLanes)(shader, material, batch, colors);
+                ShadeBatchColors& colors, ShadeBatchCenters* centers) {
+  HWY_DYNAMIC_DISPATCH(ShadeLanes)(shader, material, batch, colors, centers);
 }
 
 }  // namespace facet::detail

@@ -62,8 +62,15 @@ bool shadesInBatches(const Shader& shader);
 using ShadeBatchColors = std::array<Rgba8, kShadeBatchSize>;
 
 // colors[i] = toRgba8(shader.shade(batch.sample(i), material)) for i < batch.count, with
-// shade()'s routine without specular term, for a shader shadesInBatches takes.
+// shade()'s routine without specular term, for a shader shadesInBatches takes; and the
+// samples' positions into `centers` when not null.
+// The lanes' centers (positions with the corners divided out), for the error estimate's bound
+// of the same polygons (EstimateHook.h).
+struct ShadeBatchCenters {
+  alignas(64) double xyz[3][kShadeBatchSize] = {};
+};
+
 void shadeBatch(const Shader& shader, const PreparedMaterial& material, const ShadeBatch& batch,
-                ShadeBatchColors& colors);
+                ShadeBatchColors& colors, ShadeBatchCenters* centers = nullptr);
 
 }  // namespace facet::detail

@@ -7,6 +7,7 @@
 // cores waited for.
 
 #include "FaceNormal.h"
+#include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
 #include "Shade.h"
 #include "ShadeBatch.h"
@@ -86,8 +87,11 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   ShadeBatchColors colors;
   std::size_t ids[kShadeBatchSize];
   std::size_t shaded = 0;
+  ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
   const auto flush = [&] {
-    shadeBatch(context.shader, mesh.material, batch, colors);
+    shadeBatch(context.shader, mesh.material, batch, colors,
+               bounds.active() ? bounds.centers() : nullptr);
+    if (bounds.active()) bounds.bound(batch);
     for (std::size_t i = 0; i < batch.count; ++i)
       context.colors[ids[i]] = colors[i];
     shaded += batch.count;
@@ -98,6 +102,7 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
     ids[batch.count] = id;
     const GatheredSample gathered = gatherSample<kCenters, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
+    if (bounds.active()) bounds.note(batch.count, polygon);
     batch.add(gathered.sample, gathered.corners);
     if (batch.full()) flush();
   });
@@ -125,13 +130,16 @@ FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const Frame
   }
   const ShaderAccess::Routine shade = ShaderAccess::routine(context.shader, kSpecular);
   std::size_t shaded = 0;
+  ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
   forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
     const std::size_t id = mesh.firstPolygon + polygon;
     ++shaded;
     const SurfaceSample sample = litSample<kCenters, kSpecular, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
     context.colors[id] = toRgba8(shade(context.shader, sample, mesh.material));
+    if (bounds.active()) bounds.add(polygon, sample);
   });
+  if (bounds.active()) bounds.flush();
   return shaded;
 }
 

@@ -204,15 +204,30 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
   const std::size_t stride = width + 2;
   for (const detail::SimdTarget& target : detail::simdTargets()) {
     detail::useSimdTarget(target.bits);
-    std::vector<std::vector<std::uint32_t>> maxima(height);
+    std::vector<std::vector<detail::EstimateField>> maxima(height);
     for (int y = 0; y < height; ++y) {
-      std::vector<std::uint32_t> fields(detail::kEstimateFields * stride, 0);
+      std::vector<detail::EstimateField> fields(detail::kEstimateFields * stride, 0);
       maxima[y].assign(detail::kEstimateFields * stride, 0);
       detail::neighbourFields(colors.data() + y * width, ids.data() + y * width, bounds.data(), 0,
                               width, fields.data() + 1, stride);
+      // The same fields with each sample's color its polygon's, gathered by id (the resolve's
+      // rows outside its band, EstimateHook.h).
+      std::vector<Rgba8> polygonColors(bounds.size()), rowColors(width);
+      for (std::size_t p = 0; p < polygonColors.size(); ++p)
+        polygonColors[p] = colors[(y * width + 3 * p) % colors.size()];
+      for (int x = 0; x < width; ++x) {
+        const std::int32_t id = ids[y * width + x];
+        rowColors[x] = id < 0 ? Rgba8{} : polygonColors[id];
+      }
+      std::vector<detail::EstimateField> byId(fields.size(), 0), byRow(fields.size(), 0);
+      detail::neighbourFieldsById(polygonColors.data(), ids.data() + y * width, bounds.data(), 0,
+                                  width, byId.data() + 1, stride);
+      detail::neighbourFields(rowColors.data(), ids.data() + y * width, bounds.data(), 0, width,
+                              byRow.data() + 1, stride);
+      ASSERT_EQ(byId, byRow) << target.name << ", row " << y;
       detail::rowMaxima(fields.data() + 1, 0, width, maxima[y].data() + 1, stride);
     }
-    const std::vector<std::uint32_t> zeros(detail::kEstimateFields * stride, 0);
+    const std::vector<detail::EstimateField> zeros(detail::kEstimateFields * stride, 0);
     const auto row = [&](int y) { return (y < 0 || y >= height ? zeros : maxima[y]).data() + 1; };
     for (int y = 0; y < height; ++y) {
       for (const auto& [begin, end] : {std::pair{0, width}, std::pair{5, 190}, std::pair{9, 9}}) {

@@ -503,6 +503,56 @@ TEST(QualityRenderer, EstimateWithoutShadingMeshesIsTheShadingMeshOne) {
   }
 }
 
+// The estimate a flat render takes in its shade and resolve phases (EstimateHook.h) is the
+// separate passes' to the byte: bounds from the shade's batches against bounds from each
+// polygon's corners one by one, pixel estimates per resolve band against the pass over the
+// finished image (at 4 samples per pixel the shade's bounds and that pass). The separate passes run
+// when only the background changed and the image is wanted where the last render kept none. Every
+// shade routine that bounds: lit at centers (a point light) or by directions only, lit in batches
+// or polygon by polygon (an attenuated point light), a material the bound's batches take or not
+// (specular).
+TEST(QualityRenderer, FusedEstimateIsTheSeparatePassesBytes) {
+  const Mesh sphere = makeUvSphere(24, 13);
+  LightSet directional, attenuated;
+  directional.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
+  attenuated.lights.push_back(
+      PointLight{{2, 1, 3}, Color(0.9f), 1.0, QuadraticAttenuation{1.0, 0.2, 0.05}});
+  Material matte;
+  matte.diffuse = 0.9;
+  const std::pair<const char*, Scene> scenes[] = {
+      {"two lights, specular", sphereScene(sphere)},
+      {"two lights, matte", testing::oneMeshScene(sphere.view(), matte, testing::twoLights())},
+      {"directional, matte", testing::oneMeshScene(sphere.view(), matte, directional)},
+      {"attenuated, matte", testing::oneMeshScene(sphere.view(), matte, attenuated)}};
+  const Camera camera = sphereCamera();
+  for (const int samples : {1, 4}) {  // 4: bounds by the shade, the pass over the samples apart
+    for (auto [name, scene] : scenes) {
+      scene.meshes[0].mesh.version = 1;
+      const QualitySettings image{.samplesPerPixel = samples, .estimateError = true};
+      const Output fused = renderQuality(scene, camera, 80, 60, image);
+      Renderer renderer;
+      QualityRenderer quality(renderer);
+      Framebuffer framebuffer(80, 60);
+      QualitySettings summary = image;
+      summary.errorEstimateImage = false;
+      quality.render(scene, {}, camera, framebuffer, summary);
+      renderer.setBackground(Color(0.2f, 0.3f, 0.4f));
+      const QualityStats separate = quality.render(scene, {}, camera, framebuffer, image);
+      ASSERT_EQ(separate.render.plan.path, RenderPath::Resolve) << name;
+      ASSERT_FALSE(separate.estimateKept) << name;
+      EXPECT_GT(fused.stats.predictedMaxError, 0.5) << name;
+      EXPECT_EQ(fused.stats.predictedRmse, separate.predictedRmse) << name;
+      EXPECT_EQ(fused.stats.predictedMaxError, separate.predictedMaxError) << name;
+      const std::span<const float> passes = quality.errorEstimate();
+      ASSERT_EQ(fused.estimate.size(), passes.size()) << name;
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < passes.size(); ++i)
+        differ += fused.estimate[i] != passes[i];
+      EXPECT_EQ(differ, 0u) << name << ", " << samples << " samples: pixels whose estimate differs";
+    }
+  }
+}
+
 // Without the image (the filter's EstimateError without ErrorEstimateArray), the estimate's
 // summary is the same numbers, and a new background keeps it.
 TEST(QualityRenderer, EstimateSummaryWithoutTheImageIsTheSame) {

@@ -33,6 +33,7 @@
 /// Flat shading with one sample and no estimate is the Renderer itself, unchanged: same
 /// bytes, same cost. Every mode gives the same bytes for any thread count.
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -47,6 +48,16 @@
 #include "facet/VertexNormals.h"
 
 namespace facet {
+
+namespace detail {
+struct EstimateSpace;
+struct EstimateSums;
+struct BoundTerms;
+struct BatchLighting;
+struct EstimateHook;
+template <class Signature>
+class FunctionRef;
+}  // namespace detail
 
 enum class Shading {
   Flat,     ///< one color per polygon, lit at its center (the Renderer's)
@@ -103,9 +114,12 @@ struct QualitySettings {
 void validate(const QualitySettings& settings);
 
 struct QualityStats {
-  RenderStats render;            ///< the Renderer's pass (at the sample grid's size)
-  double shadeSeconds = 0.0;     ///< re-shading and resolving the samples
-  double estimateSeconds = 0.0;  ///< the error estimate (bounds and the per-pixel image)
+  RenderStats render;         ///< the Renderer's pass (at the sample grid's size)
+  double shadeSeconds = 0.0;  ///< re-shading and resolving the samples
+  /// The error estimate's time outside the render (bounds and the per-pixel image); flat at one
+  /// sample per pixel the render's shade and resolve take it (EstimateHook.h), and this is
+  /// only the summing of its rows.
+  double estimateSeconds = 0.0;
   double totalSeconds = 0.0;
   std::size_t samplesReshaded = 0;  ///< samples shaded again (not kept flat)
   /// Polygons shaded per sample or per corner: those the renderer lit (Renderer::shownPolygons:
@@ -136,8 +150,8 @@ class QualityRenderer {
   /// Renders the scene in the mode the settings ask for. `shading` holds one ShadingMesh per
   /// scene mesh (prepared once, kept while the meshes do not change), or is empty: shading
   /// per sample or per corner (Gouraud, Phong, adaptive) then computes them here, every
-  /// render; flat shading with the estimate needs only each polygon's normal, extent and
-  /// normal spread, which this object keeps per mesh version (MeshView::version, which then
+  /// render; flat shading with the estimate needs only each polygon's radius and normal
+  /// spread, which this object keeps per mesh version (MeshView::version, which then
   /// also covers MeshView::pointNormals; an unversioned mesh is measured every render).
   /// Throws facet::Error for bad settings, a shading list that does not match the scene, or
   /// an image side that a 2× or 4× sample grid would take beyond kMaxImageSide; and whatever
@@ -160,13 +174,20 @@ class QualityRenderer {
 
  private:
   struct Frame;
-  struct EstimateSpace;
   std::span<const ShadingMesh> shadingFor(const Scene& scene, std::span<const ShadingMesh> given,
                                           bool reshades, bool estimates);
   std::size_t preparePolygons(const Frame& frame, bool bounds, bool corners);
-  void boundFromExtents(const Frame& frame, std::size_t begin, std::size_t end);
+  std::size_t boundFromCorners(const Frame& frame, std::size_t begin, std::size_t end,
+                               const std::atomic<bool>* skip);
   void estimate(const Frame& frame, const FramebufferView& target, bool image, QualityStats& stats);
-  void updateExtents(const Scene& scene);
+  void updateTerms(const Scene& scene);
+  void hookUp(
+      const Frame& frame, const detail::BatchLighting* facing,
+      detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
+          boundOne,
+      detail::EstimateHook& hook);
+  void finishFused(const Frame& frame, const detail::EstimateHook& hook,
+                   const FramebufferView& target, QualityStats& stats);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
 
   Renderer& renderer_;
@@ -188,13 +209,15 @@ class QualityRenderer {
   };
   std::optional<EstimateKey> estimatedFor_;
   // The estimate's per-task space (QualityRenderer.cpp), one per thread.
-  std::vector<std::unique_ptr<EstimateSpace>> spaces_;
+  std::vector<std::unique_ptr<detail::EstimateSpace>> spaces_;
 
   // Per scene mesh, the estimate's camera-independent part for one version of its arrays
   // (QualityRenderer.cpp).
-  struct MeshExtents;
-  std::vector<MeshExtents> extents_;
-  std::vector<float> polygonBounds_;     // per polygon id, 8-bit units (visible ones only)
+  struct MeshTerms;
+  std::vector<MeshTerms> terms_;
+  std::vector<float> polygonBounds_;           // per polygon id, 8-bit units (visible ones only)
+  std::vector<detail::EstimateSums> rowSums_;  // per pixel row: the fused estimate's
+  std::vector<const detail::BoundTerms*> meshTerms_;  // per mesh: terms_'s, for the hook
   std::vector<std::uint8_t> reshade_;    // per polygon id: shaded again (visible ones only)
   std::vector<Color> cornerColors_;      // Gouraud: per corner of every mesh
   std::vector<Color> cornerBright_;      // Gouraud with a scalarTexture: the corners lit white

@@ -48,6 +48,10 @@
 
 namespace facet {
 
+namespace detail {
+struct EstimateHook;
+}
+
 class Renderer {
  public:
   /// Called on the thread that called render(), with the fraction done in [0, 1]. Return
@@ -127,6 +131,11 @@ class Renderer {
                    const std::function<void(std::size_t begin, std::size_t end)>& work);
 
  private:
+  // QualityRenderer's error estimate, taken by the shade and resolve phases of its next
+  // render (EstimateHook.h); null: none.
+  friend class QualityRenderer;
+  detail::EstimateHook* estimateHook_ = nullptr;
+
   struct Workspace;
   std::unique_ptr<Workspace> workspace_;
   Visibility visibility_ = Visibility::ZBuffer;
