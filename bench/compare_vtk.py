@@ -34,10 +34,10 @@ BUILD_BIN = Path(__file__).resolve().parent.parent / "build" / "bin"
 VtkFrame = namedtuple("VtkFrame", "triangles seconds renderer requested samples")
 
 
-def vtk_seconds_per_frame(theta, frames, multisamples=None):
-    """VtkFrame: the median seconds per frame of `frames` frames, and the samples per pixel
-    the window requested and llvmpipe granted. multisamples: None keeps VTK's default
-    request, 0 turns MSAA off."""
+def vtk_frame_timer(theta, multisamples=None):
+    """(a function that renders one frame, reads it back and returns its seconds; a
+    VtkFrame whose seconds are those of the first frame). multisamples: None keeps VTK's
+    default request, 0 turns MSAA off."""
     sphere = vtk.vtkSphereSource()
     sphere.SetThetaResolution(theta)
     sphere.SetPhiResolution(theta + 2)
@@ -79,18 +79,28 @@ def vtk_seconds_per_frame(theta, frames, multisamples=None):
         grab.Modified()
         grab.Update()
 
+    start = time.perf_counter()
     frame()  # first frame uploads the mesh and compiles shaders
+    first = time.perf_counter() - start
     samples = max(1, window.GetRenderFramebuffer().GetMultiSamples())  # 0 = single-sampled
-    times = []
-    for _ in range(frames):
+    renderer_info = window.ReportCapabilities().splitlines()
+    gl_renderer = next((l for l in renderer_info if "OpenGL renderer" in l), "OpenGL renderer: ?")
+
+    def timed_frame():
         actor.Modified()
         start = time.perf_counter()
         frame()
-        times.append(time.perf_counter() - start)
-    renderer_info = window.ReportCapabilities().splitlines()
-    gl_renderer = next((l for l in renderer_info if "OpenGL renderer" in l), "OpenGL renderer: ?")
-    return VtkFrame(triangles, statistics.median(times), gl_renderer.split(":")[-1].strip(),
-                    requested, samples)
+        return time.perf_counter() - start
+    return timed_frame, VtkFrame(triangles, first, gl_renderer.split(":")[-1].strip(), requested,
+                                 samples)
+
+
+def vtk_seconds_per_frame(theta, frames, multisamples=None):
+    """VtkFrame: the median seconds per frame of `frames` frames, and the samples per pixel
+    the window requested and llvmpipe granted. multisamples: None keeps VTK's default
+    request, 0 turns MSAA off."""
+    timed_frame, info = vtk_frame_timer(theta, multisamples)
+    return info._replace(seconds=statistics.median(timed_frame() for _ in range(frames)))
 
 
 FacetFrame = namedtuple("FacetFrame", "seconds peak pixels")

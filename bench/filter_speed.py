@@ -73,21 +73,29 @@ def timed_update(render):
     return time.perf_counter() - wall, time.process_time() - cpu
 
 
-def facet_seconds_per_frame(theta, frames, threads, detect_closed, turn_degrees=0.5):
-    """(median seconds of `frames` Update()s, the camera turning turn_degrees before each;
-    the first Update()'s seconds)."""
+def facet_frame_timer(theta, threads, detect_closed, turn_degrees=0.5):
+    """(a function that turns the camera turn_degrees, runs one Update() and returns its
+    seconds; the first Update()'s seconds, which converted the mesh)."""
     render, camera = facet_filter(sphere_of(theta), threads, detect_closed)
     render.Update()  # first frame: converts the mesh (and checks closedness once)
     first = render.GetOutput().GetFieldData().GetArray("FacetRenderSeconds").GetValue(0)
-    times = []
-    for _ in range(frames):
+
+    def frame():
         camera.Azimuth(turn_degrees)
         start = time.perf_counter()
         render.Update()
-        times.append(time.perf_counter() - start)
-    converted = render.GetOutput().GetFieldData().GetArray("FacetMeshConverted").GetValue(0)
-    assert converted == 0, "a camera change must not convert the mesh again"
-    return statistics.median(times), first
+        seconds = time.perf_counter() - start
+        converted = render.GetOutput().GetFieldData().GetArray("FacetMeshConverted").GetValue(0)
+        assert converted == 0, "a camera change must not convert the mesh again"
+        return seconds
+    return frame, first
+
+
+def facet_seconds_per_frame(theta, frames, threads, detect_closed, turn_degrees=0.5):
+    """(median seconds of `frames` Update()s, the camera turning turn_degrees before each;
+    the first Update()'s seconds)."""
+    frame, first = facet_frame_timer(theta, threads, detect_closed, turn_degrees)
+    return statistics.median(frame() for _ in range(frames)), first
 
 
 def core_seconds(render):

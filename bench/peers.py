@@ -31,7 +31,10 @@ column's median over the rounds and each target's ratio is taken within a round 
 times it divides were measured minutes apart, not hours), its median and range printed. The
 host under these VMs changes speed in steps (bench/core-frame-issue11.md, section 9): every
 round starts with a speed check (a fixed pure-Python loop, best of 5), printed beside it,
-so a round measured on a slow host shows as one.
+so a round measured on a slow host shows as one. The targets against VTK 1x and between
+every face and closed are then measured frame by frame in turn (--paired-frames of VTK 1x,
+Update closed and Update every face, one after the other, in one process): each ratio is
+of two frames a second apart, and the verdict is on the median of those ratios.
 
     make bench-peers
     xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/peers.py --sizes 500000
@@ -48,7 +51,8 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from check_peers import coverage_disagreement, run_program  # noqa: E402
-from compare_vtk import SIZES, WIDTH, HEIGHT, facet_seconds_per_frame, vtk_seconds_per_frame  # noqa: E402
+from compare_vtk import (SIZES, WIDTH, HEIGHT, facet_seconds_per_frame, vtk_frame_timer,  # noqa: E402
+                         vtk_seconds_per_frame)
 
 PEER_SIZES = {**SIZES, 8000000: 2000}  # triangles: theta = phi - 2 resolution
 
@@ -159,6 +163,39 @@ def print_targets(rounds):
               2000000)
 
 
+def paired_ratios(args, update_timer):
+    """{(triangles, name): [ratio per frame]}: VTK 1x (at 500k and 2M), Update closed and
+    Update every face rendered in turn, frame after frame, the filters turning once around."""
+    ratios = {}
+    turn = 360.0 / args.paired_frames
+    for triangles in args.sizes:
+        theta = PEER_SIZES[triangles]
+        vtk_frame = vtk_frame_timer(theta, 0)[0] if triangles in (500000, 2000000) else None
+        closed = update_timer(theta, args.threads, True, turn)[0]
+        every = update_timer(theta, args.threads, False, turn)[0]
+        for _ in range(args.paired_frames):
+            vtk_seconds = vtk_frame() if vtk_frame else None
+            closed_seconds, every_seconds = closed(), every()
+            if vtk_seconds:
+                ratios.setdefault((triangles, "Update closed / VTK 1x"), []).append(
+                    closed_seconds / vtk_seconds)
+            ratios.setdefault((triangles, "Update every face / Update closed"), []).append(
+                every_seconds / closed_seconds)
+    return ratios
+
+
+def print_paired_targets(ratios, frames):
+    print(f"\nThe same targets frame by frame in turn ({frames} frames of each, one after the "
+          "other; median and range of the ratios of neighbouring frames)")
+    bounds = {"Update closed / VTK 1x": 0.1, "Update every face / Update closed": 1.5}
+    for (triangles, name), values in ratios.items():
+        median = statistics.median(values)
+        verdict = "met" if median <= bounds[name] else "NOT met"
+        spread = f"{min(values):.3f}-{max(values):.3f}"
+        print(f"  {f'{triangles}: {name}':<50} {median:>7.3f} {spread:>13} "
+              f"(target <= {bounds[name]}) {verdict}")
+
+
 def median_rows(rounds):
     """{triangles: row}: each column's median over the rounds (None where never measured);
     the first round's reports and covered pixels."""
@@ -250,6 +287,8 @@ def main():
     parser.add_argument("--frames", type=int, default=10, help="frames per peer and Update()")
     parser.add_argument("--vtk-frames", type=int, default=5)
     parser.add_argument("--rounds", type=int, default=3, help="times the whole set is measured")
+    parser.add_argument("--paired-frames", type=int, default=20,
+                        help="frames of each in the frame-by-frame comparison (0: none)")
     parser.add_argument("--sizes", type=int, nargs="+", default=list(PEER_SIZES),
                         choices=list(PEER_SIZES), help="triangle counts (default: all)")
     args = parser.parse_args()
@@ -263,11 +302,16 @@ def main():
               f"{uptime()}", flush=True)
         rows, bandwidth = measure(args, args.build_dir / "bin")
         rounds.append(rows)
+
+    from filter_speed import facet_frame_timer
+    ratios = paired_ratios(args, facet_frame_timer) if args.paired_frames > 0 else {}
     load_end = uptime()
 
     rows = median_rows(rounds)
     print_tables(rows)
     print_targets(rounds)
+    if ratios:
+        print_paired_targets(ratios, args.paired_frames)
     print("Speed check per round (ms; a slower host shows larger): "
           + ", ".join(f"{1000 * s:.1f}" for s in speeds))
     print()
