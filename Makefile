@@ -185,7 +185,7 @@ test-thread-sanitized: deps
 	  -DFACET_SANITIZE=thread -DFACET_BUILD_BENCHMARKS=OFF '-DFACET_SIMD_TARGETS=$(TSAN_SIMD_TARGETS)'
 	cmake --build $(TSAN_BUILD_DIR) -j $(JOBS) --target facet_core_tests facet-core-demo
 	$(call stage-mark,thread-sanitized build)
-	$(SANITIZER_ENV) $(TSAN_BUILD_DIR)/tests/core/facet_core_tests
+	$(SANITIZER_ENV) tests/support/run_gtest_shards.sh $(JOBS) $(TSAN_BUILD_DIR)/tests/core/facet_core_tests
 	$(call stage-mark,thread-sanitized suite)
 
 test: test-main test-sanitized test-thread-sanitized test-plugin

@@ -76,7 +76,7 @@ public:
     /// composite of 8 bytes a covered pixel, with the same depths (the same rank wins).
     bool WithEstimate = false;
     /// Every CellId this rank labels a pixel with is in [0, 2^48): true for the piece's own
-    /// cell ids (see CellIdsFitPayload for global ids). Not required to agree: the ranks
+    /// cell ids (see CellIdsFit48Bits for global ids). Not required to agree: the ranks
     /// pack the estimate only if it holds on all of them.
     bool CellIdsFit48Bits = true;
   };

@@ -202,9 +202,11 @@ def median_rows(rounds):
     rows = {}
     for triangles, first in rounds[0].items():
         row = dict(first)
-        for column, value in first.items():
-            if isinstance(value, float):
-                row[column] = statistics.median(r[triangles][column] for r in rounds)
+        for column in first:
+            measured = [r[triangles][column] for r in rounds
+                        if isinstance(r[triangles].get(column), float)]
+            if measured:  # a peer may fail in one round and not another
+                row[column] = statistics.median(measured)
         rows[triangles] = row
     return rows
 

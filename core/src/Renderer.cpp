@@ -81,7 +81,11 @@ bool Renderer::Workspace::renderAgain(const detail::FrameInputs& in, const detai
     return shadeAndResolve(in, planes, false, runner, stats);
   }
   keepPreviousPlan(path, threads);
-  const bool completed = resolve(in, planes, false, runner);
+  // Only recolored: no shade phase bounded anything, so the resolve estimates nothing (the
+  // QualityRenderer keeps or redoes its estimate itself).
+  detail::FrameInputs recolor = in;
+  recolor.estimate = nullptr;
+  const bool completed = resolve(recolor, planes, false, runner);
   stats.shadeSeconds = runner.lap();
   return completed;
 }

@@ -118,7 +118,7 @@ struct QualityStats {
   double shadeSeconds = 0.0;  ///< re-shading and resolving the samples
   /// The error estimate's time outside the render (bounds and the per-pixel image); flat at one
   /// sample per pixel the render's shade and resolve take it (EstimateHook.h), and this is
-  /// only the summing of its rows.
+  /// the summing of its rows (and, for meshes the shade did not bound, the separate pass).
   double estimateSeconds = 0.0;
   double totalSeconds = 0.0;
   std::size_t samplesReshaded = 0;  ///< samples shaded again (not kept flat)

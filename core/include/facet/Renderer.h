@@ -11,9 +11,10 @@
 ///     self-intersecting polygons: Triangulate.h); clip what crosses the near/far planes or
 ///     the guard band in homogeneous space (any finite coordinates, up to ±DBL_MAX); drop
 ///     zero-area triangles by their exact integer area; bin into screen tiles;
-///  3. per tile, one thread each: clear, then paint the tile's triangles in polygon order with
-///     integer edge functions, a top-left fill rule and pixel centers at +0.5 (depth key and
-///     polygon id; the nearer key wins, an exact tie keeps the earlier polygon);
+///  3. per tile, one thread each: clear, then paint the tile's triangles in polygon order
+///     (with the depth test, every front face before every back face) with integer edge
+///     functions, a top-left fill rule and pixel centers at +0.5 (depth key and polygon id;
+///     the nearer key wins, an exact tie keeps the front face, then the earlier polygon);
 ///  4. light each polygon that won a pixel, once (flat shading is a function of the polygon,
 ///     so hidden polygons are never lit), then color every pixel from its polygon id and
 ///     turn its depth key into window depth.
