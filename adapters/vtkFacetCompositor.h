@@ -19,9 +19,9 @@
  * them (IceT's cc_composite_func_body.h, compress_func_body.h). So an RGBA_FLOAT color
  * carries 16 bytes of ours per pixel, their bits untouched: the RGBA bytes, the rank and
  * the 64-bit CellId, or with the error estimate the RGBA bytes, a 16-bit rank, a 48-bit
- * CellId and the estimate's float (Settings::WithEstimate). The depth sent is the window depth halved, exact for every float
- * depth and order-preserving, so that a polygon at window depth 1 (a tiny near plane rounds
- * every depth to 1) is not taken for background.
+ * CellId and the estimate's float (Settings::WithEstimate). The depth sent is the window
+ * depth halved, exact for every float depth and order-preserving, so that a polygon at window
+ * depth 1 (a tiny near plane rounds every depth to 1) is not taken for background.
  *
  * Ties. On equal depths IceT keeps the image that comes later in its compose order (the
  * comparison is `front < back ? front : back`); the order is set to ranks P-1, ..., 1, 0,
