@@ -60,12 +60,13 @@
  * (SentByThisRank, SentByAllRanks) and `FacetCompositeStrategy`; the render plan says the
  * same. The error estimate composites with the image, in the same 20 bytes a covered pixel
  * (with at most 65535 ranks and every CellId below 2^48; else in a second IceT composite of 8
- * bytes a covered pixel: bench/mpi_estimate_cost.py): each pixel's is that of the piece it shows, and `FacetErrorEstimate` on the target summarizes the whole image (on
- * the other processes, their own piece); a cell with a corner in another piece has its vertex
- * normals from its own piece's cells. Every process must execute the filter with the same settings;
- * one whose input is bad reports its error and adds nothing to the image (the target warns of the
- * missing piece), and the others do not wait for it. A build without IceT (or without VTK's
- * ParallelMPI) renders every process's own piece and says so once.
+ * bytes a covered pixel: bench/mpi_estimate_cost.py): each pixel's is that of the piece it shows,
+ * and `FacetErrorEstimate` on the target summarizes the whole image (on the other processes, their
+ * own piece); a cell with a corner in another piece has its vertex normals from its own piece's
+ * cells. Every process must execute the filter with the same settings; one whose input is bad
+ * reports its error and adds nothing to the image (the target warns of the missing piece), and the
+ * others do not wait for it. A build without IceT (or without VTK's ParallelMPI) renders every
+ * process's own piece and says so once.
  *
  * The pieces that make the scene are the ones vtkFacetRendererToImageFilter uses for each
  * actor of a vtkRenderer: the input is converted as an actor's mapper input is, colored as
@@ -483,11 +484,12 @@ public:
    * the render's shade phase bounds the polygons it lights as it lights them (in SIMD lanes
    * for point and directional lights and a material without specular) and, at one sample per
    * pixel, its resolve estimates each band of pixels as it resolves it, in integers, writing
-   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate. Not free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080,
-   * about 8-11 % of the core's frame (bench/estimate-cost.md) and 6-9 % of an Update() (every
-   * face drawn; bench/filter_speed.py --overhead), and once per mesh about as much as its first
-   * conversion (README, "An estimate of a render's error";
-   * bench/estimate-cost.md). Off, a flat one-sample render is the plain rasterizer (default: on).
+   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate. Not
+   * free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080, about 8-11 % of the
+   * core's frame (bench/estimate-cost.md) and 6-9 % of an Update() (every face drawn;
+   * bench/filter_speed.py --overhead), and once per mesh about as much as its first conversion
+   * (README, "An estimate of a render's error"; bench/estimate-cost.md). Off, a flat one-sample
+   * render is the plain rasterizer (default: on).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);
   vtkGetMacro(EstimateError, vtkTypeBool);
