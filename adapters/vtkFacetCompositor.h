@@ -44,6 +44,7 @@
 #include <string>
 
 class vtkDataArray;
+class vtkFacetIceT;
 class vtkFacetImageRenderer;
 class vtkFacetMessages;
 class vtkFloatArray;
@@ -136,8 +137,6 @@ public:
     vtkFacetMessages& messages,
     vtkFloatArray* estimate = nullptr);
 
-private:
-  class vtkIceT;
   /// What one composite cost this rank.
   struct Cost
   {
@@ -149,6 +148,7 @@ private:
     std::string Strategy;         // IceT's names: "(Sequential, Radix-k)"
   };
 
+private:
   bool Gather(bool rendered, vtkFacetMessages& messages);
   bool Receives() const { return this->Rank == this->Current.Target || this->Current.ToAllRanks; }
   void KeepOwnPieces(vtkFacetImageRenderer& image,
@@ -174,7 +174,7 @@ private:
   bool PackEstimate = false; // the estimate rides in the image's payload (Settings::WithEstimate)
   std::string FailedRanks;   // "1 and 3": ranks whose pieces are missing from the image
 
-  std::unique_ptr<vtkIceT> IceT;
+  std::unique_ptr<vtkFacetIceT> IceT; // with IceT: its context, buffers and composites
 };
 
 #endif

@@ -112,7 +112,7 @@ def facet_seconds_per_frame(bench, threads, sizes=tuple(SIZES)):
     if not sizes:
         return {}
     if not Path(bench).is_file():
-        sys.exit(f"{bench} does not exist: build it (make build) or pass --facet-bench")
+        sys.exit(f"{bench} does not exist: build it (make bench) or pass --facet-bench")
     triangles = "|".join(str(size) for size in sizes)
     result = subprocess.run(
         [bench, f"--benchmark_filter=BM_Sphere/triangles:({triangles})/threads:{threads}/",
