@@ -43,7 +43,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                                toRgba8(background_, backgroundAlpha_),
                                depthOutput_,
                                rules_,
-                               estimateHook_};
+                               estimateHook_,
+                               &resolvedRows_};
   const detail::PathChoice path = ws.history.choosePath(in);
   const FramebufferView planes = ws.startFrame(in);
   detail::PhaseRunner runner(*ws.pool, progress_, detail::phasesOf(path.path));
@@ -65,7 +66,8 @@ bool Renderer::Workspace::renderFull(const detail::FrameInputs& in, const detail
   stats.validateSeconds = runner.lap();
   planShading(in, path, threads);
   completed = completed && renderGeometry(in, planes, runner, stats);
-  completed = completed && shadeAndResolve(in, planes, in.depthOutput, runner, stats);
+  // The raster turned the depth keys into window depths, tile by tile.
+  completed = completed && shadeAndResolve(in, planes, false, runner, stats);
   countGeometry(stats);
   return completed;
 }
@@ -117,9 +119,14 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 
   const detail::TileRoutine tileRoutine =
       detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
-  const detail::RasterContext rasterContext{setup.chunks,  vertices.data(),  planes.color,
-                                            planes.depth,  planes.polygonId, planes.width,
-                                            polygons.shown};
+  const detail::RasterContext rasterContext{setup.chunks,
+                                            vertices.data(),
+                                            planes.color,
+                                            planes.depth,
+                                            planes.polygonId,
+                                            planes.width,
+                                            polygons.shown,
+                                            in.depthOutput ? &*transform : nullptr};
   completed = completed && detail::paintTiles(runner, grid, rasterContext, tileRoutine, tiles);
   stats.rasterSeconds = runner.lap();
   return completed;
@@ -147,9 +154,16 @@ bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
 // Phase 5: the pixels' colors from their polygons'; `depths`: window depths from the keys.
 bool Renderer::Workspace::resolve(const detail::FrameInputs& in, const FramebufferView& planes,
                                   bool depths, detail::PhaseRunner& runner) {
-  const detail::ResolveContext context{
-      polygons.colors.data(), in.background, planes.color, planes.depth,
-      planes.polygonId,       planes.width,  in.estimate};
+  const detail::ResolveContext context{polygons.colors.data(),
+                                       in.background,
+                                       planes.color,
+                                       planes.depth,
+                                       planes.polygonId,
+                                       planes.width,
+                                       in.estimate,
+                                       in.resolvedRows && *in.resolvedRows ? in.resolvedRows
+                                                                           : nullptr,
+                                       &in.target};
   const detail::ResolveRoutine routine = detail::chooseResolveRoutine(depths).resolve;
   return detail::resolveTiles(runner, grid, context, routine, *transform);
 }

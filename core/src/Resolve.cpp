@@ -41,11 +41,26 @@ struct TileConstants {
   hn::Vec<D> depthOffset, depthScale;
 };
 
+// Window depths of pixels [x, x + lanes) of a row from their depth keys; 1 behind the
+// background.
+HWY_INLINE void windowDepthGroup(const TileConstants& k, const hn::Mask<DI> background,
+                                 float* depth) {
+  const D d;
+  const DF df;
+  // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
+  const hn::Vec<D> window = k.depthOffset + k.depthScale * hn::PromoteTo(d, hn::LoadU(df, depth));
+  const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const hn::Vec<D> clamped =
+      hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
+  const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
+  hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
+             depth);
+}
+
 // Pixels [x, x + lanes) of a row.
 template <bool kDepth>
 HWY_INLINE void resolveGroup(const TileConstants& k, const std::int32_t* ids, std::uint32_t* color,
                              float* depth) {
-  const D d;
   const DI di;
   const DU du;
   const DF df;
@@ -58,16 +73,7 @@ HWY_INLINE void resolveGroup(const TileConstants& k, const std::int32_t* ids, st
   }
   const hn::Vec<DU> shown = hn::GatherIndex(du, k.colors, hn::IfThenZeroElse(background, id));
   hn::StoreU(hn::IfThenElse(hn::RebindMask(du, background), k.background, shown), du, color);
-  if constexpr (kDepth) {
-    // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
-    const hn::Vec<D> window = k.depthOffset + k.depthScale * hn::PromoteTo(d, hn::LoadU(df, depth));
-    const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
-    const hn::Vec<D> clamped =
-        hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
-    const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
-    hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
-               depth);
-  }
+  if constexpr (kDepth) windowDepthGroup(k, background, depth);
 }
 
 template <bool kDepth>
@@ -105,6 +111,26 @@ void ResolveColors(const ResolveContext& context, const PixelBounds& pixels,
   resolvePixels<false>(context, pixels, transform);
 }
 
+void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
+                   const PixelBounds& pixels, const FrameTransform& transform) {
+  const D d;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(d);
+  const TileConstants k{nullptr, hn::Zero(DU()), hn::Set(d, transform.depthFromKeyOffset()),
+                        hn::Set(d, transform.depthFromKeyScale())};
+  const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
+  for (int y = pixels.y0; y <= pixels.y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * planeWidth + pixels.x0;
+    const std::int32_t* ids = polygonId + row;
+    float* depths = depth + row;
+    std::size_t x = 0;
+    for (; x + lanes <= width; x += lanes)
+      windowDepthGroup(k, hn::LoadU(di, ids + x) < hn::Zero(di), depths + x);
+    for (; x < width; ++x)
+      depths[x] = ids[x] < 0 ? 1.0f : resolvedDepth(transform, depths[x]);
+  }
+}
+
 }  // namespace facet::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -119,6 +145,7 @@ constexpr int kRowsPerTask = 8;
 
 HWY_EXPORT(ResolveColorsAndDepths);
 HWY_EXPORT(ResolveColors);
+HWY_EXPORT(ResolveDepths);
 
 void resolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
                             const FrameTransform& transform) {
@@ -130,6 +157,11 @@ void resolveColors(const ResolveContext& context, const PixelBounds& pixels,
 }
 
 }  // namespace
+
+void resolveDepths(const std::int32_t* polygonId, float* depth, int width, const PixelBounds& pixels,
+                   const FrameTransform& transform) {
+  HWY_DYNAMIC_DISPATCH(ResolveDepths)(polygonId, depth, width, pixels, transform);
+}
 
 float resolvedDepth(const FrameTransform& transform, float key) {
   // windowDepth's operations written out, so that this file's flags compile them (an inline
@@ -155,6 +187,7 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
       estimateResolvedRows(*context.estimate, context.colors, context.color, context.polygonId,
                            context.width, y0, y1);
     }
+    if (context.resolvedRows) (*context.resolvedRows)(*context.target, y0, y1);  // still cached
   });
 }
 

@@ -4,11 +4,13 @@
 // depth key becomes window depth (Conventions.h, "Depth"), in bands of whole rows.
 
 #include <cstdint>
+#include <functional>
 
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
 #include "facet/Color.h"
+#include "facet/Framebuffer.h"
 
 namespace facet::detail {
 
@@ -23,6 +25,10 @@ struct ResolveContext {
   int width;
   // The error estimate, taken by each band after it is resolved (EstimateHook.h); null: none.
   const EstimateHook* estimate = nullptr;
+  // Renderer::ResolvedRowsCallback, called with `target` (the caller's planes) and each band
+  // once it is resolved and estimated; null: none.
+  const std::function<void(const FramebufferView&, int, int)>* resolvedRows = nullptr;
+  const FramebufferView* target = nullptr;
 };
 
 // The resolve of a box of pixels, chosen once per render: colors and window depths, or colors
@@ -35,6 +41,12 @@ struct ResolveRoutineChoice {
   const char* name;
 };
 ResolveRoutineChoice chooseResolveRoutine(bool depth);
+
+// The depth keys of a box of pixels (final: a tile the raster has painted, while it is in
+// cache) turned into window depths, the bytes chooseResolveRoutine(true) gives them; the
+// resolve then colors only.
+void resolveDepths(const std::int32_t* polygonId, float* depth, int width, const PixelBounds& pixels,
+                   const FrameTransform& transform);
 
 // FrameTransform::windowDepth of a key as this phase's scalar path computes it, compiled
 // without fused multiply-adds (core/CMakeLists.txt): the bytes every SIMD target gives.
