@@ -100,10 +100,16 @@ struct PhaseSeries {
     for (const auto& phase : phases)
       seconds[i++].push_back(phase.second);
   }
+  // The median of each phase, and its best (on a loaded machine the steadier of the two for
+  // comparing builds phase by phase).
   void print(const char* title) const {
     std::printf("  %s, median ms:", title);
     for (std::size_t i = 0; i < names.size(); ++i)
       std::printf(" %s %.2f", names[i], 1e3 * median(seconds[i]));
+    std::printf("\n  %s, best ms:", title);
+    for (std::size_t i = 0; i < names.size(); ++i)
+      std::printf(" %s %.2f", names[i],
+                  1e3 * *std::min_element(seconds[i].begin(), seconds[i].end()));
     std::printf("\n");
   }
 };

@@ -67,8 +67,7 @@ class Renderer {
   /// renderer's threads: for elementwise work on the image while its rows are in cache (the
   /// VTK filter widens the polygon ids of a band into its CellId array), in place of a
   /// second pass over the planes.
-  using ResolvedRowsCallback =
-      std::function<void(const FramebufferView& target, int y0, int y1)>;
+  using ResolvedRowsCallback = std::function<void(const FramebufferView& target, int y0, int y1)>;
 
   Renderer();
   ~Renderer();
