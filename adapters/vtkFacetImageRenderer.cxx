@@ -24,6 +24,7 @@
 #endif
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 
 namespace {
@@ -220,6 +221,27 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
     reinterpret_cast<facet::Rgba8*>(this->Rgba->GetPointer(0)),
     depth,
     this->PolygonIds.data() };
+  // The arrays made from the renderer's planes (CellId from the ids, Depth copied from the
+  // renderer's own plane), for pixels [begin, end) whose render is final.
+  const std::int32_t* polygonIds = this->PolygonIds.data();
+  const float* renderDepth = this->RenderDepth.empty() ? nullptr : this->RenderDepth.data();
+  const auto writeOutput = [&](vtkIdType begin, vtkIdType end) {
+    if (renderDepth)
+    {
+      std::copy(renderDepth + begin, renderDepth + end, this->Depth->GetPointer(0) + begin);
+    }
+    if (mapIds)
+    {
+      mapIds(polygonIds, begin, end);
+    }
+  };
+  const bool writesOutput = mapIds || renderDepth;
+  std::atomic<int> rowsWritten{ 0 };
+  struct Unhook // the callback refers to this frame: gone with it, also on an exception
+  {
+    facet::Renderer& Renderer;
+    ~Unhook() { this->Renderer.setResolvedRowsCallback({}); }
+  } unhook{ this->Renderer };
   facet::RenderStats stats;
   try
   {
@@ -237,6 +259,19 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
       algorithm->UpdateProgress(0.05 + 0.9 * fraction);
       return !algorithm->GetAbortExecute();
     });
+    // Each band of the image as soon as the resolve leaves it, its ids still in cache, in
+    // place of a pass over the planes after the render (1.4-1.6 ms at 1080p): only bands of
+    // this image (not of a quality mode's sample grid).
+    this->Renderer.setResolvedRowsCallback(!writesOutput
+        ? facet::Renderer::ResolvedRowsCallback{}
+        : [&](const facet::FramebufferView& view, int y0, int y1) {
+            if (view.polygonId == polygonIds && view.width == this->Width)
+            {
+              writeOutput(static_cast<vtkIdType>(y0) * this->Width,
+                static_cast<vtkIdType>(y1 + 1) * this->Width);
+              rowsWritten += y1 - y0 + 1;
+            }
+          });
     stats = settings.RenderWith ? settings.RenderWith(this->Renderer, scene, camera, target)
                                 : this->Renderer.render(scene, camera, target);
   }
@@ -250,21 +285,13 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
     messages.AddWarning("skipped " + std::to_string(stats.polygonsNonFinite) +
       " cells that use points with NaN or infinite coordinates");
   }
+  // A pass over the whole image when the bands did not write it: after a render that stopped
+  // (it then cleared the image), or one whose resolved bands were not this image's rows, each
+  // once (a quality mode that renders a sample grid).
   const Clock::time_point outputStart = Clock::now();
-  const std::int32_t* polygonIds = this->PolygonIds.data();
-  const float* renderDepth = this->RenderDepth.empty() ? nullptr : this->RenderDepth.data();
-  if (mapIds || renderDepth)
+  if (writesOutput && (stats.aborted || rowsWritten != this->Height))
   {
-    this->ForEachPixelBlock([&](vtkIdType begin, vtkIdType end) {
-      if (renderDepth)
-      {
-        std::copy(renderDepth + begin, renderDepth + end, this->Depth->GetPointer(0) + begin);
-      }
-      if (mapIds)
-      {
-        mapIds(polygonIds, begin, end);
-      }
-    });
+    this->ForEachPixelBlock(writeOutput);
   }
   this->OutputSeconds = SecondsSince(outputStart);
   this->AddFieldData(output, stats, conversions);

@@ -12,8 +12,10 @@
  * references), and large ones are 2 MiB-aligned with transparent huge pages advised (tile
  * traversal otherwise misses the TLB, see facet/HugePageAllocator.h). It renders straight
  * into RGBA and Depth, reporting progress (0.05 to 0.95) and
- * stopping when the algorithm's AbortExecute is set; then the front end's IdMap turns the
- * renderer's polygon ids into CellId (and ActorId), on the renderer's threads; then the field
+ * stopping when the algorithm's AbortExecute is set; the front end's IdMap turns the
+ * renderer's polygon ids into CellId (and ActorId) band by band as the render resolves them
+ * (Renderer::ResolvedRowsCallback, its ids still in cache; after the render, by a pass over the
+ * image, when it drew a sample grid or stopped), on the renderer's threads; then the field
  * data says what the render did and cost: `FacetRenderSeconds`, `FacetPhaseSeconds`,
  * `FacetCounts`, `FacetMeshConverted`, `FacetRenderPlan` (RenderStats::describe) and the plan
  * in numbers: `FacetRenderPath` (Path: 0 full, 1 re-shade, 2 resolve, facet::RenderPath),

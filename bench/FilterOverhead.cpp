@@ -8,12 +8,14 @@
 // Update() less the filter's own FacetRenderSeconds: the executive and the field data) and of
 // the core frame's phases.
 //
-//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
+//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate]
 //   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
 //   build/bin/facet_filter_overhead 1000 1 1 20     # 2M triangles, closed, one thread
 //   build/bin/facet_filter_overhead 500 1 2 10 3840 2160   # at 4K
 //
 // (THETA: vtkSphereSource's theta resolution, phi = theta + 2: 2·theta² triangles.)
+// --no-estimate: the filter's EstimateError off, as bench/filter_speed.py and
+// `make bench-peers` time it (on by default, as the filter's default).
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -42,6 +44,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace {
@@ -97,10 +100,16 @@ struct PhaseSeries {
     for (const auto& phase : phases)
       seconds[i++].push_back(phase.second);
   }
+  // The median of each phase, and its best (on a loaded machine the steadier of the two for
+  // comparing builds phase by phase).
   void print(const char* title) const {
     std::printf("  %s, median ms:", title);
     for (std::size_t i = 0; i < names.size(); ++i)
       std::printf(" %s %.2f", names[i], 1e3 * median(seconds[i]));
+    std::printf("\n  %s, best ms:", title);
+    for (std::size_t i = 0; i < names.size(); ++i)
+      std::printf(" %s %.2f", names[i],
+                  1e3 * *std::min_element(seconds[i].begin(), seconds[i].end()));
     std::printf("\n");
   }
 };
@@ -147,6 +156,8 @@ facet::Camera cameraOf(vtkCamera* camera) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool estimate = !(argc > 1 && std::string_view(argv[argc - 1]) == "--no-estimate");
+  if (!estimate) --argc;  // the positional arguments come before it
   if (argc < 3) {
     std::fprintf(stderr, "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]\n", argv[0]);
     return 2;
@@ -183,6 +194,7 @@ int main(int argc, char** argv) {
   filter->SetAmbientLightColor(0, 0, 0);
   filter->SetNumberOfThreads(threads);
   filter->SetDetectClosedSurfaces(closed);
+  filter->SetEstimateError(estimate);
 
   // The same arrays, straight into the core: a versioned mesh, as the filter's.
   facet::MeshView mesh;
@@ -231,10 +243,10 @@ int main(int argc, char** argv) {
   std::printf(
       "%d triangles, %d x %d, %s, %d threads, median of %d frames in turn: Update() %.1f ms "
       "(CPU %.1f ms, %.0f page faults), core %.1f ms (CPU %.1f ms, %.0f page faults); "
-      "Update/core wall %.3f, CPU %.3f; first Update() %.3f s\n",
+      "Update/core wall %.3f, CPU %.3f; first Update() %.3f s%s\n",
       2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
       1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
-      u.cpu / c.cpu, firstUpdate.wall);
+      u.cpu / c.cpu, firstUpdate.wall, estimate ? "" : "; estimate off");
   updatePhases.print("Update()");
   corePhases.print("core");
   return 0;

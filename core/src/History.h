@@ -7,6 +7,7 @@
 // polygon ids and flags; the background alone a resolve.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "MeshCache.h"
@@ -30,6 +31,8 @@ struct FrameInputs {
   bool depthOutput;
   const RenderRules& rules;
   EstimateHook* estimate = nullptr;  // QualityRenderer's, for shade and resolve (not compared)
+  // Renderer::ResolvedRowsCallback, called by the resolve; null or empty: none.
+  const std::function<void(const FramebufferView&, int, int)>* resolvedRows = nullptr;
 };
 
 struct PathChoice {

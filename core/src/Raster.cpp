@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
+#include "Resolve.h"
 #include "facet/Framebuffer.h"
 
 namespace facet::detail {
@@ -131,6 +132,9 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
       paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse);
   }
   markShownPolygons(context, tile);
+  if (context.windowDepths) {
+    resolveDepths(context.polygonId, context.depth, context.width, tile, *context.windowDepths);
+  }
   return counts;
 }
 

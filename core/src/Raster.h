@@ -4,13 +4,14 @@
 // draw order (depth key and polygon id per pixel, RasterTriangle.h) — with the depth test,
 // the front faces' first, then the back faces' (so that an exact tie keeps the front face, and
 // back faces mostly fail against the front faces already there) — then the polygons its
-// final image shows marked.
+// final image shows marked, and its depth keys turned into window depths.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "Frame.h"
+#include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
 #include "facet/RenderPlan.h"
@@ -25,6 +26,9 @@ struct RasterContext {
   std::int32_t* polygonId;
   int width;
   std::span<std::uint8_t> shown;  // out, per polygon id: a pixel of the image shows it
+  // Not null: each tile's depth keys become window depths once it is painted, while in cache
+  // (resolveDepths, Resolve.h), and the resolve colors only.
+  const FrameTransform* windowDepths = nullptr;
 };
 
 // One tile's painting, specialized once per render (llvmpipe's lp_rast_tri_tab).

@@ -9,9 +9,10 @@
 //                Transform.cpp  points to window coordinates; back faces; painter's sort
 //   2. set-up    Setup.cpp      polygons to triangles (facing, triangulation, clipping),
 //      binning   Binning.cpp    triangles to the bins of the tiles they touch
-//   3. raster    Raster.cpp     per tile: depth keys and polygon ids (coarse depth, a rule)
+//   3. raster    Raster.cpp     per tile: depth keys and polygon ids (coarse depth, a rule),
+//                               then window depths
 //   4. shade     Shade.cpp      the color of every polygon that won a pixel
-//   5. resolve   Resolve.cpp    pixel colors and window depths
+//   5. resolve   Resolve.cpp    pixel colors
 //
 // What the renderer keeps between renders (the plan, every phase's buffers, the previous
 // frame) is Workspace.h; the bookkeeping around the phases is Workspace.cpp.
@@ -43,7 +44,8 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
                                toRgba8(background_, backgroundAlpha_),
                                depthOutput_,
                                rules_,
-                               estimateHook_};
+                               estimateHook_,
+                               &resolvedRows_};
   const detail::PathChoice path = ws.history.choosePath(in);
   const FramebufferView planes = ws.startFrame(in);
   detail::PhaseRunner runner(*ws.pool, progress_, detail::phasesOf(path.path));
@@ -65,7 +67,7 @@ bool Renderer::Workspace::renderFull(const detail::FrameInputs& in, const detail
   stats.validateSeconds = runner.lap();
   planShading(in, path, threads);
   completed = completed && renderGeometry(in, planes, runner, stats);
-  completed = completed && shadeAndResolve(in, planes, in.depthOutput, runner, stats);
+  completed = completed && shadeAndResolve(in, planes, runner, stats);
   countGeometry(stats);
   return completed;
 }
@@ -78,14 +80,14 @@ bool Renderer::Workspace::renderAgain(const detail::FrameInputs& in, const detai
   if (path.path == RenderPath::Reshade) {
     planShading(in, path, threads);
     detail::carryGeometryReport(plan, stats.plan);
-    return shadeAndResolve(in, planes, false, runner, stats);
+    return shadeAndResolve(in, planes, runner, stats);
   }
   keepPreviousPlan(path, threads);
   // Only recolored: no shade phase bounded anything, so the resolve estimates nothing (the
   // QualityRenderer keeps or redoes its estimate itself).
   detail::FrameInputs recolor = in;
   recolor.estimate = nullptr;
-  const bool completed = resolve(recolor, planes, false, runner);
+  const bool completed = resolve(recolor, planes, runner);
   stats.shadeSeconds = runner.lap();
   return completed;
 }
@@ -117,17 +119,17 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 
   const detail::TileRoutine tileRoutine =
       detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
-  const detail::RasterContext rasterContext{setup.chunks,  vertices.data(),  planes.color,
-                                            planes.depth,  planes.polygonId, planes.width,
-                                            polygons.shown};
+  const detail::RasterContext rasterContext{
+      setup.chunks,     vertices.data(), planes.color,   planes.depth,
+      planes.polygonId, planes.width,    polygons.shown, in.depthOutput ? &*transform : nullptr};
   completed = completed && detail::paintTiles(runner, grid, rasterContext, tileRoutine, tiles);
   stats.rasterSeconds = runner.lap();
   return completed;
 }
 
-// Phases 4 and 5; `depths`: convert the depth keys too.
+// Phases 4 and 5.
 bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
-                                          const FramebufferView& planes, bool depths,
+                                          const FramebufferView& planes,
                                           detail::PhaseRunner& runner, RenderStats& stats) {
   const detail::ShadeContext shadeContext{*transform,
                                           shading.shader,
@@ -139,19 +141,24 @@ bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
   bool completed =
       detail::shadePolygons(runner, meshes, shading.routines, shadeContext, shadeBuffers);
   countShaded(stats);
-  completed = completed && resolve(in, planes, depths, runner);
+  completed = completed && resolve(in, planes, runner);
   stats.shadeSeconds = runner.lap();
   return completed;
 }
 
-// Phase 5: the pixels' colors from their polygons'; `depths`: window depths from the keys.
+// Phase 5: the pixels' colors from their polygons' (the raster left window depths).
 bool Renderer::Workspace::resolve(const detail::FrameInputs& in, const FramebufferView& planes,
-                                  bool depths, detail::PhaseRunner& runner) {
+                                  detail::PhaseRunner& runner) {
   const detail::ResolveContext context{
-      polygons.colors.data(), in.background, planes.color, planes.depth,
-      planes.polygonId,       planes.width,  in.estimate};
-  const detail::ResolveRoutine routine = detail::chooseResolveRoutine(depths).resolve;
-  return detail::resolveTiles(runner, grid, context, routine, *transform);
+      polygons.colors.data(),
+      in.background,
+      planes.color,
+      planes.polygonId,
+      planes.width,
+      in.estimate,
+      in.resolvedRows && *in.resolvedRows ? in.resolvedRows : nullptr,
+      &in.target};
+  return detail::resolveTiles(runner, grid, context);
 }
 
 Renderer::Renderer() : workspace_(std::make_unique<Workspace>()) {

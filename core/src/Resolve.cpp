@@ -1,7 +1,7 @@
 // Resolve.h, in SIMD lanes: compiled once per instruction set by Highway's foreach_target
 // (this file includes itself) and dispatched at run time, as SetupBatch.cpp. A group of
-// pixels all showing the background (most of a frame's, around a small object) is two plain
-// stores; any other group gathers its polygons' colors and converts its depth keys with
+// pixels all showing the background (most of a frame's, around a small object) is one plain
+// store; any other group gathers its polygons' colors, or converts its depth keys with
 // FrameTransform::windowDepth's operations on the same doubles in the same order (the file
 // is compiled without contraction into fused multiply-adds, core/CMakeLists.txt), so every
 // target gives the scalar conversion's bytes.
@@ -34,75 +34,81 @@ HWY_INLINE std::uint32_t wordOf(Rgba8 color) {
   return word;
 }
 
-// What resolvePixels keeps in registers for its pixels.
-struct TileConstants {
+// What the routines keep in registers for their pixels.
+struct GroupConstants {
   const std::uint32_t* colors;  // per polygon id, Rgba8 as words
   hn::Vec<DU> background;
   hn::Vec<D> depthOffset, depthScale;
 };
 
-// Pixels [x, x + lanes) of a row.
-template <bool kDepth>
-HWY_INLINE void resolveGroup(const TileConstants& k, const std::int32_t* ids, std::uint32_t* color,
-                             float* depth) {
-  const D d;
+// The colors of pixels [x, x + lanes) of a row.
+HWY_INLINE void colorGroup(const GroupConstants& k, const std::int32_t* ids, std::uint32_t* color) {
   const DI di;
   const DU du;
-  const DF df;
   const hn::Vec<DI> id = hn::LoadU(di, ids);
   const hn::Mask<DI> background = id < hn::Zero(di);
   if (hn::AllTrue(di, background)) {
     hn::StoreU(k.background, du, color);
-    if constexpr (kDepth) hn::StoreU(hn::Set(df, 1.0f), df, depth);
     return;
   }
   const hn::Vec<DU> shown = hn::GatherIndex(du, k.colors, hn::IfThenZeroElse(background, id));
   hn::StoreU(hn::IfThenElse(hn::RebindMask(du, background), k.background, shown), du, color);
-  if constexpr (kDepth) {
-    // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
-    const hn::Vec<D> window = k.depthOffset + k.depthScale * hn::PromoteTo(d, hn::LoadU(df, depth));
-    const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
-    const hn::Vec<D> clamped =
-        hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
-    const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
-    hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
-               depth);
-  }
 }
 
-template <bool kDepth>
-void resolvePixels(const ResolveContext& context, const PixelBounds& pixels,
-                   const FrameTransform& transform) {
+// The window depths of pixels [x, x + lanes) of a row from their keys; 1 for the background.
+HWY_INLINE void depthGroup(const GroupConstants& k, const std::int32_t* ids, float* depth) {
   const D d;
-  const std::size_t lanes = hn::Lanes(d);
-  const TileConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
-                        hn::Set(DU(), wordOf(context.background)),
-                        hn::Set(d, transform.depthFromKeyOffset()),
-                        hn::Set(d, transform.depthFromKeyScale())};
+  const DI di;
+  const DF df;
+  const hn::Mask<DI> background = hn::LoadU(di, ids) < hn::Zero(di);
+  if (hn::AllTrue(di, background)) {
+    hn::StoreU(hn::Set(df, 1.0f), df, depth);
+    return;
+  }
+  // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
+  const hn::Vec<D> window = k.depthOffset + k.depthScale * hn::PromoteTo(d, hn::LoadU(df, depth));
+  const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const hn::Vec<D> clamped =
+      hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
+  const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
+  hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
+             depth);
+}
+
+void ResolveColors(const ResolveContext& context, const PixelBounds& pixels) {
+  const std::size_t lanes = hn::Lanes(D());
+  const GroupConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
+                         hn::Set(DU(), wordOf(context.background)), hn::Zero(D()), hn::Zero(D())};
   const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
   for (int y = pixels.y0; y <= pixels.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * context.width + pixels.x0;
     const std::int32_t* ids = context.polygonId + row;
     auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
-    float* depth = context.depth + row;
     std::size_t x = 0;
     for (; x + lanes <= width; x += lanes)
-      resolveGroup<kDepth>(k, ids + x, color + x, depth + x);
-    for (; x < width; ++x) {  // a width that is no multiple of a group
-      const std::int32_t id = ids[x];
-      color[x] = id < 0 ? wordOf(context.background) : k.colors[id];
-      if constexpr (kDepth) depth[x] = id < 0 ? 1.0f : resolvedDepth(transform, depth[x]);
-    }
+      colorGroup(k, ids + x, color + x);
+    for (; x < width; ++x)  // a width that is no multiple of a group
+      color[x] = ids[x] < 0 ? wordOf(context.background) : k.colors[ids[x]];
   }
 }
 
-void ResolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
-                            const FrameTransform& transform) {
-  resolvePixels<true>(context, pixels, transform);
-}
-void ResolveColors(const ResolveContext& context, const PixelBounds& pixels,
-                   const FrameTransform& transform) {
-  resolvePixels<false>(context, pixels, transform);
+void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
+                   const PixelBounds& pixels, const FrameTransform& transform) {
+  const D d;
+  const std::size_t lanes = hn::Lanes(d);
+  const GroupConstants k{nullptr, hn::Zero(DU()), hn::Set(d, transform.depthFromKeyOffset()),
+                         hn::Set(d, transform.depthFromKeyScale())};
+  const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
+  for (int y = pixels.y0; y <= pixels.y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * planeWidth + pixels.x0;
+    const std::int32_t* ids = polygonId + row;
+    float* depths = depth + row;
+    std::size_t x = 0;
+    for (; x + lanes <= width; x += lanes)
+      depthGroup(k, ids + x, depths + x);
+    for (; x < width; ++x)  // a width that is no multiple of a group
+      depths[x] = ids[x] < 0 ? 1.0f : resolvedDepth(transform, depths[x]);
+  }
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -117,19 +123,15 @@ namespace {
 // KiB), which the hardware prefetchers do not follow; a band of whole rows streams.
 constexpr int kRowsPerTask = 8;
 
-HWY_EXPORT(ResolveColorsAndDepths);
 HWY_EXPORT(ResolveColors);
-
-void resolveColorsAndDepths(const ResolveContext& context, const PixelBounds& pixels,
-                            const FrameTransform& transform) {
-  HWY_DYNAMIC_DISPATCH(ResolveColorsAndDepths)(context, pixels, transform);
-}
-void resolveColors(const ResolveContext& context, const PixelBounds& pixels,
-                   const FrameTransform& transform) {
-  HWY_DYNAMIC_DISPATCH(ResolveColors)(context, pixels, transform);
-}
+HWY_EXPORT(ResolveDepths);
 
 }  // namespace
+
+void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
+                   const PixelBounds& pixels, const FrameTransform& transform) {
+  HWY_DYNAMIC_DISPATCH(ResolveDepths)(polygonId, depth, width, pixels, transform);
+}
 
 float resolvedDepth(const FrameTransform& transform, float key) {
   // windowDepth's operations written out, so that this file's flags compile them (an inline
@@ -138,23 +140,18 @@ float resolvedDepth(const FrameTransform& transform, float key) {
   return depth > 0.0 ? (depth < 1.0 ? static_cast<float>(depth) : 1.0f) : 0.0f;
 }
 
-ResolveRoutineChoice chooseResolveRoutine(bool depth) {
-  if (depth) return {resolveColorsAndDepths, "colors and window depths"};
-  return {resolveColors, "colors"};
-}
-
-bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
-                  ResolveRoutine routine, const FrameTransform& transform) {
+bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context) {
   const PixelBounds viewport = grid.viewport();
   const int bands = (viewport.y1 - viewport.y0 + kRowsPerTask) / kRowsPerTask;
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
     const int y0 = viewport.y0 + static_cast<int>(b) * kRowsPerTask;
     const int y1 = std::min(viewport.y1, y0 + kRowsPerTask - 1);
-    routine(context, {viewport.x0, y0, viewport.x1, y1}, transform);
+    HWY_DYNAMIC_DISPATCH(ResolveColors)(context, {viewport.x0, y0, viewport.x1, y1});
     if (context.estimate && context.estimate->rows) {  // its rows' ids still in cache
       estimateResolvedRows(*context.estimate, context.colors, context.color, context.polygonId,
                            context.width, y0, y1);
     }
+    if (context.resolvedRows) (*context.resolvedRows)(*context.target, y0, y1);  // still cached
   });
 }
 

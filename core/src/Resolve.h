@@ -1,14 +1,18 @@
 #pragma once
 
-// Phase 5: resolve. Every pixel takes its polygon's color (or the background's), and its
-// depth key becomes window depth (Conventions.h, "Depth"), in bands of whole rows.
+// Phase 5: resolve. Every pixel takes its polygon's color (or the background's), in bands of
+// whole rows. Its window depth (Conventions.h, "Depth") is not the resolve's: the raster turns
+// each tile's depth keys into window depths once it is painted, while the tile is in cache
+// (resolveDepths), which saved the resolve a read and a write of the depth plane.
 
 #include <cstdint>
+#include <functional>
 
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
 #include "facet/Color.h"
+#include "facet/Framebuffer.h"
 
 namespace facet::detail {
 
@@ -18,32 +22,27 @@ struct ResolveContext {
   const Rgba8* colors;  // per polygon id (Shade.h)
   Rgba8 background;
   Rgba8* color;  // the framebuffer's planes (FramebufferView)
-  float* depth;
   const std::int32_t* polygonId;
   int width;
   // The error estimate, taken by each band after it is resolved (EstimateHook.h); null: none.
   const EstimateHook* estimate = nullptr;
+  // Renderer::ResolvedRowsCallback, called with `target` (the caller's planes) and each band
+  // once it is resolved and estimated; null: none.
+  const std::function<void(const FramebufferView&, int, int)>* resolvedRows = nullptr;
+  const FramebufferView* target = nullptr;
 };
 
-// The resolve of a box of pixels, chosen once per render: colors and window depths, or colors
-// only (no depth output, or depths already resolved by the frame an incremental render
-// reuses).
-using ResolveRoutine = void (*)(const ResolveContext& context, const PixelBounds& pixels,
-                                const FrameTransform& transform);
-struct ResolveRoutineChoice {
-  ResolveRoutine resolve;
-  const char* name;
-};
-ResolveRoutineChoice chooseResolveRoutine(bool depth);
+// The depth keys of a box of pixels (final: a tile the raster has painted) turned into window
+// depths, 1 where the id is the background's.
+void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
+                   const PixelBounds& pixels, const FrameTransform& transform);
 
-// FrameTransform::windowDepth of a key as this phase's scalar path computes it, compiled
+// FrameTransform::windowDepth of a key as resolveDepths' scalar path computes it, compiled
 // without fused multiply-adds (core/CMakeLists.txt): the bytes every SIMD target gives.
 float resolvedDepth(const FrameTransform& transform, float key);
 
-// Resolves every pixel of the grid's viewport with the routine, a band of whole rows per task
-// (Resolve.cpp says why not tile by tile), turning depth keys into window depths by
-// `transform`.
-bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context,
-                  ResolveRoutine routine, const FrameTransform& transform);
+// Colors every pixel of the grid's viewport, a band of whole rows per task (Resolve.cpp says
+// why not tile by tile).
+bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context);
 
 }  // namespace facet::detail

@@ -53,9 +53,9 @@ struct Renderer::Workspace {
                    const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
   bool renderGeometry(const detail::FrameInputs& in, const FramebufferView& planes,
                       detail::PhaseRunner& runner, RenderStats& stats);
-  bool shadeAndResolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
+  bool shadeAndResolve(const detail::FrameInputs& in, const FramebufferView& planes,
                        detail::PhaseRunner& runner, RenderStats& stats);
-  bool resolve(const detail::FrameInputs& in, const FramebufferView& planes, bool depths,
+  bool resolve(const detail::FrameInputs& in, const FramebufferView& planes,
                detail::PhaseRunner& runner);
 
   // The bookkeeping (Workspace.cpp).

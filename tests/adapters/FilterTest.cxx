@@ -23,10 +23,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 using namespace facet_test;
 
@@ -731,6 +733,87 @@ TEST(Output, ArraysExtentAndDeterminism)
     EXPECT_EQ(std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes), 0) << name;
   }
   EXPECT_NE(std::string(one->GetRenderPlan()).find("z-buffer"), std::string::npos);
+}
+
+//------------------------------------------------------------------------------
+// CellId is written band by band as the render resolves them, unless the render drew a
+// sample grid (SamplesPerPixel) or stopped: then by a pass over the image. Either way every
+// pixel's cell is the one drawn there (covered exactly where the depth is below 1), the
+// error estimate does not change it, and a render stopped while resolving leaves only
+// background ids.
+TEST(Output, CellIdsAreTheCellsDrawnInEveryModeAndAfterAStop)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(64);
+  sphere->SetPhiResolution(48);
+  sphere->Update();
+  const vtkIdType cells = sphere->GetOutput()->GetNumberOfCells();
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SetInputConnection(sphere->GetOutputPort());
+  filter->SetSize(FilterWidth, FilterHeight);
+  filter->SetNumberOfThreads(2);
+  const auto cellIdsOf = [&] {
+    vtkImageData* image = filter->GetOutput();
+    auto* ids = vtkIdTypeArray::SafeDownCast(image->GetPointData()->GetArray("CellId"));
+    auto* depth = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Depth"));
+    std::vector<vtkIdType> values(
+      ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfValues());
+    for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
+    {
+      const bool covered = depth->GetValue(i) < 1.0f;
+      EXPECT_EQ(values[i] >= 0, covered) << "pixel " << i;
+      EXPECT_LT(values[i], cells);
+      EXPECT_GE(values[i], -1);
+      if (::testing::Test::HasFailure())
+      {
+        break;
+      }
+    }
+    return values;
+  };
+  std::vector<vtkIdType> estimated, plain;
+  for (const bool estimate : { true, false })
+  {
+    SCOPED_TRACE(estimate ? "estimate" : "no estimate");
+    filter->SetEstimateError(estimate);
+    filter->Update();
+    (estimate ? estimated : plain) = cellIdsOf();
+  }
+  EXPECT_EQ(estimated, plain);
+  EXPECT_GT(std::count_if(plain.begin(), plain.end(), [](vtkIdType id) { return id >= 0; }), 1000);
+  filter->SetSamplesPerPixel(4);
+  filter->Update();
+  const std::vector<vtkIdType> sampled = cellIdsOf();
+  EXPECT_GT(
+    std::count_if(sampled.begin(), sampled.end(), [](vtkIdType id) { return id >= 0; }), 1000);
+
+  // Stopped while the resolve runs (progress 0.905 to 0.95 of the Update), and at its very end
+  // (0.95: every band written, then the render stops and clears the image). One thread: the
+  // caller resolves every band, so it reports each.
+  filter->SetSamplesPerPixel(1);
+  filter->SetNumberOfThreads(1);
+  filter->IncrementalRenderingOff();
+  for (double threshold : { 0.92, 0.949 })
+  {
+    SCOPED_TRACE(threshold);
+    vtkNew<vtkCallbackCommand> stop;
+    stop->SetClientData(&threshold);
+    stop->SetCallback([](vtkObject* caller, unsigned long, void* data, void* fraction) {
+      if (*static_cast<double*>(fraction) > *static_cast<double*>(data))
+      {
+        vtkAlgorithm::SafeDownCast(caller)->SetAbortExecute(1);
+      }
+    });
+    const unsigned long tag = filter->AddObserver(vtkCommand::ProgressEvent, stop);
+    filter->Modified();
+    filter->Update();
+    filter->SetAbortExecute(0);
+    filter->RemoveObserver(tag);
+    EXPECT_EQ(FieldValue(filter->GetOutput(), "FacetCounts", "PixelsCovered"), 0.0);
+    const std::vector<vtkIdType> stopped = cellIdsOf();
+    EXPECT_EQ(std::count(stopped.begin(), stopped.end(), vtkIdType{ -1 }),
+      static_cast<std::ptrdiff_t>(stopped.size()));
+  }
 }
 
 //------------------------------------------------------------------------------

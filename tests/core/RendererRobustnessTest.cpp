@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -308,6 +309,54 @@ TEST(RendererProgress, ACallbackThatThrowsLeavesTheRendererUsable) {
   renderer.render(scene, camera, fb);
   EXPECT_TRUE(std::ranges::equal(fb.color(), expected.color()));
   EXPECT_TRUE(std::ranges::equal(fb.polygonId(), expected.polygonId()));
+}
+
+// Every row comes once per render, on whichever path (full, or the incremental resolve of a
+// new background), with the caller's planes and the pixels render() returns: snapshots taken
+// in the callback equal the framebuffer afterwards.
+TEST(RendererResolvedRows, EveryRowOnceWithItsFinalPixels) {
+  const Mesh sphere = makeUvSphere(120, 120);
+  Scene scene = oneMeshScene(sphere.view());
+  scene.meshes[0].mesh.version = 1;  // so that a new background is only a resolve
+  const Camera camera = fitCamera(sphere);
+  Renderer renderer;
+  renderer.setThreadCount(3);
+  Framebuffer fb(131, 67);  // bands of 8 rows: the last one short
+  const FramebufferView view = fb.view();
+  std::vector<int> calls(67);
+  std::vector<Rgba8> colors(fb.pixelCount());
+  std::vector<float> depths(fb.pixelCount());
+  std::vector<std::int32_t> ids(fb.pixelCount());
+  renderer.setResolvedRowsCallback([&](const FramebufferView& target, int y0, int y1) {
+    EXPECT_EQ(target.color, view.color);
+    EXPECT_EQ(target.depth, view.depth);
+    EXPECT_EQ(target.polygonId, view.polygonId);
+    ASSERT_LE(0, y0);
+    ASSERT_LE(y0, y1);
+    ASSERT_LT(y1, target.height);
+    const std::size_t begin = static_cast<std::size_t>(y0) * target.width;
+    const std::size_t end = static_cast<std::size_t>(y1 + 1) * target.width;
+    std::copy(target.color + begin, target.color + end, colors.begin() + begin);
+    std::copy(target.depth + begin, target.depth + end, depths.begin() + begin);
+    std::copy(target.polygonId + begin, target.polygonId + end, ids.begin() + begin);
+    for (int y = y0; y <= y1; ++y)
+      ++calls[y];  // rows of one band: no other thread's
+  });
+  const std::pair<Color, RenderPath> frames[] = {{Color(0.0f), RenderPath::Full},
+                                                 {Color(0.2f, 0.3f, 0.4f), RenderPath::Resolve}};
+  for (const auto& [background, path] : frames) {
+    renderer.setBackground(background);
+    std::fill(calls.begin(), calls.end(), 0);
+    const RenderStats stats = renderer.render(scene, camera, fb);
+    SCOPED_TRACE(stats.plan.pathReason);
+    EXPECT_EQ(stats.plan.path, path);
+    EXPECT_EQ(std::count(calls.begin(), calls.end(), 1), 67);
+    EXPECT_TRUE(std::ranges::equal(colors, fb.color()));
+    EXPECT_TRUE(std::ranges::equal(ids, fb.polygonId()));
+    EXPECT_EQ(std::memcmp(depths.data(), fb.depth().data(), depths.size() * sizeof(float)), 0);
+    EXPECT_GT(stats.pixelsCovered, 0u);
+  }
+  renderer.setResolvedRowsCallback({});
 }
 
 TEST(RendererParallelFor, ATaskThatThrowsIsRethrownAfterEveryThreadLeft) {

@@ -60,6 +60,14 @@ class Renderer {
   /// partially painted (but valid) framebuffer. An exception it throws leaves render() once
   /// every thread has stopped; the next render draws what a new renderer would (tested).
   using ProgressCallback = std::function<bool(double fraction)>;
+  /// Called with each band of rows [y0, y1] of `target` (the planes the render draws into)
+  /// once the render has resolved it: its colors, depths and polygon ids are those render()
+  /// returns, unless the render is aborted (then render() clears the target). Every row of
+  /// the target comes once per render, the bands in no set order and concurrently on the
+  /// renderer's threads: for elementwise work on the image while its rows are in cache (the
+  /// VTK filter widens the polygon ids of a band into its CellId array), in place of a
+  /// second pass over the planes.
+  using ResolvedRowsCallback = std::function<void(const FramebufferView& target, int y0, int y1)>;
 
   Renderer();
   ~Renderer();
@@ -86,6 +94,11 @@ class Renderer {
   }
 
   void setProgressCallback(ProgressCallback callback) { progress_ = std::move(callback); }
+
+  /// (default: none)
+  void setResolvedRowsCallback(ResolvedRowsCallback callback) {
+    resolvedRows_ = std::move(callback);
+  }
 
   /// Which rules may leave work out (all, by default; see RenderRules).
   void setRules(const RenderRules& rules);
@@ -144,6 +157,7 @@ class Renderer {
   Color background_{0.0f};
   float backgroundAlpha_ = 1.0f;
   ProgressCallback progress_;
+  ResolvedRowsCallback resolvedRows_;
   RenderRules rules_;
   bool depthOutput_ = true;
 };
