@@ -189,13 +189,6 @@ class TriangleDepth {
   std::int64_t sureInside_[3] = {kNever, kNever, kNever};  // diagonals: always
 };
 
-// Rounds an interpolated depth key to float once; finite, so that no key ties with the
-// background (−∞) or becomes NaN.
-float toDepthKey(double key) {
-  constexpr double kLargest = std::numeric_limits<float>::max();
-  return static_cast<float>(std::clamp(key, -kLargest, kLargest));
-}
-
 // Most triangles of a dense mesh have a single sample in their bounding box: test it
 // exactly, skipping the edge walker's set-up. Same coverage decision (the same biased edge
 // functions) and the same depth plane.
@@ -374,29 +367,6 @@ unsigned negativeLanes(RowLanes lanes) {
   return mask;
 }
 
-// Writes the samples of a small box's coverage `mask` whose first pixel is (x0, y0): row y's
-// key starts at rowKey(y) and steps by keyPerPixel sample by sample, as BoxRaster::paintRows
-// steps it; refine(key, x, y) gives a covered sample's (x, y from the box's first).
-template <DepthMode kMode, class RowKey, class Refine>
-[[gnu::always_inline]] inline void paintSmallMask(std::uint32_t mask, int x0, int y0,
-                                                  double keyPerPixel, const RowKey& rowKey,
-                                                  const Refine& refine, std::int32_t polygonId,
-                                                  const Planes& planes, PaintCounts& counts) {
-  constexpr std::uint32_t kRow = (1u << kSmallSide) - 1;
-  for (int y = 0; mask != 0; ++y, mask >>= kSmallSide) {
-    if ((mask & kRow) == 0) continue;
-    double key = rowKey(y);
-    const std::size_t row = static_cast<std::size_t>(y0 + y) * planes.width + x0;
-    int x = 0;
-    for (std::uint32_t columns = mask & kRow; columns != 0; columns &= columns - 1) {
-      const int next = std::countr_zero(columns);
-      for (; x < next; ++x)
-        key += keyPerPixel;
-      writeFragment<kMode>(row + next, toDepthKey(refine(key, next, y)), polygonId, planes, counts);
-    }
-  }
-}
-
 // A triangle over a box of at most kSmallSide × kSmallSide samples that fitsSmallPath: its
 // edge functions as BoxRaster's Edge has them, in 32 bits, from vertices taken relative to
 // the box's first sample (within the bounding box, so below 2^14 in magnitude).
@@ -454,9 +424,6 @@ struct SmallBox {
   // the top-left edges, as Edge; its steps to the next sample right and up.
   std::int32_t value[3], stepX[3], stepY[3], bias[3];
 };
-
-// A SmallTriangle's first row starts this many fine units after the previous one.
-constexpr std::int32_t kFinePerRow = kSubpixelScale * kResidueScale;
 
 // Below this many samples in its box a triangle is cheaper to depth-test pixel by pixel than
 // to test against the coarse depth first.
@@ -526,16 +493,6 @@ template <DepthMode kMode, bool kRejectHidden>
 }
 
 }  // namespace
-
-template <DepthMode kMode>
-void paintSmallTriangle(const SmallTriangle& t, const Planes& planes, PaintCounts& counts) {
-  const auto rowKey = [&t](int y) {
-    return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
-  };
-  const auto sameKey = [](double key, int, int) { return key; };
-  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
-                        counts);
-}
 
 std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
                                              const WindowVertex& c, EdgeMask boundary,
@@ -742,10 +699,6 @@ template void paintTriangleWalkingBox<DepthMode::Overwrite>(const WindowVertex&,
                                                             const WindowVertex&, EdgeMask,
                                                             std::int32_t, const PixelBounds&,
                                                             const Planes&, PaintCounts&);
-template void paintSmallTriangle<DepthMode::Test>(const SmallTriangle&, const Planes&,
-                                                  PaintCounts&);
-template void paintSmallTriangle<DepthMode::Overwrite>(const SmallTriangle&, const Planes&,
-                                                       PaintCounts&);
 template void paintTriangle<DepthMode::Overwrite, false>(const WindowVertex&, const WindowVertex&,
                                                          const WindowVertex&, EdgeMask,
                                                          std::int32_t, const PixelBounds&,

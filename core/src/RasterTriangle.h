@@ -13,8 +13,10 @@
 //   them owns the samples on it (D3D10 / OpenGL rasterization rules, llvmpipe's approach).
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 
 #include "FrameTransform.h"
@@ -199,10 +201,52 @@ struct SmallTriangle {
   std::uint16_t coverage;
 };
 
+// Rounds an interpolated depth key to float once; finite, so that no key ties with the
+// background (−∞) or becomes NaN.
+inline float toDepthKey(double key) {
+  constexpr double kLargest = std::numeric_limits<float>::max();
+  return static_cast<float>(std::clamp(key, -kLargest, kLargest));
+}
+
+// Writes the samples of a small box's coverage `mask` whose first pixel is (x0, y0): row y's
+// key starts at rowKey(y) and steps by keyPerPixel sample by sample, as BoxRaster::paintRows
+// steps it; refine(key, x, y) gives a covered sample's (x, y from the box's first).
+template <DepthMode kMode, class RowKey, class Refine>
+[[gnu::always_inline]] inline void paintSmallMask(std::uint32_t mask, int x0, int y0,
+                                                  double keyPerPixel, const RowKey& rowKey,
+                                                  const Refine& refine, std::int32_t polygonId,
+                                                  const Planes& planes, PaintCounts& counts) {
+  constexpr std::uint32_t kRow = (1u << kSmallSide) - 1;
+  for (int y = 0; mask != 0; ++y, mask >>= kSmallSide) {
+    if ((mask & kRow) == 0) continue;
+    double key = rowKey(y);
+    const std::size_t row = static_cast<std::size_t>(y0 + y) * planes.width + x0;
+    int x = 0;
+    for (std::uint32_t columns = mask & kRow; columns != 0; columns &= columns - 1) {
+      const int next = std::countr_zero(columns);
+      for (; x < next; ++x)
+        key += keyPerPixel;
+      writeFragment<kMode>(row + next, toDepthKey(refine(key, next, y)), polygonId, planes, counts);
+    }
+  }
+}
+
+// A SmallTriangle's first row starts this many fine units after the previous one.
+inline constexpr std::int32_t kFinePerRow = kSubpixelScale * kResidueScale;
+
 // Paints a SmallTriangle: paintTriangle<kMode>'s pixels, keys and counts for the triangle the
-// set-up made it from.
+// set-up made it from. Inline: the tile paints most of a 500k mesh's triangles from records,
+// and out of line the call cost a fifth of each (bench/core-frame-issue11.md, section 11).
 template <DepthMode kMode>
-void paintSmallTriangle(const SmallTriangle& triangle, const Planes& planes, PaintCounts& counts);
+[[gnu::always_inline]] inline void paintSmallTriangle(const SmallTriangle& t, const Planes& planes,
+                                                      PaintCounts& counts) {
+  const auto rowKey = [&t](int y) {
+    return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
+  };
+  const auto sameKey = [](double key, int, int) { return key; };
+  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
+                        counts);
+}
 
 // The SmallTriangle of a counter-clockwise triangle over its samples in `tile`, as the set-up's
 // lanes make it; nothing when its box there is not a small one of 2 to kSmallSide² − 1

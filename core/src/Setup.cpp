@@ -95,6 +95,23 @@ class PolygonSetup {
       batch.v[j][lane] = meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
   }
 
+  // load() for `count` consecutive polygons from `first`, into lanes from `lane`: each offset
+  // read once (the z-buffer's draw order is the mesh's).
+  void loadConsecutive(std::size_t first, int count, TriangleBatch& batch, int lane) const {
+    const auto* offsets = polygons_.offsets + first;
+    auto begin = static_cast<std::size_t>(offsets[0]);
+    for (int k = 0; k < count; ++k) {
+      const auto end = static_cast<std::size_t>(offsets[k + 1]);
+      const bool triangle = end - begin == 3;
+      batch.triangle[lane + k] = triangle;
+      if (triangle) {
+        for (int j = 0; j < 3; ++j)
+          batch.v[j][lane + k] = meshVertices_[polygons_.connectivity[begin + j]];
+      }
+      begin = end;
+    }
+  }
+
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
   // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
@@ -102,14 +119,26 @@ class PolygonSetup {
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
     const std::uint32_t used = (1u << lanes) - 1;
+    const std::uint32_t kept = verdicts.kept() & used;
+    std::size_t binned = 0;
     for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
-      if ((verdicts.kept() >> lane) & 1u) {
+      if ((kept >> lane) & 1u) {
         bin(verdicts, lane, lanePolygon[lane]);
+        ++binned;
       } else {
         run(lanePolygon[lane]);
       }
     }
+    // The kept polygons' facing, after every append: a byte store may alias anything, and
+    // between appends it made the compiler reload the chunk's vectors.
+    for (std::uint32_t rest = kept; rest != 0; rest &= rest - 1) {
+      const int lane = std::countr_zero(rest);
+      context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
+          (verdicts.clockwise >> lane) & 1u;
+    }
+    chunk_.counts.trianglesBinned += binned;
+    chunk_.counts.drawn += binned;
   }
 
   void run(std::size_t polygon) {
@@ -223,8 +252,9 @@ class PolygonSetup {
     ++chunk_.counts.drawn;
   }
 
-  // A triangle polygon a batch kept, binned as it decided (as keep() would bin it).
-  void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
+  // A triangle polygon a batch kept, binned as it decided (as keep() would bin it); settle()
+  // counts it drawn.
+  [[gnu::always_inline]] void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
     const bool back = (verdicts.clockwise >> lane) & 1u;
     const bool last = back && context_.backFacesLast;
@@ -247,7 +277,6 @@ class PolygonSetup {
           {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
           polygonId, last, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
-    countDrawn(polygonId, back, 1);
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -395,7 +424,32 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       if (++lanes == kBatchSize) settleBatch();
     }
   };
-  if (context.order.ids.empty()) {
+  if (context.order.ids.empty() && batched) {
+    // Draw positions are polygon ids: the run ends where the chunk or the mesh does, and
+    // visibility changes only from block to block; within a visible block the polygons fill
+    // the batch's lanes in order, each offset read once.
+    const std::size_t end = std::min(chunk.end, mesh.endPolygon()) - mesh.firstPolygon;
+    std::size_t polygon = position - mesh.firstPolygon;
+    while (polygon < end) {
+      const std::size_t blockEnd = std::min(end, (polygon | (kPolygonsPerBlock - 1)) + 1);
+      if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
+        chunk.counts.outside += blockEnd - polygon;  // outside the view (ViewCulling.h)
+        polygon = blockEnd;
+        continue;
+      }
+      while (polygon < blockEnd) {
+        const int take = static_cast<int>(std::min<std::size_t>(
+            static_cast<std::size_t>(kBatchSize - lanes), blockEnd - polygon));
+        setup.loadConsecutive(polygon, take, batch, lanes);
+        for (int k = 0; k < take; ++k)
+          lanePolygon[lanes + k] = polygon + static_cast<std::size_t>(k);
+        polygon += static_cast<std::size_t>(take);
+        lanes += take;
+        if (lanes == kBatchSize) settleBatch();
+      }
+    }
+    position = polygon + mesh.firstPolygon;
+  } else if (context.order.ids.empty()) {
     // Draw positions are polygon ids: the run ends where the chunk or the mesh does (a
     // third of the loop's instructions were these tests, per polygon, at 2M triangles).
     const std::size_t end = std::min(chunk.end, mesh.endPolygon());

@@ -171,6 +171,39 @@ TEST(Raster, ShownPolygonsAreThoseOfTheFinalImage) {
   }
 }
 
+// Tiles are painted in a tile-sized buffer and streamed to the image's planes 16 bytes at a
+// time where the row allows (Raster.cpp, TilePlanes): at widths whose rows are not 16-byte
+// multiples and tiles cut by the image's edges, every pixel still reaches the image: covered
+// by a square over the whole view, then cleared around a triangle over pixel (0, 0) alone
+// (the same framebuffer).
+TEST(Raster, EveryPixelReachesTheImageAtAnyWidth) {
+  for (const auto& [width, height] : {std::pair{101, 37}, {67, 130}, {3, 1}, {130, 65}}) {
+    SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
+    const double w = width, h = height;
+    Mesh square;
+    for (const glm::dvec3& p : {glm::dvec3{-5.0, -5.0, 0.0}, glm::dvec3{w + 5.0, -5.0, 0.0},
+                                glm::dvec3{w + 5.0, h + 5.0, 0.0}, glm::dvec3{-5.0, h + 5.0, 0.0}})
+      square.addPoint(p);
+    square.addPolygon({0, 1, 2, 3});
+    Mesh corner;
+    for (const glm::dvec3& p :
+         {glm::dvec3{0.2, 0.2, 0.0}, glm::dvec3{0.8, 0.2, 0.0}, glm::dvec3{0.5, 0.8, 0.0}})
+      corner.addPoint(p);
+    corner.addPolygon({0, 1, 2});
+    Renderer renderer;
+    renderer.setThreadCount(2);
+    Framebuffer framebuffer(width, height);
+    const auto ids = [&framebuffer](std::int32_t id) {
+      return std::count(framebuffer.polygonId().begin(), framebuffer.polygonId().end(), id);
+    };
+    renderer.render(oneMeshScene(square.view()), pixelCamera(width, height), framebuffer);
+    EXPECT_EQ(ids(0), width * height);
+    renderer.render(oneMeshScene(corner.view()), pixelCamera(width, height), framebuffer);
+    EXPECT_EQ(framebuffer.polygonId()[0], 0);
+    EXPECT_EQ(ids(Framebuffer::kBackgroundId), width * height - 1);
+  }
+}
+
 // Pairs of triangles on the same points (each its own copy: the mesh is open, so every face is
 // drawn), one facing the viewer and one its back, in the plane z = 0 that a parallel camera
 // sees square on: every key of both is the same, an exact tie at every pixel they cover. Sizes

@@ -305,11 +305,45 @@ Mesh confetti(int triangles, unsigned seed) {
   return mesh;
 }
 
+// Triangles with every third polygon a quad, in a strip three views wide along x in polygon
+// order: a batch's lanes mix triangles with polygons for the per-triangle path, and whole
+// blocks of polygons (kPolygonsPerBlock) lie left and right of the view
+// (Rule::GeometryOutsideView).
+Mesh mixedStrip(int polygons, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> jitter(-8, 8), offset(-3, 3);
+  Mesh mesh;
+  for (int t = 0; t < polygons; ++t) {
+    const double x = -160.0 + 480.0 * t / polygons + 0.5 * jitter(random);
+    const double y = 0.5 * (std::uniform_int_distribution<int>(-8, 248)(random)) * 0.75;
+    const int corners = t % 3 == 2 ? 4 : 3;
+    const std::int64_t first = mesh.addPoint({x - 1.5, y - 1.5, 0.002 * t});
+    mesh.addPoint({x + 1.5 + 0.5 * offset(random), y - 1.5, 0.002 * t});
+    if (corners == 4) mesh.addPoint({x + 1.5, y + 1.5 + 0.5 * offset(random), 0.002 * t});
+    mesh.addPoint({x - 1.5 + 0.5 * offset(random), y + 1.5, 0.002 * t});
+    if (corners == 4) {
+      mesh.addPolygon({first, first + 1, first + 2, first + 3});
+    } else {
+      mesh.addPolygon({first, first + 1, first + 2});
+    }
+  }
+  return mesh;
+}
+
 TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
   const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
   Camera bunnyCamera = fitCamera(bunny, {0.2, -0.3, -1.0});
   bunnyCamera.nearClip *= 1.3;  // the clipper runs too (DeterminismTest)
   const Mesh dots = confetti(4000, 5);
+  const Mesh strip = mixedStrip(12000, 7);
+  MeshView stripView = strip.view();
+  stripView.version = 1;  // its blocks measured (Rule::GeometryOutsideView)
+  {
+    const RenderPlan plan =
+        renderScene(oneMeshScene(stripView), pixelCamera(160, 120), 160, 120).stats.plan;
+    ASSERT_GE(plan.blocksOutside, 4u) << plan.describe();
+    ASSERT_LT(plan.blocksOutside, plan.blocksTested) << plan.describe();
+  }
   const Mesh floor = makeFloorGrid(40, 20.0);  // WatertightTest, ClippedByTheNearPlane
   const Camera floorCamera = nearClippedFloorCamera();
   Material culled;
@@ -324,6 +358,10 @@ TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
         {"confetti", oneMeshScene(dots.view()), pixelCamera(160, 120), 160, 120, options});
     cases.push_back({"floor cut by the near plane", oneMeshScene(floor.view()), floorCamera, 160,
                      120, options});
+    cases.push_back({"triangles and quads, blocks outside the view", oneMeshScene(stripView),
+                     pixelCamera(160, 120), 160, 120, options});
+    cases.push_back({"triangles and quads, back faces culled", oneMeshScene(stripView, culled),
+                     pixelCamera(160, 120), 160, 120, options});
   }
   expectSameRenders(cases, targets());
 }
