@@ -1,7 +1,6 @@
 // EstimateRows.h, compiled once per instruction set by Highway's foreach_target (this file
-// includes itself) and dispatched at run time. Integers throughout, but for the rounding of
-// a bound, which is exact (a power-of-two scaling, a rounding up to an integer below 2^24):
-// every target gives the scalar loops' bytes.
+// includes itself) and dispatched at run time. Integers throughout (the bounds come in fixed
+// point, EstimateRows.h): every target gives the scalar loops' bytes.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "EstimateRows.cpp"
@@ -23,12 +22,6 @@ namespace {
 
 static_assert(kEstimateUnit == 1u << 7, "the SIMD lanes scale a channel by a shift of 7");
 
-// A bound in fixed point (EstimateRows.h): ⌈min(b, 255)·kEstimateUnit⌉ + 1; NaN as 255.
-inline std::uint32_t fixedBound(float bound) {
-  const float capped = bound < 255.0f ? std::max(bound, 0.0f) : 255.0f;
-  return static_cast<std::uint32_t>(std::ceil(capped * static_cast<float>(kEstimateUnit))) + 1;
-}
-
 inline std::uint32_t wordOf(Rgba8 color) {
   std::uint32_t word;
   std::memcpy(&word, &color, sizeof word);
@@ -41,10 +34,10 @@ inline std::uint32_t scaledChannel(std::uint32_t word, int j) {
 }
 
 // The scalar definitions; the SIMD loops below end with them.
-inline void fieldsOf(Rgba8 color, std::int32_t id, const float* polygonBounds, int x,
+inline void fieldsOf(Rgba8 color, std::int32_t id, const EstimateBound* fixedBounds, int x,
                      EstimateField* fields, std::size_t stride) {
   const std::uint32_t word = wordOf(color);
-  const std::uint32_t q = id < 0 ? 0 : fixedBound(polygonBounds[id]);
+  const std::uint32_t q = id < 0 ? 0 : fixedBounds[id];
   for (int j = 0; j < 3; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
     fields[2 * j * stride + x] = static_cast<EstimateField>(id < 0 ? 0 : c + q);
@@ -87,7 +80,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 using DU = hn::ScalableTag<std::uint32_t>;
 using DI = hn::RebindToSigned<DU>;
-using DF = hn::RebindToFloat<DU>;
 using DH = hn::Rebind<EstimateField, DU>;  // the fields of as many samples
 
 // Channel j of color words, scaled by kEstimateUnit (a shift of 7).
@@ -102,15 +94,26 @@ HWY_INLINE hn::Vec<DU> scaledChannels(hn::Vec<DU> words) {
   }
 }
 
+// The fixed bounds of polygons `index` (≥ 0): 16-bit values read as the 32-bit pairs that
+// hold them (there is no 16-bit gather), the odd one in the high half.
+HWY_INLINE hn::Vec<DU> gatherFixedBounds(const EstimateBound* fixedBounds, hn::Vec<DI> index) {
+  const DU du;
+  const DI di;
+  const auto* pairs = reinterpret_cast<const std::uint32_t*>(fixedBounds);
+  const auto pair = hn::GatherIndex(du, pairs, hn::ShiftRight<1>(index));
+  const auto shift = hn::BitCast(du, hn::ShiftLeft<4>(hn::And(index, hn::Set(di, 1))));
+  return hn::And(hn::Shr(pair, shift), hn::Set(du, 0xFFFFu));
+}
+
 // kById: each sample's color gathered from its polygon's (polygonColors[id]), as the resolve
 // gathers it; else read from the row of colors.
 template <bool kById>
-HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                         int begin, int end, EstimateField* fields, std::size_t stride) {
+HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids,
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride) {
   const DU du;
   const DH dh;
   const DI di;
-  const DF df;
   const int lanes = static_cast<int>(hn::Lanes(du));
   const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
   int x = begin;
@@ -119,12 +122,7 @@ HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const flo
     const auto backgroundI = id < hn::Zero(di);
     const auto background = hn::RebindMask(du, backgroundI);
     const auto index = hn::IfThenZeroElse(backgroundI, id);
-    const auto bound = hn::GatherIndex(df, polygonBounds, index);
-    const auto capped = hn::IfThenElse(bound < hn::Set(df, 255.0f), hn::Max(bound, hn::Zero(df)),
-                                       hn::Set(df, 255.0f));
-    const auto q =
-        hn::BitCast(du, hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit)))) +
-        hn::Set(du, 1u);
+    const auto q = gatherFixedBounds(fixedBounds, index);
     const auto color = kById ? hn::GatherIndex(du, words, index) : hn::LoadU(du, words + x);
     const auto word = hn::IfThenZeroElse(background, color);
     const auto plus = hn::IfThenZeroElse(background, q);
@@ -141,19 +139,19 @@ HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const flo
   for (; x < end; ++x) {
     const std::int32_t id = ids[x];
     const Rgba8 color = !kById ? colors[x] : id < 0 ? Rgba8{} : colors[id];
-    fieldsOf(color, id, polygonBounds, x, fields, stride);
+    fieldsOf(color, id, fixedBounds, x, fields, stride);
   }
 }
 
-void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
                      int begin, int end, EstimateField* fields, std::size_t stride) {
-  FieldsOf<false>(colors, ids, polygonBounds, begin, end, fields, stride);
+  FieldsOf<false>(colors, ids, fixedBounds, begin, end, fields, stride);
 }
 
 void NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, EstimateField* fields,
-                         std::size_t stride) {
-  FieldsOf<true>(polygonColors, ids, polygonBounds, begin, end, fields, stride);
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride) {
+  FieldsOf<true>(polygonColors, ids, fixedBounds, begin, end, fields, stride);
 }
 
 void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
@@ -281,16 +279,16 @@ EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
   return HWY_DYNAMIC_DISPATCH(SumEstimates)(estimates, begin, end);
 }
 
-void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
                      int begin, int end, EstimateField* fields, std::size_t stride) {
-  HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, polygonBounds, begin, end, fields, stride);
+  HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, fixedBounds, begin, end, fields, stride);
 }
 
 void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, EstimateField* fields,
-                         std::size_t stride) {
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride) {
   HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)
-  (polygonColors, ids, polygonBounds, begin, end, fields, stride);
+  (polygonColors, ids, fixedBounds, begin, end, fields, stride);
 }
 
 void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
@@ -336,10 +334,10 @@ void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
   if (first >= last) return;  // no polygon in the row
   const int fieldsBegin = std::max(0, first - 2), fieldsEnd = std::min(width, last + 2);
   if (grid.polygonColors && (r < grid.ownFirst || r > grid.ownLast)) {
-    neighbourFieldsById(grid.polygonColors, ids, grid.polygonBounds, fieldsBegin, fieldsEnd,
+    neighbourFieldsById(grid.polygonColors, ids, grid.fixedBounds, fieldsBegin, fieldsEnd,
                         at(fields), stride);
   } else {
-    neighbourFields(grid.colors + row, ids, grid.polygonBounds, fieldsBegin, fieldsEnd, at(fields),
+    neighbourFields(grid.colors + row, ids, grid.fixedBounds, fieldsBegin, fieldsEnd, at(fields),
                     stride);
   }
   const int begin = std::max(0, first - 1), end = std::min(width, last + 1);
@@ -380,7 +378,7 @@ void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, 
   // One space per thread, kept: the resolve's tasks are bands, not threads.
   thread_local EstimateSpace space;
   space.resize(width, 1);
-  const EstimateGrid grid{ids, colors, hook.bounds, polygonColors, width, hook.height, y0, y1};
+  const EstimateGrid grid{ids, colors, hook.fixedBounds, polygonColors, width, hook.height, y0, y1};
   const bool image = hook.image != nullptr;
   for (int r = y0 - 1; r <= y1 + 1; ++r) {
     if (r >= 0 && r < hook.height) space.findMaxima(grid, r);

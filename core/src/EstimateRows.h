@@ -42,11 +42,25 @@ inline constexpr int kEstimateFields = 6;
 using EstimateField = std::uint16_t;
 static_assert(2 * kEstimateCap + 1 < (1u << 16), "a field fits 16 bits");
 
+// A polygon's bound b as the fields add it: q = ⌈min(b, 255)·kEstimateUnit⌉ + 1 (≥ 1: a
+// covered sample's fields are never 0; NaN as 255), below 2^16. Kept per polygon id in 16
+// bits, not per sample from the float: the pass reads one per sample by its id, scattered,
+// and half the bytes is half the cache lines (most of the pass's time at 500k triangles,
+// where nearly every sample's polygon differs from its neighbour's).
+using EstimateBound = std::uint16_t;
+inline EstimateBound fixedBoundOf(float bound) {
+  const float capped = bound < 255.0f ? (bound > 0.0f ? bound : 0.0f) : 255.0f;
+  const float scaled = capped * static_cast<float>(kEstimateUnit);  // exact: a power of two
+  const auto whole = static_cast<std::uint32_t>(scaled);            // below 2^24: exact
+  return static_cast<EstimateBound>(whole + (static_cast<float>(whole) < scaled) + 1);
+}
+static_assert(kEstimateCap + 1 < (1u << 16), "a fixed bound fits 16 bits");
+
 // For x in [begin, end): field k of sample x (plane k at fields + k·stride), from its color
-// and its polygon's bound (ids[x] indexes polygonBounds; < 0: the background, whose fields
-// are 0). With q = ⌈min(b, 255)·kEstimateUnit⌉ + 1 (≥ 1: a covered sample is never 0):
-// field 2j is c_j·kEstimateUnit + q and field 2j+1 is (255 − c_j)·kEstimateUnit + q.
-void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
+// and its polygon's fixed bound q (ids[x] indexes fixedBounds, whose count is even: the lanes
+// read them as 32-bit pairs; < 0: the background, whose fields are 0): field 2j is
+// c_j·kEstimateUnit + q and field 2j+1 is (255 − c_j)·kEstimateUnit + q.
+void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
                      int begin, int end, EstimateField* fields, std::size_t stride);
 
 // For x in [begin, end) and every plane: out[x] = max(in[x − 1], in[x], in[x + 1]) (the
@@ -71,20 +85,20 @@ EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end);
 // neighbourFields with each sample's color its polygon's, polygonColors[ids[x]] (the resolve's
 // gather), in place of a row of colors.
 void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, EstimateField* fields,
-                         std::size_t stride);
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride);
 
 // The span [first, last) of a row's covered samples (ids ≥ 0).
 std::array<int, 2> coveredSpan(const std::int32_t* ids, int width);
 
 // Where a pass over the sample grid reads its samples: the planes of ids and colors (width ×
-// height), and the bounds per polygon id. With `polygonColors`, the rows outside [ownFirst,
-// ownLast] take each sample's color from its polygon's there (rows whose colors another task
-// may be writing, EstimateHook.h); the others read `colors`.
+// height), and the fixed bounds per polygon id (fixedBoundOf; an even count). With `polygonColors`,
+// the rows outside [ownFirst, ownLast] take each sample's color from its polygon's there (rows
+// whose colors another task may be writing, EstimateHook.h); the others read `colors`.
 struct EstimateGrid {
   const std::int32_t* ids;
   const Rgba8* colors;
-  const float* polygonBounds;
+  const EstimateBound* fixedBounds;
   const Rgba8* polygonColors = nullptr;
   int width = 0, height = 0;
   int ownFirst = 0, ownLast = -1;

@@ -272,16 +272,17 @@ ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* me
 void ShadeBoundCollector::bound(const ShadeBatch& batch) {
   if (material_) boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_);
   for (std::size_t lane = 0; lane < batch.count; ++lane) {
-    float& out = hook_->bounds[first_ + polygons_[lane]];
+    const std::size_t id = first_ + polygons_[lane];
+    float out = lanes_[lane];
     if (radius_[lane] < 0.0f) {
       out = 255.0f;  // no normal: FlatErrorBound::bound's largest
-    } else if (!material_ || std::isnan(lanes_[lane])) {
+    } else if (!material_ || std::isnan(out)) {
       const glm::dvec3 center(centers_.xyz[0][lane], centers_.xyz[1][lane], centers_.xyz[2][lane]);
       const glm::dvec3 normal(batch.normal[0][lane], batch.normal[1][lane], batch.normal[2][lane]);
       out = hook_->boundOne(mesh_, polygons_[lane], hasCenters_ ? &center : nullptr, normal);
-    } else {
-      out = lanes_[lane];
     }
+    hook_->bounds[id] = out;
+    hook_->fixedBounds[id] = fixedBoundOf(out);
   }
 }
 

@@ -186,6 +186,13 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
     const float capped = !(b < 255.0f) ? 255.0f : std::max(b, 0.0f);  // NaN as 255
     return static_cast<std::uint32_t>(std::ceil(capped * 128.0f));
   };
+  // The bounds as the pass reads them: in fixed point, one more (a covered sample's fields are
+  // never 0), an even count.
+  std::vector<detail::EstimateBound> fixed(bounds.size() + 1, 0);
+  for (std::size_t id = 0; id < bounds.size(); ++id) {
+    fixed[id] = detail::fixedBoundOf(bounds[id]);
+    ASSERT_EQ(fixed[id], fixedBound(static_cast<std::int32_t>(id)) + 1) << "polygon " << id;
+  }
   const auto expected = [&](int x, int y) -> std::uint32_t {
     if (ids[y * width + x] < 0) return 0;
     const Rgba8 p = colors[y * width + x];
@@ -208,7 +215,7 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
     for (int y = 0; y < height; ++y) {
       std::vector<detail::EstimateField> fields(detail::kEstimateFields * stride, 0);
       maxima[y].assign(detail::kEstimateFields * stride, 0);
-      detail::neighbourFields(colors.data() + y * width, ids.data() + y * width, bounds.data(), 0,
+      detail::neighbourFields(colors.data() + y * width, ids.data() + y * width, fixed.data(), 0,
                               width, fields.data() + 1, stride);
       // The same fields with each sample's color its polygon's, gathered by id (the resolve's
       // rows outside its band, EstimateHook.h).
@@ -220,9 +227,9 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
         rowColors[x] = id < 0 ? Rgba8{} : polygonColors[id];
       }
       std::vector<detail::EstimateField> byId(fields.size(), 0), byRow(fields.size(), 0);
-      detail::neighbourFieldsById(polygonColors.data(), ids.data() + y * width, bounds.data(), 0,
+      detail::neighbourFieldsById(polygonColors.data(), ids.data() + y * width, fixed.data(), 0,
                                   width, byId.data() + 1, stride);
-      detail::neighbourFields(rowColors.data(), ids.data() + y * width, bounds.data(), 0, width,
+      detail::neighbourFields(rowColors.data(), ids.data() + y * width, fixed.data(), 0, width,
                               byRow.data() + 1, stride);
       ASSERT_EQ(byId, byRow) << target.name << ", row " << y;
       detail::rowMaxima(fields.data() + 1, 0, width, maxima[y].data() + 1, stride);
