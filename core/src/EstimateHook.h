@@ -63,8 +63,10 @@ struct EstimateHook {
   FunctionRef<float(std::size_t mesh, std::size_t polygon, const glm::dvec3* center,
                     const glm::dvec3& normal)>
       boundOne;
-  // Out: per polygon id, the bound of each shown polygon of a mesh marked bounded.
+  // Out: per polygon id, the bound of each shown polygon of a mesh marked bounded, and the
+  // same in the resolve's fixed point (fixedBoundOf; an even count).
   float* bounds = nullptr;
+  EstimateBound* fixedBounds = nullptr;
   std::unique_ptr<std::atomic<bool>[]> bounded;  // per mesh: the shade phase bounded it
 
   // The resolve's part, at one sample per pixel (null rows: none). Out: per pixel row its

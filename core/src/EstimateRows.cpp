@@ -1,7 +1,6 @@
 // EstimateRows.h, compiled once per instruction set by Highway's foreach_target (this file
-// includes itself) and dispatched at run time. Integers throughout, but for the rounding of
-// a bound, which is exact (a power-of-two scaling, a rounding up to an integer below 2^24):
-// every target gives the scalar loops' bytes.
+// includes itself) and dispatched at run time. Integers throughout (the bounds come in fixed
+// point, EstimateRows.h): every target gives the scalar loops' bytes.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "EstimateRows.cpp"
@@ -23,12 +22,6 @@ namespace {
 
 static_assert(kEstimateUnit == 1u << 7, "the SIMD lanes scale a channel by a shift of 7");
 
-// A bound in fixed point (EstimateRows.h): ⌈min(b, 255)·kEstimateUnit⌉ + 1; NaN as 255.
-inline std::uint32_t fixedBound(float bound) {
-  const float capped = bound < 255.0f ? std::max(bound, 0.0f) : 255.0f;
-  return static_cast<std::uint32_t>(std::ceil(capped * static_cast<float>(kEstimateUnit))) + 1;
-}
-
 inline std::uint32_t wordOf(Rgba8 color) {
   std::uint32_t word;
   std::memcpy(&word, &color, sizeof word);
@@ -40,21 +33,29 @@ inline std::uint32_t scaledChannel(std::uint32_t word, int j) {
   return ((word >> (8 * j)) & 0xFFu) * kEstimateUnit;
 }
 
-// The scalar definitions; the SIMD loops below end with them.
-inline void fieldsOf(Rgba8 color, std::int32_t id, const float* polygonBounds, int x,
-                     EstimateField* fields, std::size_t stride) {
+// r = g = b (the alpha byte aside).
+inline bool greyWord(std::uint32_t word) {
+  return ((word ^ (word >> 8)) & 0xFFFFu) == 0;
+}
+
+// The scalar definitions; the SIMD loops below end with them. fieldsOf returns whether the
+// sample is grey or the background.
+inline bool fieldsOf(Rgba8 color, std::int32_t id, const EstimateBound* fixedBounds, int x,
+                     EstimateField* fields, std::size_t stride, int planes) {
   const std::uint32_t word = wordOf(color);
-  const std::uint32_t q = id < 0 ? 0 : fixedBound(polygonBounds[id]);
-  for (int j = 0; j < 3; ++j) {
+  const std::uint32_t q = id < 0 ? 0 : fixedBounds[id];
+  for (int j = 0; j < planes / 2; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
     fields[2 * j * stride + x] = static_cast<EstimateField>(id < 0 ? 0 : c + q);
     fields[(2 * j + 1) * stride + x] =
         static_cast<EstimateField>(id < 0 ? 0 : kEstimateCap - c + q);
   }
+  return id < 0 || greyWord(word);
 }
 
-inline void rowMaximumOf(const EstimateField* in, int x, EstimateField* out, std::size_t stride) {
-  for (int k = 0; k < kEstimateFields; ++k) {
+inline void rowMaximumOf(const EstimateField* in, int x, EstimateField* out, std::size_t stride,
+                         int planes) {
+  for (int k = 0; k < planes; ++k) {
     const EstimateField* plane = in + k * stride;
     out[k * stride + x] = std::max({plane[x - 1], plane[x], plane[x + 1]});
   }
@@ -62,11 +63,12 @@ inline void rowMaximumOf(const EstimateField* in, int x, EstimateField* out, std
 
 inline std::uint32_t sampleEstimateOf(const EstimateField* above, const EstimateField* row,
                                       const EstimateField* below, std::size_t stride,
-                                      const Rgba8* colors, const std::int32_t* ids, int x) {
+                                      const Rgba8* colors, const std::int32_t* ids, int x,
+                                      int planes) {
   if (ids[x] < 0) return 0;
   const std::uint32_t word = wordOf(colors[x]);
   std::uint32_t largest = 0;
-  for (int k = 0; k < kEstimateFields; ++k) {
+  for (int k = 0; k < planes; ++k) {
     const std::size_t i = k * stride + x;
     const std::uint32_t c = scaledChannel(word, k / 2);
     const std::uint32_t m = std::max({above[i], row[i], below[i]});  // promoted
@@ -87,7 +89,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 using DU = hn::ScalableTag<std::uint32_t>;
 using DI = hn::RebindToSigned<DU>;
-using DF = hn::RebindToFloat<DU>;
 using DH = hn::Rebind<EstimateField, DU>;  // the fields of as many samples
 
 // Channel j of color words, scaled by kEstimateUnit (a shift of 7).
@@ -102,67 +103,87 @@ HWY_INLINE hn::Vec<DU> scaledChannels(hn::Vec<DU> words) {
   }
 }
 
+// The fixed bounds of polygons `index` (≥ 0): 16-bit values read as the 32-bit pairs that
+// hold them (there is no 16-bit gather), the odd one in the high half.
+HWY_INLINE hn::Vec<DU> gatherFixedBounds(const EstimateBound* fixedBounds, hn::Vec<DI> index) {
+  const DU du;
+  const DI di;
+  const auto* pairs = reinterpret_cast<const std::uint32_t*>(fixedBounds);
+  const auto pair = hn::GatherIndex(du, pairs, hn::ShiftRight<1>(index));
+  const auto shift = hn::BitCast(du, hn::ShiftLeft<4>(hn::And(index, hn::Set(di, 1))));
+  return hn::And(hn::Shr(pair, shift), hn::Set(du, 0xFFFFu));
+}
+
 // kById: each sample's color gathered from its polygon's (polygonColors[id]), as the resolve
 // gathers it; else read from the row of colors.
-template <bool kById>
-HWY_INLINE void FieldsOf(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                         int begin, int end, EstimateField* fields, std::size_t stride) {
+template <bool kById, int kPlanes>
+HWY_INLINE bool FieldsOf(const Rgba8* colors, const std::int32_t* ids,
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride) {
   const DU du;
   const DH dh;
   const DI di;
-  const DF df;
   const int lanes = static_cast<int>(hn::Lanes(du));
   const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
+  auto colored = hn::Zero(du);  // r ≠ g or g ≠ b in some covered lane
   int x = begin;
   for (; x + lanes <= end; x += lanes) {
     const auto id = hn::LoadU(di, ids + x);
     const auto backgroundI = id < hn::Zero(di);
     const auto background = hn::RebindMask(du, backgroundI);
     const auto index = hn::IfThenZeroElse(backgroundI, id);
-    const auto bound = hn::GatherIndex(df, polygonBounds, index);
-    const auto capped = hn::IfThenElse(bound < hn::Set(df, 255.0f), hn::Max(bound, hn::Zero(df)),
-                                       hn::Set(df, 255.0f));
-    const auto q =
-        hn::BitCast(du, hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit)))) +
-        hn::Set(du, 1u);
+    const auto q = gatherFixedBounds(fixedBounds, index);
     const auto color = kById ? hn::GatherIndex(du, words, index) : hn::LoadU(du, words + x);
     const auto word = hn::IfThenZeroElse(background, color);
     const auto plus = hn::IfThenZeroElse(background, q);
     const auto minus = hn::IfThenZeroElse(background, q + hn::Set(du, kEstimateCap));
+    colored = hn::Or(colored, hn::Xor(word, hn::ShiftRight<8>(word)));
     const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
                                      scaledChannels<2>(word)};
     // Below 2^16 (EstimateRows.h): narrowed exactly.
     const auto narrow = [&](hn::Vec<DU> v) { return hn::DemoteTo(dh, hn::BitCast(di, v)); };
-    for (int j = 0; j < 3; ++j) {
+    for (int j = 0; j < kPlanes / 2; ++j) {
       hn::StoreU(narrow(channels[j] + plus), dh, fields + 2 * j * stride + x);
       hn::StoreU(narrow(minus - channels[j]), dh, fields + (2 * j + 1) * stride + x);
     }
   }
+  bool grey = hn::AllTrue(du, hn::And(colored, hn::Set(du, 0xFFFFu)) == hn::Zero(du));
   for (; x < end; ++x) {
     const std::int32_t id = ids[x];
     const Rgba8 color = !kById ? colors[x] : id < 0 ? Rgba8{} : colors[id];
-    fieldsOf(color, id, polygonBounds, x, fields, stride);
+    grey = fieldsOf(color, id, fixedBounds, x, fields, stride, kPlanes) && grey;
   }
+  return grey;
 }
 
-void NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, EstimateField* fields, std::size_t stride) {
-  FieldsOf<false>(colors, ids, polygonBounds, begin, end, fields, stride);
+template <bool kById>
+HWY_INLINE bool FieldsOfPlanes(const Rgba8* colors, const std::int32_t* ids,
+                               const EstimateBound* fixedBounds, int begin, int end,
+                               EstimateField* fields, std::size_t stride, int planes) {
+  return planes == kGreyFields
+             ? FieldsOf<kById, kGreyFields>(colors, ids, fixedBounds, begin, end, fields, stride)
+             : FieldsOf<kById, kEstimateFields>(colors, ids, fixedBounds, begin, end, fields,
+                                                stride);
 }
 
-void NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, EstimateField* fields,
-                         std::size_t stride) {
-  FieldsOf<true>(polygonColors, ids, polygonBounds, begin, end, fields, stride);
+bool NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
+                     int begin, int end, EstimateField* fields, std::size_t stride, int planes) {
+  return FieldsOfPlanes<false>(colors, ids, fixedBounds, begin, end, fields, stride, planes);
 }
 
-void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
-               std::size_t stride) {
+bool NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride, int planes) {
+  return FieldsOfPlanes<true>(polygonColors, ids, fixedBounds, begin, end, fields, stride, planes);
+}
+
+void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out, std::size_t stride,
+               int planes) {
   const hn::ScalableTag<EstimateField> d16;  // whole vectors of fields
   const int lanes = static_cast<int>(hn::Lanes(d16));
   int x = begin;
   for (; x + lanes <= end; x += lanes) {
-    for (int k = 0; k < kEstimateFields; ++k) {
+    for (int k = 0; k < planes; ++k) {
       const EstimateField* plane = in + k * stride + x;
       const auto m = hn::Max(hn::Max(hn::LoadU(d16, plane - 1), hn::LoadU(d16, plane)),
                              hn::LoadU(d16, plane + 1));
@@ -170,12 +191,14 @@ void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
     }
   }
   for (; x < end; ++x)
-    rowMaximumOf(in, x, out, stride);
+    rowMaximumOf(in, x, out, stride, planes);
 }
 
-void SampleEstimates(const EstimateField* above, const EstimateField* row,
-                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
-                     const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
+template <int kPlanes>
+HWY_INLINE void SampleEstimatesOf(const EstimateField* above, const EstimateField* row,
+                                  const EstimateField* below, std::size_t stride,
+                                  const Rgba8* colors, const std::int32_t* ids, int begin, int end,
+                                  std::uint32_t* out) {
   const DU du;
   const DH dh;
   const DI di;
@@ -188,7 +211,7 @@ void SampleEstimates(const EstimateField* above, const EstimateField* row,
     const hn::Vec<DU> channels[3] = {scaledChannels<0>(word), scaledChannels<1>(word),
                                      scaledChannels<2>(word)};
     auto largest = hn::Zero(du);
-    for (int k = 0; k < kEstimateFields; ++k) {
+    for (int k = 0; k < kPlanes; ++k) {
       const std::size_t i = k * stride + x;
       const auto m =
           hn::PromoteTo(du, hn::Max(hn::Max(hn::LoadU(dh, above + i), hn::LoadU(dh, row + i)),
@@ -201,7 +224,17 @@ void SampleEstimates(const EstimateField* above, const EstimateField* row,
     hn::StoreU(hn::IfThenZeroElse(background, estimate), du, out + x);
   }
   for (; x < end; ++x)
-    out[x] = sampleEstimateOf(above, row, below, stride, colors, ids, x);
+    out[x] = sampleEstimateOf(above, row, below, stride, colors, ids, x, kPlanes);
+}
+
+void SampleEstimates(const EstimateField* above, const EstimateField* row,
+                     const EstimateField* below, std::size_t stride, const Rgba8* colors,
+                     const std::int32_t* ids, int begin, int end, std::uint32_t* out, int planes) {
+  if (planes == kGreyFields) {
+    SampleEstimatesOf<kGreyFields>(above, row, below, stride, colors, ids, begin, end, out);
+  } else {
+    SampleEstimatesOf<kEstimateFields>(above, row, below, stride, colors, ids, begin, end, out);
+  }
 }
 
 // coveredSpan: whole groups of background skipped a vector at a time (a row of 1080p is often
@@ -281,27 +314,29 @@ EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
   return HWY_DYNAMIC_DISPATCH(SumEstimates)(estimates, begin, end);
 }
 
-void neighbourFields(const Rgba8* colors, const std::int32_t* ids, const float* polygonBounds,
-                     int begin, int end, EstimateField* fields, std::size_t stride) {
-  HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, polygonBounds, begin, end, fields, stride);
+bool neighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
+                     int begin, int end, EstimateField* fields, std::size_t stride, int planes) {
+  return HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, fixedBounds, begin, end, fields, stride,
+                                               planes);
 }
 
-void neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
-                         const float* polygonBounds, int begin, int end, EstimateField* fields,
-                         std::size_t stride) {
-  HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)
-  (polygonColors, ids, polygonBounds, begin, end, fields, stride);
+bool neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
+                         const EstimateBound* fixedBounds, int begin, int end,
+                         EstimateField* fields, std::size_t stride, int planes) {
+  return HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)(polygonColors, ids, fixedBounds, begin, end,
+                                                   fields, stride, planes);
 }
 
-void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out,
-               std::size_t stride) {
-  HWY_DYNAMIC_DISPATCH(RowMaxima)(in, begin, end, out, stride);
+void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out, std::size_t stride,
+               int planes) {
+  HWY_DYNAMIC_DISPATCH(RowMaxima)(in, begin, end, out, stride, planes);
 }
 
 void sampleEstimates(const EstimateField* above, const EstimateField* row,
                      const EstimateField* below, std::size_t stride, const Rgba8* colors,
-                     const std::int32_t* ids, int begin, int end, std::uint32_t* out) {
-  HWY_DYNAMIC_DISPATCH(SampleEstimates)(above, row, below, stride, colors, ids, begin, end, out);
+                     const std::int32_t* ids, int begin, int end, std::uint32_t* out, int planes) {
+  HWY_DYNAMIC_DISPATCH(SampleEstimates)
+  (above, row, below, stride, colors, ids, begin, end, out, planes);
 }
 
 std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
@@ -318,6 +353,8 @@ void EstimateSpace::resize(int sampleWidth, int gridSide) {
   for (std::vector<EstimateField>& row : maxima)
     row.assign(planes, 0);
   written = {};
+  this->planes = {};
+  lastGrey = true;
   zeros.assign(planes, 0);
   samples.assign(static_cast<std::size_t>(side) * width, 0);
   pixels.assign(static_cast<std::size_t>(width / side), 0);
@@ -329,22 +366,39 @@ void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
   const auto [first, last] = coveredSpan(ids, width);
   EstimateField* out = at(maxima[r % 3]);
   const auto [wasFirst, wasLast] = written[r % 3];
-  for (int k = 0; k < kEstimateFields; ++k)
+  for (int k = 0; k < planes[r % 3]; ++k)
     std::fill(out + k * stride + wasFirst, out + k * stride + wasLast, 0u);
   spans[r % 3] = {first, last};
   written[r % 3] = {0, 0};
-  if (first >= last) return;  // no polygon in the row
+  planes[r % 3] = kGreyFields;  // no polygon: grey (its maxima are 0)
+  if (first >= last) return;
   const int fieldsBegin = std::max(0, first - 2), fieldsEnd = std::min(width, last + 2);
-  if (grid.polygonColors && (r < grid.ownFirst || r > grid.ownLast)) {
-    neighbourFieldsById(grid.polygonColors, ids, grid.polygonBounds, fieldsBegin, fieldsEnd,
-                        at(fields), stride);
-  } else {
-    neighbourFields(grid.colors + row, ids, grid.polygonBounds, fieldsBegin, fieldsEnd, at(fields),
-                    stride);
-  }
+  const auto fieldsOf = [&](int count) {
+    if (grid.polygonColors && (r < grid.ownFirst || r > grid.ownLast)) {
+      return neighbourFieldsById(grid.polygonColors, ids, grid.fixedBounds, fieldsBegin, fieldsEnd,
+                                 at(fields), stride, count);
+    }
+    return neighbourFields(grid.colors + row, ids, grid.fixedBounds, fieldsBegin, fieldsEnd,
+                           at(fields), stride, count);
+  };
+  // Tried grey after a grey row (taken again with all planes if it is not), else all planes.
+  bool grey = lastGrey && fieldsOf(kGreyFields);
+  if (!grey) grey = fieldsOf(kEstimateFields);
+  lastGrey = grey;
+  planes[r % 3] = grey ? kGreyFields : kEstimateFields;
   const int begin = std::max(0, first - 1), end = std::min(width, last + 1);
-  rowMaxima(at(fields), begin, end, out, stride);
+  rowMaxima(at(fields), begin, end, out, stride, planes[r % 3]);
   written[r % 3] = {begin, end};
+}
+
+void EstimateSpace::expand(int r) {
+  if (planes[r % 3] == kEstimateFields) return;
+  EstimateField* out = at(maxima[r % 3]);
+  const auto [begin, end] = written[r % 3];
+  for (int k = kGreyFields; k < kEstimateFields; ++k)
+    std::copy(out + (k % 2) * stride + begin, out + (k % 2) * stride + end,
+              out + k * stride + begin);
+  planes[r % 3] = kEstimateFields;
 }
 
 void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole) {
@@ -355,9 +409,17 @@ void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole)
     std::fill(out, out + first, 0u);
     std::fill(out + last, out + width, 0u);
   }
+  // Grey only if the three rows are (the rows outside the grid are zeros, any planes).
+  int count = kGreyFields;
+  for (int n = r - 1; n <= r + 1; ++n)
+    if (n >= 0 && n < grid.height && planes[n % 3] != kGreyFields) count = kEstimateFields;
+  if (count == kEstimateFields) {
+    for (int n = r - 1; n <= r + 1; ++n)
+      if (n >= 0 && n < grid.height) expand(n);
+  }
   sampleEstimates(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
                   maximaOf(r + 1, grid.height), stride, grid.colors + row, grid.ids + row, first,
-                  last, out);
+                  last, out, count);
 }
 
 const std::uint32_t* EstimateSpace::pixelEstimates() {
@@ -380,7 +442,7 @@ void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, 
   // One space per thread, kept: the resolve's tasks are bands, not threads.
   thread_local EstimateSpace space;
   space.resize(width, 1);
-  const EstimateGrid grid{ids, colors, hook.bounds, polygonColors, width, hook.height, y0, y1};
+  const EstimateGrid grid{ids, colors, hook.fixedBounds, polygonColors, width, hook.height, y0, y1};
   const bool image = hook.image != nullptr;
   for (int r = y0 - 1; r <= y1 + 1; ++r) {
     if (r >= 0 && r < hook.height) space.findMaxima(grid, r);

@@ -203,10 +203,13 @@ void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& materia
 // the double goes one step up; NaN stays NaN).
 void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& material,
                        const ShadeBatch& batch, const ShadeBatchCenters& centers,
-                       const float* radius, const float* sine, std::size_t count, float* bounds) {
+                       const float* radius, const float* sine, std::size_t count, float* bounds,
+                       EstimateBound* fixed) {
   const D d;
   const hn::Rebind<float, D> df;
   const hn::Rebind<std::uint32_t, D> du;
+  const hn::Rebind<std::int32_t, D> di;
+  const hn::Rebind<EstimateBound, D> dq;
   for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
     Lanes in;
     for (int k = 0; k < 3; ++k) {
@@ -223,8 +226,15 @@ void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& mater
     const V belowD = hn::IfThenElseZero(hn::PromoteTo(d, nearest) < bound, hn::Set(d, 1.0));
     const auto below = hn::RebindMask(du, hn::DemoteTo(df, belowD) > hn::Zero(df));
     const auto bits = hn::BitCast(du, nearest);
-    const auto up = hn::IfThenElse(below, bits + hn::Set(du, 1u), bits);  // bounds are ≥ 0
-    hn::StoreU(hn::BitCast(df, up), df, bounds + lane);
+    const auto up = hn::BitCast(df, hn::IfThenElse(below, bits + hn::Set(du, 1u), bits));
+    hn::StoreU(up, df, bounds + lane);  // bounds are ≥ 0
+    // fixedBoundOf: ⌈min(b, 255)·kEstimateUnit⌉ + 1, NaN as 255 (exact: a power-of-two
+    // scaling, an integer below 2^24).
+    const auto capped =
+        hn::IfThenElse(up < hn::Set(df, 255.0f), hn::Max(up, hn::Zero(df)), hn::Set(df, 255.0f));
+    const auto q =
+        hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit))) + hn::Set(di, 1);
+    hn::StoreU(hn::DemoteTo(dq, q), dq, fixed + lane);
   }
 }
 
@@ -249,9 +259,10 @@ void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, Bo
 
 void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
                        const ShadeBatch& batch, const ShadeBatchCenters& centers,
-                       const float* radius, const float* sine, float* bounds) {
+                       const float* radius, const float* sine, float* bounds,
+                       EstimateBound* fixed) {
   HWY_DYNAMIC_DISPATCH(ShadeColumnsLanes)
-  (lighting, material, batch, centers, radius, sine, batch.count, bounds);
+  (lighting, material, batch, centers, radius, sine, batch.count, bounds, fixed);
 }
 
 ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh,
@@ -270,18 +281,27 @@ ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* me
 }
 
 void ShadeBoundCollector::bound(const ShadeBatch& batch) {
-  if (material_) boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_);
+  if (material_) {
+    boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_, fixed_);
+  }
   for (std::size_t lane = 0; lane < batch.count; ++lane) {
-    float& out = hook_->bounds[first_ + polygons_[lane]];
-    if (radius_[lane] < 0.0f) {
-      out = 255.0f;  // no normal: FlatErrorBound::bound's largest
-    } else if (!material_ || std::isnan(lanes_[lane])) {
-      const glm::dvec3 center(centers_.xyz[0][lane], centers_.xyz[1][lane], centers_.xyz[2][lane]);
-      const glm::dvec3 normal(batch.normal[0][lane], batch.normal[1][lane], batch.normal[2][lane]);
-      out = hook_->boundOne(mesh_, polygons_[lane], hasCenters_ ? &center : nullptr, normal);
-    } else {
-      out = lanes_[lane];
+    const std::size_t id = first_ + polygons_[lane];
+    float out = lanes_[lane];
+    EstimateBound fixed = fixed_[lane];
+    if (radius_[lane] < 0.0f || !material_ || std::isnan(out)) {
+      if (radius_[lane] < 0.0f) {
+        out = 255.0f;  // no normal: FlatErrorBound::bound's largest
+      } else {
+        const glm::dvec3 center(centers_.xyz[0][lane], centers_.xyz[1][lane],
+                                centers_.xyz[2][lane]);
+        const glm::dvec3 normal(batch.normal[0][lane], batch.normal[1][lane],
+                                batch.normal[2][lane]);
+        out = hook_->boundOne(mesh_, polygons_[lane], hasCenters_ ? &center : nullptr, normal);
+      }
+      fixed = fixedBoundOf(out);
     }
+    hook_->bounds[id] = out;
+    hook_->fixedBounds[id] = fixed;
   }
 }
 

@@ -96,10 +96,11 @@ inline float roundedUp(double value) {
 // The bounds of a shade batch's polygons (ShadeBatch.h: normals as lit, surface colors; their
 // centers as the shade's lanes divided them out), each with its terms (radius and sine, per
 // lane), rounded up to float: bounds[lane] for lanes [0, batch.count), NaN where the batch
-// leaves it to the scalar bound. The same bytes as roundedUp(boundBatch).
+// leaves it to the scalar bound. The same bytes as roundedUp(boundBatch). And each as the
+// per-pixel estimate reads it, fixed[lane] = fixedBoundOf(bounds[lane]) (EstimateRows.h).
 void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
                        const ShadeBatch& batch, const ShadeBatchCenters& centers,
-                       const float* radius, const float* sine, float* bounds);
+                       const float* radius, const float* sine, float* bounds, EstimateBound* fixed);
 
 // The bounds of one shade task's polygons of one mesh (the fused estimate, EstimateHook.h),
 // taken batch by batch as the shade phase lights them, into hook.bounds. Polygons the batch
@@ -153,6 +154,7 @@ class ShadeBoundCollector {
   alignas(64) float radius_[kShadeBatchSize] = {};
   alignas(64) float sine_[kShadeBatchSize] = {};
   alignas(64) float lanes_[kShadeBatchSize] = {};
+  alignas(64) EstimateBound fixed_[kShadeBatchSize] = {};
   std::size_t polygons_[kShadeBatchSize] = {};
   ShadeBatchCenters centers_;
   ShadeBatch own_;  // add()'s

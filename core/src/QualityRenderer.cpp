@@ -602,6 +602,11 @@ void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stat
                   : 0.0;
 }
 
+// A count rounded up to an even one (the fixed bounds are read in 32-bit pairs).
+std::size_t evenCount(std::size_t count) {
+  return count + count % 2;
+}
+
 // Sample rows per block of the estimate's pass: the rows just above and below a block's are
 // taken by both blocks that read them, 2 in 18.
 constexpr int kSampleRowsPerTask = 16;
@@ -690,7 +695,14 @@ void QualityRenderer::estimate(const Frame& frame, const FramebufferView& target
   const int g = frame.grid;
   estimate_.resize(image ? static_cast<std::size_t>(target.width) * target.height : 0);
   rowSums_.assign(static_cast<std::size_t>(target.height), {});
-  const detail::EstimateGrid samples{grid.polygonId, grid.color, polygonBounds_.data(),
+  fixedBounds_.resize(evenCount(polygonBounds_.size()));
+  renderer_.parallelFor(polygonBounds_.size(), kPolygonsPerTask,
+                        [&](std::size_t begin, std::size_t end) {
+                          detail::forEachShownPolygon(shown_, begin, end, [&](std::size_t id) {
+                            fixedBounds_[id] = detail::fixedBoundOf(polygonBounds_[id]);
+                          });
+                        });
+  const detail::EstimateGrid samples{grid.polygonId, grid.color, fixedBounds_.data(),
                                      nullptr,        grid.width, grid.height};
   // Blocks of pixel rows, taken in turn by one task per thread, each with a space of its own
   // (kept from frame to frame): the blocks' results go to their own rows, in any order.
@@ -744,6 +756,7 @@ void QualityRenderer::hookUp(
   for (const MeshTerms& terms : frame.terms)
     meshTerms_.push_back(terms.polygons.data());
   polygonBounds_.resize(frame.firstPolygon.back());
+  fixedBounds_.resize(evenCount(polygonBounds_.size()));
   // The pixels' part at one sample per pixel only (a pixel of more samples needs them all).
   const bool pixels = frame.grid == 1;
   rowSums_.assign(pixels ? static_cast<std::size_t>(frame.samples.height) : 0, {});
@@ -760,6 +773,7 @@ void QualityRenderer::hookUp(
   hook.materials = frame.batchMaterials.data();
   hook.boundOne = boundOne;
   hook.bounds = polygonBounds_.data();
+  hook.fixedBounds = fixedBounds_.data();
   hook.bounded = std::make_unique<std::atomic<bool>[]>(meshCount);
   hook.height = frame.samples.height;
   hook.rows = pixels ? rowSums_.data() : nullptr;

@@ -28,6 +28,28 @@ using detail::kBoundBatchSize;
 
 class BoundBatches : public EveryTargetTest {};
 
+// A sample's estimate by its definition (EstimateRows.h), in 1/128 units: over the covered
+// samples q of its 3 × 3 neighbourhood, the largest channel difference plus q's bound rounded
+// up to 1/128 (`fixedBound`, by id), plus 0.5, capped at 255; 0 for the background.
+template <class FixedBound>
+std::uint32_t definedEstimate(const std::vector<Rgba8>& colors,
+                              const std::vector<std::int32_t>& ids, const FixedBound& fixedBound,
+                              int width, int height, int x, int y) {
+  if (ids[y * width + x] < 0) return 0;
+  const Rgba8 p = colors[y * width + x];
+  std::uint32_t largest = 0;
+  for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
+    for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+      const std::int32_t id = ids[ny * width + nx];
+      if (id < 0) continue;
+      const Rgba8 q = colors[ny * width + nx];
+      const int d = std::max({std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
+      largest = std::max(largest, static_cast<std::uint32_t>(d) * 128 + fixedBound(id));
+    }
+  }
+  return std::min(largest + 64, 255u * 128);
+}
+
 struct Case {
   std::string name;
   LightSet lights;
@@ -186,20 +208,15 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
     const float capped = !(b < 255.0f) ? 255.0f : std::max(b, 0.0f);  // NaN as 255
     return static_cast<std::uint32_t>(std::ceil(capped * 128.0f));
   };
-  const auto expected = [&](int x, int y) -> std::uint32_t {
-    if (ids[y * width + x] < 0) return 0;
-    const Rgba8 p = colors[y * width + x];
-    std::uint32_t largest = 0;
-    for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
-      for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
-        const std::int32_t id = ids[ny * width + nx];
-        if (id < 0) continue;
-        const Rgba8 q = colors[ny * width + nx];
-        const int d = std::max({std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
-        largest = std::max(largest, static_cast<std::uint32_t>(d) * 128 + fixedBound(id));
-      }
-    }
-    return std::min(largest + 64, 255u * 128);
+  // The bounds as the pass reads them: in fixed point, one more (a covered sample's fields are
+  // never 0), an even count.
+  std::vector<detail::EstimateBound> fixed(bounds.size() + 1, 0);
+  for (std::size_t id = 0; id < bounds.size(); ++id) {
+    fixed[id] = detail::fixedBoundOf(bounds[id]);
+    ASSERT_EQ(fixed[id], fixedBound(static_cast<std::int32_t>(id)) + 1) << "polygon " << id;
+  }
+  const auto expected = [&](int x, int y) {
+    return definedEstimate(colors, ids, fixedBound, width, height, x, y);
   };
   const std::size_t stride = width + 2;
   for (const detail::SimdTarget& target : detail::simdTargets()) {
@@ -208,7 +225,7 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
     for (int y = 0; y < height; ++y) {
       std::vector<detail::EstimateField> fields(detail::kEstimateFields * stride, 0);
       maxima[y].assign(detail::kEstimateFields * stride, 0);
-      detail::neighbourFields(colors.data() + y * width, ids.data() + y * width, bounds.data(), 0,
+      detail::neighbourFields(colors.data() + y * width, ids.data() + y * width, fixed.data(), 0,
                               width, fields.data() + 1, stride);
       // The same fields with each sample's color its polygon's, gathered by id (the resolve's
       // rows outside its band, EstimateHook.h).
@@ -220,9 +237,9 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
         rowColors[x] = id < 0 ? Rgba8{} : polygonColors[id];
       }
       std::vector<detail::EstimateField> byId(fields.size(), 0), byRow(fields.size(), 0);
-      detail::neighbourFieldsById(polygonColors.data(), ids.data() + y * width, bounds.data(), 0,
+      detail::neighbourFieldsById(polygonColors.data(), ids.data() + y * width, fixed.data(), 0,
                                   width, byId.data() + 1, stride);
-      detail::neighbourFields(rowColors.data(), ids.data() + y * width, bounds.data(), 0, width,
+      detail::neighbourFields(rowColors.data(), ids.data() + y * width, fixed.data(), 0, width,
                               byRow.data() + 1, stride);
       ASSERT_EQ(byId, byRow) << target.name << ", row " << y;
       detail::rowMaxima(fields.data() + 1, 0, width, maxima[y].data() + 1, stride);
@@ -247,6 +264,49 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
         EXPECT_EQ(found.squares, sums.squares) << target.name;
         EXPECT_EQ(found.largest, sums.largest) << target.name;
         EXPECT_EQ(found.covered, sums.covered) << target.name;
+      }
+    }
+  }
+}
+
+// The pass over a grid (EstimateSpace) whose rows are grey (r = g = b: it keeps two planes of
+// fields for them) and not, in runs of each and alone, against the definition, on every
+// instruction set: a grey row beside one that is not takes all six planes.
+TEST_F(BoundBatches, GreyAndColoredRowsGiveTheirDefinitionOnEveryInstructionSet) {
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> channel(0, 255), polygon(-3, 40);
+  const int width = 77, height = 12;
+  const bool greyRows[height] = {true,  true,  true, false, true,  true,
+                                 false, false, true, true,  false, true};
+  std::vector<detail::EstimateBound> fixed(42);
+  for (auto& q : fixed)
+    q = detail::fixedBoundOf(std::uniform_real_distribution<float>(0.0f, 300.0f)(random));
+  std::vector<Rgba8> colors(width * height);
+  std::vector<std::int32_t> ids(width * height);
+  for (int i = 0; i < width * height; ++i) {
+    const auto byte = [&] { return static_cast<std::uint8_t>(channel(random)); };
+    const std::uint8_t grey = byte();
+    colors[i] = greyRows[i / width] ? Rgba8{grey, grey, grey, byte()}
+                                    : Rgba8{byte(), byte(), byte(), byte()};
+    ids[i] = std::max(-1, polygon(random));
+  }
+  const auto fixedBound = [&](std::int32_t id) { return fixed[id] - 1u; };
+  const detail::EstimateGrid grid{ids.data(), colors.data(), fixed.data(), nullptr, width, height};
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    detail::useSimdTarget(target.bits);
+    detail::EstimateSpace space;
+    space.resize(width, 1);
+    for (int frame = 0; frame < 2; ++frame) {  // the space kept: its planes as the last left them
+      for (int r = 0; r <= height; ++r) {
+        if (r < height) space.findMaxima(grid, r);
+        if (r == 0) continue;
+        const int y = r - 1;
+        space.estimateSamples(grid, y, true);
+        const std::uint32_t* estimates = space.pixelEstimates();
+        for (int x = 0; x < width; ++x) {
+          ASSERT_EQ(estimates[x], definedEstimate(colors, ids, fixedBound, width, height, x, y))
+              << target.name << ", sample " << x << ", " << y << ", frame " << frame;
+        }
       }
     }
   }

@@ -215,8 +215,11 @@ class QualityRenderer {
   // (QualityRenderer.cpp).
   struct MeshTerms;
   std::vector<MeshTerms> terms_;
-  std::vector<float> polygonBounds_;           // per polygon id, 8-bit units (visible ones only)
-  std::vector<detail::EstimateSums> rowSums_;  // per pixel row: the fused estimate's
+  std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
+  // The same in the per-pixel estimate's fixed point (EstimateRows.h: fixedBoundOf), an even
+  // count.
+  std::vector<std::uint16_t> fixedBounds_;
+  std::vector<detail::EstimateSums> rowSums_;         // per pixel row: the fused estimate's
   std::vector<const detail::BoundTerms*> meshTerms_;  // per mesh: terms_'s, for the hook
   std::vector<std::uint8_t> reshade_;    // per polygon id: shaded again (visible ones only)
   std::vector<Color> cornerColors_;      // Gouraud: per corner of every mesh
