@@ -159,7 +159,9 @@ int main(int argc, char** argv) {
   const bool estimate = !(argc > 1 && std::string_view(argv[argc - 1]) == "--no-estimate");
   if (!estimate) --argc;  // the positional arguments come before it
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate]\n",
+                 argv[0]);
     return 2;
   }
   const int theta = std::atoi(argv[1]);

@@ -839,7 +839,7 @@ void QualityRenderer::shadeAndResolve(const Frame& frame, const FramebufferView&
       if (g > 1) {
         const std::size_t fixed =
             static_cast<std::size_t>(y * g + g / 2) * grid.width + (x * g + g / 2);
-        target.depth[out] = grid.depth[fixed];
+        if (target.depth) target.depth[out] = grid.depth[fixed];  // none without depth output
         target.polygonId[out] = grid.polygonId[fixed];
       }
     }

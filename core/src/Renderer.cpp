@@ -50,6 +50,9 @@ RenderStats Renderer::render(const Scene& scene, const Camera& camera,
   const FramebufferView planes = ws.startFrame(in);
   detail::PhaseRunner runner(*ws.pool, progress_, detail::phasesOf(path.path));
   RenderStats stats = ws.statsToStartFrom(path);
+  // Until this render completes the planes hold no frame the history describes: an exception
+  // (from a callback) must leave the next render to draw in full.
+  ws.history.forget();
   const bool completed = path.path == RenderPath::Full
                              ? ws.renderFull(in, path, threadCount(), planes, runner, stats)
                              : ws.renderAgain(in, path, threadCount(), planes, runner, stats);

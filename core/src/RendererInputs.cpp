@@ -65,7 +65,8 @@ void validateMeshHeaders(const Scene& scene) {
 void clearTarget(const FramebufferView& target, Rgba8 background) {
   const std::size_t pixels = static_cast<std::size_t>(target.width) * target.height;
   std::fill(target.color, target.color + pixels, background);
-  std::fill(target.depth, target.depth + pixels, 1.0f);
+  if (target.depth)
+    std::fill(target.depth, target.depth + pixels, 1.0f);  // none without depth output
   std::fill(target.polygonId, target.polygonId + pixels, Framebuffer::kBackgroundId);
 }
 

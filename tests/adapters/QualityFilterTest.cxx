@@ -162,6 +162,35 @@ TEST(QualityFilter, SupersamplingAndTheBudget)
   EXPECT_LE(LargestDifference(one->GetOutput(), adaptive->GetOutput()), 3);
 }
 
+// A sample grid without depth output: the image's depth plane is not there to fill (it was
+// written from the grid's center samples, and crashed); colors and cell ids as with it.
+TEST(QualityFilter, SupersamplingWithoutDepthOutput)
+{
+  for (const int samples : { 4, 16 })
+  {
+    auto withDepth = SphereFilter(24, VTK_PHONG);
+    withDepth->SetSamplesPerPixel(samples);
+    withDepth->Update();
+    auto withoutDepth = SphereFilter(24, VTK_PHONG);
+    withoutDepth->SetSamplesPerPixel(samples);
+    withoutDepth->OutputDepthOff();
+    Messages messages(withoutDepth);
+    withoutDepth->Update();
+    EXPECT_EQ(messages.Errors, 0) << messages.Last;
+    vtkPointData* data = withoutDepth->GetOutput()->GetPointData();
+    EXPECT_EQ(data->GetArray("Depth"), nullptr);
+    EXPECT_EQ(LargestDifference(withDepth->GetOutput(), withoutDepth->GetOutput()), 0);
+    vtkDataArray* cells = data->GetArray("CellId");
+    vtkDataArray* expected = withDepth->GetOutput()->GetPointData()->GetArray("CellId");
+    ASSERT_NE(cells, nullptr);
+    ASSERT_EQ(cells->GetNumberOfTuples(), expected->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < cells->GetNumberOfTuples(); ++i)
+    {
+      ASSERT_EQ(cells->GetTuple1(i), expected->GetTuple1(i)) << "pixel " << i;
+    }
+  }
+}
+
 TEST(QualityFilter, BadSettingsAreErrorsWithAnEmptyOutput)
 {
   for (const int samples : { 0, 2, 9 })

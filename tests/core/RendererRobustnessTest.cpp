@@ -311,6 +311,46 @@ TEST(RendererProgress, ACallbackThatThrowsLeavesTheRendererUsable) {
   EXPECT_TRUE(std::ranges::equal(fb.polygonId(), expected.polygonId()));
 }
 
+// An exception from a callback in the middle of an incremental sequence: the planes then hold
+// part of a frame that the renderer's history must not take for the last one. Rendering the
+// frame before it again draws in full, the bytes of a fresh renderer (not a stale resolve).
+TEST(RendererProgress, ACallbackThatThrowsMidSequenceLeavesNoStaleFrame) {
+  const Mesh sphere = makeUvSphere(120, 120);
+  Scene scene = oneMeshScene(sphere.view());
+  scene.meshes[0].mesh.version = 1;  // incremental paths possible
+  const Camera first = fitCamera(sphere);
+  Camera moved = first;
+  moved.position += glm::dvec3(0.3, 0.2, 0.0);
+  Renderer fresh;
+  Framebuffer expected(160, 120);
+  fresh.render(scene, first, expected);
+
+  for (const bool fromProgress : {false, true}) {
+    Renderer renderer;
+    renderer.setThreadCount(2);
+    Framebuffer fb(160, 120);
+    renderer.render(scene, first, fb);
+    int calls = 0;
+    if (fromProgress) {
+      renderer.setProgressCallback([&](double) {
+        if (++calls == 4) throw std::runtime_error("stop");
+        return true;
+      });
+    } else {
+      renderer.setResolvedRowsCallback([&](const FramebufferView&, int, int) {
+        if (++calls == 3) throw std::runtime_error("stop");
+      });
+    }
+    EXPECT_THROW(renderer.render(scene, moved, fb), std::runtime_error);
+    renderer.setProgressCallback({});
+    renderer.setResolvedRowsCallback({});
+    const RenderStats again = renderer.render(scene, first, fb);
+    EXPECT_EQ(again.plan.path, RenderPath::Full) << "from the progress callback: " << fromProgress;
+    EXPECT_TRUE(std::ranges::equal(fb.polygonId(), expected.polygonId()));
+    EXPECT_TRUE(std::ranges::equal(fb.color(), expected.color()));
+  }
+}
+
 // Every row comes once per render, on whichever path (full, or the incremental resolve of a
 // new background), with the caller's planes and the pixels render() returns: snapshots taken
 // in the callback equal the framebuffer afterwards.

@@ -166,8 +166,9 @@ struct RenderStats {
   double validateSeconds = 0.0;   ///< mesh structure checks (once per version when versioned)
   double transformSeconds = 0.0;  ///< points to window coordinates (and painter's sort)
   double setupSeconds = 0.0;      ///< clip, cull, triangulate, bin
-  double rasterSeconds = 0.0;     ///< clear and paint the tiles (depth and polygon ids)
-  double shadeSeconds = 0.0;      ///< light the visible polygons, color the pixels
+  double rasterSeconds = 0.0;     ///< paint the tiles (depth keys, polygon ids), window depths
+  double shadeSeconds = 0.0;      ///< light the shown polygons, color the pixels (the estimate
+                                  ///< and the resolved-rows callback included)
   double totalSeconds = 0.0;
 
   // The counts describe the frame in the framebuffer: an incremental render repeats those of

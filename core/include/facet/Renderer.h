@@ -62,11 +62,15 @@ class Renderer {
   using ProgressCallback = std::function<bool(double fraction)>;
   /// Called with each band of rows [y0, y1] of `target` (the planes the render draws into)
   /// once the render has resolved it: its colors, depths and polygon ids are those render()
-  /// returns, unless the render is aborted (then render() clears the target). Every row of
-  /// the target comes once per render, the bands in no set order and concurrently on the
-  /// renderer's threads: for elementwise work on the image while its rows are in cache (the
-  /// VTK filter widens the polygon ids of a band into its CellId array), in place of a
-  /// second pass over the planes.
+  /// returns. Every row of the target comes once per completed render, the bands in no set
+  /// order and concurrently on the renderer's threads: for elementwise work on the image
+  /// while its rows are in cache (the VTK filter widens the polygon ids of a band into its
+  /// CellId array), in place of a second pass over the planes. A stopped render may have
+  /// passed some bands before it clears the target; an exception the callback throws leaves
+  /// render() as the progress callback's does. With depth output off the depth plane holds
+  /// depth keys. Under a QualityRenderer, `target` is the planes that renderer hands the
+  /// render: its sample grid when it supersamples, and at one sample a band whose polygons
+  /// it reshades afterwards does not have its final colors yet.
   using ResolvedRowsCallback = std::function<void(const FramebufferView& target, int y0, int y1)>;
 
   Renderer();
