@@ -58,9 +58,6 @@ struct FrameMesh {
   // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
   // shade phase from the points (an unversioned mesh).
   const glm::vec3* faceNormals = nullptr;
-  // Per polygon, its point ids if a triangle (MeshFacts::triangleCorners); null: read the
-  // mesh's offsets and connectivity.
-  const std::uint32_t* triangleCorners = nullptr;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }

@@ -34,21 +34,6 @@ bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& 
   });
 }
 
-// Polygons [begin, end)'s MeshFacts::triangleCorners (their point ids are below
-// kNotATriangle: usesTriangleCorners).
-template <class PolygonsT>
-void copyTriangleCorners(PolygonsT polygons, std::size_t begin, std::size_t end, MeshFacts& facts) {
-  std::uint32_t* corners = facts.triangleCorners.data() + 3 * begin;
-  for (std::size_t p = begin; p < end; ++p, corners += 3) {
-    if (polygons.size(p) != 3) {
-      corners[0] = corners[1] = corners[2] = kNotATriangle;
-      continue;
-    }
-    for (std::size_t k = 0; k < 3; ++k)
-      corners[k] = static_cast<std::uint32_t>(polygons.pointId(p, k));
-  }
-}
-
 // Block b's box, point span and finiteness, from the points its polygons use, and its
 // polygons' normals.
 void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
@@ -70,32 +55,21 @@ void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
       facts.faceNormals[p] =
           faceNormalOf(n, [&](std::size_t k) { return points[polygons.pointId(p, k)]; });
     }
-    if (!facts.triangleCorners.empty()) copyTriangleCorners(polygons, begin, end, facts);
   });
   facts.blocks[b] = box;
   facts.blockPoints[b] = span;
   facts.blockFinite[b] = finite;
 }
 
-void sizeBlocks(MeshFacts& facts, const MeshView& mesh) {
-  const std::size_t polygons = mesh.polygons.count;
+void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   const std::size_t blocks = (polygons + kPolygonsPerBlock - 1) / kPolygonsPerBlock;
   facts.blocks.resize(blocks);
   facts.blockPoints.resize(blocks);
   facts.blockFinite.resize(blocks);
   facts.faceNormals.resize(polygons);
-  if (usesTriangleCorners(mesh)) {
-    facts.triangleCorners.resize(3 * polygons);
-  } else {
-    facts.triangleCorners = {};  // and its memory
-  }
 }
 
 }  // namespace
-
-bool usesTriangleCorners(const MeshView& mesh) {
-  return mesh.polygons.type == PolygonArray::Type::Int64 && mesh.points.count < kNotATriangle;
-}
 
 Box boundsOf(const MeshView& mesh) {
   Box box;
@@ -162,7 +136,7 @@ std::size_t MeshCache::planMeasurement(const Scene& scene) {
   const std::size_t pointTasks = ranges_.size();
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     if (!measuring_[m]) continue;
-    sizeBlocks(facts_[m], meshes[m].mesh);
+    sizeBlocks(facts_[m], meshes[m].mesh.polygons.count);
     for (std::size_t b = 0; b < facts_[m].blocks.size(); b += kBlocksPerTask)
       ranges_.push_back({m, b, std::min(facts_[m].blocks.size(), b + kBlocksPerTask)});
   }

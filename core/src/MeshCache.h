@@ -53,18 +53,7 @@ struct MeshFacts {
   std::vector<std::uint8_t> blockFinite;  // per block: every point it uses is finite
   // Per polygon, for a measured mesh: its unit normal rounded to float (FaceNormal.h).
   std::vector<glm::vec3> faceNormals;
-  // Per polygon, for a measured mesh with 64-bit indices (usesTriangleCorners): its three
-  // point ids, or kNotATriangle first for any other polygon. The set-up's loader reads these
-  // 12 bytes a polygon instead of 8 of offset and 24 of connectivity, and tests no offsets.
-  std::vector<std::uint32_t> triangleCorners;
 };
-
-// The first corner of a polygon that is not a triangle, in MeshFacts::triangleCorners.
-inline constexpr std::uint32_t kNotATriangle = 0xFFFFFFFFu;
-
-// Whether a measured mesh keeps MeshFacts::triangleCorners: 64-bit indices (VTK's), point ids
-// below kNotATriangle. With 32-bit indices the copy would save only the offsets' reads.
-bool usesTriangleCorners(const MeshView& mesh);
 
 // The box of a mesh's finite points (for a plan made ahead of a render).
 Box boundsOf(const MeshView& mesh);

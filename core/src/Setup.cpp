@@ -112,19 +112,6 @@ class PolygonSetup {
     }
   }
 
-  // loadConsecutive from the mesh's triangleCorners (FrameMesh), 12 bytes a polygon.
-  void loadCorners(std::size_t first, int count, TriangleBatch& batch, int lane) const {
-    const std::uint32_t* corners = mesh_.triangleCorners + 3 * first;
-    for (int k = 0; k < count; ++k, corners += 3) {
-      const bool triangle = corners[0] != kNotATriangle;
-      batch.triangle[lane + k] = triangle;
-      if (triangle) {
-        for (int j = 0; j < 3; ++j)
-          batch.v[j][lane + k] = meshVertices_[corners[j]];
-      }
-    }
-  }
-
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
   // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
@@ -453,11 +440,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       while (polygon < blockEnd) {
         const int take = static_cast<int>(std::min<std::size_t>(
             static_cast<std::size_t>(kBatchSize - lanes), blockEnd - polygon));
-        if (mesh.triangleCorners) {
-          setup.loadCorners(polygon, take, batch, lanes);
-        } else {
-          setup.loadConsecutive(polygon, take, batch, lanes);
-        }
+        setup.loadConsecutive(polygon, take, batch, lanes);
         for (int k = 0; k < take; ++k)
           lanePolygon[lanes + k] = polygon + static_cast<std::size_t>(k);
         polygon += static_cast<std::size_t>(take);

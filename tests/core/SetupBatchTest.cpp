@@ -15,11 +15,8 @@
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "Binning.h"
-#include "MeshCache.h"
-#include "PhaseRunner.h"
 #include "RasterTriangle.h"
 #include "SetupBatch.h"
-#include "ThreadPool.h"
 #include "facet/Error.h"
 
 namespace facet::testing {
@@ -337,8 +334,6 @@ TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
   const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
   Camera bunnyCamera = fitCamera(bunny, {0.2, -0.3, -1.0});
   bunnyCamera.nearClip *= 1.3;  // the clipper runs too (DeterminismTest)
-  MeshView bunnyView = bunny.view();
-  bunnyView.version = 1;
   const Mesh dots = confetti(4000, 5);
   const Mesh strip = mixedStrip(12000, 7);
   MeshView stripView = strip.view();
@@ -357,8 +352,6 @@ TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
   for (Visibility visibility : {Visibility::ZBuffer, Visibility::PainterSort}) {
     const RenderOptions options = optionsWith(visibility);
     cases.push_back({"bunny", oneMeshScene(bunny.view()), bunnyCamera, 640, 480, options});
-    cases.push_back({"bunny, versioned (its triangle corners kept)", oneMeshScene(bunnyView),
-                     bunnyCamera, 640, 480, options});
     cases.push_back({"bunny, back faces culled", oneMeshScene(bunny.view(), culled), bunnyCamera,
                      640, 480, options});
     cases.push_back(
@@ -381,8 +374,6 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
   MeshView closed = sphere.view();
   closed.closedSurface = isClosedSurface(closed);
   ASSERT_TRUE(closed.closedSurface);
-  MeshView closedVersioned = closed;
-  closedVersioned.version = 1;  // the loader reads its kept triangle corners (MeshCache.h)
   LightSet lights;
   lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
   std::vector<SceneCase> cases;
@@ -393,48 +384,8 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
     cases.push_back({"closed, " + std::to_string(threads) + " threads",
                      oneMeshScene(closed, {}, lights), camera, 1920, 1080,
                      optionsWith(Visibility::ZBuffer, threads)});
-    cases.push_back({"closed, versioned, " + std::to_string(threads) + " threads",
-                     oneMeshScene(closedVersioned, {}, lights), camera, 1920, 1080,
-                     optionsWith(Visibility::ZBuffer, threads)});
   }
   expectSameRenders(cases, targets());
-}
-
-// A versioned mesh with 64-bit indices keeps its triangles' point ids, 32 bits each, and marks
-// its other polygons; the set-up's loader reads them instead of offsets and connectivity.
-TEST(TriangleCorners, KeptPerVersionForTrianglesOnly) {
-  const Mesh strip = mixedStrip(3000, 11);
-  MeshView view = strip.view();
-  ASSERT_EQ(view.polygons.type, PolygonArray::Type::Int64);
-  ASSERT_TRUE(detail::usesTriangleCorners(view));
-  const auto* offsets = static_cast<const std::int64_t*>(view.polygons.offsets);
-  const auto* connectivity = static_cast<const std::int64_t*>(view.polygons.connectivity);
-  for (std::uint64_t version : {0, 1}) {
-    view.version = version;
-    Scene scene = oneMeshScene(view);
-    detail::ThreadPool pool(2);
-    const detail::PhaseRunner::ProgressCallback noProgress;
-    detail::PhaseRunner runner(pool, noProgress, detail::phasesOf(RenderPath::Full));
-    detail::MeshCache cache;
-    ASSERT_TRUE(cache.update(runner, scene, false));
-    const std::vector<std::uint32_t>& corners = cache[0].triangleCorners;
-    if (version == 0) {
-      EXPECT_TRUE(corners.empty()) << "kept for an unversioned mesh";
-      continue;
-    }
-    ASSERT_EQ(corners.size(), 3 * view.polygons.count);
-    std::size_t triangles = 0;
-    for (std::size_t p = 0; p < view.polygons.count; ++p) {
-      if (offsets[p + 1] - offsets[p] != 3) {
-        EXPECT_EQ(corners[3 * p], detail::kNotATriangle) << "polygon " << p;
-        continue;
-      }
-      ++triangles;
-      for (int k = 0; k < 3; ++k)
-        EXPECT_EQ(corners[3 * p + k], connectivity[offsets[p] + k]) << "polygon " << p;
-    }
-    EXPECT_EQ(triangles, 2000u);
-  }
 }
 
 // A bin entry's 30 bits of index (Binning.h): at the limit the set-up throws facet::Error
