@@ -78,12 +78,16 @@ struct TilePlanes {
 // won a pixel and lost it again to a nearer one, and cost a load, a test and a store per
 // fragment. Tiles sharing a polygon may store the same 1 at once: relaxed atomics make that
 // benign. Four pixels at a time: a run of background (−1, all bits set) is skipped whole.
-void markShownPolygons(const RasterContext& context, const TilePlanes& planes,
-                       const PixelBounds& tile) {
+// Returns how many of the tile's pixels show a polygon (PaintCounts::covered): counted here
+// rather than per fragment written.
+std::size_t markShownPolygons(const RasterContext& context, const TilePlanes& planes,
+                              const PixelBounds& tile) {
   static_assert(Framebuffer::kBackgroundId == -1);
   std::uint8_t* const shown = context.shown.data();
-  const auto mark = [shown](std::int32_t id) {
+  std::size_t covered = 0;
+  const auto mark = [shown, &covered](std::int32_t id) {
     if (id != Framebuffer::kBackgroundId) {
+      ++covered;
       std::atomic_ref<std::uint8_t>(shown[static_cast<std::size_t>(id)])
           .store(1, std::memory_order_relaxed);
     }
@@ -99,6 +103,7 @@ void markShownPolygons(const RasterContext& context, const TilePlanes& planes,
     for (; x < columns; ++x)
       mark(ids[x]);
   }
+  return covered;
 }
 
 // A bin's triangles lie scattered through their chunk's array (a tile meets many rows of a
@@ -186,7 +191,7 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
     for (const Chunk& chunk : context.chunks)
       paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse);
   }
-  markShownPolygons(context, local, tile);
+  counts.covered = markShownPolygons(context, local, tile);
   if (context.windowDepths) {  // the keys become window depths before they leave the cache
     resolveDepths(planes.polygonId, planes.depth, planes.width, tile, *context.windowDepths);
   }

@@ -101,7 +101,7 @@ enum class DepthMode { Test, Overwrite };
 
 struct PaintCounts {
   std::size_t written = 0;  // pixel writes, counting overdraw
-  std::size_t covered = 0;  // background pixels that received their first polygon
+  std::size_t covered = 0;  // pixels the tile shows a polygon at (counted from its final ids)
   std::size_t hidden = 0;   // triangles (per tile) the coarse depth proved hidden
 };
 
@@ -143,11 +143,12 @@ class CoarseDepth {
 // (a larger key), so an exact tie keeps the polygon painted first. A tile paints every front
 // face before any back face (Raster.cpp, Chunk::backBins), each facing in draw order: an
 // exact tie keeps the front face; among polygons facing the same way, the one drawn first.
+// counts.covered is left to the tile, from its final ids (one pass with the shown flags
+// rather than a load and compare per fragment).
 template <DepthMode kMode>
 void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
                    PaintCounts& counts) {
   if (kMode == DepthMode::Overwrite || depth > planes.depth[i]) {
-    counts.covered += planes.polygonId[i] == Framebuffer::kBackgroundId;
     planes.depth[i] = depth;
     planes.polygonId[i] = polygonId;
     ++counts.written;
