@@ -24,16 +24,25 @@ using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
 using M = hn::Mask<D>;
 
-// FlatErrorBound.cpp's Angle: a cosine and a sine.
-struct Angles {
-  V cos, sin;
-};
+using DF = hn::Rebind<float, D>;  // the float lanes' (below), as many as the double ones
+using VF = hn::Vec<DF>;
+using MF = hn::Mask<DF>;
 
-HWY_INLINE Angles straight(D d) {
-  return {hn::Set(d, -1.0), hn::Zero(d)};
+// FlatErrorBound.cpp's Angle: a cosine and a sine, in double or float lanes.
+template <class VV>
+struct AnglesOf {
+  VV cos, sin;
+};
+using Angles = AnglesOf<V>;
+using AnglesF = AnglesOf<VF>;
+
+template <class DD>
+HWY_INLINE AnglesOf<hn::Vec<DD>> straight(DD d) {
+  return {hn::Set(d, -1), hn::Zero(d)};
 }
 
-HWY_INLINE Angles select(M where, const Angles& yes, const Angles& no) {
+template <class MM, class VV>
+HWY_INLINE AnglesOf<VV> select(MM where, const AnglesOf<VV>& yes, const AnglesOf<VV>& no) {
   return {hn::IfThenElse(where, yes.cos, no.cos), hn::IfThenElse(where, yes.sin, no.sin)};
 }
 
@@ -51,21 +60,26 @@ HWY_INLINE Angles ofConeSine(D d, V s) {
 }
 
 // Angle::operator+.
-HWY_INLINE Angles add(D d, const Angles& a, const Angles& b) {
-  const V minusOne = hn::Set(d, -1.0);
-  const Angles sum{a.cos * b.cos - a.sin * b.sin, a.sin * b.cos + a.cos * b.sin};
-  const M past = hn::Or(hn::Or(a.cos <= minusOne, b.cos <= minusOne),
-                        hn::Or(sum.sin < hn::Zero(d), hn::Not(sum.cos > minusOne)));
+template <class DD>
+HWY_INLINE AnglesOf<hn::Vec<DD>> add(DD d, const AnglesOf<hn::Vec<DD>>& a,
+                                     const AnglesOf<hn::Vec<DD>>& b) {
+  const auto minusOne = hn::Set(d, -1);
+  const AnglesOf<hn::Vec<DD>> sum{a.cos * b.cos - a.sin * b.sin, a.sin * b.cos + a.cos * b.sin};
+  const auto past = hn::Or(hn::Or(a.cos <= minusOne, b.cos <= minusOne),
+                           hn::Or(sum.sin < hn::Zero(d), hn::Not(sum.cos > minusOne)));
   return select(past, straight(d), sum);
 }
 
 // cosineRange: the cosines of θ + Δ and θ − Δ clamped to [0, π].
-struct Range {
-  V lo, hi;
+template <class VV>
+struct RangeOf {
+  VV lo, hi;
 };
-HWY_INLINE Range cosineRange(D d, const Angles& theta, const Angles& spread) {
-  const V one = hn::Set(d, 1.0);
-  const V hi =
+template <class DD>
+HWY_INLINE RangeOf<hn::Vec<DD>> cosineRange(DD d, const AnglesOf<hn::Vec<DD>>& theta,
+                                            const AnglesOf<hn::Vec<DD>>& spread) {
+  const auto one = hn::Set(d, 1);
+  const auto hi =
       hn::IfThenElse(theta.cos >= spread.cos, one, theta.cos * spread.cos + theta.sin * spread.sin);
   return {add(d, theta, spread).cos, hn::Min(hi, one)};
 }
@@ -158,7 +172,7 @@ HWY_INLINE V boundLanes(D d, const BatchLighting& lighting, const BatchMaterial&
       factorHi = attenuation(d, light, near);
     }
     const V cosine = nx * lx + ny * ly + nz * lz;
-    const Range lit = cosineRange(d, ofCosine(d, cosine), add(d, normalAngle, lightAngle));
+    const auto lit = cosineRange(d, ofCosine(d, cosine), add(d, normalAngle, lightAngle));
     const V diffuseLo = diffuseOf(d, material, lit.lo), diffuseHi = diffuseOf(d, material, lit.hi);
     const V low = hn::Min(diffuseLo, diffuseHi), flat = diffuseOf(d, material, cosine),
             high = hn::Max(diffuseLo, diffuseHi);
@@ -198,35 +212,198 @@ void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& materia
   }
 }
 
-// The shade phase's columns (ShadeBatch.h) and the centers its lanes divided out, surfaces as
-// FlatErrorBound::bound reads them (capped), bounds rounded up to float (roundedUp: a float below
-// the double goes one step up; NaN stays NaN).
+// ---------------------------------------------------------------------------------------
+// The bound in float lanes (boundShadeColumns): the double bound's steps in float, where
+// square roots and divisions cost a fraction, with a margin that keeps it a bound.
+//
+// Margin, proven to first order in u = 2^-24 (float's unit roundoff; IEEE +, −, ×, /, √
+// round to nearest, relative error ≤ u; no fused multiply-adds). What stays in double:
+// the offsets eye − c and P − c (c far from the origin: no cancellation in float) and the
+// side seen. Angles are (cos, sin) pairs; a pair whose components are off by δc, δs
+// (absolute) from a unit pair is off in angle by ≤ δc + δs and in norm by ≤ δc + δs, and
+// then every cosine formed from it (cos(θ ± Δ), clamped or not) is off by at most the sum
+// of its angles' and norms' errors (cos is 1-Lipschitz; a norm off by ε scales a cosine by
+// 1 ± ε). No pair is taken as √(1 − c²) of a rounded cosine (that amplifies an error e to
+// √(2e) near c = ±1):
+//   - normal cone, sine s exact (kept float): cos = √((1 − s)(1 + s)): 1 − s exact for
+//     s ≥ 1/2 (Sterbenz), else ≤ u; the product ≤ 3u relative, the root ≤ 2.5u. Pair:
+//     angle 1.25u, norm 2.5u.
+//   - light direction: o_f = float(P − c) (u per component: angle ≤ u); q = o_f·o_f ≤ 3u
+//     relative (nonnegative terms); dist = √q ≤ 2.5u; 1/dist ≤ 3.5u; L = o_f/dist ≤ 4.5u per
+//     component: angle ≤ 5.5u, |L| = 1 ± 4.5u. q is kept in [2^-100, 2^100] (normal floats,
+//     no overflow), else the lane is the scalar bound's.
+//   - light cone: s = r/dist ≤ 5.5u relative; its angle asin(s) would be off by 5.5u·tan β,
+//     unbounded for a light on the surface, so s is rounded up instead: s·(1 + 2^-21) ≥
+//     s(1 − 5.5u)(1 + 8u)(1 − u) > r/|P − c|, and the pair from it as the normal cone's
+//     (≤ 1.25u short of its angle, norm 2.5u). A larger cone only widens the ranges.
+//   - flat angle θ between n and L: cos = n_f·L ≤ 3u + the norms (n_f: u, L: 4.5u), sin =
+//     |n_f × L| (each component ≤ 2u·(|a b| + |c d|), in all ≤ 3u, the root 2.5u): angle
+//     ≤ 6.5u (directions) + 8.5u, norm ≤ 14u.
+//   - Δ = normal cone + light cone: 2.5u (angles) + 2.8u (the sum's rounding); norm 7.8u.
+//   - lo = cos(θ + Δ): ≤ 23u (angle) + 25u (norm) = 48u. hi = cos(θ − Δ), or 1 where
+//     cos θ ≥ cos Δ: ≤ 48u, and where that test goes the other way than exact arithmetic
+//     (|cos θ − cos Δ| ≤ 42u: the cosines' errors) 1 − cos(θ − Δ) ≤ |cos θ − cos Δ| (for
+//     0 ≤ θ, Δ ≤ π: concave in θ, zero at the ends), so ≤ 90u in all. flat = n·L: 29u.
+//     Diffuse (clamped: 1-Lipschitz; Lerp a + (b − a)·x: × |b − a|, + 4u·max(|a|, |b − a|)).
+//   - light E = radiance × factor: radiance u; factor at dist ≤ 7u (1/(a0 + a1 d + a2 d²):
+//     nonnegative terms; distance/d); the ends at near = max(0, dist(1 − 2^-20) − r) ≤
+//     |P − c| − r and far = (dist + r)(1 + 2^-20) ≥ |P − c| + r, so by monotonicity E_hi and
+//     E_lo are the factors at distances past the exact ones', each with ≤ 8u: no relative
+//     error blows up where near → 0.
+//   - per light and channel: |dev_f − dev| ≤ E_hi·D'·(90 + 29 + 48 + 8·3 + 4 products and
+//     differences) u < 200u·E_hi·D', D' = max(1, |b − a|, |a|, |b|) (Lambert: 1).
+// So each light adds kappa·E_hi with kappa = 2^-16·D' = 256u·D' to its deviations (more than
+// the 200u above, the slack covering the second-order terms and the double bound's own
+// rounding, below 2^-50), and Kd is rounded up by 2^-20 = 16u, covering the ≤ 5 roundings of
+// the products and sums after (all terms nonnegative: surface colors are taken ≥ 0). A
+// light's coefficients outside [2^-60, 2^20] (batchLighting) or a radius above 2^50 leave
+// the lanes (far, d² overflows float): the double bound takes them. The randomized test
+// (FlatErrorBoundBatchTest.cpp) checks float ≥ roundedUp(double) on extreme inputs.
+
+// The angle asin(s) of a sine s ≥ 0, straight for s ≥ 1: its cosine √((1 − s)(1 + s)),
+// accurate relative to itself near 90° (above).
+HWY_INLINE AnglesF ofSineF(DF df, VF s) {
+  const VF one = hn::Set(df, 1.0f);
+  const AnglesF cone{hn::Sqrt(hn::Max((one - s) * (one + s), hn::Zero(df))), s};
+  return select(s < one, cone, straight(df));
+}
+
+HWY_INLINE VF attenuationF(DF df, const BatchLighting::Source& light, VF distance) {
+  using Falloff = BatchLighting::Source::Falloff;
+  switch (light.falloff) {
+    case Falloff::None:
+      return hn::Set(df, 1.0f);
+    case Falloff::Constant:
+      return hn::Set(df, light.factorF);
+    case Falloff::Quadratic: {
+      const VF linearTerm =
+          light.linearF == 0.0f ? hn::Zero(df) : hn::Set(df, light.linearF) * distance;
+      const VF quadraticTerm = light.quadraticF == 0.0f
+                                   ? hn::Zero(df)
+                                   : hn::Set(df, light.quadraticF) * distance * distance;
+      const VF denominator = hn::Set(df, light.constantF) + linearTerm + quadraticTerm;
+      return hn::Set(df, 1.0f) /
+             hn::Max(denominator, hn::Set(df, static_cast<float>(1.0 / kMaxAttenuation)));
+    }
+    case Falloff::Distance: {
+      const VF reach = hn::Set(df, light.distanceF);
+      return hn::IfThenElse(distance <= reach, hn::Set(df, 1.0f), reach / distance);
+    }
+  }
+  return hn::Set(df, 1.0f);
+}
+
+HWY_INLINE VF diffuseOfF(DF df, const BatchMaterial& material, VF cosine) {
+  const VF lit = hn::Min(hn::Max(cosine, hn::Zero(df)), hn::Set(df, 1.0f));
+  if (!material.lerp) return lit;
+  return hn::Set(df, material.lerpAmbientF) + hn::Set(df, material.lerpSpanF) * lit;
+}
+
+// A double mask as a float one of the same lanes (Highway 1.0 has no mask demotion).
+HWY_INLINE MF floatMask(D d, DF df, M m) {
+  return hn::DemoteTo(df, hn::IfThenElseZero(m, hn::Set(d, 1.0))) > hn::Zero(df);
+}
+
+// The float bound of a group of lanes (the margin above); NaN where the double bound takes it.
+HWY_INLINE VF boundLanesF(D d, DF df, const BatchLighting& lighting, const BatchMaterial& material,
+                          const V center[3], V nx, V ny, V nz, VF radius, VF sine,
+                          const VF surface[3]) {
+  const V zeroD = hn::Zero(d);
+  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
+  M boundedD = hn::Not(hn::And(hn::And(nx == zeroD, ny == zeroD), nz == zeroD));
+  // The side seen, in double as the double bound takes it.
+  V vx = hn::Set(d, lighting.viewer.x), vy = hn::Set(d, lighting.viewer.y),
+    vz = hn::Set(d, lighting.viewer.z);
+  if (!lighting.parallel) {
+    vx = hn::Set(d, lighting.eye.x) - center[0], vy = hn::Set(d, lighting.eye.y) - center[1],
+    vz = hn::Set(d, lighting.eye.z) - center[2];
+    const V squared = vx * vx + vy * vy + vz * vz;
+    boundedD =
+        hn::And(boundedD, hn::And(squared > hn::Set(d, 1e-300), squared < hn::Set(d, 1e300)));
+  }
+  if (lighting.twoSided) {
+    const M back = nx * vx + ny * vy + nz * vz < zeroD;
+    nx = hn::IfThenElse(back, hn::Neg(nx), nx);
+    ny = hn::IfThenElse(back, hn::Neg(ny), ny);
+    nz = hn::IfThenElse(back, hn::Neg(nz), nz);
+  }
+  const VF fnx = hn::DemoteTo(df, nx), fny = hn::DemoteTo(df, ny), fnz = hn::DemoteTo(df, nz);
+  MF bounded = hn::And(floatMask(d, df, boundedD), radius <= hn::Set(df, 0x1p50f));
+  const AnglesF normalAngle = ofSineF(df, sine);
+
+  VF sum[3] = {zero, zero, zero}, reach[3] = {zero, zero, zero};
+  for (const BatchLighting::Source& light : lighting.lights) {
+    VF lx = hn::Set(df, light.directionF[0]), ly = hn::Set(df, light.directionF[1]),
+       lz = hn::Set(df, light.directionF[2]);
+    AnglesF lightAngle{one, zero};
+    VF factorLo = one, factorFlat = one, factorHi = one;
+    if (!light.directional) {
+      const VF ox = hn::DemoteTo(df, hn::Set(d, light.position.x) - center[0]),
+               oy = hn::DemoteTo(df, hn::Set(d, light.position.y) - center[1]),
+               oz = hn::DemoteTo(df, hn::Set(d, light.position.z) - center[2]);
+      const VF squared = ox * ox + oy * oy + oz * oz;
+      bounded = hn::And(
+          bounded, hn::And(squared >= hn::Set(df, 0x1p-100f), squared <= hn::Set(df, 0x1p100f)));
+      const VF distance = hn::Sqrt(squared);
+      const VF inverse = one / distance;
+      lx = ox * inverse, ly = oy * inverse, lz = oz * inverse;
+      lightAngle = ofSineF(df, radius * inverse * hn::Set(df, 1.0f + 0x1p-21f));
+      const VF near = hn::Max(zero, distance * hn::Set(df, 1.0f - 0x1p-20f) - radius);
+      const VF far = (distance + radius) * hn::Set(df, 1.0f + 0x1p-20f);
+      factorLo = attenuationF(df, light, far);
+      factorFlat = attenuationF(df, light, distance);
+      factorHi = attenuationF(df, light, near);
+    }
+    const VF cosine = fnx * lx + fny * ly + fnz * lz;
+    const VF crossX = fny * lz - fnz * ly, crossY = fnz * lx - fnx * lz,
+             crossZ = fnx * ly - fny * lx;
+    const AnglesF theta{cosine, hn::Sqrt(crossX * crossX + crossY * crossY + crossZ * crossZ)};
+    const auto lit = cosineRange(df, theta, add(df, normalAngle, lightAngle));
+    const VF diffuseLo = diffuseOfF(df, material, lit.lo),
+             diffuseHi = diffuseOfF(df, material, lit.hi);
+    const VF low = hn::Min(diffuseLo, diffuseHi), flat = diffuseOfF(df, material, cosine),
+             high = hn::Max(diffuseLo, diffuseHi);
+    for (int c = 0; c < 3; ++c) {
+      const VF r = hn::Set(df, light.radianceF[c]);
+      const VF eLo = r * factorLo, eFlat = r * factorFlat, eHi = r * factorHi;
+      const VF hi = eHi * high, f = eFlat * flat, lo = eLo * low;
+      sum[c] = sum[c] + hn::Max(hn::Max(hi - f, f - lo), zero);
+      reach[c] = reach[c] + eHi;
+    }
+  }
+  const VF kd = hn::Set(df, material.diffuseUp), kappa = hn::Set(df, material.kappa);
+  VF largest = zero;
+  for (int c = 0; c < 3; ++c) {
+    const VF total = hn::Min(kd * surface[c] * (sum[c] + kappa * reach[c]), one);
+    largest = c == 0 ? total : hn::Max(largest, total);
+  }
+  const VF full = hn::Set(df, 255.0f);
+  const VF bound = hn::IfThenElse(hn::IsFinite(largest), full * largest, full);
+  return hn::IfThenElse(bounded, bound, hn::NaN(df));
+}
+
+// The shade phase's columns (ShadeBatch.h) and the centers its lanes divided out, surfaces
+// capped to [0, kMaxRadiance], bounds in float lanes (boundLanesF) and as fixed point.
 void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& material,
                        const ShadeBatch& batch, const ShadeBatchCenters& centers,
                        const float* radius, const float* sine, std::size_t count, float* bounds,
                        EstimateBound* fixed) {
   const D d;
-  const hn::Rebind<float, D> df;
-  const hn::Rebind<std::uint32_t, D> du;
+  const DF df;
   const hn::Rebind<std::int32_t, D> di;
   const hn::Rebind<EstimateBound, D> dq;
   for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
-    Lanes in;
+    V center[3];
+    VF surface[3];
     for (int k = 0; k < 3; ++k) {
-      in.center[k] = hn::Load(d, centers.xyz[k] + lane);
-      in.normal[k] = hn::Load(d, batch.normal[k] + lane);
-      in.surface[k] = hn::Min(hn::PromoteTo(d, hn::LoadU(df, batch.color[k] + lane)) + hn::Zero(d),
-                              hn::Set(d, kMaxRadiance));
+      center[k] = hn::Load(d, centers.xyz[k] + lane);
+      surface[k] = hn::Min(hn::Max(hn::LoadU(df, batch.color[k] + lane), hn::Zero(df)),
+                           hn::Set(df, static_cast<float>(kMaxRadiance)));
     }
-    in.radius = hn::PromoteTo(d, hn::LoadU(df, radius + lane));
-    in.sine = hn::PromoteTo(d, hn::LoadU(df, sine + lane));
-    const V bound = boundLanes(d, lighting, material, in);
-    const auto nearest = hn::DemoteTo(df, bound);
-    // Masks do not change lane width here: the comparison carried over as 1 or 0.
-    const V belowD = hn::IfThenElseZero(hn::PromoteTo(d, nearest) < bound, hn::Set(d, 1.0));
-    const auto below = hn::RebindMask(du, hn::DemoteTo(df, belowD) > hn::Zero(df));
-    const auto bits = hn::BitCast(du, nearest);
-    const auto up = hn::BitCast(df, hn::IfThenElse(below, bits + hn::Set(du, 1u), bits));
+    const VF up =
+        boundLanesF(d, df, lighting, material, center, hn::Load(d, batch.normal[0] + lane),
+                    hn::Load(d, batch.normal[1] + lane), hn::Load(d, batch.normal[2] + lane),
+                    hn::LoadU(df, radius + lane), hn::LoadU(df, sine + lane), surface);
     hn::StoreU(up, df, bounds + lane);  // bounds are ≥ 0
     // fixedBoundOf: ⌈min(b, 255)·kEstimateUnit⌉ + 1, NaN as 255 (exact: a power-of-two
     // scaling, an integer below 2^24).
@@ -263,6 +440,25 @@ void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& mater
                        EstimateBound* fixed) {
   HWY_DYNAMIC_DISPATCH(ShadeColumnsLanes)
   (lighting, material, batch, centers, radius, sine, batch.count, bounds, fixed);
+}
+
+float boundOneColumn(const BatchLighting& lighting, const BatchMaterial& material,
+                     const glm::dvec3& center, const glm::dvec3& normal, const Color& surface,
+                     float radius, float sine) {
+  ShadeBatch batch;
+  ShadeBatchCenters centers;
+  alignas(64) float radii[kShadeBatchSize] = {radius};
+  alignas(64) float sines[kShadeBatchSize] = {sine};
+  for (int k = 0; k < 3; ++k) {
+    centers.xyz[k][0] = center[k];
+    batch.normal[k][0] = normal[k];
+    batch.color[k][0] = surface[k];
+  }
+  batch.count = 1;
+  alignas(64) float bounds[kShadeBatchSize];
+  alignas(64) EstimateBound fixed[kShadeBatchSize];
+  boundShadeColumns(lighting, material, batch, centers, radii, sines, bounds, fixed);
+  return bounds[0];
 }
 
 ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* mesh,
@@ -306,34 +502,64 @@ void ShadeBoundCollector::bound(const ShadeBatch& batch) {
 }
 
 namespace {
-void setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
+// Whether a coefficient is one the float lanes take: 0, or in [2^-60, 2^20] (their margin
+// assumes normal floats and no overflow of a2·d², FlatErrorBoundBatch.cpp's comment).
+bool inFloatRange(double coefficient) {
+  return coefficient == 0.0 || (coefficient >= 0x1p-60 && coefficient <= 0x1p20);
+}
+
+// Sets the falloff; false when the float lanes do not take it.
+bool setFalloff(BatchLighting::Source& source, const Attenuation& attenuation) {
   using Falloff = BatchLighting::Source::Falloff;
-  std::visit(Overloaded{
-                 [&](const NoAttenuation&) { source.falloff = Falloff::None; },
-                 [&](const QuadraticAttenuation& q) {
-                   if (q.linear == 0.0 && q.quadratic == 0.0) {  // distances here are ≥ 0
-                     source.falloff = Falloff::Constant;
-                     source.factor = attenuationFactor(q, 0.0);
-                     return;
-                   }
-                   source.falloff = Falloff::Quadratic;
-                   source.constant = q.constant;
-                   source.linear = q.linear;
-                   source.quadratic = q.quadratic;
-                 },
-                 [&](const FalloffDistanceAttenuation& f) {
-                   source.falloff = Falloff::Distance;
-                   source.distance = f.distance;
-                 },
-             },
-             attenuation);
+  return std::visit(Overloaded{
+                        [&](const NoAttenuation&) {
+                          source.falloff = Falloff::None;
+                          return true;
+                        },
+                        [&](const QuadraticAttenuation& q) {
+                          if (q.linear == 0.0 && q.quadratic == 0.0) {  // distances here are ≥ 0
+                            source.falloff = Falloff::Constant;
+                            source.factor = attenuationFactor(q, 0.0);
+                            source.factorF = static_cast<float>(source.factor);
+                            return true;
+                          }
+                          source.falloff = Falloff::Quadratic;
+                          source.constant = q.constant;
+                          source.linear = q.linear;
+                          source.quadratic = q.quadratic;
+                          source.constantF = static_cast<float>(q.constant);
+                          source.linearF = static_cast<float>(q.linear);
+                          source.quadraticF = static_cast<float>(q.quadratic);
+                          return inFloatRange(q.constant) && inFloatRange(q.linear) &&
+                                 inFloatRange(q.quadratic);
+                        },
+                        [&](const FalloffDistanceAttenuation& f) {
+                          source.falloff = Falloff::Distance;
+                          source.distance = f.distance;
+                          source.distanceF = static_cast<float>(f.distance);
+                          return f.distance >= 0x1p-60 && f.distance <= 0x1p60;
+                        },
+                    },
+                    attenuation);
 }
 }  // namespace
 
 std::optional<BatchMaterial> batchMaterial(const PreparedMaterial& material) {
   if (material.specular > 0.0) return std::nullopt;
-  return BatchMaterial{material.diffuse, material.material.diffuseModel != DiffuseModel::Lambert,
-                       material.lerpAmbient, material.lerpFull};
+  BatchMaterial batch{material.diffuse, material.material.diffuseModel != DiffuseModel::Lambert,
+                      material.lerpAmbient, material.lerpFull};
+  // The float lanes' margin (FlatErrorBoundBatch.cpp) assumes Kd ≥ 0 and diffuse values ≥ 0.
+  if (!(batch.diffuse >= 0.0) || !(batch.diffuse <= kMaxRadiance)) return std::nullopt;
+  if (batch.lerp && !(batch.lerpAmbient >= 0.0 && batch.lerpFull >= 0.0)) return std::nullopt;
+  batch.diffuseUp = roundedUp(roundedUp(batch.diffuse) * (1.0 + 0x1p-20));
+  batch.lerpAmbientF = static_cast<float>(batch.lerpAmbient);
+  batch.lerpSpanF = static_cast<float>(batch.lerpFull - batch.lerpAmbient);
+  const double reach = batch.lerp ? std::max({1.0, batch.lerpAmbient, batch.lerpFull,
+                                              std::abs(batch.lerpFull - batch.lerpAmbient)})
+                                  : 1.0;
+  if (!(reach <= 0x1p40)) return std::nullopt;
+  batch.kappa = roundedUp(0x1p-16 * reach);
+  return batch;
 }
 
 std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
@@ -350,12 +576,16 @@ std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera&
       source.directional = true;
       source.position = -glm::normalize(directional->direction);
       source.radiance = boundRadianceOf(directional->color, directional->intensity);
+      for (int k = 0; k < 3; ++k)
+        source.directionF[k] = static_cast<float>(source.position[k]);
     } else {
       const PointLight& point = std::get<PointLight>(light);
       source.position = point.position;
       source.radiance = boundRadianceOf(point.color, point.intensity);
-      setFalloff(source, point.attenuation);
+      if (!setFalloff(source, point.attenuation)) return std::nullopt;
     }
+    for (int k = 0; k < 3; ++k)
+      source.radianceF[k] = static_cast<float>(source.radiance[k]);
     lighting.lights.push_back(source);
   }
   return lighting;

@@ -3,12 +3,15 @@
 // FlatErrorBound::bound for many polygons at once, in SIMD lanes (Google Highway, the
 // instruction set chosen at run time), for the common case a frame of the flat render with
 // the estimate meets: directional and point lights (no spot cone), a material without
-// specular, one color per polygon. It is the same double-precision arithmetic in the same
-// order as FlatErrorBound.cpp (no fused multiply-add: the file is compiled with
-// -ffp-contract=off), so every lane gives the bytes the scalar bound gives, on any
-// instruction set (tested). Lanes the scalar bound treats apart (an eye or light at or near
-// the polygon's center, or astronomically far) come out NaN, for the caller to bound one by
-// one.
+// specular, one color per polygon. boundBatch is the same double-precision arithmetic in the
+// same order as FlatErrorBound.cpp (no fused multiply-add: the file is compiled with
+// -ffp-contract=off), so every lane gives the bytes the scalar bound gives (tested).
+// boundShadeColumns, the one the shade phase takes, is that arithmetic in float, with a
+// proven margin that keeps it at least the double bound (FlatErrorBoundBatch.cpp); its bytes
+// are the same on every instruction set, and the separate passes take it too
+// (boundOneColumn). Lanes the scalar bound treats apart (an eye or light at or near the
+// polygon's center, or astronomically far) come out NaN, for the caller to bound one by one
+// with the double bound.
 
 #include <algorithm>
 #include <bit>
@@ -44,6 +47,11 @@ struct BatchLighting {
     double factor = 1.0;                                   // Constant
     double constant = 0.0, linear = 0.0, quadratic = 0.0;  // Quadratic
     double distance = 0.0;                                 // Distance
+    // The same in float, for the float lanes of boundShadeColumns (nearest: their rounding
+    // is in the margin, FlatErrorBoundBatch.cpp).
+    float directionF[3] = {};  // a directional light's position
+    float radianceF[3] = {};
+    float factorF = 1.0f, constantF = 0.0f, linearF = 0.0f, quadraticF = 0.0f, distanceF = 0.0f;
   };
   std::vector<Source> lights;
   glm::dvec3 eye{0.0}, viewer{0.0, 0.0, 1.0};  // viewer: toward it under parallel projection
@@ -55,6 +63,9 @@ struct BatchMaterial {
   double diffuse = 1.0;  // Kd
   bool lerp = false;     // DiffuseModel::Lerp, with its two ends
   double lerpAmbient = 0.0, lerpFull = 1.0;
+  // For the float lanes (FlatErrorBoundBatch.cpp): Kd rounded up with the final products'
+  // rounding folded in, the Lerp ends, and the margin per unit of light (kappa).
+  float diffuseUp = 1.0f, lerpAmbientF = 0.0f, lerpSpanF = 1.0f, kappa = 0.0f;
 };
 
 // The lighting of the batch, or nothing when the frame is one the batch leaves to the scalar
@@ -95,12 +106,20 @@ inline float roundedUp(double value) {
 
 // The bounds of a shade batch's polygons (ShadeBatch.h: normals as lit, surface colors; their
 // centers as the shade's lanes divided them out), each with its terms (radius and sine, per
-// lane), rounded up to float: bounds[lane] for lanes [0, batch.count), NaN where the batch
-// leaves it to the scalar bound. The same bytes as roundedUp(boundBatch). And each as the
-// per-pixel estimate reads it, fixed[lane] = fixedBoundOf(bounds[lane]) (EstimateRows.h).
+// lane): bounds[lane] for lanes [0, batch.count), NaN where the batch leaves it to the scalar
+// bound. Taken in float lanes with a proven margin (FlatErrorBoundBatch.cpp): at least
+// roundedUp(boundBatch), the double bound, and above it by about 2^-16 of the light's reach
+// (tested); the same bytes on every instruction set. And each as the per-pixel estimate reads
+// it, fixed[lane] = fixedBoundOf(bounds[lane]) (EstimateRows.h).
 void boundShadeColumns(const BatchLighting& lighting, const BatchMaterial& material,
                        const ShadeBatch& batch, const ShadeBatchCenters& centers,
                        const float* radius, const float* sine, float* bounds, EstimateBound* fixed);
+
+// boundShadeColumns for one polygon (the separate passes' bound of a polygon the batches
+// take, so that they give the fused estimate's bytes): NaN where the batch leaves it.
+float boundOneColumn(const BatchLighting& lighting, const BatchMaterial& material,
+                     const glm::dvec3& center, const glm::dvec3& normal, const Color& surface,
+                     float radius, float sine);
 
 // The bounds of one shade task's polygons of one mesh (the fused estimate, EstimateHook.h),
 // taken batch by batch as the shade phase lights them, into hook.bounds. Polygons the batch

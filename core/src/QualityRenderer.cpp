@@ -432,7 +432,14 @@ struct QualityRenderer::Frame {
   float boundOne(std::size_t mesh, std::size_t polygon, const glm::dvec3* center,
                  const glm::dvec3& normal) const {
     const detail::BoundTerms& t = terms[mesh].polygons[polygon];
-    if (t.radius < 0.0f) return 255.0f;  // no normal: the largest bound
+    if (t.radius < 0.0f) return 255.0f;           // no normal: the largest bound
+    if (batchLighting && batchMaterials[mesh]) {  // the shade's float lanes, for their bytes
+      const glm::dvec3 at = center ? *center : withPlacement(mesh, polygon).center;
+      const float lanes =
+          detail::boundOneColumn(*batchLighting, *batchMaterials[mesh], at, normal,
+                                 polygonColor(mesh, polygon), t.radius, t.sinNormalSpread);
+      if (!std::isnan(lanes)) return lanes;
+    }
     PolygonShape shape;
     shape.normal = normal;
     shape.radius = t.radius;
@@ -450,6 +457,14 @@ struct QualityRenderer::Frame {
       });
     }
     return roundedUp(boundOf(mesh, polygon, shape));
+  }
+
+  Placement withPlacement(std::size_t mesh, std::size_t polygon) const {
+    Placement placement;
+    detail::withTypedMesh(scene.meshes[mesh].mesh, [&](auto points, auto polygons) {
+      placement = placementOf(points, polygons, polygon);
+    });
+    return placement;
   }
 
   // The normal a polygon is lit by, turned toward the viewer when its back is seen.

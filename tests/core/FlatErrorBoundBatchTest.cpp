@@ -4,6 +4,7 @@
 // bound treats apart are NaN; the pass over the samples (EstimateRows.h) is its per-sample
 // definition to the last bit; a flat render's estimate is the same bytes on every one.
 
+#include <bit>
 #include <cmath>
 #include <random>
 #include <string>
@@ -162,6 +163,116 @@ TEST_F(BoundBatches, EveryLaneIsTheScalarBoundOnEveryInstructionSet) {
       }
       EXPECT_GT(compared, 900u) << c.name << ", " << target.name;
       EXPECT_GT(apart, 0u) << c.name << ", " << target.name;  // the eye at a center
+    }
+  }
+}
+
+// The shade's float lanes (boundShadeColumns: the bound in float with a proven margin,
+// FlatErrorBoundBatch.cpp) against the double bound on extreme inputs: polygons from 1e-6 to
+// 1e3 across, far from the origin (1e7), lights on the surface and near it, grazing and
+// back-facing normals, spreads from none to nearly 90°. Every lane the lanes take is at least
+// roundedUp(double bound) and within its margin (2^-16 of the light's reach, plus the
+// products' rounding) above it; every instruction set gives the same bytes; and
+// boundOneColumn (the separate passes' bound) is the lanes' value.
+TEST_F(BoundBatches, FloatLanesBoundTheDoubleBoundOnExtremeInputs) {
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  std::mt19937 random(19);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), positive(0.0, 1.0);
+  const auto logUniform = [&](double lo, double hi) {
+    return std::exp(std::log(lo) + positive(random) * (std::log(hi) - std::log(lo)));
+  };
+  for (const Case& c : cases()) {
+    for (const double offset : {0.0, 1e7}) {  // near the origin, and far from it
+      const glm::dvec3 shift(offset, -0.5 * offset, 0.25 * offset);
+      LightSet lights = c.lights;
+      for (Light& light : lights.lights) {
+        if (auto* point = std::get_if<PointLight>(&light)) point->position += shift;
+      }
+      Camera camera = c.camera;
+      camera.position += shift;
+      camera.focalPoint += shift;
+      const PreparedMaterial material(c.material);
+      const FlatErrorBound scalar(lights, camera, c.twoSided);
+      const auto lighting = detail::batchLighting(lights, camera, c.twoSided);
+      const auto terms = detail::batchMaterial(material);
+      ASSERT_TRUE(lighting && terms) << c.name;
+      std::vector<glm::dvec3> lightPoints;
+      for (const Light& light : lights.lights) {
+        if (const auto* point = std::get_if<PointLight>(&light))
+          lightPoints.push_back(point->position);
+      }
+      std::vector<float> first;  // the first target's bounds
+      for (std::size_t t = 0; t < targets.size(); ++t) {
+        detail::useSimdTarget(targets[t].bits);
+        std::mt19937 polygons(23);  // the same polygons on every target
+        random = polygons;
+        std::size_t compared = 0, index = 0;
+        for (int round = 0; round < 64; ++round) {
+          detail::ShadeBatch batch;
+          detail::ShadeBatchCenters centers;
+          alignas(64) float radius[detail::kShadeBatchSize], sine[detail::kShadeBatchSize];
+          std::vector<PolygonShape> shapes;
+          std::vector<Color> colors;
+          for (std::size_t lane = 0; lane < detail::kShadeBatchSize; ++lane) {
+            PolygonShape shape;
+            const double size = logUniform(1e-6, 1e3);
+            shape.center = shift + glm::dvec3(2 * unit(random), 2 * unit(random), 2 * unit(random));
+            if (!lightPoints.empty() && lane % 4 == 1) {  // a light on or near the surface
+              const glm::dvec3 light = lightPoints[lane % lightPoints.size()];
+              shape.center = light + size * logUniform(1e-3, 4.0) *
+                                         glm::dvec3(unit(random), unit(random), unit(random));
+            }
+            glm::dvec3 normal =
+                glm::normalize(glm::dvec3(unit(random), unit(random), unit(random)));
+            if (lane % 4 == 2 && !lightPoints.empty()) {  // grazing: the light in its plane
+              const glm::dvec3 toLight = glm::normalize(lightPoints[0] - shape.center);
+              normal = glm::normalize(glm::cross(toLight, normal));
+            }
+            shape.normal = glm::dvec3(glm::vec3(normal));
+            shape.radius = static_cast<float>(size);
+            const float spread = lane % 8 == 3 ? 0.0f
+                                 : lane % 8 == 5
+                                     ? static_cast<float>(1.0 - logUniform(1e-7, 1e-2))
+                                     : static_cast<float>(std::pow(positive(random), 3));
+            shape.cosNormalSpread = spread >= 1.0f ? 0.0 : std::sqrt(1.0 - double(spread) * spread);
+            const Color color(positive(random), positive(random), positive(random));
+            for (int k = 0; k < 3; ++k) {
+              centers.xyz[k][lane] = shape.center[k];
+              batch.normal[k][lane] = shape.normal[k];
+              batch.color[k][lane] = color[k];
+            }
+            radius[lane] = shape.radius;
+            sine[lane] = spread;
+            shapes.push_back(shape);
+            colors.push_back(color);
+          }
+          batch.count = detail::kShadeBatchSize;
+          alignas(64) float bounds[detail::kShadeBatchSize];
+          alignas(64) detail::EstimateBound fixed[detail::kShadeBatchSize];
+          detail::boundShadeColumns(*lighting, *terms, batch, centers, radius, sine, bounds, fixed);
+          for (std::size_t lane = 0; lane < detail::kShadeBatchSize; ++lane, ++index) {
+            if (t == 0) {
+              first.push_back(bounds[lane]);
+            } else {
+              ASSERT_EQ(std::bit_cast<std::uint32_t>(bounds[lane]),
+                        std::bit_cast<std::uint32_t>(first[index]))
+                  << c.name << ", " << targets[t].name << ", polygon " << index;
+            }
+            if (std::isnan(bounds[lane])) continue;  // the double bound's
+            const double exact = scalar.bound(shapes[lane], material, colors[lane]);
+            ASSERT_GE(bounds[lane], detail::roundedUp(exact))
+                << c.name << ", offset " << offset << ", polygon " << index;
+            // Above by the margin at most: 2^-16 of Kd·Cd·Σ E_hi (≤ 8 here) in 8-bit units.
+            EXPECT_LE(bounds[lane], exact * (1.0 + 0x1p-18) + 255.0 * 8.0 * 0x1p-15)
+                << c.name << ", offset " << offset << ", polygon " << index;
+            EXPECT_EQ(bounds[lane], detail::boundOneColumn(*lighting, *terms, shapes[lane].center,
+                                                           shapes[lane].normal, colors[lane],
+                                                           radius[lane], sine[lane]));
+            ++compared;
+          }
+        }
+        EXPECT_GT(compared, 2000u) << c.name << ", " << targets[t].name;
+      }
     }
   }
 }
