@@ -257,7 +257,9 @@ void BoundBatchLanes(const BatchLighting& lighting, const BatchMaterial& materia
 // rounding, below 2^-50), and Kd is rounded up by 2^-20 = 16u, covering the ≤ 5 roundings of
 // the products and sums after (all terms nonnegative: surface colors are taken ≥ 0). A
 // light's coefficients outside [2^-60, 2^20] (batchLighting) or a radius above 2^50 leave
-// the lanes (far, d² overflows float): the double bound takes them. The randomized test
+// the lanes (far, d² overflows float): the double bound takes them. The lights' deviations
+// are summed in float: n lights add ≤ (n − 1)u of the sum, within the slack for up to 32
+// lights (batchLighting leaves more to the scalar bound). The randomized test
 // (FlatErrorBoundBatchTest.cpp) checks float ≥ roundedUp(double) on extreme inputs.
 
 // The angle asin(s) of a sine s ≥ 0, straight for s ≥ 1: its cosine √((1 − s)(1 + s)),
@@ -564,6 +566,11 @@ std::optional<BatchMaterial> batchMaterial(const PreparedMaterial& material) {
 
 std::optional<BatchLighting> batchLighting(const LightSet& lights, const Camera& camera,
                                            bool twoSidedLighting) {
+  // The float lanes' margin is per light; summing n lights' deviations in float adds up to
+  // (n − 1)u of the sum, which the slack above (56u a light) covers to ~57 lights. More go to
+  // the scalar bound (the double lanes' bytes all the same).
+  constexpr std::size_t kMaxBatchLights = 32;
+  if (lights.lights.size() > kMaxBatchLights) return std::nullopt;
   BatchLighting lighting;
   lighting.eye = camera.position;
   lighting.viewer = -glm::normalize(camera.focalPoint - camera.position);

@@ -277,11 +277,18 @@ TEST_F(BoundBatches, FloatLanesBoundTheDoubleBoundOnExtremeInputs) {
   }
 }
 
-TEST_F(BoundBatches, NotTakenForSpotLightsOrSpecularMaterials) {
+TEST_F(BoundBatches, NotTakenForSpotLightsSpecularMaterialsOrManyLights) {
   LightSet spot;
   spot.lights.push_back(SpotLight{});
   EXPECT_FALSE(detail::batchLighting(spot, Camera{}, true));
   EXPECT_TRUE(detail::batchLighting(LightSet{}, Camera{}, true));
+  // The float lanes' margin covers the sum of 32 lights' deviations; more are the scalar
+  // bound's.
+  LightSet many;
+  many.lights.assign(32, DirectionalLight{});
+  EXPECT_TRUE(detail::batchLighting(many, Camera{}, true));
+  many.lights.push_back(DirectionalLight{});
+  EXPECT_FALSE(detail::batchLighting(many, Camera{}, true));
   Material shiny;
   shiny.specular = 0.5;
   EXPECT_FALSE(detail::batchMaterial(PreparedMaterial(shiny)));

@@ -185,7 +185,8 @@ struct RenderStats {
   std::size_t trianglesClipped = 0;    ///< triangles that went through the clipper
   std::size_t trianglesHidden = 0;     ///< not painted: behind the tile (Rule::HiddenGeometry)
   std::size_t fragmentsWritten = 0;    ///< pixel writes, counting overdraw
-  std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end
+  std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end (samples of a
+                                       ///< QualityRenderer's grid when it supersamples)
   std::size_t closedMeshesSkippingBackFaces = 0;  ///< closed meshes wholly in front of near
   bool aborted = false;                           ///< the progress callback asked to stop
 
