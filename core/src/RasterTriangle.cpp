@@ -473,9 +473,11 @@ float floatBelow(double key) {
 }
 
 // Up to this many samples in its box a triangle that may be a back face is tested by
-// losesEverywhere before it is set up (reading its box's keys costs less than the set-up it
-// may save; larger ones meet the coarse depth, when it is on).
-constexpr std::size_t kSamplesForLosesEverywhere = 16;
+// losesEverywhere before it is set up: reading its box's keys costs less than the set-up and
+// the per-sample depth test it may save (a bound of 16 left the back faces of a 20k sphere,
+// boxes of more samples, to the walk: core-frame-issue11.md §14). Larger ones meet the coarse
+// depth, when it is on.
+constexpr std::size_t kSamplesForLosesEverywhere = 256;
 
 // A box of two or more samples, walked row by row (BoxRaster).
 template <DepthMode kMode, bool kRejectHidden>
