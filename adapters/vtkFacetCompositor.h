@@ -137,6 +137,8 @@ public:
     vtkFacetMessages& messages,
     vtkFloatArray* estimate = nullptr);
 
+private:
+  friend class vtkFacetIceT; // its composites add to a Cost
   /// What one composite cost this rank.
   struct Cost
   {
@@ -148,7 +150,6 @@ public:
     std::string Strategy;         // IceT's names: "(Sequential, Radix-k)"
   };
 
-private:
   bool Gather(bool rendered, vtkFacetMessages& messages);
   bool Receives() const { return this->Rank == this->Current.Target || this->Current.ToAllRanks; }
   void KeepOwnPieces(vtkFacetImageRenderer& image,
