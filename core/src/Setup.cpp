@@ -86,18 +86,10 @@ class PolygonSetup {
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex) {}
 
-  // Puts the polygon in a batch's lane, to be set up there when it is a triangle with every
-  // vertex inside (SetupBatch.h).
-  void load(std::size_t polygon, TriangleBatch& batch, int lane) const {
-    batch.triangle[lane] = polygons_.size(polygon) == 3;
-    if (!batch.triangle[lane]) return;
-    for (int j = 0; j < 3; ++j)
-      batch.v[j][lane] = meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
-  }
-
-  // load() for `count` consecutive polygons from `first`, into lanes from `lane`: each offset
-  // read once (the z-buffer's draw order is the mesh's).
-  void loadConsecutive(std::size_t first, int count, TriangleBatch& batch, int lane) const {
+  // Puts `count` consecutive polygons from `first` in a batch's lanes from `lane`, each to be
+  // set up there when it is a triangle with every vertex inside (SetupBatch.h); each offset
+  // is read once.
+  void load(std::size_t first, int count, TriangleBatch& batch, int lane) const {
     const auto* offsets = polygons_.offsets + first;
     auto begin = static_cast<std::size_t>(offsets[0]);
     for (int k = 0; k < count; ++k) {
@@ -413,53 +405,53 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
-  const auto visit = [&](std::size_t polygon) {
-    if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
-      ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
-    } else if (!batched) {
-      setup.run(polygon);
-    } else {
-      setup.load(polygon, batch, lanes);
-      lanePolygon[lanes] = polygon;
-      if (++lanes == kBatchSize) settleBatch();
+  // `count` polygons from `polygon` on, all in view.
+  const auto setUp = [&](std::size_t polygon, std::size_t count) {
+    if (!batched) {
+      for (std::size_t k = 0; k < count; ++k)
+        setup.run(polygon + k);
+      return;
+    }
+    while (count > 0) {
+      const int take = static_cast<int>(
+          std::min<std::size_t>(static_cast<std::size_t>(kBatchSize - lanes), count));
+      setup.load(polygon, take, batch, lanes);
+      for (int k = 0; k < take; ++k)
+        lanePolygon[lanes + k] = polygon + static_cast<std::size_t>(k);
+      polygon += static_cast<std::size_t>(take);
+      count -= static_cast<std::size_t>(take);
+      lanes += take;
+      if (lanes == kBatchSize) settleBatch();
     }
   };
-  if (context.order.ids.empty() && batched) {
+  const auto inView = [&](std::size_t polygon) {
+    return !mesh.visibleBlocks || mesh.visibleBlocks[polygon >> kBlockBits];
+  };
+  if (context.order.ids.empty()) {
     // Draw positions are polygon ids: the run ends where the chunk or the mesh does, and
-    // visibility changes only from block to block; within a visible block the polygons fill
-    // the batch's lanes in order, each offset read once.
+    // visibility changes only from block to block (a third of the loop's instructions were
+    // per-polygon tests at 2M triangles); a visible block's polygons go to the batch's lanes
+    // in order, each offset read once.
     const std::size_t end = std::min(chunk.end, mesh.endPolygon()) - mesh.firstPolygon;
     std::size_t polygon = position - mesh.firstPolygon;
     while (polygon < end) {
       const std::size_t blockEnd = std::min(end, (polygon | (kPolygonsPerBlock - 1)) + 1);
-      if (mesh.visibleBlocks && !mesh.visibleBlocks[polygon >> kBlockBits]) {
+      if (inView(polygon))
+        setUp(polygon, blockEnd - polygon);
+      else
         chunk.counts.outside += blockEnd - polygon;  // outside the view (ViewCulling.h)
-        polygon = blockEnd;
-        continue;
-      }
-      while (polygon < blockEnd) {
-        const int take = static_cast<int>(std::min<std::size_t>(
-            static_cast<std::size_t>(kBatchSize - lanes), blockEnd - polygon));
-        setup.loadConsecutive(polygon, take, batch, lanes);
-        for (int k = 0; k < take; ++k)
-          lanePolygon[lanes + k] = polygon + static_cast<std::size_t>(k);
-        polygon += static_cast<std::size_t>(take);
-        lanes += take;
-        if (lanes == kBatchSize) settleBatch();
-      }
+      polygon = blockEnd;
     }
     position = polygon + mesh.firstPolygon;
-  } else if (context.order.ids.empty()) {
-    // Draw positions are polygon ids: the run ends where the chunk or the mesh does (a
-    // third of the loop's instructions were these tests, per polygon, at 2M triangles).
-    const std::size_t end = std::min(chunk.end, mesh.endPolygon());
-    for (; position < end; ++position)
-      visit(position - mesh.firstPolygon);
   } else {
     for (; position < chunk.end; ++position) {
       const std::size_t id = context.order.ids[position];
       if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
-      visit(id - mesh.firstPolygon);
+      const std::size_t polygon = id - mesh.firstPolygon;
+      if (inView(polygon))
+        setUp(polygon, 1);
+      else
+        ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
     }
   }
   if (lanes > 0) {
