@@ -34,15 +34,19 @@ HWY_INLINE std::uint32_t wordOf(Rgba8 color) {
   return word;
 }
 
-// What the routines keep in registers for their pixels.
-struct GroupConstants {
+// What colorGroup keeps in registers for its pixels.
+struct ColorConstants {
   const std::uint32_t* colors;  // per polygon id, Rgba8 as words
   hn::Vec<DU> background;
-  hn::Vec<D> depthOffset, depthScale;
+};
+
+// What depthGroup keeps in registers: windowDepth's offset and scale.
+struct DepthConstants {
+  hn::Vec<D> offset, scale;
 };
 
 // The colors of pixels [x, x + lanes) of a row.
-HWY_INLINE void colorGroup(const GroupConstants& k, const std::int32_t* ids, std::uint32_t* color) {
+HWY_INLINE void colorGroup(const ColorConstants& k, const std::int32_t* ids, std::uint32_t* color) {
   const DI di;
   const DU du;
   const hn::Vec<DI> id = hn::LoadU(di, ids);
@@ -56,7 +60,7 @@ HWY_INLINE void colorGroup(const GroupConstants& k, const std::int32_t* ids, std
 }
 
 // The window depths of pixels [x, x + lanes) of a row from their keys; 1 for the background.
-HWY_INLINE void depthGroup(const GroupConstants& k, const std::int32_t* ids, float* depth) {
+HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, float* depth) {
   const D d;
   const DI di;
   const DF df;
@@ -66,7 +70,7 @@ HWY_INLINE void depthGroup(const GroupConstants& k, const std::int32_t* ids, flo
     return;
   }
   // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
-  const hn::Vec<D> window = k.depthOffset + k.depthScale * hn::PromoteTo(d, hn::LoadU(df, depth));
+  const hn::Vec<D> window = k.offset + k.scale * hn::PromoteTo(d, hn::LoadU(df, depth));
   const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const hn::Vec<D> clamped =
       hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
@@ -77,8 +81,8 @@ HWY_INLINE void depthGroup(const GroupConstants& k, const std::int32_t* ids, flo
 
 void ResolveColors(const ResolveContext& context, const PixelBounds& pixels) {
   const std::size_t lanes = hn::Lanes(D());
-  const GroupConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
-                         hn::Set(DU(), wordOf(context.background)), hn::Zero(D()), hn::Zero(D())};
+  const ColorConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
+                         hn::Set(DU(), wordOf(context.background))};
   const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
   for (int y = pixels.y0; y <= pixels.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * context.width + pixels.x0;
@@ -96,7 +100,7 @@ void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
                    const PixelBounds& pixels, const FrameTransform& transform) {
   const D d;
   const std::size_t lanes = hn::Lanes(d);
-  const GroupConstants k{nullptr, hn::Zero(DU()), hn::Set(d, transform.depthFromKeyOffset()),
+  const DepthConstants k{hn::Set(d, transform.depthFromKeyOffset()),
                          hn::Set(d, transform.depthFromKeyScale())};
   const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
   for (int y = pixels.y0; y <= pixels.y1; ++y) {
