@@ -231,9 +231,10 @@ bench: build
 
 # Facet against VTK (MSAA off and default), raw llvmpipe (OSMesa), an Embree ray caster and
 # the memory-bound limit, in one run and one table (bench/peers.py). Configures again so
-# that CMake finds the peers' libraries just installed. Xvfb with 512 clients: the run holds
-# more X connections than Xvfb's default 256 allow by its second round ("bad X server
-# connection", 2026-11-23; which of its VTK objects keep them open is not found yet).
+# that CMake finds the peers' libraries just installed. Xvfb with 512 clients: two runs of
+# 2026-11-22 stopped in their second round with "bad X server connection"; the run does not
+# hold connections open (Xvfb's descriptors stay at 10-11 through three rounds, measured
+# 2026-11-23), so the cause is not known: the headroom costs nothing.
 bench-peers: deps
 	$(call install-missing,$(PEER_PACKAGES))
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
