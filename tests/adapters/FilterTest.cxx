@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -733,6 +734,30 @@ TEST(Output, ArraysExtentAndDeterminism)
     EXPECT_EQ(std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes), 0) << name;
   }
   EXPECT_NE(std::string(one->GetRenderPlan()).find("z-buffer"), std::string::npos);
+}
+
+//------------------------------------------------------------------------------
+// PrintSelf names the coloring settings (held by the coloring mapper) with their values,
+// between the property and the thread count.
+TEST(Output, PrintSelfShowsTheColoringSettingsInPlace)
+{
+  vtkNew<vtkFacetRenderFilter> filter;
+  filter->SelectColorArray("Elevation");
+  filter->SetScalarRange(2.0, 3.0);
+  filter->SetScalarModeToUseCellFieldData();
+  std::ostringstream printed;
+  filter->Print(printed);
+  const std::string text = printed.str();
+  const std::size_t property = text.find("Property: "),
+                    mode = text.find("ScalarMode: UseCellFieldData\n"),
+                    name = text.find("ArrayName: Elevation\n"),
+                    range = text.find("ScalarRange: (2, 3)\n"),
+                    threads = text.find("NumberOfThreads: 0\n");
+  ASSERT_NE(threads, std::string::npos) << text;
+  EXPECT_LT(property, mode) << text;
+  EXPECT_LT(mode, name) << text;
+  EXPECT_LT(name, range) << text;
+  EXPECT_LT(range, threads) << text;
 }
 
 //------------------------------------------------------------------------------
