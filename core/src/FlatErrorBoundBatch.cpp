@@ -417,6 +417,21 @@ void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& mater
   }
 }
 
+// Whether every lane of [0, count) has its bound from the float lanes: a normal (radius ≥ 0)
+// and a bound that is not NaN (ShadeBoundCollector::bound's fast path).
+bool AllFromLanes(const float* radius, const float* bounds, std::size_t count) {
+  const hn::ScalableTag<float> df;
+  const std::size_t lanes = hn::Lanes(df);
+  std::size_t lane = 0;
+  for (; lane + lanes <= count; lane += lanes) {
+    const auto r = hn::LoadU(df, radius + lane), b = hn::LoadU(df, bounds + lane);
+    if (!hn::AllTrue(df, hn::And(r >= hn::Zero(df), b == b))) return false;
+  }
+  for (; lane < count; ++lane)
+    if (!(radius[lane] >= 0.0f) || std::isnan(bounds[lane])) return false;
+  return true;
+}
+
 }  // namespace facet::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -430,6 +445,7 @@ namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
 HWY_EXPORT(ShadeColumnsLanes);
+HWY_EXPORT(AllFromLanes);
 
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count) {
@@ -481,6 +497,10 @@ ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* me
 void ShadeBoundCollector::bound(const ShadeBatch& batch) {
   if (material_) {
     boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_, fixed_);
+    if (allFromLanes(batch.count)) {
+      storeLanes(batch.count);
+      return;
+    }
   }
   for (std::size_t lane = 0; lane < batch.count; ++lane) {
     const std::size_t id = first_ + polygons_[lane];
@@ -500,6 +520,23 @@ void ShadeBoundCollector::bound(const ShadeBatch& batch) {
     }
     hook_->bounds[id] = out;
     hook_->fixedBounds[id] = fixed;
+  }
+}
+
+// Whether every lane's bound came out of the float lanes (AllFromLanes).
+bool ShadeBoundCollector::allFromLanes(std::size_t count) const {
+  return HWY_DYNAMIC_DISPATCH(AllFromLanes)(radius_, lanes_, count);
+}
+
+// The lanes' bounds stored by polygon id. The hook's arrays are read into locals first: a
+// store through them may alias this object's float arrays, and every lane would reload them.
+void ShadeBoundCollector::storeLanes(std::size_t count) {
+  float* const bounds = hook_->bounds + first_;
+  EstimateBound* const fixedBounds = hook_->fixedBounds + first_;
+  for (std::size_t lane = 0; lane < count; ++lane) {
+    const std::size_t polygon = polygons_[lane];
+    bounds[polygon] = lanes_[lane];
+    fixedBounds[polygon] = fixed_[lane];
   }
 }
 
