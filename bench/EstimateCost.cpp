@@ -4,7 +4,7 @@
 // renderers side by side, the estimate off and on, alternate frame by frame, so the load of
 // the moment weighs on both alike; CPU time of the process (CLOCK_PROCESS_CPUTIME_ID).
 //
-//   facet_estimate_cost [segments...] [--frames N] [--rounds R]
+//   facet_estimate_cost [segments...] [--frames N] [--rounds R] [--phases] [--only off|on]
 //
 // Per sphere (segments around; ~2·segments² triangles: 500 → 500k, 1000 → 2M) and round:
 // the median CPU of a frame off and on and the ratio, the estimate's own wall time outside the
@@ -12,6 +12,12 @@
 // here), and the first frame's CPU off and on, and its wall time on (on: the vertex normals
 // and the polygons' bound terms, found once per mesh version). bench/estimate-cost.md has the
 // figures.
+//
+// --phases: after each row, the median wall ms of each of the render's phases off and on, and
+// the QualityRenderer's own time around the render (QualityStats::totalSeconds less the
+// render's): where the estimate's CPU goes, phase by phase.
+// --only off|on: renders with that renderer alone (both still take the first frame), so that
+// callgrind or perf stat counts one side; the other side's columns then read 0.
 
 #include <algorithm>
 #include <chrono>
@@ -41,7 +47,42 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-void measure(int segments, int frames, int round) {
+enum class Side { Both, Off, On };
+
+// Per frame, the wall seconds of the render's phases and of the QualityRenderer around it.
+struct PhaseSeconds {
+  static constexpr int kCount = 7;
+  static constexpr const char* kNames[kCount] = {
+      "validate", "transform", "set-up", "raster", "shade+resolve", "render", "around render"};
+  std::vector<double> seconds[kCount];
+
+  void add(const QualityStats& s) {
+    const double now[kCount] = {s.render.validateSeconds,
+                                s.render.transformSeconds,
+                                s.render.setupSeconds,
+                                s.render.rasterSeconds,
+                                s.render.shadeSeconds,
+                                s.render.totalSeconds,
+                                s.totalSeconds - s.render.totalSeconds};
+    for (int i = 0; i < kCount; ++i)
+      seconds[i].push_back(now[i]);
+  }
+};
+
+double medianOrZero(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : median(values);
+}
+
+void printPhases(const PhaseSeconds& off, const PhaseSeconds& on) {
+  std::printf("\n| phase | off, wall ms | on | on − off |\n|---|---:|---:|---:|\n");
+  for (int i = 0; i < PhaseSeconds::kCount; ++i) {
+    const double a = 1e3 * medianOrZero(off.seconds[i]), b = 1e3 * medianOrZero(on.seconds[i]);
+    std::printf("| %s | %.2f | %.2f | %+.2f |\n", PhaseSeconds::kNames[i], a, b, b - a);
+  }
+  std::printf("\n");
+}
+
+void measure(int segments, int frames, int round, Side side, bool phases) {
   const Mesh sphere = testing::makeUvSphere(segments, segments + 2);
   Camera camera = testing::fitCamera(sphere);
   Scene scene;
@@ -74,22 +115,30 @@ void measure(int segments, int frames, int round) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
 
   std::vector<double> offSeconds, onSeconds, estimateSeconds;
+  PhaseSeconds offPhases, onPhases;
   for (int i = 0; i < frames; ++i) {
     bench::turnView(camera, scene, 0.5);  // the light stays at the eye
-    start = cpuSeconds();
-    plain.render(scene, {}, camera, plainImage, off);
-    offSeconds.push_back(cpuSeconds() - start);
-    start = cpuSeconds();
-    stats = estimating.render(scene, {}, camera, estimatingImage, on);
-    onSeconds.push_back(cpuSeconds() - start);
-    estimateSeconds.push_back(stats.estimateSeconds);
+    if (side != Side::On) {
+      start = cpuSeconds();
+      offPhases.add(plain.render(scene, {}, camera, plainImage, off));
+      offSeconds.push_back(cpuSeconds() - start);
+    }
+    if (side != Side::Off) {
+      start = cpuSeconds();
+      stats = estimating.render(scene, {}, camera, estimatingImage, on);
+      onSeconds.push_back(cpuSeconds() - start);
+      estimateSeconds.push_back(stats.estimateSeconds);
+      onPhases.add(stats);
+    }
   }
-  const double offCpu = median(offSeconds), onCpu = median(onSeconds);
+  const double offCpu = medianOrZero(offSeconds), onCpu = medianOrZero(onSeconds);
   std::printf(
       "| %d | %zu | %d | %.1f | %.1f | %+.1f %% | %.1f | %.3f | %.3f | %.3f | %.4f | %.3f |\n",
       segments, sphere.polygonCount(), round, 1e3 * offCpu, 1e3 * onCpu,
-      100.0 * (onCpu / offCpu - 1.0), 1e3 * median(estimateSeconds), firstOff, firstOn, firstOnWall,
-      stats.predictedRmse, stats.predictedMaxError);
+      side == Side::Both ? 100.0 * (onCpu / offCpu - 1.0) : 0.0,
+      1e3 * medianOrZero(estimateSeconds), firstOff, firstOn, firstOnWall, stats.predictedRmse,
+      stats.predictedMaxError);
+  if (phases) printPhases(offPhases, onPhases);
   std::fflush(stdout);
 }
 
@@ -98,9 +147,17 @@ void measure(int segments, int frames, int round) {
 int main(int argc, char** argv) {
   std::vector<int> sizes;
   int frames = 16, rounds = 3;
+  Side side = Side::Both;
+  bool phases = false, badSide = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--frames" && i + 1 < argc) {
+    if (arg == "--phases") {
+      phases = true;
+    } else if (arg == "--only" && i + 1 < argc) {
+      const std::string which = argv[++i];
+      side = which == "off" ? Side::Off : Side::On;
+      badSide = which != "off" && which != "on";
+    } else if (arg == "--frames" && i + 1 < argc) {
       frames = std::atoi(argv[++i]);
     } else if (arg == "--rounds" && i + 1 < argc) {
       rounds = std::atoi(argv[++i]);
@@ -109,10 +166,11 @@ int main(int argc, char** argv) {
     }
   }
   if (sizes.empty()) sizes = {500, 1000};
-  if (frames < 1 || rounds < 1 ||
+  if (frames < 1 || rounds < 1 || badSide ||
       std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
     std::fprintf(stderr,
-                 "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n");
+                 "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
+                 "                           [--phases] [--only off|on]\n");
     return 2;
   }
   std::printf(
@@ -121,6 +179,6 @@ int main(int argc, char** argv) {
   std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int round = 1; round <= rounds; ++round) {
     for (const int segments : sizes)
-      measure(segments, frames, round);
+      measure(segments, frames, round, side, phases);
   }
 }

@@ -24,7 +24,16 @@ using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
 using M = hn::Mask<D>;
 
-using DF = hn::Rebind<float, D>;  // the float lanes' (below), as many as the double ones
+// The float lanes (below): a whole vector, two groups of double lanes (one on the scalar
+// target, which has no vector twice as wide), so each float operation takes twice the lanes.
+using DH = hn::Rebind<float, D>;  // as many as the double lanes
+#if HWY_TARGET == HWY_SCALAR
+using DF = DH;
+constexpr int kDoubleGroups = 1;
+#else
+using DF = hn::Twice<DH>;
+constexpr int kDoubleGroups = 2;
+#endif
 using VF = hn::Vec<DF>;
 using MF = hn::Mask<DF>;
 
@@ -301,36 +310,61 @@ HWY_INLINE VF diffuseOfF(DF df, const BatchMaterial& material, VF cosine) {
   return hn::Set(df, material.lerpAmbientF) + hn::Set(df, material.lerpSpanF) * lit;
 }
 
-// A double mask as a float one of the same lanes (Highway 1.0 has no mask demotion).
-HWY_INLINE MF floatMask(D d, DF df, M m) {
-  return hn::DemoteTo(df, hn::IfThenElseZero(m, hn::Set(d, 1.0))) > hn::Zero(df);
+// The double lanes' values of a float group (kDoubleGroups of them, lowest first) in float.
+HWY_INLINE VF demoted(const V (&groups)[kDoubleGroups]) {
+  const DH dh;
+#if HWY_TARGET == HWY_SCALAR
+  return hn::DemoteTo(dh, groups[0]);
+#else
+  return hn::Combine(DF(), hn::DemoteTo(dh, groups[1]), hn::DemoteTo(dh, groups[0]));
+#endif
 }
+
+// Double masks as a float one of the same lanes (Highway 1.0 has no mask demotion).
+HWY_INLINE MF floatMask(D d, const M (&groups)[kDoubleGroups]) {
+  V ones[kDoubleGroups];
+  for (int g = 0; g < kDoubleGroups; ++g)
+    ones[g] = hn::IfThenElseZero(groups[g], hn::Set(d, 1.0));
+  return demoted(ones) > hn::Zero(DF());
+}
+
+// A float group's polygons as the shade's columns hold them: centers and normals in double,
+// kDoubleGroups groups of double lanes.
+struct DoubleColumns {
+  V center[3][kDoubleGroups], normal[3][kDoubleGroups];
+};
 
 // The float bound of a group of lanes (the margin above); NaN where the double bound takes it.
 HWY_INLINE VF boundLanesF(D d, DF df, const BatchLighting& lighting, const BatchMaterial& material,
-                          const V center[3], V nx, V ny, V nz, VF radius, VF sine,
-                          const VF surface[3]) {
+                          const DoubleColumns& columns, VF radius, VF sine, const VF surface[3]) {
   const V zeroD = hn::Zero(d);
   const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
-  M boundedD = hn::Not(hn::And(hn::And(nx == zeroD, ny == zeroD), nz == zeroD));
-  // The side seen, in double as the double bound takes it.
-  V vx = hn::Set(d, lighting.viewer.x), vy = hn::Set(d, lighting.viewer.y),
-    vz = hn::Set(d, lighting.viewer.z);
-  if (!lighting.parallel) {
-    vx = hn::Set(d, lighting.eye.x) - center[0], vy = hn::Set(d, lighting.eye.y) - center[1],
-    vz = hn::Set(d, lighting.eye.z) - center[2];
-    const V squared = vx * vx + vy * vy + vz * vz;
-    boundedD =
-        hn::And(boundedD, hn::And(squared > hn::Set(d, 1e-300), squared < hn::Set(d, 1e300)));
+  M boundedD[kDoubleGroups];
+  V normal[3][kDoubleGroups];
+  for (int g = 0; g < kDoubleGroups; ++g) {
+    V nx = columns.normal[0][g], ny = columns.normal[1][g], nz = columns.normal[2][g];
+    boundedD[g] = hn::Not(hn::And(hn::And(nx == zeroD, ny == zeroD), nz == zeroD));
+    // The side seen, in double as the double bound takes it.
+    V vx = hn::Set(d, lighting.viewer.x), vy = hn::Set(d, lighting.viewer.y),
+      vz = hn::Set(d, lighting.viewer.z);
+    if (!lighting.parallel) {
+      vx = hn::Set(d, lighting.eye.x) - columns.center[0][g],
+      vy = hn::Set(d, lighting.eye.y) - columns.center[1][g],
+      vz = hn::Set(d, lighting.eye.z) - columns.center[2][g];
+      const V squared = vx * vx + vy * vy + vz * vz;
+      boundedD[g] =
+          hn::And(boundedD[g], hn::And(squared > hn::Set(d, 1e-300), squared < hn::Set(d, 1e300)));
+    }
+    if (lighting.twoSided) {
+      const M back = nx * vx + ny * vy + nz * vz < zeroD;
+      nx = hn::IfThenElse(back, hn::Neg(nx), nx);
+      ny = hn::IfThenElse(back, hn::Neg(ny), ny);
+      nz = hn::IfThenElse(back, hn::Neg(nz), nz);
+    }
+    normal[0][g] = nx, normal[1][g] = ny, normal[2][g] = nz;
   }
-  if (lighting.twoSided) {
-    const M back = nx * vx + ny * vy + nz * vz < zeroD;
-    nx = hn::IfThenElse(back, hn::Neg(nx), nx);
-    ny = hn::IfThenElse(back, hn::Neg(ny), ny);
-    nz = hn::IfThenElse(back, hn::Neg(nz), nz);
-  }
-  const VF fnx = hn::DemoteTo(df, nx), fny = hn::DemoteTo(df, ny), fnz = hn::DemoteTo(df, nz);
-  MF bounded = hn::And(floatMask(d, df, boundedD), radius <= hn::Set(df, 0x1p50f));
+  const VF fnx = demoted(normal[0]), fny = demoted(normal[1]), fnz = demoted(normal[2]);
+  MF bounded = hn::And(floatMask(d, boundedD), radius <= hn::Set(df, 0x1p50f));
   const AnglesF normalAngle = ofSineF(df, sine);
 
   VF sum[3] = {zero, zero, zero}, reach[3] = {zero, zero, zero};
@@ -340,9 +374,11 @@ HWY_INLINE VF boundLanesF(D d, DF df, const BatchLighting& lighting, const Batch
     AnglesF lightAngle{one, zero};
     VF factorLo = one, factorFlat = one, factorHi = one;
     if (!light.directional) {
-      const VF ox = hn::DemoteTo(df, hn::Set(d, light.position.x) - center[0]),
-               oy = hn::DemoteTo(df, hn::Set(d, light.position.y) - center[1]),
-               oz = hn::DemoteTo(df, hn::Set(d, light.position.z) - center[2]);
+      V offset[3][kDoubleGroups];
+      for (int k = 0; k < 3; ++k)
+        for (int g = 0; g < kDoubleGroups; ++g)
+          offset[k][g] = hn::Set(d, light.position[k]) - columns.center[k][g];
+      const VF ox = demoted(offset[0]), oy = demoted(offset[1]), oz = demoted(offset[2]);
       const VF squared = ox * ox + oy * oy + oz * oz;
       bounded = hn::And(
           bounded, hn::And(squared >= hn::Set(df, 0x1p-100f), squared <= hn::Set(df, 0x1p100f)));
@@ -392,20 +428,22 @@ void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& mater
                        EstimateBound* fixed) {
   const D d;
   const DF df;
-  const hn::Rebind<std::int32_t, D> di;
-  const hn::Rebind<EstimateBound, D> dq;
-  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(d)) {
-    V center[3];
+  const hn::Rebind<std::int32_t, DF> di;
+  const hn::Rebind<EstimateBound, DF> dq;
+  const std::size_t doubleLanes = hn::Lanes(d);
+  for (std::size_t lane = 0; lane < count; lane += hn::Lanes(df)) {
+    DoubleColumns columns;
     VF surface[3];
     for (int k = 0; k < 3; ++k) {
-      center[k] = hn::Load(d, centers.xyz[k] + lane);
+      for (int g = 0; g < kDoubleGroups; ++g) {
+        columns.center[k][g] = hn::Load(d, centers.xyz[k] + lane + g * doubleLanes);
+        columns.normal[k][g] = hn::Load(d, batch.normal[k] + lane + g * doubleLanes);
+      }
       surface[k] = hn::Min(hn::Max(hn::LoadU(df, batch.color[k] + lane), hn::Zero(df)),
                            hn::Set(df, static_cast<float>(kMaxRadiance)));
     }
-    const VF up =
-        boundLanesF(d, df, lighting, material, center, hn::Load(d, batch.normal[0] + lane),
-                    hn::Load(d, batch.normal[1] + lane), hn::Load(d, batch.normal[2] + lane),
-                    hn::LoadU(df, radius + lane), hn::LoadU(df, sine + lane), surface);
+    const VF up = boundLanesF(d, df, lighting, material, columns, hn::LoadU(df, radius + lane),
+                              hn::LoadU(df, sine + lane), surface);
     hn::StoreU(up, df, bounds + lane);  // bounds are ≥ 0
     // fixedBoundOf: ⌈min(b, 255)·kEstimateUnit⌉ + 1, NaN as 255 (exact: a power-of-two
     // scaling, an integer below 2^24).
@@ -415,6 +453,21 @@ void ShadeColumnsLanes(const BatchLighting& lighting, const BatchMaterial& mater
         hn::ConvertTo(di, hn::Ceil(capped * hn::Set(df, kEstimateUnit))) + hn::Set(di, 1);
     hn::StoreU(hn::DemoteTo(dq, q), dq, fixed + lane);
   }
+}
+
+// Whether every lane of [0, count) has its bound from the float lanes: a normal (radius ≥ 0)
+// and a bound that is not NaN (ShadeBoundCollector::bound's fast path).
+bool AllFromLanes(const float* radius, const float* bounds, std::size_t count) {
+  const hn::ScalableTag<float> df;
+  const std::size_t lanes = hn::Lanes(df);
+  std::size_t lane = 0;
+  for (; lane + lanes <= count; lane += lanes) {
+    const auto r = hn::LoadU(df, radius + lane), b = hn::LoadU(df, bounds + lane);
+    if (!hn::AllTrue(df, hn::And(r >= hn::Zero(df), b == b))) return false;
+  }
+  for (; lane < count; ++lane)
+    if (!(radius[lane] >= 0.0f) || std::isnan(bounds[lane])) return false;
+  return true;
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -430,6 +483,7 @@ namespace facet::detail {
 
 HWY_EXPORT(BoundBatchLanes);
 HWY_EXPORT(ShadeColumnsLanes);
+HWY_EXPORT(AllFromLanes);
 
 void boundBatch(const BatchLighting& lighting, const BatchMaterial& material, BoundBatch& batch,
                 std::size_t count) {
@@ -481,6 +535,10 @@ ShadeBoundCollector::ShadeBoundCollector(EstimateHook* hook, const SceneMesh* me
 void ShadeBoundCollector::bound(const ShadeBatch& batch) {
   if (material_) {
     boundShadeColumns(*lighting_, *material_, batch, centers_, radius_, sine_, lanes_, fixed_);
+    if (allFromLanes(batch.count)) {
+      storeLanes(batch.count);
+      return;
+    }
   }
   for (std::size_t lane = 0; lane < batch.count; ++lane) {
     const std::size_t id = first_ + polygons_[lane];
@@ -500,6 +558,23 @@ void ShadeBoundCollector::bound(const ShadeBatch& batch) {
     }
     hook_->bounds[id] = out;
     hook_->fixedBounds[id] = fixed;
+  }
+}
+
+// Whether every lane's bound came out of the float lanes (AllFromLanes).
+bool ShadeBoundCollector::allFromLanes(std::size_t count) const {
+  return HWY_DYNAMIC_DISPATCH(AllFromLanes)(radius_, lanes_, count);
+}
+
+// The lanes' bounds stored by polygon id. The hook's arrays are read into locals first: a
+// store through them may alias this object's float arrays, and every lane would reload them.
+void ShadeBoundCollector::storeLanes(std::size_t count) {
+  float* const bounds = hook_->bounds + first_;
+  EstimateBound* const fixedBounds = hook_->fixedBounds + first_;
+  for (std::size_t lane = 0; lane < count; ++lane) {
+    const std::size_t polygon = polygons_[lane];
+    bounds[polygon] = lanes_[lane];
+    fixedBounds[polygon] = fixed_[lane];
   }
 }
 

@@ -177,6 +177,9 @@ class ShadeBoundCollector {
   std::size_t polygons_[kShadeBatchSize] = {};
   ShadeBatchCenters centers_;
   ShadeBatch own_;  // add()'s
+
+  bool allFromLanes(std::size_t count) const;
+  void storeLanes(std::size_t count);
 };
 
 }  // namespace facet::detail
