@@ -24,14 +24,10 @@ struct TilePlanes {
   alignas(64) std::int32_t polygonId[kSide * kSide];
 
   // Planes whose index y·kSide + x (image coordinates, inside `tile`) lands here: the
-  // painters index every plane as y·width + x.
+  // painters index every plane as y·width + x − origin.
   Planes planesFor(const PixelBounds& tile, Rgba8* color) {
-    const auto origin = static_cast<std::uintptr_t>(tile.y0) * kSide + tile.x0;
-    const auto shifted = [origin](auto* plane) {
-      return reinterpret_cast<decltype(plane)>(reinterpret_cast<std::uintptr_t>(plane) -
-                                               origin * sizeof(*plane));
-    };
-    return {color, shifted(depth), shifted(polygonId), kSide};
+    const std::size_t origin = static_cast<std::size_t>(tile.y0) * kSide + tile.x0;
+    return {color, depth, polygonId, kSide, origin};
   }
 
   void clear(const PixelBounds& tile) {
@@ -193,7 +189,8 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   }
   counts.covered = markShownPolygons(context, local, tile);
   if (context.windowDepths) {  // the keys become window depths before they leave the cache
-    resolveDepths(planes.polygonId, planes.depth, planes.width, tile, *context.windowDepths);
+    const PixelBounds here{0, 0, tile.x1 - tile.x0, tile.y1 - tile.y0};
+    resolveDepths(local.polygonId, local.depth, TilePlanes::kSide, here, *context.windowDepths);
   }
   local.writeOut(context, tile);
   return counts;
