@@ -38,6 +38,21 @@ struct TilePlanes {
     }
   }
 
+  // Four values a store.
+  void fillDepth(const PixelBounds& tile, float value) {
+    const int columns = tile.x1 - tile.x0 + 1;
+    for (int y = 0; y <= tile.y1 - tile.y0; ++y) {
+      float* row = depth + y * kSide;  // 64-byte aligned
+      int x = 0;
+#if defined(__SSE2__)
+      for (; x + 4 <= columns; x += 4)
+        _mm_store_ps(row + x, _mm_set1_ps(value));
+#endif
+      for (; x < columns; ++x)
+        row[x] = value;
+    }
+  }
+
   // The tile's rows to the image's planes.
   void writeOut(const RasterContext& context, const PixelBounds& tile) const {
     const int columns = tile.x1 - tile.x0 + 1;
@@ -187,10 +202,17 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
     for (const Chunk& chunk : context.chunks)
       paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse);
   }
-  counts.covered = markShownPolygons(context, local, tile);
+  // A tile nothing was written to shows only the background (most tiles around a small
+  // object): no id to scan for, and the background's window depth everywhere.
+  const bool painted = counts.written != 0;
+  if (painted) counts.covered = markShownPolygons(context, local, tile);
   if (context.windowDepths) {  // the keys become window depths before they leave the cache
-    const PixelBounds here{0, 0, tile.x1 - tile.x0, tile.y1 - tile.y0};
-    resolveDepths(local.polygonId, local.depth, TilePlanes::kSide, here, *context.windowDepths);
+    if (painted) {
+      const PixelBounds here{0, 0, tile.x1 - tile.x0, tile.y1 - tile.y0};
+      resolveDepths(local.polygonId, local.depth, TilePlanes::kSide, here, *context.windowDepths);
+    } else {
+      local.fillDepth(tile, kBackgroundWindowDepth);
+    }
   }
   local.writeOut(context, tile);
   return counts;

@@ -66,7 +66,7 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
   const DF df;
   const hn::Mask<DI> background = hn::LoadU(di, ids) < hn::Zero(di);
   if (hn::AllTrue(di, background)) {
-    hn::StoreU(hn::Set(df, 1.0f), df, depth);
+    hn::StoreU(hn::Set(df, kBackgroundWindowDepth), df, depth);
     return;
   }
   // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
@@ -75,8 +75,9 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
   const hn::Vec<D> clamped =
       hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
   const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
-  hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
-             depth);
+  hn::StoreU(
+      hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, kBackgroundWindowDepth), narrowed),
+      df, depth);
 }
 
 // One row's colors, `count` pixels from `ids` to `color`. kStream: by streaming stores where a
@@ -137,7 +138,7 @@ void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
     for (; x + lanes <= width; x += lanes)
       depthGroup(k, ids + x, depths + x);
     for (; x < width; ++x)  // a width that is no multiple of a group
-      depths[x] = ids[x] < 0 ? 1.0f : resolvedDepth(transform, depths[x]);
+      depths[x] = ids[x] < 0 ? kBackgroundWindowDepth : resolvedDepth(transform, depths[x]);
   }
 }
 

@@ -33,6 +33,9 @@ struct ResolveContext {
   const FramebufferView* target = nullptr;
 };
 
+// The window depth of a pixel that shows the background (the far plane's).
+inline constexpr float kBackgroundWindowDepth = 1.0f;
+
 // The depth keys of a box of pixels (final: a tile the raster has painted) turned into window
 // depths, 1 where the id is the background's.
 void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
