@@ -24,14 +24,10 @@ struct TilePlanes {
   alignas(64) std::int32_t polygonId[kSide * kSide];
 
   // Planes whose index y·kSide + x (image coordinates, inside `tile`) lands here: the
-  // painters index every plane as y·width + x.
+  // painters index every plane as y·width + x − origin.
   Planes planesFor(const PixelBounds& tile, Rgba8* color) {
-    const auto origin = static_cast<std::uintptr_t>(tile.y0) * kSide + tile.x0;
-    const auto shifted = [origin](auto* plane) {
-      return reinterpret_cast<decltype(plane)>(reinterpret_cast<std::uintptr_t>(plane) -
-                                               origin * sizeof(*plane));
-    };
-    return {color, shifted(depth), shifted(polygonId), kSide};
+    const std::size_t origin = static_cast<std::size_t>(tile.y0) * kSide + tile.x0;
+    return {color, depth, polygonId, kSide, origin};
   }
 
   void clear(const PixelBounds& tile) {
@@ -39,6 +35,21 @@ struct TilePlanes {
     for (int y = 0; y <= tile.y1 - tile.y0; ++y) {
       std::fill_n(depth + y * kSide, columns, kBackgroundDepthKey);
       std::fill_n(polygonId + y * kSide, columns, Framebuffer::kBackgroundId);
+    }
+  }
+
+  // Four values a store.
+  void fillDepth(const PixelBounds& tile, float value) {
+    const int columns = tile.x1 - tile.x0 + 1;
+    for (int y = 0; y <= tile.y1 - tile.y0; ++y) {
+      float* row = depth + y * kSide;  // 64-byte aligned
+      int x = 0;
+#if defined(__SSE2__)
+      for (; x + 4 <= columns; x += 4)
+        _mm_store_ps(row + x, _mm_set1_ps(value));
+#endif
+      for (; x < columns; ++x)
+        row[x] = value;
     }
   }
 
@@ -191,9 +202,17 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
     for (const Chunk& chunk : context.chunks)
       paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse);
   }
-  counts.covered = markShownPolygons(context, local, tile);
+  // A tile nothing was written to shows only the background (most tiles around a small
+  // object): no id to scan for, and the background's window depth everywhere.
+  const bool painted = counts.written != 0;
+  if (painted) counts.covered = markShownPolygons(context, local, tile);
   if (context.windowDepths) {  // the keys become window depths before they leave the cache
-    resolveDepths(planes.polygonId, planes.depth, planes.width, tile, *context.windowDepths);
+    if (painted) {
+      const PixelBounds here{0, 0, tile.x1 - tile.x0, tile.y1 - tile.y0};
+      resolveDepths(local.polygonId, local.depth, TilePlanes::kSide, here, *context.windowDepths);
+    } else {
+      local.fillDepth(tile, kBackgroundWindowDepth);
+    }
   }
   local.writeOut(context, tile);
   return counts;

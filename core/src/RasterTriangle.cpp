@@ -451,9 +451,9 @@ float floatBelow(double key) {
                                                          const Planes& planes) {
   float farthest = std::numeric_limits<float>::infinity();
   for (int y = box.y0; y <= box.y1; ++y) {
-    const float* row = planes.depth + static_cast<std::size_t>(y) * planes.width;
+    const std::size_t row = static_cast<std::size_t>(y) * planes.width - planes.origin;
     for (int x = box.x0; x <= box.x1; ++x)
-      farthest = std::min(farthest, row[x]);
+      farthest = std::min(farthest, planes.depth[row + x]);
   }
   const double nearest = std::max({a.depth, b.depth, c.depth});
   if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never

@@ -89,12 +89,15 @@ std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& 
                                      int x, int y);
 
 // Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom; depth keys
-// while painting).
+// while painting), or a tile's own (Raster.cpp). The painters index pixel (x, y) as
+// y·width + x − origin: a tile's planes start at its first pixel's index, an offset rather
+// than pointers moved before the buffer (which the language leaves undefined).
 struct Planes {
   Rgba8* color;
   float* depth;
   std::int32_t* polygonId;
   int width;
+  std::size_t origin = 0;  // the index y·width + x of depth[0] and polygonId[0]
 };
 
 enum class DepthMode { Test, Overwrite };
@@ -148,6 +151,7 @@ class CoarseDepth {
 template <DepthMode kMode>
 void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Planes& planes,
                    PaintCounts& counts) {
+  i -= planes.origin;
   if (kMode == DepthMode::Overwrite || depth > planes.depth[i]) {
     planes.depth[i] = depth;
     planes.polygonId[i] = polygonId;

@@ -1,16 +1,19 @@
 // Resolve.h, in SIMD lanes: compiled once per instruction set by Highway's foreach_target
 // (this file includes itself) and dispatched at run time, as SetupBatch.cpp. A group of
-// pixels all showing the background (most of a frame's, around a small object) is one plain
-// store; any other group gathers its polygons' colors, or converts its depth keys with
+// pixels all showing the background (most of a frame's, around a small object) is one
+// store; any other group gathers its polygons' colors (streamed to a large image's plane),
+// or converts its depth keys with
 // FrameTransform::windowDepth's operations on the same doubles in the same order (the file
 // is compiled without contraction into fused multiply-adds, core/CMakeLists.txt), so every
 // target gives the scalar conversion's bytes.
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "Resolve.cpp"
+#include <hwy/cache_control.h>
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
@@ -21,11 +24,10 @@ HWY_BEFORE_NAMESPACE();
 namespace facet::detail::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// A group of pixels: as many as doubles fit in a vector (the depth conversion's width); ids,
-// colors (as 32-bit words) and depths in half vectors of the same lane count.
+// A group of depths: as many as doubles fit in a vector (the conversion's width); their ids
+// and keys in half vectors of the same lane count.
 using D = hn::ScalableTag<double>;
 using DI = hn::Rebind<std::int32_t, D>;
-using DU = hn::Rebind<std::uint32_t, D>;
 using DF = hn::Rebind<float, D>;
 
 HWY_INLINE std::uint32_t wordOf(Rgba8 color) {
@@ -34,29 +36,27 @@ HWY_INLINE std::uint32_t wordOf(Rgba8 color) {
   return word;
 }
 
-// What colorGroup keeps in registers for its pixels.
-struct ColorConstants {
-  const std::uint32_t* colors;  // per polygon id, Rgba8 as words
-  hn::Vec<DU> background;
-};
+// The color groups are whole vectors of 32-bit words (the depth groups' lane count of
+// doubles would be half of one): a whole vector can be streamed (hn::Stream rounds a partial
+// one up to 16 bytes).
+using DC = hn::ScalableTag<std::int32_t>;
+using DCU = hn::RebindToUnsigned<DC>;
 
 // What depthGroup keeps in registers: windowDepth's offset and scale.
 struct DepthConstants {
   hn::Vec<D> offset, scale;
 };
 
-// The colors of pixels [x, x + lanes) of a row.
-HWY_INLINE void colorGroup(const ColorConstants& k, const std::int32_t* ids, std::uint32_t* color) {
-  const DI di;
-  const DU du;
-  const hn::Vec<DI> id = hn::LoadU(di, ids);
-  const hn::Mask<DI> background = id < hn::Zero(di);
-  if (hn::AllTrue(di, background)) {
-    hn::StoreU(k.background, du, color);
-    return;
-  }
-  const hn::Vec<DU> shown = hn::GatherIndex(du, k.colors, hn::IfThenZeroElse(background, id));
-  hn::StoreU(hn::IfThenElse(hn::RebindMask(du, background), k.background, shown), du, color);
+// The colors of pixels [x, x + lanes) of a row, lanes of DC.
+HWY_INLINE hn::Vec<DCU> colorGroup(const std::uint32_t* colors, hn::Vec<DCU> backgroundColor,
+                                   const std::int32_t* ids) {
+  const DC di;
+  const DCU du;
+  const hn::Vec<DC> id = hn::LoadU(di, ids);
+  const hn::Mask<DC> background = id < hn::Zero(di);
+  if (hn::AllTrue(di, background)) return backgroundColor;
+  const hn::Vec<DCU> shown = hn::GatherIndex(du, colors, hn::IfThenZeroElse(background, id));
+  return hn::IfThenElse(hn::RebindMask(du, background), backgroundColor, shown);
 }
 
 // The window depths of pixels [x, x + lanes) of a row from their keys; 1 for the background.
@@ -66,7 +66,7 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
   const DF df;
   const hn::Mask<DI> background = hn::LoadU(di, ids) < hn::Zero(di);
   if (hn::AllTrue(di, background)) {
-    hn::StoreU(hn::Set(df, 1.0f), df, depth);
+    hn::StoreU(hn::Set(df, kBackgroundWindowDepth), df, depth);
     return;
   }
   // windowDepth: offset + scale · key, then 0 below (NaN too), 1 above.
@@ -75,25 +75,52 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
   const hn::Vec<D> clamped =
       hn::IfThenElse(window > zero, hn::IfThenElse(window < one, window, one), zero);
   const hn::Vec<DF> narrowed = hn::DemoteTo(df, clamped);
-  hn::StoreU(hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, 1.0f), narrowed), df,
-             depth);
+  hn::StoreU(
+      hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, kBackgroundWindowDepth), narrowed),
+      df, depth);
 }
 
-void ResolveColors(const ResolveContext& context, const PixelBounds& pixels) {
-  const std::size_t lanes = hn::Lanes(D());
-  const ColorConstants k{reinterpret_cast<const std::uint32_t*>(context.colors),
-                         hn::Set(DU(), wordOf(context.background))};
+// One row's colors, `count` pixels from `ids` to `color`. kStream: by streaming stores where a
+// whole vector is aligned (the rest plain), so that the plane is not read before it is
+// written (the write-allocate read of 8 MB a 1080p frame).
+template <bool kStream>
+HWY_INLINE void colorRow(const std::uint32_t* colors, std::uint32_t background,
+                         const std::int32_t* ids, std::uint32_t* color, std::size_t count) {
+  const DCU du;
+  const std::size_t lanes = hn::Lanes(du);
+  const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
+  const auto one = [&](std::size_t x) { color[x] = ids[x] < 0 ? background : colors[ids[x]]; };
+  std::size_t x = 0;
+  if constexpr (kStream) {
+    for (; x < count && reinterpret_cast<std::uintptr_t>(color + x) % (lanes * 4) != 0; ++x)
+      one(x);
+  }
+  for (; x + lanes <= count; x += lanes) {
+    const hn::Vec<DCU> group = colorGroup(colors, backgroundColor, ids + x);
+    if constexpr (kStream) {
+      hn::Stream(group, du, color + x);
+    } else {
+      hn::StoreU(group, du, color + x);
+    }
+  }
+  for (; x < count; ++x)  // a width that is no multiple of a group
+    one(x);
+}
+
+void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, bool stream) {
+  const auto* colors = reinterpret_cast<const std::uint32_t*>(context.colors);
+  const std::uint32_t background = wordOf(context.background);
   const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
   for (int y = pixels.y0; y <= pixels.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * context.width + pixels.x0;
-    const std::int32_t* ids = context.polygonId + row;
     auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
-    std::size_t x = 0;
-    for (; x + lanes <= width; x += lanes)
-      colorGroup(k, ids + x, color + x);
-    for (; x < width; ++x)  // a width that is no multiple of a group
-      color[x] = ids[x] < 0 ? wordOf(context.background) : k.colors[ids[x]];
+    if (stream) {
+      colorRow<true>(colors, background, context.polygonId + row, color, width);
+    } else {
+      colorRow<false>(colors, background, context.polygonId + row, color, width);
+    }
   }
+  if (stream) hwy::FlushStream();  // weakly ordered: done before the band is handed back
 }
 
 void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
@@ -111,7 +138,7 @@ void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
     for (; x + lanes <= width; x += lanes)
       depthGroup(k, ids + x, depths + x);
     for (; x < width; ++x)  // a width that is no multiple of a group
-      depths[x] = ids[x] < 0 ? 1.0f : resolvedDepth(transform, depths[x]);
+      depths[x] = ids[x] < 0 ? kBackgroundWindowDepth : resolvedDepth(transform, depths[x]);
   }
 }
 
@@ -147,10 +174,16 @@ float resolvedDepth(const FrameTransform& transform, float key) {
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context) {
   const PixelBounds viewport = grid.viewport();
   const int bands = (viewport.y1 - viewport.y0 + kRowsPerTask) / kRowsPerTask;
+  // The estimate reads the band's colors right after it is resolved: from the caches.
+  const bool estimatesRows = context.estimate && context.estimate->rows;
+  const std::size_t colorBytes = static_cast<std::size_t>(viewport.x1 - viewport.x0 + 1) *
+                                 static_cast<std::size_t>(viewport.y1 - viewport.y0 + 1) *
+                                 sizeof(Rgba8);
+  const bool stream = !estimatesRows && colorBytes >= kStreamedColorBytes;
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
     const int y0 = viewport.y0 + static_cast<int>(b) * kRowsPerTask;
     const int y1 = std::min(viewport.y1, y0 + kRowsPerTask - 1);
-    HWY_DYNAMIC_DISPATCH(ResolveColors)(context, {viewport.x0, y0, viewport.x1, y1});
+    HWY_DYNAMIC_DISPATCH(ResolveColors)(context, {viewport.x0, y0, viewport.x1, y1}, stream);
     if (context.estimate && context.estimate->rows) {  // its rows' ids still in cache
       estimateResolvedRows(*context.estimate, context.colors, context.color, context.polygonId,
                            context.width, y0, y1);

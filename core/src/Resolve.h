@@ -5,6 +5,7 @@
 // each tile's depth keys into window depths once it is painted, while the tile is in cache
 // (resolveDepths), which saved the resolve a read and a write of the depth plane.
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 
@@ -32,6 +33,9 @@ struct ResolveContext {
   const FramebufferView* target = nullptr;
 };
 
+// The window depth of a pixel that shows the background (the far plane's).
+inline constexpr float kBackgroundWindowDepth = 1.0f;
+
 // The depth keys of a box of pixels (final: a tile the raster has painted) turned into window
 // depths, 1 where the id is the background's.
 void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
@@ -40,6 +44,12 @@ void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
 // FrameTransform::windowDepth of a key as resolveDepths' scalar path computes it, compiled
 // without fused multiply-adds (core/CMakeLists.txt): the bytes every SIMD target gives.
 float resolvedDepth(const FrameTransform& transform, float key);
+
+// A color plane of this many bytes or more is streamed to memory (unless the estimate reads
+// it back): it would not stay in the caches for whoever reads it next, and a plain store reads
+// each line before writing it (the write-allocate read of 8 MB at 1080p). A smaller one (a
+// thumbnail, a test's image) is stored plainly, to be read from the caches.
+inline constexpr std::size_t kStreamedColorBytes = std::size_t{4} << 20;
 
 // Colors every pixel of the grid's viewport, a band of whole rows per task (Resolve.cpp says
 // why not tile by tile).

@@ -3,7 +3,7 @@
 // FrameTransform::windowDepth of the key (resolveDepths tile by tile, as the raster calls it: 1
 // for the background; detail::resolvedDepth, the library's scalar path, compiled as the lanes
 // are), for perspective and parallel cameras, keys of every magnitude, images whose width is
-// no multiple of a group.
+// no multiple of a group, colors stored plainly and streamed.
 
 #include <cmath>
 #include <cstring>
@@ -60,6 +60,8 @@ Planes randomPlanes(int width, int height, int polygons, unsigned seed) {
 class Resolve : public EveryTargetTest {};
 
 TEST_F(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
+  static_assert(1031 * 1030 * sizeof(Rgba8) >= detail::kStreamedColorBytes);
+  static_assert(200 * 70 * sizeof(Rgba8) < detail::kStreamedColorBytes);
   Camera perspective;
   perspective.nearClip = 0.01, perspective.farClip = 1e4;
   Camera parallel = perspective;
@@ -74,7 +76,9 @@ TEST_F(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
     SCOPED_TRACE(target.name);
     detail::useSimdTarget(target.bits);
     for (const Camera& camera : {perspective, parallel}) {
-      for (const auto& [width, height] : {std::pair{200, 70}, std::pair{131, 67}}) {
+      // The last streams its colors (kStreamedColorBytes), its rows at every alignment.
+      for (const auto& [width, height] :
+           {std::pair{200, 70}, std::pair{131, 67}, std::pair{1031, 1030}}) {
         const detail::FrameTransform transform(camera, width, height);
         const Planes before = randomPlanes(width, height, 500, 7);
         Planes after = before;
