@@ -152,12 +152,14 @@ constexpr std::size_t kPrefetchVertices = 4;
 }
 
 // Paints one bin's entries in order. kCoarse: with the tile's coarse depth
-// (Rule::HiddenGeometry, depth test only).
+// (Rule::HiddenGeometry, depth test only). `front`: the tile's front faces are painted (back
+// bins, every face drawn).
 template <DepthMode kMode, bool kCoarse>
 [[gnu::always_inline]] inline void paintBin(const RasterContext& context, const Chunk& chunk,
                                             const std::vector<std::uint32_t>& bin,
                                             const PixelBounds& tile, const Planes& planes,
-                                            PaintCounts& counts, CoarseDepth& coarse) {
+                                            PaintCounts& counts, CoarseDepth& coarse,
+                                            FarthestBlocks* front) {
   for (std::size_t k = 0; k < bin.size(); ++k) {
     prefetchAhead(context.vertices, chunk, bin, k);
     const std::uint32_t index = bin[k];
@@ -182,7 +184,11 @@ template <DepthMode kMode, bool kCoarse>
       // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
       // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
       // triangles would only pay for the test.
-      paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes, counts);
+      if (front != nullptr) {
+        paintBackTriangle(a, b, c, boundary, tri.polygon, tile, planes, counts, *front);
+      } else {
+        paintTriangle<DepthMode::Test, true>(a, b, c, boundary, tri.polygon, tile, planes, counts);
+      }
     } else {
       paintTriangle<kMode>(a, b, c, boundary, tri.polygon, tile, planes, counts);
     }
@@ -198,9 +204,12 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   const Planes planes = local.planesFor(tile, context.color);
   PaintCounts counts;
   CoarseDepth coarse(tile);
+  FarthestBlocks painted(tile, planes);  // read when a back face first asks
   for (const auto bins : {&Chunk::bins, &Chunk::backBins}) {
+    FarthestBlocks* const front = bins == &Chunk::backBins ? &painted : nullptr;
     for (const Chunk& chunk : context.chunks)
-      paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse);
+      paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse,
+                               front);
   }
   // A tile nothing was written to shows only the background (most tiles around a small
   // object): no id to scan for, and the background's window depth everywhere.

@@ -8,6 +8,7 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#include <xmmintrin.h>
 #endif
 
 #include "Assert.h"
@@ -54,14 +55,26 @@ double edgeFunction(const FinePoint& p, const FinePoint& q, const FinePoint& s) 
   return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
 }
 
-// refine()'s bound for edge i (opposite corner i) of a triangle, grid units².
-std::int64_t surelyInsideBound(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                               int i) {
-  const std::int64_t box = std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) +
-                           std::max({a.y, b.y, c.y}) - std::min({a.y, b.y, c.y});
+// refine()'s bounds for the polygon-boundary edges of a triangle, grid units², by edge (opposite
+// corner i; `never` for a diagonal). Out of line, and returned by value: a member function
+// there, or inlined, cost the closed path (which never calls it) 55 instructions a triangle
+// at 20k (the depth plane's object kept in memory, or registers spilled).
+struct InsideBounds {
+  std::int64_t edge[3];
+};
+[[gnu::noinline]] InsideBounds surelyInsideBounds(const WindowVertex& a, const WindowVertex& b,
+                                                  const WindowVertex& c, EdgeMask boundary,
+                                                  std::int64_t never) {
+  const GridBox extent = gridBoxOf(a, b, c);
+  const std::int64_t box = std::int64_t{extent.x1} - extent.x0 + extent.y1 - extent.y0;
   const WindowVertex* ends[3][2] = {{&b, &c}, {&c, &a}, {&a, &b}};
-  const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
-  return (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2;
+  InsideBounds bounds;
+  for (int i = 0; i < 3; ++i) {
+    const std::int64_t dx = ends[i][1]->x - ends[i][0]->x, dy = ends[i][1]->y - ends[i][0]->y;
+    bounds.edge[i] =
+        ((boundary >> i) & 1u) ? (std::abs(dx) + std::abs(dy) + 1) / 2 + box + 2 : never;
+  }
+  return bounds;
 }
 
 // The depth keys of one triangle. Coverage is decided on the snapped vertices (exact, VTK's
@@ -118,7 +131,10 @@ class TriangleDepth {
     perX_ = (dk1_ * (pc.y - pa.y) - dk2_ * (pb.y - pa.y)) * inverse;
     perY_ = (dk2_ * (pb.x - pa.x) - dk1_ * (pc.x - pa.x)) * inverse;
     // Without boundary edges refine() is never asked (paint() steps the keys alone).
-    if (unsnapped_ && boundary_ != 0) boundSurelyInside(a, b, c);
+    if (unsnapped_ && boundary_ != 0) {
+      const InsideBounds bounds = surelyInsideBounds(a, b, c, boundary_, kNever);
+      std::copy(std::begin(bounds.edge), std::end(bounds.edge), sureInside_);
+    }
   }
   double at(std::int64_t sampleX, std::int64_t sampleY) const {
     const FinePoint s = finePoint(sampleX, sampleY);
@@ -174,12 +190,6 @@ class TriangleDepth {
     return (isBoundary(0) && fine[0] < 0.0) || (isBoundary(1) && fine[1] < 0.0) ||
            (isBoundary(2) && fine[2] < 0.0);
   }
-  void boundSurelyInside(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
-    for (int i = 0; i < 3; ++i) {
-      if (isBoundary(i)) sureInside_[i] = surelyInsideBound(a, b, c, i);
-    }
-  }
-
   double key0_, dk1_, dk2_;
   double snappedArea_, inverseFineArea_ = 0.0;
   EdgeMask boundary_;
@@ -439,23 +449,38 @@ float floatBelow(double key) {
   return f > key ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
 }
 
-// losesEverywhere (RasterTriangle.h): keyRange's bound is max(vertex keys) + s·kResidueScale
-// + 1e-9·(largest + s·extent·kSubpixelScale·kResidueScale) with s = (|nx| + |ny|)/F the
-// unsnapped plane's slope (numerators nx, ny over the fine area F); multiplied by F > 0 it
-// needs no division, and its margin doubled covers this test's own rounding. Inlined into
-// paintTriangle: out of line, the call cost the 500k every-face raster 4 % more instructions.
-[[gnu::always_inline]] inline bool losesEverywhereInline(const WindowVertex& a,
-                                                         const WindowVertex& b,
-                                                         const WindowVertex& c,
-                                                         const PixelBounds& box,
-                                                         const Planes& planes) {
+// The farthest key in a box of the depth plane, read row by row; once a row holds a key below
+// `nearest` (a front face drawn over the background meets −∞ in its first row) the rest is
+// not read: the key returned is then below it too, which is all losesEverywhere asks.
+[[gnu::always_inline]] inline float farthestKeyDownTo(const PixelBounds& box, const Planes& planes,
+                                                      double nearest) {
   float farthest = std::numeric_limits<float>::infinity();
   for (int y = box.y0; y <= box.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * planes.width - planes.origin;
     for (int x = box.x0; x <= box.x1; ++x)
       farthest = std::min(farthest, planes.depth[row + x]);
+    if (!(farthest >= nearest)) break;
   }
-  const double nearest = std::max({a.depth, b.depth, c.depth});
+  return farthest;
+}
+
+// losesEverywhere (RasterTriangle.h): keyRange's bound is max(vertex keys) + s·kResidueScale
+// + 1e-9·(largest + s·extent·kSubpixelScale·kResidueScale) with s = (|nx| + |ny|)/F the
+// unsnapped plane's slope (numerators nx, ny over the fine area F); multiplied by F > 0 it
+// needs no division, and its margin doubled covers this test's own rounding. Inlined into
+// paintTriangle: out of line, the call cost the 500k every-face raster 4 % more instructions.
+//
+// With `front` (a back face after the tile's front faces), the blocks' farthest key is tried
+// first: it is no farther than the box's (FarthestBlocks), and the test is monotone in it (the
+// subtraction and the product by F > 0 round monotonically), so where it rejects, the box's
+// keys would too; where it does not, the box's keys decide. The same decision either way.
+[[gnu::always_inline]] inline bool losesEverywhereInline(
+    const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, const PixelBounds& box,
+    const Planes& planes, FarthestBlocks* front = nullptr) {
+  const double nearest = std::max(std::max(a.depth, b.depth), c.depth);
+  const float blocks = front != nullptr ? front->over(box) : kBackgroundDepthKey;
+  const bool fromBlocks = blocks >= nearest;
+  float farthest = fromBlocks ? blocks : farthestKeyDownTo(box, planes, nearest);
   if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
   const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
   const double fineArea = edgeFunction(pa, pb, pc);
@@ -468,8 +493,11 @@ float floatBelow(double key) {
   const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
   const double rounding =
       2e-9 * (largest * fineArea + slopeTimesArea * extent * kSubpixelScale * kResidueScale);
-  return (static_cast<double>(farthest) - nearest) * fineArea >=
-         slopeTimesArea * kResidueScale + rounding;
+  const double margin = slopeTimesArea * kResidueScale + rounding;
+  if ((static_cast<double>(farthest) - nearest) * fineArea >= margin) return true;
+  if (!fromBlocks) return false;
+  farthest = farthestKeyDownTo(box, planes, nearest);
+  return farthest >= nearest && (static_cast<double>(farthest) - nearest) * fineArea >= margin;
 }
 
 // Up to this many samples in its box a triangle that may be a back face is tested by
@@ -485,9 +513,9 @@ template <DepthMode kMode, bool kRejectHidden>
                                            const WindowVertex& c, std::int64_t area,
                                            EdgeMask boundary, const PixelBounds& box,
                                            std::int32_t polygonId, const Planes& planes,
-                                           PaintCounts& counts) {
+                                           PaintCounts& counts, FarthestBlocks* front) {
   if (kRejectHidden && box.area() <= kSamplesForLosesEverywhere &&
-      losesEverywhereInline(a, b, c, box, planes)) {
+      losesEverywhereInline(a, b, c, box, planes, front)) {
     return;
   }
   BoxRaster raster(a, b, c, area, boundary, box);
@@ -508,9 +536,10 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   }
   const SmallBox edges(a, b, c, box);
   const std::uint32_t coverage = edges.coverage();
+  const InsideBounds bounds = surelyInsideBounds(a, b, c, boundary, 0);
   for (int k = 0; k < 3; ++k) {  // every covered sample surely inside the boundary edges
     if (!((boundary >> k) & 1u)) continue;
-    const std::int64_t bound = surelyInsideBound(a, b, c, k);
+    const std::int64_t bound = bounds.edge[k];
     for (std::uint32_t rest = coverage; rest != 0; rest &= rest - 1) {
       const int x = std::countr_zero(rest) % kSmallSide, y = std::countr_zero(rest) / kSmallSide;
       const std::int64_t snapped =
@@ -567,7 +596,8 @@ bool coversAnyOfFewSamples(const WindowVertex& a, const WindowVertex& b, const W
 template <DepthMode kMode, bool kRejectHidden, bool kSmallBoxes>
 [[gnu::always_inline]] inline void paintTriangleThrough(
     const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, EdgeMask boundary,
-    std::int32_t polygonId, const PixelBounds& tile, const Planes& planes, PaintCounts& counts) {
+    std::int32_t polygonId, const PixelBounds& tile, const Planes& planes, PaintCounts& counts,
+    FarthestBlocks* front = nullptr) {
   static_assert(kMode == DepthMode::Test || !kRejectHidden);
   const std::int64_t area = doubleSignedArea(a, b, c);
   FACET_ASSERT(area > 0);
@@ -579,6 +609,8 @@ template <DepthMode kMode, bool kRejectHidden, bool kSmallBoxes>
     return;
   }
   if (kSmallBoxes && fitsSmallPath(extent, box)) {
+    // At most 16 keys: reading them costs less than the blocks (500k sphere: +4 M instructions
+    // in 4 frames with them).
     if (kRejectHidden && losesEverywhereInline(a, b, c, box, planes)) return;
     const SmallBox small(a, b, c, box);
     if (const std::uint32_t mask = small.coverage()) {
@@ -590,7 +622,7 @@ template <DepthMode kMode, bool kRejectHidden, bool kSmallBoxes>
     }
     return;
   }
-  walkBox<kMode, kRejectHidden>(a, b, c, area, boundary, box, polygonId, planes, counts);
+  walkBox<kMode, kRejectHidden>(a, b, c, area, boundary, box, polygonId, planes, counts, front);
 }
 
 template <DepthMode kMode, bool kRejectHidden>
@@ -599,6 +631,13 @@ void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
                    const Planes& planes, PaintCounts& counts) {
   paintTriangleThrough<kMode, kRejectHidden, true>(a, b, c, boundary, polygonId, tile, planes,
                                                    counts);
+}
+
+void paintBackTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                       EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                       const Planes& planes, PaintCounts& counts, FarthestBlocks& front) {
+  paintTriangleThrough<DepthMode::Test, true, true>(a, b, c, boundary, polygonId, tile, planes,
+                                                    counts, &front);
 }
 
 template <DepthMode kMode>
@@ -628,6 +667,40 @@ void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b
   coarse.raise(box, floatBelow(lowest),
                [&](const PixelBounds& pixels) { return raster.coverage(pixels); });
   raster.paint<DepthMode::Test>(polygonId, planes, counts, boundary);
+}
+
+// Each block's least key, over the tile's pixels only (the planes beyond an image-edge tile's
+// pixels are not cleared); eight rows at a time, four pixels a lane where SSE2 is.
+void FarthestBlocks::measure() {
+  measured_ = true;
+  const int columns = tile_.x1 - tile_.x0 + 1, rows = tile_.y1 - tile_.y0 + 1;
+  for (int by = 0; by * kBlockSize < rows; ++by) {
+    const int y0 = tile_.y0 + by * kBlockSize;
+    const int y1 = std::min(tile_.y1, y0 + kBlockSize - 1);
+    for (int bx = 0; bx * kBlockSize < columns; ++bx) {
+      const int x0 = tile_.x0 + bx * kBlockSize;
+      const int x1 = std::min(tile_.x1, x0 + kBlockSize - 1);
+      float farthest = std::numeric_limits<float>::infinity();
+      for (int y = y0; y <= y1; ++y) {
+        // The block's first pixel in this row (planes are indexed y·width + x − origin).
+        const float* row =
+            planes_.depth + (static_cast<std::size_t>(y) * planes_.width + x0 - planes_.origin);
+        int x = x0;
+#if defined(__SSE2__)
+        if (x1 - x0 + 1 == kBlockSize) {
+          __m128 lanes = _mm_min_ps(_mm_loadu_ps(row), _mm_loadu_ps(row + 4));
+          lanes = _mm_min_ps(lanes, _mm_movehl_ps(lanes, lanes));
+          lanes = _mm_min_ss(lanes, _mm_shuffle_ps(lanes, lanes, 1));
+          farthest = std::min(farthest, _mm_cvtss_f32(lanes));
+          x = x1 + 1;
+        }
+#endif
+        for (; x <= x1; ++x)
+          farthest = std::min(farthest, row[x - x0]);
+      }
+      farthest_[by * kBlocksPerSide + bx] = farthest;
+    }
+  }
 }
 
 CoarseDepth::CoarseDepth(const PixelBounds& tile) : tile_(tile) {

@@ -167,6 +167,37 @@ void writeFragment(std::size_t i, float depth, std::int32_t polygonId, const Pla
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                      const PixelBounds& box, const Planes& planes);
 
+// The farthest depth key of each 8 × 8 pixel block of a tile, read from its depth plane once
+// the tile's front faces are painted (every face drawn, Raster.cpp): under the depth test a
+// pixel's key only grows nearer, so each stays no nearer than any of its block's keys while the
+// back faces paint. losesEverywhere then bounds a back face's box from a few blocks instead of
+// reading each of its keys (a back face of a 20k sphere has dozens). Read on first use: a
+// tile without a back face that reaches the reject pays nothing.
+class FarthestBlocks {
+ public:
+  static constexpr int kBlockSize = 8;
+  static constexpr int kBlocksPerSide = TileGrid::kTileSize / kBlockSize;
+
+  FarthestBlocks(const PixelBounds& tile, const Planes& planes) : tile_(tile), planes_(planes) {}
+  // A key no nearer than any the box's pixels (inside the tile) hold, now or later.
+  float over(const PixelBounds& box) {
+    if (!measured_) measure();
+    float farthest = std::numeric_limits<float>::infinity();
+    for (int by = (box.y0 - tile_.y0) / kBlockSize; by <= (box.y1 - tile_.y0) / kBlockSize; ++by) {
+      for (int bx = (box.x0 - tile_.x0) / kBlockSize; bx <= (box.x1 - tile_.x0) / kBlockSize; ++bx)
+        farthest = std::min(farthest, farthest_[by * kBlocksPerSide + bx]);
+    }
+    return farthest;
+  }
+
+ private:
+  void measure();
+  PixelBounds tile_;
+  Planes planes_;
+  bool measured_ = false;
+  float farthest_[kBlocksPerSide * kBlocksPerSide];
+};
+
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys
 // (FrameTransform.h) until the tile resolves, interpolated as TriangleDepth (Rasterizer.cpp)
@@ -178,6 +209,13 @@ template <DepthMode kMode, bool kRejectHidden = false>
 void paintTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                    EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                    const Planes& planes, PaintCounts& counts);
+
+// paintTriangle<Test, true> for a back face painted after its tile's front faces: its reject
+// (losesEverywhere) tries the blocks of `front` before the keys of its box; the same decision,
+// the same pixels.
+void paintBackTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                       EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
+                       const Planes& planes, PaintCounts& counts, FarthestBlocks& front);
 
 // The small-box path (RasterTriangle.cpp): boxes of at most kSmallSide × kSmallSide samples.
 inline constexpr int kSmallSide = 4;

@@ -224,6 +224,16 @@ using detail::WindowVertex;
 // One tile's planes for the raster's internals: depth keys, polygon ids.
 using TilePlanes = SquarePlanes<16>;
 
+// A random window position: grid point from `corner`, residues anywhere (depth key 0).
+WindowVertex randomPosition(std::mt19937& random, std::uniform_int_distribution<int>& corner) {
+  std::uniform_int_distribution<int> residue(-127, 127);
+  WindowVertex v;
+  v.x = corner(random), v.y = corner(random);
+  v.residueX = static_cast<std::int8_t>(residue(random));
+  v.residueY = static_cast<std::int8_t>(residue(random));
+  return v;
+}
+
 // What a run of random triangles did under losesEverywhere (RasterTriangle.h).
 struct RejectTally {
   std::size_t tested = 0, rejected = 0, wronglyRejected = 0;
@@ -238,7 +248,7 @@ struct RejectTally {
 // pixel).
 RejectTally rejectRandomTriangles(unsigned seed, bool randomBoundaries) {
   std::mt19937 random(seed);
-  std::uniform_int_distribution<int> corner(2 * 256, 10 * 256), residue(-127, 127), mask(0, 6);
+  std::uniform_int_distribution<int> corner(2 * 256, 10 * 256), mask(0, 6);
   std::uniform_real_distribution<float> key(0.25f, 0.75f), steep(-0.01f, 0.01f);
   const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
   RejectTally tally;
@@ -246,9 +256,7 @@ RejectTally rejectRandomTriangles(unsigned seed, bool randomBoundaries) {
     WindowVertex v[3];
     const float base = key(random);
     for (WindowVertex& c : v) {
-      c.x = corner(random), c.y = corner(random);
-      c.residueX = static_cast<std::int8_t>(residue(random));
-      c.residueY = static_cast<std::int8_t>(residue(random));
+      c = randomPosition(random, corner);
       c.depth = base + (t % 2 ? steep(random) : steep(random) * 1e-4f);
     }
     const auto boundary =
@@ -311,6 +319,91 @@ TEST(DepthPrecision, TrianglesWithDiagonalsRejectedBeforeSetUpLoseEveryPixel) {
   EXPECT_GT(tally.tested, 5000u);
   // The margin is wider than 1e-4 on the steepest planes: fewer are rejected than above.
   EXPECT_GT(tally.rejected, tally.tested / 3) << "a triangle well behind should often be rejected";
+}
+
+// A back face after its tile's front faces (paintBackTriangle) tries the tile's farthest key
+// per 8 × 8 block before its box's keys: random triangles of 17–256 samples over keys just
+// nearer than their own (with, every other time, one covered pixel a float farther, where the
+// triangle wins), blocks read before any paint: the same planes and counts as
+// paintTriangle<Test, true>, and some rejected by the blocks alone (nothing written where
+// the box's keys would not have been read).
+TEST(DepthPrecision, BackTrianglesRejectedByBlocksPaintAsWithoutThem) {
+  std::mt19937 random(29);
+  std::uniform_int_distribution<int> corner(2 * 256, 14 * 256);
+  std::uniform_real_distribution<float> key(0.25f, 0.75f), steep(-0.01f, 0.01f);
+  const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
+  std::size_t compared = 0, hidden = 0;
+  for (int t = 0; t < 4000; ++t) {
+    WindowVertex v[3];
+    const float base = key(random);
+    for (WindowVertex& c : v) {
+      c = randomPosition(random, corner);
+      c.depth = base + steep(random);
+    }
+    const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
+    if (area == 0) continue;
+    if (area < 0) std::swap(v[1], v[2]);
+    const PixelBounds box = detail::samplesInBoundingBox(v[0], v[1], v[2], tile);
+    if (box.area() <= 16 || box.area() > 256) continue;
+    TilePlanes written;
+    detail::PaintCounts own;
+    detail::paintTriangle<detail::DepthMode::Overwrite>(v[0], v[1], v[2], detail::kAllEdges, 0,
+                                                        tile, written.planes(), own);
+    if (own.written == 0) continue;
+    TilePlanes front;  // every pixel nearer than the triangle's key there (a front face's)
+    for (std::size_t i = 0; i < front.depth.size(); ++i)
+      front.depth[i] = written.ids[i] == 0 ? std::nextafter(written.depth[i], 2.0f) + 1e-4f : 1.0f;
+    if (t % 2 == 1) {  // one covered pixel a float farther: the triangle must win it
+      for (std::size_t i = 0; i < front.depth.size(); ++i) {
+        if (written.ids[i] != 0) continue;
+        front.depth[i] = std::nextafter(written.depth[i], -1.0f);
+        break;
+      }
+    }
+    TilePlanes withBlocks = front, without = front;
+    detail::FarthestBlocks blocks(tile, withBlocks.planes());
+    detail::PaintCounts countsWith, countsWithout;
+    detail::paintBackTriangle(v[0], v[1], v[2], detail::kAllEdges, 1, tile, withBlocks.planes(),
+                              countsWith, blocks);
+    detail::paintTriangle<detail::DepthMode::Test, true>(v[0], v[1], v[2], detail::kAllEdges, 1,
+                                                         tile, without.planes(), countsWithout);
+    ASSERT_EQ(withBlocks.depth, without.depth) << "triangle " << t;
+    ASSERT_EQ(withBlocks.ids, without.ids) << "triangle " << t;
+    ASSERT_EQ(countsWith.written, countsWithout.written) << "triangle " << t;
+    if (t % 2 == 1) {
+      EXPECT_GT(countsWith.written, 0u) << "triangle " << t;
+    }
+    ++compared;
+    hidden += countsWith.written == 0 ? 1 : 0;
+  }
+  EXPECT_GT(compared, 500u);
+  EXPECT_GT(hidden, compared / 4) << "a triangle behind every key should often be rejected";
+}
+
+// Each block's key is no nearer than any of its pixels', and stays so as pixels grow nearer.
+TEST(DepthPrecision, FarthestBlocksBoundTheirPixelsKeys) {
+  std::mt19937 random(31);
+  std::uniform_real_distribution<float> key(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> at(0, TilePlanes::kSide - 1);
+  TilePlanes planes;
+  for (float& d : planes.depth)
+    d = key(random);
+  planes.depth[5 * TilePlanes::kSide + 12] = -std::numeric_limits<float>::infinity();
+  const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
+  detail::FarthestBlocks blocks(tile, planes.planes());
+  for (int k = 0; k < 2000; ++k) {
+    PixelBounds box{at(random), at(random), at(random), at(random)};
+    if (box.x0 > box.x1) std::swap(box.x0, box.x1);
+    if (box.y0 > box.y1) std::swap(box.y0, box.y1);
+    float least = std::numeric_limits<float>::infinity();
+    for (int y = box.y0; y <= box.y1; ++y)
+      for (int x = box.x0; x <= box.x1; ++x)
+        least = std::min(least, planes.depth[y * TilePlanes::kSide + x]);
+    ASSERT_LE(blocks.over(box), least);
+    planes.depth[at(random) * TilePlanes::kSide + at(random)] += 0.5f;  // only nearer
+  }
+  EXPECT_EQ(blocks.over({12, 5, 12, 5}), -std::numeric_limits<float>::infinity());
+  EXPECT_GT(blocks.over({8, 8, 15, 15}), -1.0f) << "a block's own least key, not the tile's";
 }
 
 // The reject's margin above the vertex keys, where it is needed: a triangle whose key at a
