@@ -204,9 +204,9 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   const Planes planes = local.planesFor(tile, context.color);
   PaintCounts counts;
   CoarseDepth coarse(tile);
-  FarthestBlocks painted(tile, planes);  // read when a back face first asks
+  FarthestBlocks frontPainted(tile, planes);  // read when a back face first asks
   for (const auto bins : {&Chunk::bins, &Chunk::backBins}) {
-    FarthestBlocks* const front = bins == &Chunk::backBins ? &painted : nullptr;
+    FarthestBlocks* const front = bins == &Chunk::backBins ? &frontPainted : nullptr;
     for (const Chunk& chunk : context.chunks)
       paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse,
                                front);
