@@ -43,6 +43,7 @@
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
+#include "vtkUnsignedCharArray.h" // a member below
 
 #include "facet/HugePageAllocator.h"
 #include "facet/Renderer.h"

@@ -2,6 +2,7 @@
 // and the array ParaView's array selection names.
 #include "vtkFacetRenderFilterInternals.h"
 
+#include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkScalarsToColors.h"
 

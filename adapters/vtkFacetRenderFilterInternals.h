@@ -87,7 +87,7 @@ public:
   // (Parallel.cxx).
   void BoundsOf(vtkFacetRenderFilter* filter, vtkPolyData* input, bool parallel, double bounds[6]);
   // Turns polygon ids into CellId (across processes: global ids if the input has them, and
-  // the rank in RankId); nothing without CellId.
+  // the rank in RankId); nothing without CellId (vtkFacetRenderFilter.cxx).
   vtkFacetImageRenderer::IdMap CellLabels(const vtkFacetImageRenderer::Settings& settings);
   // Across processes: composites this rank's render (`rendered`: false after an error) into
   // `output`, the image of all pieces, and leaves out what was made only to composite by.

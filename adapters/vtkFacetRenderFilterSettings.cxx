@@ -3,6 +3,7 @@
 #include "vtkFacetRenderFilterInternals.h"
 
 #include "vtkLightCollection.h"
+#include "vtkPolyData.h"
 #include "vtkProperty.h"
 
 #include <algorithm>

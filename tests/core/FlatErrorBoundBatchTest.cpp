@@ -452,5 +452,82 @@ TEST_F(BoundBatches, TheEstimateIsTheSameBytesOnEveryInstructionSet) {
   }
 }
 
+// A batch of any count (1..64, mostly not a multiple of a vector's lanes) gives each live
+// lane the full batch's bits on every target, whatever garbage lies past the count (NaN,
+// negative radii, centers at the eye), and writes nothing past its arrays.
+TEST_F(BoundBatches, PartialBatchesAreTheFullBatchsLanesOnEveryTarget) {
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  for (const Case& c : cases()) {
+    const auto lighting = detail::batchLighting(c.lights, c.camera, c.twoSided);
+    const PreparedMaterial material(c.material);
+    const auto terms = detail::batchMaterial(material);
+    ASSERT_TRUE(lighting && terms);
+    const Polygons p = randomPolygons(c, detail::kShadeBatchSize);
+    std::vector<float> firstBounds;
+    std::vector<std::uint16_t> firstFixed;
+    for (const auto& target : targets) {
+      detail::useSimdTarget(target.bits);
+      std::vector<float> full;
+      std::vector<std::uint16_t> fullFixed;
+      for (std::size_t count = detail::kShadeBatchSize; count >= 1; --count) {
+        detail::ShadeBatch batch;
+        detail::ShadeBatchCenters centers;
+        alignas(64) float radius[detail::kShadeBatchSize], sine[detail::kShadeBatchSize];
+        for (std::size_t lane = 0; lane < detail::kShadeBatchSize; ++lane) {
+          const bool live = lane < count;
+          for (int k = 0; k < 3; ++k) {
+            centers.xyz[k][lane] = live ? p.shapes[lane].center[k] : c.camera.position[k];
+            batch.normal[k][lane] = live ? p.shapes[lane].normal[k] : (lane % 2 ? NAN : 1e308);
+            batch.color[k][lane] = live ? p.colors[lane][k] : NAN;
+          }
+          radius[lane] = live ? p.shapes[lane].radius : (lane % 2 ? NAN : -1.0f);
+          sine[lane] = live ? p.sines[lane] : NAN;
+        }
+        batch.count = count;
+        struct Out {
+          alignas(64) float bounds[detail::kShadeBatchSize];
+          float guard[32];
+          alignas(64) detail::EstimateBound fixed[detail::kShadeBatchSize];
+          detail::EstimateBound guardFixed[32];
+        } out;
+        std::fill(std::begin(out.guard), std::end(out.guard), 12345.0f);
+        std::fill(std::begin(out.guardFixed), std::end(out.guardFixed), 777);
+        detail::boundShadeColumns(*lighting, *terms, batch, centers, radius, sine, out.bounds,
+                                  out.fixed);
+        for (float g : out.guard)
+          ASSERT_EQ(g, 12345.0f);
+        for (auto g : out.guardFixed)
+          ASSERT_EQ(g, 777);
+        if (count == detail::kShadeBatchSize) {
+          full.assign(out.bounds, out.bounds + count);
+          fullFixed.assign(out.fixed, out.fixed + count);
+        }
+        for (std::size_t lane = 0; lane < count; ++lane) {
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(out.bounds[lane]),
+                    std::bit_cast<std::uint32_t>(full[lane]))
+              << c.name << " " << target.name << " count " << count << " lane " << lane;
+          ASSERT_EQ(out.fixed[lane], fullFixed[lane]);
+          // A lone polygon (boundOneColumn) is the batch's lane.
+          const float one = detail::boundOneColumn(*lighting, *terms, p.shapes[lane].center,
+                                                   p.shapes[lane].normal, p.colors[lane],
+                                                   radius[lane], sine[lane]);
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(one), std::bit_cast<std::uint32_t>(full[lane]));
+        }
+      }
+      if (firstBounds.empty()) {
+        firstBounds = full;
+        firstFixed = fullFixed;
+      } else {
+        for (std::size_t lane = 0; lane < full.size(); ++lane) {
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(full[lane]),
+                    std::bit_cast<std::uint32_t>(firstBounds[lane]))
+              << c.name << " " << target.name << " lane " << lane;
+          ASSERT_EQ(fullFixed[lane], firstFixed[lane]);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace facet::testing
