@@ -7,13 +7,13 @@
 // polygon ids and flags; the background alone a resolve.
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "MeshCache.h"
 #include "facet/Camera.h"
 #include "facet/Framebuffer.h"
 #include "facet/RenderPlan.h"
+#include "facet/Renderer.h"
 #include "facet/Scene.h"
 
 namespace facet::detail {
@@ -32,7 +32,7 @@ struct FrameInputs {
   const RenderRules& rules;
   EstimateHook* estimate = nullptr;  // QualityRenderer's, for shade and resolve (not compared)
   // Renderer::ResolvedRowsCallback, called by the resolve; null or empty: none.
-  const std::function<void(const FramebufferView&, int, int)>* resolvedRows = nullptr;
+  const Renderer::ResolvedRowsCallback* resolvedRows = nullptr;
 };
 
 struct PathChoice {

@@ -7,13 +7,13 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "TileGrid.h"
 #include "facet/Color.h"
 #include "facet/Framebuffer.h"
+#include "facet/Renderer.h"
 
 namespace facet::detail {
 
@@ -29,7 +29,7 @@ struct ResolveContext {
   const EstimateHook* estimate = nullptr;
   // Renderer::ResolvedRowsCallback, called with `target` (the caller's planes) and each band
   // once it is resolved and estimated; null: none.
-  const std::function<void(const FramebufferView&, int, int)>* resolvedRows = nullptr;
+  const Renderer::ResolvedRowsCallback* resolvedRows = nullptr;
   const FramebufferView* target = nullptr;
 };
 
