@@ -150,6 +150,17 @@ bool FrameTransform::boxInFrontOfNear(const Box& box) const {
   });
 }
 
+bool FrameTransform::boxInsideClipVolume(const Box& box, ClipPoint (&corners)[8]) const {
+  if (box.empty() || !clipCorners(box, corners)) return false;
+  return std::all_of(std::begin(corners), std::end(corners), [&](const ClipPoint& c) {
+    if (!(clipW(c) > 0.0)) return false;
+    for (int plane = 0; plane < kClipPlaneCount; ++plane) {
+      if (!(planeDistance(c, plane) > margin(c, plane))) return false;
+    }
+    return true;
+  });
+}
+
 double FrameTransform::viewDistance(const glm::dvec3& world) const {
   return -glm::dot(back_, world - eye_);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "BackFacingBlocks.h"
 #include "FaceNormal.h"
 
 namespace facet::detail {
@@ -59,6 +60,10 @@ void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   facts.blocks[b] = box;
   facts.blockPoints[b] = span;
   facts.blockFinite[b] = finite;
+  for (std::size_t first = begin; first < end; first += kPolygonsPerBackBlock) {
+    facts.backBlocks[first >> kBackBlockBits] =
+        measureBackBlock(mesh, first, std::min(end, first + kPolygonsPerBackBlock));
+  }
 }
 
 void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
@@ -67,6 +72,7 @@ void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   facts.blockPoints.resize(blocks);
   facts.blockFinite.resize(blocks);
   facts.faceNormals.resize(polygons);
+  facts.backBlocks.resize((polygons + kPolygonsPerBackBlock - 1) / kPolygonsPerBackBlock);
 }
 
 }  // namespace

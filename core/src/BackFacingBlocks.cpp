@@ -1,0 +1,181 @@
+#include "BackFacingBlocks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "facet/Conventions.h"
+
+namespace facet::detail {
+namespace {
+
+bool skippingOn = true;
+bool marginOn = true;
+
+constexpr double kUnitRoundoff = 0x1p-53;
+// Largest perimeter² / doubled area (1/sin of the smallest angle, within a factor) whose
+// normal is trusted: the cross product's rounding turns its direction by at most ~6 unit
+// roundoffs times this (the widening below allows 1e-14 per unit, 10× more).
+constexpr double kMaxShape = 1e6;
+// Sizes whose squares neither overflow nor lose precision as subnormals.
+constexpr double kSmallestDoubleArea = 1e-200, kLargestPerimeter = 1e150;
+// The widest cone kept: a block wider could not face away from any viewpoint with a margin.
+constexpr double kSmallestCosine = 0.05;
+// The coordinates' rounding before snapping must stay below this (step 4).
+constexpr double kLargestRounding = 0x1p-11;
+constexpr double kSnapDelta = 1.0 + 2.0 * kLargestRounding;  // Δ
+constexpr double kSlack = 1e-6;
+
+bool isFinite(const glm::dvec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// The parts of u along the unit vector `axis` and normal to it.
+void split(const glm::dvec3& u, const glm::dvec3& axis, double& along, double& across) {
+  along = glm::dot(axis, u);
+  across = glm::length(u - along * axis);
+}
+
+}  // namespace
+
+BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end) {
+  BackBlock block;
+  glm::dvec3 normals[kPolygonsPerBackBlock];
+  glm::dvec3 sum(0.0);
+  double minArea = std::numeric_limits<double>::infinity(), maxRatio = 0.0, maxShape = 0.0;
+  bool trusted = true;
+  withTypedMesh(mesh, [&](auto points, auto polygons) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const std::size_t n = polygons.size(p);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t id = polygons.pointId(p, k);
+        block.points.first = std::min(block.points.first, id);
+        block.points.last = std::max(block.points.last, id);
+        const glm::dvec3 point = points[id];
+        isFinite(point) ? block.box.add(point) : void(trusted = false);
+      }
+      if (n != 3 || !trusted) {
+        trusted = false;
+        continue;
+      }
+      const glm::dvec3 p0 = points[polygons.pointId(p, 0)];
+      const glm::dvec3 e1 = glm::dvec3(points[polygons.pointId(p, 1)]) - p0;
+      const glm::dvec3 e2 = glm::dvec3(points[polygons.pointId(p, 2)]) - p0;
+      const glm::dvec3 normal = glm::cross(e1, e2);
+      const double doubleArea = glm::length(normal);
+      const double perimeter = glm::length(e1) + glm::length(e2) + glm::length(e2 - e1);
+      const double shape = perimeter / doubleArea * perimeter;
+      if (!(doubleArea >= kSmallestDoubleArea && perimeter <= kLargestPerimeter &&
+            shape <= kMaxShape)) {
+        trusted = false;
+        continue;
+      }
+      normals[p - begin] = normal / doubleArea;
+      sum += normals[p - begin];
+      minArea = std::min(minArea, doubleArea);
+      maxRatio = std::max(maxRatio, perimeter / doubleArea);
+      maxShape = std::max(maxShape, shape);
+    }
+  });
+  const double length = glm::length(sum);
+  if (!trusted || !(length > 0.0) || !std::isfinite(length)) return block;
+  block.axis = sum / length;
+  double minCosine = 1.0;
+  for (std::size_t i = 0; i < end - begin; ++i)
+    minCosine = std::min(minCosine, glm::dot(normals[i], block.axis));
+  if (!(minCosine >= kSmallestCosine)) return block;
+  // acos near 1 turns a rounding of 1e-16 into ~3e-8 rad: 1e-7 covers it; 1e-14 per unit of
+  // shape covers the normals' own rounding.
+  const double angle = std::acos(minCosine) + 1e-7 + 1e-14 * maxShape;
+  if (!(angle < 1.5)) return block;
+  block.cosAngle = std::cos(angle);
+  block.sinAngle = std::sin(angle);
+  block.minDoubleArea = minArea * (1.0 - 1e-8);
+  block.maxPerimeterPerDoubleArea = maxRatio * (1.0 + 1e-8);
+  block.skippable = true;
+  return block;
+}
+
+BackFaceTest::BackFaceTest(const FrameTransform& transform)
+    : transform_(transform), c_(transform.constants()) {
+  scaleX_ = c_.halfWidth * kSubpixelScale;
+  scaleY_ = c_.halfHeight * kSubpixelScale;
+  const glm::dvec3 cx(c_.clipX), cy(c_.clipY);
+  rowX_ = glm::length(cx);
+  rowY_ = glm::length(cy);
+  const double rotation = glm::dot(c_.right, glm::cross(c_.up, c_.back));  // det R, ±1
+  if (c_.parallel) {
+    const glm::dvec3 w = glm::cross(cx, cy);
+    const glm::dvec3 q =
+        scaleX_ * scaleY_ * rotation * (c_.right * w.x + c_.up * w.y + c_.back * w.z);
+    areaScale_ = glm::length(q);
+    usable_ = areaScale_ > 0.0 && std::isfinite(areaScale_);
+    if (usable_) awayFromViewer_ = -q / areaScale_;
+    return;
+  }
+  // M = [cx; cy; (0, 0, −1)] on view coordinates.
+  const double k = -(cx.x * cy.y - cx.y * cy.x) * rotation * scaleX_ * scaleY_;
+  areaScale_ = std::abs(k);
+  facingSign_ = k > 0.0 ? -1.0 : 1.0;
+  usable_ = c_.clipX.w == 0.0 && c_.clipY.w == 0.0 && areaScale_ > 0.0 && std::isfinite(k);
+}
+
+bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
+  if (!usable_ || !block.skippable) return false;
+  ClipPoint corners[8];
+  if (!transform_.boxInsideClipVolume(block.box, corners)) return false;  // step 1
+  const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
+  double minW = std::numeric_limits<double>::infinity(), maxW = 0.0;
+  double ndcX = 0.0, ndcY = 0.0, reach = 0.0;
+  double minAlong = std::numeric_limits<double>::infinity(), maxAcross = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    const ClipPoint& corner = corners[i];
+    const double w = c_.parallel ? corner.h : corner.d;
+    minW = std::min(minW, w);
+    maxW = std::max(maxW, w);
+    ndcX = std::max(ndcX, std::abs(corner.x / w));
+    ndcY = std::max(ndcY, std::abs(corner.y / w));
+    const glm::dvec3 u = block.box.corner(i) - c_.eye;
+    reach = std::max(reach, glm::length(u));
+    double along = 0.0, across = 0.0;
+    split(c_.parallel ? awayFromViewer_ : u, axis, along, across);
+    minAlong = std::min(minAlong, along);
+    maxAcross = std::max(maxAcross, across);
+  }
+  if (c_.parallel) minW = maxW = 1.0;
+  // Step 3, less this test's rounding of u and its parts.
+  const double facing =
+      block.cosAngle * minAlong - block.sinAngle * maxAcross - 1e-12 * (c_.parallel ? 1.0 : reach);
+  if (!(facing > 0.0)) return false;
+  if (!marginOn) return true;
+  // Step 4: the transform's rounding of a window coordinate, generously bounded.
+  const double roundingX =
+      32.0 * kUnitRoundoff * scaleX_ * (rowX_ * reach / minW + std::abs(c_.clipX.w) + ndcX + 1.0);
+  const double roundingY =
+      32.0 * kUnitRoundoff * scaleY_ * (rowY_ * reach / minW + std::abs(c_.clipY.w) + ndcY + 1.0);
+  if (!(std::max(roundingX, roundingY) <= kLargestRounding)) return false;
+  const double edgeScale = c_.parallel ? scaleX_ * rowX_ + scaleY_ * rowY_
+                                       : scaleX_ * (rowX_ + ndcX) + scaleY_ * (rowY_ + ndcY);
+  const double x = areaScale_ * facing / (maxW * maxW * maxW);  // X
+  const double y = edgeScale / minW;                            // Y
+  const double perArea =
+      x * (1.0 - kSlack) - kSnapDelta * block.maxPerimeterPerDoubleArea * y * (1.0 + kSlack);
+  return perArea > 0.0 &&
+         block.minDoubleArea * perArea > 2.0 * kSnapDelta * kSnapDelta * (1.0 + kSlack);
+}
+
+void enableBackBlockSkipping(bool on) {
+  skippingOn = on;
+}
+
+bool backBlockSkippingEnabled() {
+  return skippingOn;
+}
+
+void enableBackBlockMargin(bool on) {
+  marginOn = on;
+}
+
+}  // namespace facet::detail
