@@ -32,6 +32,10 @@ bool isFinite(const glm::dvec3& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
+double l1Length(const glm::dvec3& v) {
+  return std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
+}
+
 // The parts of u along the unit vector `axis` and normal to it.
 void split(const glm::dvec3& u, const glm::dvec3& axis, double& along, double& across) {
   along = glm::dot(axis, u);
@@ -65,7 +69,8 @@ BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t 
       const glm::dvec3 e2 = glm::dvec3(points[polygons.pointId(p, 2)]) - p0;
       const glm::dvec3 normal = glm::cross(e1, e2);
       const double doubleArea = glm::length(normal);
-      const double perimeter = glm::length(e1) + glm::length(e2) + glm::length(e2 - e1);
+      // An upper bound of the perimeter without square roots (step 4 needs no more).
+      const double perimeter = l1Length(e1) + l1Length(e2) + l1Length(e2 - e1);
       const double shape = perimeter / doubleArea * perimeter;
       if (!(doubleArea >= kSmallestDoubleArea && perimeter <= kLargestPerimeter &&
             shape <= kMaxShape)) {
@@ -123,20 +128,12 @@ BackFaceTest::BackFaceTest(const FrameTransform& transform)
 }
 
 bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
-  if (!usable_ || !block.skippable) return false;
-  ClipPoint corners[8];
-  if (!transform_.boxInsideClipVolume(block.box, corners)) return false;  // step 1
+  if (!usable_ || !block.skippable || block.box.empty()) return false;
+  // Step 3 first, on the box's world corners: most blocks that are not skipped face the
+  // viewer, and this rejects them before any corner is projected.
   const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
-  double minW = std::numeric_limits<double>::infinity(), maxW = 0.0;
-  double ndcX = 0.0, ndcY = 0.0, reach = 0.0;
-  double minAlong = std::numeric_limits<double>::infinity(), maxAcross = 0.0;
+  double reach = 0.0, minAlong = std::numeric_limits<double>::infinity(), maxAcross = 0.0;
   for (int i = 0; i < 8; ++i) {
-    const ClipPoint& corner = corners[i];
-    const double w = c_.parallel ? corner.h : corner.d;
-    minW = std::min(minW, w);
-    maxW = std::max(maxW, w);
-    ndcX = std::max(ndcX, std::abs(corner.x / w));
-    ndcY = std::max(ndcY, std::abs(corner.y / w));
     const glm::dvec3 u = block.box.corner(i) - c_.eye;
     reach = std::max(reach, glm::length(u));
     double along = 0.0, across = 0.0;
@@ -144,12 +141,22 @@ bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
     minAlong = std::min(minAlong, along);
     maxAcross = std::max(maxAcross, across);
   }
-  if (c_.parallel) minW = maxW = 1.0;
-  // Step 3, less this test's rounding of u and its parts.
+  // Less this test's rounding of u and its parts.
   const double facing =
       block.cosAngle * minAlong - block.sinAngle * maxAcross - 1e-12 * (c_.parallel ? 1.0 : reach);
   if (!(facing > 0.0)) return false;
+  ClipPoint corners[8];
+  if (!transform_.boxInsideClipVolume(block.box, corners)) return false;  // step 1
   if (!marginOn) return true;
+  double minW = std::numeric_limits<double>::infinity(), maxW = 0.0, ndcX = 0.0, ndcY = 0.0;
+  for (const ClipPoint& corner : corners) {
+    const double w = c_.parallel ? corner.h : corner.d;
+    minW = std::min(minW, w);
+    maxW = std::max(maxW, w);
+    ndcX = std::max(ndcX, std::abs(corner.x / w));
+    ndcY = std::max(ndcY, std::abs(corner.y / w));
+  }
+  if (c_.parallel) minW = maxW = 1.0;
   // Step 4: the transform's rounding of a window coordinate, generously bounded.
   const double roundingX =
       32.0 * kUnitRoundoff * scaleX_ * (rowX_ * reach / minW + std::abs(c_.clipX.w) + ndcX + 1.0);
