@@ -38,7 +38,7 @@
 //    |ΔP|; Nx, Ny the largest |clip/w| at the box's corners, which bound it over the box, x/d
 //    being linear-fractional), G = Sx|cx| + Sy|cy| and d_min = 1 in parallel. So
 //    |2A' − 2A| ≤ Δ·G·perimeter/d_min + 2Δ² ≤ 2a·ΔGρ/d_min + 2Δ², ρ the block's largest
-//    perimeter/2a (the perimeter bounded above by its edges' L1 lengths: no square roots).
+//    perimeter/2a.
 // 5. Hence 2A' ≤ −2a(X − ΔρY) + 2Δ² with X = |k|D/d_max³ (|q|D) and Y = G/d_min (G): negative
 //    for every triangle when X > ΔρY and minDoubleArea·(X − ΔρY) > 2Δ², each side given a
 //    1e-6 relative slack for this test's own rounding.

@@ -46,7 +46,7 @@ struct BackBlock {
   glm::dvec3 axis{0.0};
   double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding
   double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down
-  double maxPerimeterPerDoubleArea = 0.0;  // the largest perimeter (L1) / doubled area, up
+  double maxPerimeterPerDoubleArea = 0.0;  // the largest perimeter / doubled area, rounded up
   bool skippable = false;
 };
 
