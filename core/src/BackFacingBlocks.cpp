@@ -124,11 +124,25 @@ BackFaceTest::BackFaceTest(const FrameTransform& transform)
   usable_ = c_.clipX.w == 0.0 && c_.clipY.w == 0.0 && areaScale_ > 0.0 && std::isfinite(k);
 }
 
+// A necessary condition for step 3, from the box's bounding ball (center m, radius r) in
+// place of its eight corners: every corner u has c·u ≤ c·(m − E) + r and |u⊥| ≥ |(m − E)⊥| − r,
+// so the corners' D is at most what this tests. It rejects the blocks that face the viewer
+// (half of them) at an eighth of the cost; any block it passes, the corners decide.
+bool BackFaceTest::mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const {
+  const glm::dvec3 center = 0.5 * block.box.low + 0.5 * block.box.high;
+  const double radius = 0.5 * glm::length(block.box.high - block.box.low);
+  double along = 0.0, across = 0.0;
+  split(c_.parallel ? awayFromViewer_ : center - c_.eye, axis, along, across);
+  if (c_.parallel) return block.cosAngle * along - block.sinAngle * across > 0.0;
+  return block.cosAngle * (along + radius) - block.sinAngle * (across - radius) > 0.0;
+}
+
 bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
   if (!usable_ || !block.skippable || block.box.empty()) return false;
   // Step 3 first, on the box's world corners: most blocks that are not skipped face the
   // viewer, and this rejects them before any corner is projected.
   const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
+  if (!mayFaceAway(block, axis)) return false;
   double reach = 0.0, minAlong = std::numeric_limits<double>::infinity(), maxAcross = 0.0;
   for (int i = 0; i < 8; ++i) {
     const glm::dvec3 u = block.box.corner(i) - c_.eye;

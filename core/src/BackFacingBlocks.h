@@ -65,6 +65,7 @@ class BackFaceTest {
   bool certainlyCulled(const BackBlock& block) const;
 
  private:
+  bool mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const;
   const FrameTransform& transform_;
   ProjectionConstants c_;
   bool usable_ = false;
