@@ -6,7 +6,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "FaceNormal.h"
 #include "facet/Conventions.h"
+#include "facet/PolygonNormal.h"
 
 namespace facet::detail {
 namespace {
@@ -15,22 +17,17 @@ bool skippingOn = true;
 bool marginOn = true;
 
 constexpr double kUnitRoundoff = 0x1p-53;
-// Largest perimeter² / doubled area (1/sin of the smallest angle, within a factor) whose
-// normal is trusted: the cross product's rounding turns its direction by at most ~6 unit
-// roundoffs times this (the widening below allows 1e-14 per unit, 10× more).
+// Largest perimeter² / doubled area (1/sin of the smallest angle, within a factor; the
+// perimeter bounded as in addTriangle) whose normal is trusted: the cross product's rounding turns
+// its direction by at most ~6 unit roundoffs times this (the widening below allows 1e-14 per unit,
+// 10× more).
 constexpr double kMaxShape = 1e6;
-// Sizes whose squares neither overflow nor lose precision as subnormals.
-constexpr double kSmallestDoubleArea = 1e-200, kLargestPerimeter = 1e150;
 // The widest cone kept: a block wider could not face away from any viewpoint with a margin.
 constexpr double kSmallestCosine = 0.05;
 // The coordinates' rounding before snapping must stay below this (step 4).
 constexpr double kLargestRounding = 0x1p-11;
 constexpr double kSnapDelta = 1.0 + 2.0 * kLargestRounding;  // Δ
 constexpr double kSlack = 1e-6;
-
-bool isFinite(const glm::dvec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 // The parts of u along the unit vector `axis` and normal to it.
 void split(const glm::dvec3& u, const glm::dvec3& axis, double& along, double& across) {
@@ -40,64 +37,109 @@ void split(const glm::dvec3& u, const glm::dvec3& axis, double& along, double& a
 
 }  // namespace
 
-BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end) {
-  BackBlock block;
-  glm::dvec3 normals[kPolygonsPerBackBlock];
-  glm::dvec3 sum(0.0);
-  double minArea = std::numeric_limits<double>::infinity(), maxRatio = 0.0, maxShape = 0.0;
-  bool trusted = true;
+namespace {
+
+// One back-face block's measurement, polygon by polygon.
+class BackBlockMeasure {
+ public:
+  void addPoint(std::size_t id, const glm::dvec3& point) {
+    block_.points.first = std::min(block_.points.first, id);
+    block_.points.last = std::max(block_.points.last, id);
+    if (isFinite(point)) {
+      block_.box.add(point);
+    } else {
+      block_.allFinite = trusted_ = false;
+    }
+  }
+  // A triangle whose cross product triangleCross found plain (its normal trusted so far;
+  // its squared sizes neither overflow nor underflow). Squares only, no square roots: the
+  // perimeter² is bounded by 3(|ab|² + |ac|² + |bc|²) (Cauchy–Schwarz), exact for an
+  // equilateral triangle and 1.5 % over for a right isosceles one (an L1 bound of the
+  // perimeter, up to √3 over, cost the 500k sphere its far blocks).
+  void addTriangle(const TriangleCross& triangle, const glm::dvec3& unitNormal) {
+    const glm::dvec3 bc = triangle.ac - triangle.ab;
+    const double perimeterSquared =
+        3.0 * (triangle.abSquared + triangle.acSquared + glm::dot(bc, bc));
+    const double ratioSquared = perimeterSquared / triangle.lengthSquared;  // (perimeter/2a)²
+    const double shapeSquared = ratioSquared * perimeterSquared;            // (perimeter²/2a)²
+    if (!(shapeSquared <= kMaxShape * kMaxShape)) {
+      trusted_ = false;
+      return;
+    }
+    normals_[count_++] = unitNormal;
+    sum_ += unitNormal;
+    minAreaSquared_ = std::min(minAreaSquared_, triangle.lengthSquared);
+    maxRatioSquared_ = std::max(maxRatioSquared_, ratioSquared);
+    maxShapeSquared_ = std::max(maxShapeSquared_, shapeSquared);
+  }
+  // Any other polygon: its block is never skipped.
+  void addOther() { trusted_ = false; }
+  BackBlock finish();
+
+ private:
+  BackBlock block_;
+  glm::dvec3 normals_[kPolygonsPerBackBlock];
+  std::size_t count_ = 0;
+  glm::dvec3 sum_{0.0};
+  double minAreaSquared_ = std::numeric_limits<double>::infinity();
+  double maxRatioSquared_ = 0.0, maxShapeSquared_ = 0.0;
+  bool trusted_ = true;
+};
+
+BackBlock BackBlockMeasure::finish() {
+  const double length = glm::length(sum_);
+  if (!trusted_ || !(length > 0.0) || !std::isfinite(length)) return block_;
+  const glm::dvec3 axis = sum_ / length;
+  double minCosine = 1.0;
+  for (std::size_t i = 0; i < count_; ++i)
+    minCosine = std::min(minCosine, glm::dot(normals_[i], axis));
+  if (!(minCosine >= kSmallestCosine)) return block_;
+  // acos near 1 turns a rounding of 1e-16 into ~3e-8 rad: 1e-7 covers it; 1e-14 per unit of
+  // shape covers the normals' own rounding.
+  const double angle = std::acos(minCosine) + 1e-7 + 1e-14 * std::sqrt(maxShapeSquared_);
+  if (!(angle < 1.5)) return block_;
+  block_.axis = axis;
+  block_.cosAngle = std::cos(angle);
+  block_.sinAngle = std::sin(angle);
+  block_.minDoubleArea = std::sqrt(minAreaSquared_) * (1.0 - 1e-8);
+  block_.maxPerimeterPerDoubleArea = std::sqrt(maxRatioSquared_) * (1.0 + 1e-8);
+  block_.skippable = true;
+  return block_;
+}
+
+}  // namespace
+
+BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
+                           glm::vec3* faceNormals) {
+  BackBlockMeasure measure;
   withTypedMesh(mesh, [&](auto points, auto polygons) {
     for (std::size_t p = begin; p < end; ++p) {
       const std::size_t n = polygons.size(p);
+      glm::dvec3 corners[3];
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t id = polygons.pointId(p, k);
-        block.points.first = std::min(block.points.first, id);
-        block.points.last = std::max(block.points.last, id);
         const glm::dvec3 point = points[id];
-        isFinite(point) ? block.box.add(point) : void(trusted = false);
+        measure.addPoint(id, point);
+        if (k < 3) corners[k] = point;
       }
-      if (n != 3 || !trusted) {
-        trusted = false;
-        continue;
+      const auto vertexAt = [&](std::size_t k) -> glm::dvec3 {
+        return points[polygons.pointId(p, k)];
+      };
+      if (n == 3) {
+        const TriangleCross triangle = triangleCross(corners[0], corners[1], corners[2]);
+        if (triangle.plain) {
+          // triangleNormal's own result (FaceNormal.h rounds it the same way).
+          const glm::dvec3 unitNormal = triangle.unitNormal();
+          measure.addTriangle(triangle, unitNormal);
+          if (faceNormals) faceNormals[p] = glm::vec3(unitNormal);
+          continue;
+        }
       }
-      const glm::dvec3 p0 = points[polygons.pointId(p, 0)];
-      const glm::dvec3 e1 = glm::dvec3(points[polygons.pointId(p, 1)]) - p0;
-      const glm::dvec3 e2 = glm::dvec3(points[polygons.pointId(p, 2)]) - p0;
-      const glm::dvec3 normal = glm::cross(e1, e2);
-      const double doubleArea = glm::length(normal);
-      // Euclidean: the L1 lengths (no square roots) cost no time here but widen the margin
-      // by up to √3, which left the 500k sphere's far rings unskipped near the silhouette.
-      const double perimeter = glm::length(e1) + glm::length(e2) + glm::length(e2 - e1);
-      const double shape = perimeter / doubleArea * perimeter;
-      if (!(doubleArea >= kSmallestDoubleArea && perimeter <= kLargestPerimeter &&
-            shape <= kMaxShape)) {
-        trusted = false;
-        continue;
-      }
-      normals[p - begin] = normal / doubleArea;
-      sum += normals[p - begin];
-      minArea = std::min(minArea, doubleArea);
-      maxRatio = std::max(maxRatio, perimeter / doubleArea);
-      maxShape = std::max(maxShape, shape);
+      measure.addOther();
+      if (faceNormals) faceNormals[p] = faceNormalOf(n, vertexAt);
     }
   });
-  const double length = glm::length(sum);
-  if (!trusted || !(length > 0.0) || !std::isfinite(length)) return block;
-  block.axis = sum / length;
-  double minCosine = 1.0;
-  for (std::size_t i = 0; i < end - begin; ++i)
-    minCosine = std::min(minCosine, glm::dot(normals[i], block.axis));
-  if (!(minCosine >= kSmallestCosine)) return block;
-  // acos near 1 turns a rounding of 1e-16 into ~3e-8 rad: 1e-7 covers it; 1e-14 per unit of
-  // shape covers the normals' own rounding.
-  const double angle = std::acos(minCosine) + 1e-7 + 1e-14 * maxShape;
-  if (!(angle < 1.5)) return block;
-  block.cosAngle = std::cos(angle);
-  block.sinAngle = std::sin(angle);
-  block.minDoubleArea = minArea * (1.0 - 1e-8);
-  block.maxPerimeterPerDoubleArea = maxRatio * (1.0 + 1e-8);
-  block.skippable = true;
-  return block;
+  return measure.finish();
 }
 
 BackFaceTest::BackFaceTest(const FrameTransform& transform)

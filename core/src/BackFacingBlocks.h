@@ -38,7 +38,8 @@
 //    |ΔP|; Nx, Ny the largest |clip/w| at the box's corners, which bound it over the box, x/d
 //    being linear-fractional), G = Sx|cx| + Sy|cy| and d_min = 1 in parallel. So
 //    |2A' − 2A| ≤ Δ·G·perimeter/d_min + 2Δ² ≤ 2a·ΔGρ/d_min + 2Δ², ρ the block's largest
-//    perimeter/2a.
+//    perimeter/2a (measured from
+//    the bound perimeter² ≤ 3(|e1|² + |e2|² + |e2 − e1|²), which only widens the margin).
 // 5. Hence 2A' ≤ −2a(X − ΔρY) + 2Δ² with X = |k|D/d_max³ (|q|D) and Y = G/d_min (G): negative
 //    for every triangle when X > ΔρY and minDoubleArea·(X − ΔρY) > 2Δ², each side given a
 //    1e-6 relative slack for this test's own rounding.
@@ -54,8 +55,11 @@
 
 namespace facet::detail {
 
-// The back-face block of polygons [begin, end) of a mesh.
-BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end);
+// The back-face block of polygons [begin, end) of a mesh. With `faceNormals`, also each
+// polygon p's face normal (FaceNormal.h) into faceNormals[p], from the same cross product:
+// MeshCache reads every polygon once.
+BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
+                           glm::vec3* faceNormals = nullptr);
 
 // One frame's test of back-face blocks.
 class BackFaceTest {

@@ -48,6 +48,7 @@ struct BackBlock {
   double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down
   double maxPerimeterPerDoubleArea = 0.0;  // the largest perimeter / doubled area, rounded up
   bool skippable = false;
+  bool allFinite = true;  // every point its polygons use is finite
 };
 
 // What makes two MeshViews the same arrays (MeshView::version's promise).

@@ -101,7 +101,8 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
                                          const FramebufferView& planes, detail::PhaseRunner& runner,
                                          RenderStats& stats) {
   if (in.rules.geometryOutsideView) {
-    detail::cullBlocksOutsideView(meshes, cache, *transform, in.rules.closedSurfaces, viewCulling);
+    detail::cullBlocksOutsideView(runner, meshes, cache, *transform, in.rules.closedSurfaces,
+                                  viewCulling);
     reportViewCulling();
   }
   bool completed = detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);

@@ -45,16 +45,11 @@ bool willSkipBackFaces(const FrameMesh& mesh, const MeshFacts& facts,
          transform.boxInFrontOfNear(facts.bounds);
 }
 
-// Tests the back-face blocks in view into `back`; returns how many are skipped.
-std::size_t testBackBlocks(const MeshFacts& facts, const BackFaceTest& test,
-                           const std::uint8_t* visible, std::uint8_t* back) {
-  std::size_t skipped = 0;
-  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
-    const bool inView = !visible || visible[b >> (kBlockBits - kBackBlockBits)];
-    back[b] = inView && test.certainlyCulled(facts.backBlocks[b]);
-    skipped += back[b];
-  }
-  return skipped;
+// Back-face blocks per task of the parallel test: about 100k instructions at most.
+constexpr std::size_t kBackBlocksPerTask = 64;
+
+bool backBlockInView(const std::uint8_t* visible, std::size_t b) {
+  return !visible || visible[b >> (kBlockBits - kBackBlockBits)];
 }
 
 // The transform tasks that the back-face blocks in view and not skipped use.
@@ -62,8 +57,7 @@ void markTasksOfBackBlocks(const MeshFacts& facts, const std::uint8_t* visible,
                            const std::uint8_t* back, std::uint8_t* tasks) {
   for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
     const PointSpan span = facts.backBlocks[b].points;
-    const bool inView = !visible || visible[b >> (kBlockBits - kBackBlockBits)];
-    if (!inView || back[b] || span.first > span.last) continue;
+    if (!backBlockInView(visible, b) || back[b] || span.first > span.last) continue;
     std::fill(tasks + span.first / kPointsPerTransformTask,
               tasks + span.last / kPointsPerTransformTask + 1, std::uint8_t{1});
   }
@@ -84,9 +78,33 @@ std::size_t taskCount(const MeshView& mesh) {
   return (mesh.points.count + kPointsPerTransformTask - 1) / kPointsPerTransformTask;
 }
 
+// Points the mesh at its flags and counts what its tests found.
+void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling, std::size_t m) {
+  const ViewCulling::MeshFlags& flags = culling.meshes[m];
+  const std::size_t skipped =
+      flags.testsBackBlocks
+          ? std::size_t(std::count(flags.back, flags.back + facts.backBlocks.size(), 1))
+          : 0;
+  const std::uint8_t* visibleOrAll = flags.outside > 0 ? flags.visible : nullptr;
+  if (flags.outside > 0) {
+    culling.blocksOutside += flags.outside;
+    culling.polygonsOutside += polygonsOutside(facts, mesh.mesh(), flags.visible);
+    mesh.visibleBlocks = flags.visible;
+  }
+  if (skipped > 0) {
+    culling.backBlocksSkipped += skipped;
+    markTasksOfBackBlocks(facts, visibleOrAll, flags.back, flags.needed);
+    mesh.backBlocks = flags.back;
+    mesh.neededTasks = flags.needed;
+  } else if (flags.outside > 0) {
+    markNeededTasks(facts, flags.visible, flags.needed);
+    mesh.neededTasks = flags.needed;
+  }
+}
+
 }  // namespace
 
-void cullBlocksOutsideView(std::span<FrameMesh> meshes, const MeshCache& cache,
+void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, const MeshCache& cache,
                            const FrameTransform& transform, bool closedSurfaces,
                            ViewCulling& culling) {
   culling.blocksTested = culling.blocksOutside = culling.polygonsOutside = 0;
@@ -100,40 +118,43 @@ void cullBlocksOutsideView(std::span<FrameMesh> meshes, const MeshCache& cache,
   culling.visibleBlocks.resize(blocks);  // pointers into these stay valid below
   culling.backBlocks.resize(backBlocks);
   culling.neededTasks.assign(tasks, 0);
-  const BackFaceTest backFaceTest(transform);
+  culling.meshes.assign(meshes.size(), ViewCulling::MeshFlags{});
+  culling.backRanges.clear();
   std::size_t firstBlock = 0, firstBackBlock = 0, firstTask = 0;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
-    FrameMesh& mesh = meshes[m];
+    const FrameMesh& mesh = meshes[m];
     const MeshFacts& facts = cache[m];
-    std::uint8_t* visible = culling.visibleBlocks.data() + firstBlock;
-    std::uint8_t* back = culling.backBlocks.data() + firstBackBlock;
-    std::uint8_t* needed = culling.neededTasks.data() + firstTask;
+    ViewCulling::MeshFlags& flags = culling.meshes[m];
+    flags.visible = culling.visibleBlocks.data() + firstBlock;
+    flags.back = culling.backBlocks.data() + firstBackBlock;
+    flags.needed = culling.neededTasks.data() + firstTask;
     firstBlock += facts.blocks.size();
     firstBackBlock += facts.backBlocks.size();
     firstTask += taskCount(mesh.mesh());
     if (!cullable(mesh, facts, transform)) continue;
     culling.blocksTested += facts.blocks.size();
-    const std::size_t outside = testBlocks(facts, transform, visible);
-    const std::uint8_t* visibleOrAll = outside > 0 ? visible : nullptr;
-    const std::size_t skipped =
-        backBlockSkippingEnabled() && willSkipBackFaces(mesh, facts, transform, closedSurfaces)
-            ? testBackBlocks(facts, backFaceTest, visibleOrAll, back)
-            : 0;
-    if (outside > 0) {
-      culling.blocksOutside += outside;
-      culling.polygonsOutside += polygonsOutside(facts, mesh.mesh(), visible);
-      mesh.visibleBlocks = visible;
-    }
-    if (skipped > 0) {
-      culling.backBlocksSkipped += skipped;
-      markTasksOfBackBlocks(facts, visibleOrAll, back, needed);
-      mesh.backBlocks = back;
-      mesh.neededTasks = needed;
-    } else if (outside > 0) {
-      markNeededTasks(facts, visible, needed);
-      mesh.neededTasks = needed;
-    }
+    flags.outside = testBlocks(facts, transform, flags.visible);
+    if (!backBlockSkippingEnabled() || !willSkipBackFaces(mesh, facts, transform, closedSurfaces))
+      continue;
+    flags.testsBackBlocks = true;
+    for (std::size_t b = 0; b < facts.backBlocks.size(); b += kBackBlocksPerTask)
+      culling.backRanges.push_back(
+          {m, b, std::min(facts.backBlocks.size(), b + kBackBlocksPerTask)});
   }
+  // The back-face blocks, independent of each other, on every thread: at 2M polygons about
+  // 8,000 of them, most of the culling's work.
+  const BackFaceTest backFaceTest(transform);
+  runner.runUnreported(culling.backRanges.size(), [&](std::size_t i) {
+    const MeshRange& r = culling.backRanges[i];
+    const ViewCulling::MeshFlags& flags = culling.meshes[r.mesh];
+    const std::uint8_t* visible = flags.outside > 0 ? flags.visible : nullptr;
+    for (std::size_t b = r.begin; b < r.end; ++b) {
+      flags.back[b] =
+          backBlockInView(visible, b) && backFaceTest.certainlyCulled(cache[r.mesh].backBlocks[b]);
+    }
+  });
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+    applyCulling(meshes[m], cache[m], culling, m);
 }
 
 }  // namespace facet::detail
