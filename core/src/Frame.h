@@ -55,6 +55,9 @@ struct FrameMesh {
   // seen, and per transform task, whether a visible block uses its points. Null: all.
   const std::uint8_t* visibleBlocks = nullptr;
   const std::uint8_t* neededTasks = nullptr;
+  // Per back-face block (MeshCache.h, BackFacingBlocks.h): every triangle in it would be
+  // culled, so none is set up. Null: none.
+  const std::uint8_t* backBlocks = nullptr;
   // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
   // shade phase from the points (an unversioned mesh).
   const glm::vec3* faceNormals = nullptr;

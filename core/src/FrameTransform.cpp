@@ -150,6 +150,19 @@ bool FrameTransform::boxInFrontOfNear(const Box& box) const {
   });
 }
 
+bool FrameTransform::boxInsideClipVolume(const Box& box, ClipPoint (&corners)[8]) const {
+  if (box.empty() || !clipCorners(box, corners)) return false;
+  // planeDistance and margin unrolled (h is 1 here, clipCorners checked): the back-face
+  // blocks' test runs this for thousands of boxes a frame.
+  return std::all_of(std::begin(corners), std::end(corners), [&](const ClipPoint& c) {
+    const double w = clipW(c);
+    const double sideX = 1e-9 * (w + std::abs(c.x)), sideY = 1e-9 * (w + std::abs(c.y));
+    return w > 0.0 && c.d - near_ > 1e-9 * (std::abs(c.d) + std::abs(near_)) &&
+           far_ - c.d > 1e-9 * (std::abs(c.d) + std::abs(far_)) && guardX_ * w + c.x > sideX &&
+           guardX_ * w - c.x > sideX && guardY_ * w + c.y > sideY && guardY_ * w - c.y > sideY;
+  });
+}
+
 double FrameTransform::viewDistance(const glm::dvec3& world) const {
   return -glm::dot(back_, world - eye_);
 }

@@ -196,6 +196,10 @@ class FrameTransform {
   bool boxOutsideView(const Box& box) const;
   // Whether every point of the box is in front of the near plane, by the same margin.
   bool boxInFrontOfNear(const Box& box) const;
+  // Whether every point of the box is inside the clip volume (near, far and the guard band's
+  // planes) by the same margin, every corner in front of the eye: each point's outcode is
+  // then kInside. `corners`: the box's corners in clip space.
+  bool boxInsideClipVolume(const Box& box, ClipPoint (&corners)[8]) const;
 
   // Window depth (Conventions.h, "Depth") of a depth key, computed in double and rounded to
   // the nearest float: perspective (1 − n/d)/(1 − n/f) = f(d − n)/(d(f − n)), parallel

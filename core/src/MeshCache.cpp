@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "BackFacingBlocks.h"
 #include "FaceNormal.h"
 
 namespace facet::detail {
@@ -34,28 +35,22 @@ bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& 
   });
 }
 
-// Block b's box, point span and finiteness, from the points its polygons use, and its
-// polygons' normals.
+// Block b's box, point span and finiteness, from the points its polygons use, its
+// back-face blocks, and its polygons' normals: each polygon read once (measureBackBlock).
 void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   const std::size_t begin = b * kPolygonsPerBlock;
   const std::size_t end = std::min(mesh.polygons.count, begin + kPolygonsPerBlock);
   Box box;
   PointSpan span;
   bool finite = true;
-  withTypedMesh(mesh, [&](auto points, auto polygons) {
-    for (std::size_t p = begin; p < end; ++p) {
-      const std::size_t n = polygons.size(p);
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t id = polygons.pointId(p, k);
-        span.first = std::min(span.first, id);
-        span.last = std::max(span.last, id);
-        const glm::dvec3 point = points[id];
-        isFinite(point) ? box.add(point) : void(finite = false);
-      }
-      facts.faceNormals[p] =
-          faceNormalOf(n, [&](std::size_t k) { return points[polygons.pointId(p, k)]; });
-    }
-  });
+  for (std::size_t first = begin; first < end; first += kPolygonsPerBackBlock) {
+    const BackBlock& back = facts.backBlocks[first >> kBackBlockBits] = measureBackBlock(
+        mesh, first, std::min(end, first + kPolygonsPerBackBlock), facts.faceNormals.data());
+    box.add(back.box);
+    span.first = std::min(span.first, back.points.first);
+    span.last = std::max(span.last, back.points.last);
+    finite = finite && back.allFinite;
+  }
   facts.blocks[b] = box;
   facts.blockPoints[b] = span;
   facts.blockFinite[b] = finite;
@@ -67,6 +62,7 @@ void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   facts.blockPoints.resize(blocks);
   facts.blockFinite.resize(blocks);
   facts.faceNormals.resize(polygons);
+  facts.backBlocks.resize((polygons + kPolygonsPerBackBlock - 1) / kPolygonsPerBackBlock);
 }
 
 }  // namespace

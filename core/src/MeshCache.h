@@ -28,6 +28,29 @@ struct PointSpan {
   std::size_t first = SIZE_MAX, last = 0;
 };
 
+// Polygons per back-face block (BackFacingBlocks.h): a quarter of a view-culling block, so
+// that the normals of a block of a ring-ordered sphere's triangles (a quarter ring at 500k)
+// span a cone narrow enough to lie wholly behind the eye's side of the sphere.
+inline constexpr int kBackBlockBits = 8;
+inline constexpr std::size_t kPolygonsPerBackBlock = std::size_t{1} << kBackBlockBits;
+static_assert(kBackBlockBits <= kBlockBits);
+
+// What a back-face block's polygons share, per mesh version: the cone their normals lie in
+// and the smallest size and worst shape among them (BackFacingBlocks.h says how a frame uses
+// them). `skippable` is false unless every polygon is a triangle of finite points with an
+// area and a shape whose normal the measurement can trust (BackFacingBlocks.cpp,
+// measureBackBlock).
+struct BackBlock {
+  Box box;           // the points its triangles use
+  PointSpan points;  // their ids
+  glm::dvec3 axis{0.0};
+  double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding
+  double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down
+  double maxPerimeterPerDoubleArea = 0.0;  // the largest perimeter / doubled area, rounded up
+  bool skippable = false;
+  bool allFinite = true;  // every point its polygons use is finite
+};
+
 // What makes two MeshViews the same arrays (MeshView::version's promise).
 struct MeshIdentity {
   const void* points = nullptr;
@@ -53,6 +76,7 @@ struct MeshFacts {
   std::vector<std::uint8_t> blockFinite;  // per block: every point it uses is finite
   // Per polygon, for a measured mesh: its unit normal rounded to float (FaceNormal.h).
   std::vector<glm::vec3> faceNormals;
+  std::vector<BackBlock> backBlocks;  // per kPolygonsPerBackBlock polygons
 };
 
 // The box of a mesh's finite points (for a plan made ahead of a render).

@@ -82,6 +82,15 @@ class PhaseRunner {
     return pool_.run(tasks, taskRef, FunctionRef<bool(std::size_t)>(report));
   }
 
+  // Runs task(i) for i in [0, tasks) on every thread as part of the phase that follows
+  // (no progress of its own, so the fractions never step back; not cancellable: the work
+  // is short).
+  template <class Task>
+  void runUnreported(std::size_t tasks, Task&& task) {
+    FunctionRef<void(std::size_t)> taskRef(task);
+    pool_.run(tasks, taskRef);
+  }
+
   // Seconds since the previous lap (or since the runner was made), for the phase timings.
   double lap() {
     const Clock::time_point now = Clock::now();

@@ -143,6 +143,7 @@ void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous) {
     plan.rule(rule) = previous.rule(rule);
   plan.blocksTested = previous.blocksTested;
   plan.blocksOutside = previous.blocksOutside;
+  plan.blocksBackFacing = previous.blocksBackFacing;
   plan.depthComplexity = previous.depthComplexity;
   plan.meanTriangleBox = previous.meanTriangleBox;
   plan.rasterRoutine = previous.rasterRoutine;

@@ -60,7 +60,8 @@ void describeRule(std::ostream& out, const RenderPlan& plan, Rule rule) {
     out << " of " << plan.lightCulling.lights;
     describeLights(out, plan.lightCulling);
   } else if (rule == Rule::GeometryOutsideView) {
-    out << " (" << plan.blocksOutside << " of " << plan.blocksTested << " blocks tested)";
+    out << " (" << plan.blocksOutside << " of " << plan.blocksTested << " blocks tested; "
+        << plan.blocksBackFacing << " back-facing blocks skipped whole)";
   } else if (rule == Rule::HiddenGeometry) {
     out << " (estimated depth complexity " << plan.depthComplexity << ", mean triangle box "
         << plan.meanTriangleBox << " px)";

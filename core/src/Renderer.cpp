@@ -21,6 +21,7 @@
 
 #include <algorithm>
 
+#include "Assert.h"
 #include "Raster.h"
 #include "RendererInputs.h"
 #include "Resolve.h"
@@ -100,13 +101,16 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
                                          const FramebufferView& planes, detail::PhaseRunner& runner,
                                          RenderStats& stats) {
   if (in.rules.geometryOutsideView) {
-    detail::cullBlocksOutsideView(meshes, cache, *transform, viewCulling);
+    detail::cullBlocksOutsideView(runner, meshes, cache, *transform, in.rules.closedSurfaces,
+                                  viewCulling);
     reportViewCulling();
   }
   bool completed = detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);
   stats.closedMeshesSkippingBackFaces =
       detail::decideBackFaces(meshes, pointRanges, in.rules.closedSurfaces);
   detail::reportRule(plan, Rule::ClosedSurfaces, stats.closedMeshesSkippingBackFaces);
+  for ([[maybe_unused]] const detail::FrameMesh& mesh : meshes)
+    FACET_ASSERT(!mesh.backBlocks || mesh.skipBackFaces);  // willSkipBackFaces, ViewCulling
   plan.setupRoutine =
       commonName(meshes, [](const auto& m) { return detail::setupRoutineName(m.skipBackFaces); });
   order.ids.clear();

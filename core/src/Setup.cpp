@@ -427,6 +427,19 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   const auto inView = [&](std::size_t polygon) {
     return !mesh.visibleBlocks || mesh.visibleBlocks[polygon >> kBlockBits];
   };
+  // Every triangle of its back-face block would be culled (BackFacingBlocks.h).
+  const auto culledWhole = [&](std::size_t polygon) {
+    return mesh.backBlocks && mesh.backBlocks[polygon >> kBackBlockBits];
+  };
+  // `count` polygons from `polygon` on, in one back-face block.
+  const auto setUpBlock = [&](std::size_t polygon, std::size_t count) {
+    if (!inView(polygon))
+      chunk.counts.outside += count;  // outside the view (ViewCulling.h)
+    else if (culledWhole(polygon))
+      chunk.counts.culled += count;
+    else
+      setUp(polygon, count);
+  };
   if (context.order.ids.empty()) {
     // Draw positions are polygon ids: the run ends where the chunk or the mesh does, and
     // visibility changes only from block to block (a third of the loop's instructions were
@@ -435,11 +448,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     const std::size_t end = std::min(chunk.end, mesh.endPolygon()) - mesh.firstPolygon;
     std::size_t polygon = position - mesh.firstPolygon;
     while (polygon < end) {
-      const std::size_t blockEnd = std::min(end, (polygon | (kPolygonsPerBlock - 1)) + 1);
-      if (inView(polygon))
-        setUp(polygon, blockEnd - polygon);
-      else
-        chunk.counts.outside += blockEnd - polygon;  // outside the view (ViewCulling.h)
+      const std::size_t blockEnd = std::min(end, (polygon | (kPolygonsPerBackBlock - 1)) + 1);
+      setUpBlock(polygon, blockEnd - polygon);
       polygon = blockEnd;
     }
     position = polygon + mesh.firstPolygon;
@@ -447,11 +457,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     for (; position < chunk.end; ++position) {
       const std::size_t id = context.order.ids[position];
       if (id < mesh.firstPolygon || id >= mesh.endPolygon()) break;
-      const std::size_t polygon = id - mesh.firstPolygon;
-      if (inView(polygon))
-        setUp(polygon, 1);
-      else
-        ++chunk.counts.outside;  // its block is outside the view (ViewCulling.h)
+      setUpBlock(id - mesh.firstPolygon, 1);
     }
   }
   if (lanes > 0) {

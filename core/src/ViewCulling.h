@@ -9,6 +9,12 @@
 // mesh is culled only when its whole box is in front of the near plane, which decides the
 // same way. Blocks with a non-finite point are kept, so that their polygons are counted as
 // non-finite as before.
+//
+// The same pass finds, for each mesh whose back faces the set-up will skip (decided here as
+// decideBackFaces will: its material culls them, or it is closed, finite and wholly in front
+// of the near plane), the back-face blocks whose every triangle it would cull
+// (BackFacingBlocks.h): those are counted as culled without being set up, and their points
+// are transformed only when a block that is set up uses them too.
 
 #include <cstdint>
 #include <span>
@@ -16,18 +22,35 @@
 
 #include "Frame.h"
 #include "MeshCache.h"
+#include "PhaseRunner.h"
 
 namespace facet::detail {
 
 struct ViewCulling {
+  // One mesh's part of the flags below, and what its tests found.
+  struct MeshFlags {
+    std::uint8_t* visible = nullptr;
+    std::uint8_t* back = nullptr;
+    std::uint8_t* needed = nullptr;
+    std::size_t outside = 0;       // blocks outside the view
+    bool testsBackBlocks = false;  // the set-up will skip its back faces
+  };
   std::vector<std::uint8_t> visibleBlocks;  // per block of every culled mesh, in turn
   std::vector<std::uint8_t> neededTasks;    // per transform task of every culled mesh
+  std::vector<std::uint8_t> backBlocks;     // per back-face block of every mesh, in turn
   std::size_t blocksTested = 0, blocksOutside = 0, polygonsOutside = 0;
+  std::size_t backBlocksSkipped = 0;
+  std::vector<MeshFlags> meshes;      // scratch, per mesh
+  std::vector<MeshRange> backRanges;  // scratch: the back-face blocks' test tasks
 };
 
 // Tests the blocks of every measured mesh against the view and points the meshes with
-// blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededTasks).
-void cullBlocksOutsideView(std::span<FrameMesh> meshes, const MeshCache& cache,
-                           const FrameTransform& transform, ViewCulling& culling);
+// blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededTasks), and
+// those with back-face blocks to skip at theirs (FrameMesh::backBlocks). `closedSurfaces`:
+// Rule::ClosedSurfaces may fire (decideBackFaces). The back-face blocks are tested on the
+// runner's threads, as part of the transform phase (no progress of their own).
+void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, const MeshCache& cache,
+                           const FrameTransform& transform, bool closedSurfaces,
+                           ViewCulling& culling);
 
 }  // namespace facet::detail

@@ -81,6 +81,7 @@ void Renderer::Workspace::prepareMeshes(const Scene& scene) {
 void Renderer::Workspace::reportViewCulling() {
   plan.blocksTested = viewCulling.blocksTested;
   plan.blocksOutside = viewCulling.blocksOutside;
+  plan.blocksBackFacing = viewCulling.backBlocksSkipped;
   detail::reportRule(plan, Rule::GeometryOutsideView, viewCulling.polygonsOutside);
 }
 

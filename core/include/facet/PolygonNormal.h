@@ -201,6 +201,37 @@ inline std::optional<glm::dvec3> sliverNormal(const glm::dvec3& a, const glm::dv
 
 }  // namespace detail
 
+namespace detail {
+
+/// triangleNormal's common case, and what it computed on the way (MeshCache measures
+/// blocks of triangles from the same cross product): `plain` when the numbers are well
+/// inside double's range and the angle at a is clearly not degenerate.
+struct TriangleCross {
+  glm::dvec3 ab, ac, cross;
+  double lengthSquared, abSquared, acSquared;
+  bool plain;
+  glm::dvec3 unitNormal() const { return cross * (1.0 / std::sqrt(lengthSquared)); }
+};
+inline TriangleCross triangleCross(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  TriangleCross t;
+  t.ab = b - a;
+  t.ac = c - a;
+  t.cross = glm::cross(t.ab, t.ac);
+  t.lengthSquared = glm::dot(t.cross, t.cross);
+  t.abSquared = glm::dot(t.ab, t.ab);
+  t.acSquared = glm::dot(t.ac, t.ac);
+  // Squares of squares: safe only for moderate magnitudes.
+  const bool moderate = t.lengthSquared > 1e-200 && t.lengthSquared < 1e200 &&
+                        t.abSquared > 1e-100 && t.abSquared < 1e100 && t.acSquared > 1e-100 &&
+                        t.acSquared < 1e100;
+  // sin²(angle at a) = |ab × ac|² / (|ab|² |ac|²); the sine at a never exceeds the largest.
+  t.plain =
+      moderate && t.lengthSquared > kDegenerateSine * kDegenerateSine * t.abSquared * t.acSquared;
+  return t;
+}
+
+}  // namespace detail
+
 /// The unit normal of triangle abc (counter-clockwise faces it), or nothing when it is
 /// degenerate: the sine of its largest angle is at most kDegenerateSine (its corners are
 /// collinear to within rounding). A plain cross product when the numbers are well inside
@@ -209,17 +240,8 @@ inline std::optional<glm::dvec3> sliverNormal(const glm::dvec3& a, const glm::dv
 /// triangle 1 unit wide and 1e300 long has a normal.
 inline std::optional<glm::dvec3> triangleNormal(const glm::dvec3& a, const glm::dvec3& b,
                                                 const glm::dvec3& c) {
-  const glm::dvec3 ab = b - a, ac = c - a;
-  const glm::dvec3 cross = glm::cross(ab, ac);
-  const double lengthSquared = glm::dot(cross, cross);
-  const double abSquared = glm::dot(ab, ab), acSquared = glm::dot(ac, ac);
-  // Squares of squares: safe only for moderate magnitudes.
-  const bool moderate = lengthSquared > 1e-200 && lengthSquared < 1e200 && abSquared > 1e-100 &&
-                        abSquared < 1e100 && acSquared > 1e-100 && acSquared < 1e100;
-  // sin²(angle at a) = |ab × ac|² / (|ab|² |ac|²); the sine at a never exceeds the largest.
-  if (moderate && lengthSquared > kDegenerateSine * kDegenerateSine * abSquared * acSquared) {
-    return cross * (1.0 / std::sqrt(lengthSquared));
-  }
+  const detail::TriangleCross triangle = detail::triangleCross(a, b, c);
+  if (triangle.plain) return triangle.unitNormal();
   if (!detail::isFinite(a) || !detail::isFinite(b) || !detail::isFinite(c)) return std::nullopt;
   return detail::sliverNormal(a, b, c);
 }

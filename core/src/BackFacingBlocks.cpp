@@ -1,0 +1,241 @@
+#include "BackFacingBlocks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "FaceNormal.h"
+#include "facet/Conventions.h"
+#include "facet/PolygonNormal.h"
+
+namespace facet::detail {
+namespace {
+
+bool skippingOn = true;
+bool marginOn = true;
+
+constexpr double kUnitRoundoff = 0x1p-53;
+// Largest perimeter² / doubled area (1/sin of the smallest angle, within a factor; the
+// perimeter bounded as in addTriangle) whose normal is trusted: the cross product's rounding turns
+// its direction by at most ~6 unit roundoffs times this (the widening below allows 1e-14 per unit,
+// 10× more).
+constexpr double kMaxShape = 1e6;
+// The widest cone kept: a block wider could not face away from any viewpoint with a margin.
+constexpr double kSmallestCosine = 0.05;
+// The coordinates' rounding before snapping must stay below this (step 4).
+constexpr double kLargestRounding = 0x1p-11;
+constexpr double kSnapDelta = 1.0 + 2.0 * kLargestRounding;  // Δ
+constexpr double kSlack = 1e-6;
+
+// The parts of u along the unit vector `axis` and normal to it.
+void split(const glm::dvec3& u, const glm::dvec3& axis, double& along, double& across) {
+  along = glm::dot(axis, u);
+  across = glm::length(u - along * axis);
+}
+
+}  // namespace
+
+namespace {
+
+// One back-face block's measurement, polygon by polygon.
+class BackBlockMeasure {
+ public:
+  void addPoint(std::size_t id, const glm::dvec3& point) {
+    block_.points.first = std::min(block_.points.first, id);
+    block_.points.last = std::max(block_.points.last, id);
+    if (isFinite(point)) {
+      block_.box.add(point);
+    } else {
+      block_.allFinite = trusted_ = false;
+    }
+  }
+  // A triangle whose cross product triangleCross found plain (its normal trusted so far;
+  // its squared sizes neither overflow nor underflow). Squares only, no square roots: the
+  // perimeter² is bounded by 3(|ab|² + |ac|² + |bc|²) (Cauchy–Schwarz), exact for an
+  // equilateral triangle and 1.5 % over for a right isosceles one (an L1 bound of the
+  // perimeter, up to √3 over, cost the 500k sphere its far blocks).
+  void addTriangle(const TriangleCross& triangle, const glm::dvec3& unitNormal) {
+    const glm::dvec3 bc = triangle.ac - triangle.ab;
+    const double perimeterSquared =
+        3.0 * (triangle.abSquared + triangle.acSquared + glm::dot(bc, bc));
+    const double ratioSquared = perimeterSquared / triangle.lengthSquared;  // (perimeter/2a)²
+    const double shapeSquared = ratioSquared * perimeterSquared;            // (perimeter²/2a)²
+    if (!(shapeSquared <= kMaxShape * kMaxShape)) {
+      trusted_ = false;
+      return;
+    }
+    normals_[count_++] = unitNormal;
+    sum_ += unitNormal;
+    minAreaSquared_ = std::min(minAreaSquared_, triangle.lengthSquared);
+    maxRatioSquared_ = std::max(maxRatioSquared_, ratioSquared);
+    maxShapeSquared_ = std::max(maxShapeSquared_, shapeSquared);
+  }
+  // Any other polygon: its block is never skipped.
+  void addOther() { trusted_ = false; }
+  BackBlock finish();
+
+ private:
+  BackBlock block_;
+  glm::dvec3 normals_[kPolygonsPerBackBlock];
+  std::size_t count_ = 0;
+  glm::dvec3 sum_{0.0};
+  double minAreaSquared_ = std::numeric_limits<double>::infinity();
+  double maxRatioSquared_ = 0.0, maxShapeSquared_ = 0.0;
+  bool trusted_ = true;
+};
+
+BackBlock BackBlockMeasure::finish() {
+  const double length = glm::length(sum_);
+  if (!trusted_ || !(length > 0.0) || !std::isfinite(length)) return block_;
+  const glm::dvec3 axis = sum_ / length;
+  double minCosine = 1.0;
+  for (std::size_t i = 0; i < count_; ++i)
+    minCosine = std::min(minCosine, glm::dot(normals_[i], axis));
+  if (!(minCosine >= kSmallestCosine)) return block_;
+  // acos near 1 turns a rounding of 1e-16 into ~3e-8 rad: 1e-7 covers it; 1e-14 per unit of
+  // shape covers the normals' own rounding.
+  const double angle = std::acos(minCosine) + 1e-7 + 1e-14 * std::sqrt(maxShapeSquared_);
+  if (!(angle < 1.5)) return block_;
+  block_.axis = axis;
+  block_.cosAngle = std::cos(angle);
+  block_.sinAngle = std::sin(angle);
+  block_.minDoubleArea = std::sqrt(minAreaSquared_) * (1.0 - 1e-8);
+  block_.maxPerimeterPerDoubleArea = std::sqrt(maxRatioSquared_) * (1.0 + 1e-8);
+  block_.skippable = true;
+  return block_;
+}
+
+}  // namespace
+
+BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
+                           glm::vec3* faceNormals) {
+  BackBlockMeasure measure;
+  withTypedMesh(mesh, [&](auto points, auto polygons) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const std::size_t n = polygons.size(p);
+      glm::dvec3 corners[3];
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t id = polygons.pointId(p, k);
+        const glm::dvec3 point = points[id];
+        measure.addPoint(id, point);
+        if (k < 3) corners[k] = point;
+      }
+      const auto vertexAt = [&](std::size_t k) -> glm::dvec3 {
+        return points[polygons.pointId(p, k)];
+      };
+      if (n == 3) {
+        const TriangleCross triangle = triangleCross(corners[0], corners[1], corners[2]);
+        if (triangle.plain) {
+          // triangleNormal's own result (FaceNormal.h rounds it the same way).
+          const glm::dvec3 unitNormal = triangle.unitNormal();
+          measure.addTriangle(triangle, unitNormal);
+          if (faceNormals) faceNormals[p] = glm::vec3(unitNormal);
+          continue;
+        }
+      }
+      measure.addOther();
+      if (faceNormals) faceNormals[p] = faceNormalOf(n, vertexAt);
+    }
+  });
+  return measure.finish();
+}
+
+BackFaceTest::BackFaceTest(const FrameTransform& transform)
+    : transform_(transform), c_(transform.constants()) {
+  scaleX_ = c_.halfWidth * kSubpixelScale;
+  scaleY_ = c_.halfHeight * kSubpixelScale;
+  const glm::dvec3 cx(c_.clipX), cy(c_.clipY);
+  rowX_ = glm::length(cx);
+  rowY_ = glm::length(cy);
+  const double rotation = glm::dot(c_.right, glm::cross(c_.up, c_.back));  // det R, ±1
+  if (c_.parallel) {
+    const glm::dvec3 w = glm::cross(cx, cy);
+    const glm::dvec3 q =
+        scaleX_ * scaleY_ * rotation * (c_.right * w.x + c_.up * w.y + c_.back * w.z);
+    areaScale_ = glm::length(q);
+    usable_ = areaScale_ > 0.0 && std::isfinite(areaScale_);
+    if (usable_) awayFromViewer_ = -q / areaScale_;
+    return;
+  }
+  // M = [cx; cy; (0, 0, −1)] on view coordinates.
+  const double k = -(cx.x * cy.y - cx.y * cy.x) * rotation * scaleX_ * scaleY_;
+  areaScale_ = std::abs(k);
+  facingSign_ = k > 0.0 ? -1.0 : 1.0;
+  usable_ = c_.clipX.w == 0.0 && c_.clipY.w == 0.0 && areaScale_ > 0.0 && std::isfinite(k);
+}
+
+// A necessary condition for step 3, from the box's bounding ball (center m, radius r) in
+// place of its eight corners: every corner u has c·u ≤ c·(m − E) + r and |u⊥| ≥ |(m − E)⊥| − r,
+// so the corners' D is at most what this tests. It rejects the blocks that face the viewer
+// (half of them) at an eighth of the cost; any block it passes, the corners decide.
+bool BackFaceTest::mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const {
+  const glm::dvec3 center = 0.5 * block.box.low + 0.5 * block.box.high;
+  const double radius = 0.5 * glm::length(block.box.high - block.box.low);
+  double along = 0.0, across = 0.0;
+  split(c_.parallel ? awayFromViewer_ : center - c_.eye, axis, along, across);
+  if (c_.parallel) return block.cosAngle * along - block.sinAngle * across > 0.0;
+  return block.cosAngle * (along + radius) - block.sinAngle * (across - radius) > 0.0;
+}
+
+bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
+  if (!usable_ || !block.skippable || block.box.empty()) return false;
+  // Step 3 first, on the box's world corners: most blocks that are not skipped face the
+  // viewer, and this rejects them before any corner is projected.
+  const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
+  if (!mayFaceAway(block, axis)) return false;
+  double reach = 0.0, minAlong = std::numeric_limits<double>::infinity(), maxAcross = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 u = block.box.corner(i) - c_.eye;
+    reach = std::max(reach, glm::length(u));
+    double along = 0.0, across = 0.0;
+    split(c_.parallel ? awayFromViewer_ : u, axis, along, across);
+    minAlong = std::min(minAlong, along);
+    maxAcross = std::max(maxAcross, across);
+  }
+  // Less this test's rounding of u and its parts.
+  const double facing =
+      block.cosAngle * minAlong - block.sinAngle * maxAcross - 1e-12 * (c_.parallel ? 1.0 : reach);
+  if (!(facing > 0.0)) return false;
+  ClipPoint corners[8];
+  if (!transform_.boxInsideClipVolume(block.box, corners)) return false;  // step 1
+  if (!marginOn) return true;
+  double minW = std::numeric_limits<double>::infinity(), maxW = 0.0, ndcX = 0.0, ndcY = 0.0;
+  for (const ClipPoint& corner : corners) {
+    const double w = c_.parallel ? corner.h : corner.d;
+    minW = std::min(minW, w);
+    maxW = std::max(maxW, w);
+    ndcX = std::max(ndcX, std::abs(corner.x / w));
+    ndcY = std::max(ndcY, std::abs(corner.y / w));
+  }
+  if (c_.parallel) minW = maxW = 1.0;
+  // Step 4: the transform's rounding of a window coordinate, generously bounded.
+  const double roundingX =
+      32.0 * kUnitRoundoff * scaleX_ * (rowX_ * reach / minW + std::abs(c_.clipX.w) + ndcX + 1.0);
+  const double roundingY =
+      32.0 * kUnitRoundoff * scaleY_ * (rowY_ * reach / minW + std::abs(c_.clipY.w) + ndcY + 1.0);
+  if (!(std::max(roundingX, roundingY) <= kLargestRounding)) return false;
+  const double edgeScale = c_.parallel ? scaleX_ * rowX_ + scaleY_ * rowY_
+                                       : scaleX_ * (rowX_ + ndcX) + scaleY_ * (rowY_ + ndcY);
+  const double x = areaScale_ * facing / (maxW * maxW * maxW);  // X
+  const double y = edgeScale / minW;                            // Y
+  const double perArea =
+      x * (1.0 - kSlack) - kSnapDelta * block.maxPerimeterPerDoubleArea * y * (1.0 + kSlack);
+  return perArea > 0.0 &&
+         block.minDoubleArea * perArea > 2.0 * kSnapDelta * kSnapDelta * (1.0 + kSlack);
+}
+
+void enableBackBlockSkipping(bool on) {
+  skippingOn = on;
+}
+
+bool backBlockSkippingEnabled() {
+  return skippingOn;
+}
+
+void enableBackBlockMargin(bool on) {
+  marginOn = on;
+}
+
+}  // namespace facet::detail

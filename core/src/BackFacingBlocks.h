@@ -1,0 +1,89 @@
+#pragma once
+
+// Blocks of back faces skipped whole. A mesh whose back faces are skipped this frame
+// (FrameMesh::skipBackFaces) culls about half its polygons one by one in the set-up, each
+// after its points were transformed: a triangle with every corner inside the clip volume is
+// culled when its *snapped* doubled window area (doubleSignedArea) is negative, and snapping
+// can flip a sliver's or a tiny triangle's sign against its true normal. A back-face block
+// (MeshCache.h, BackBlock: kPolygonsPerBackBlock polygons) is skipped, its polygons counted
+// as culled and its points not transformed unless a drawn block uses them too, only when
+// every triangle in it is certain to be culled by that rule. The proof, for one triangle
+// P0 P1 P2 of the block (exact double points, what the transform reads):
+//
+// 1. Every corner is inside the clip volume: the block's box is, each corner by
+//    FrameTransform::boxInsideClipVolume's margin (the volume is convex, so every point of
+//    the box is; the transform's own rounding, 1e-16 of the same magnitudes, cannot move a
+//    point across). So the triangle is not clipped, nor outside, nor non-finite: facing
+//    decides it (runTriangle and the batch alike), culled iff 2A' < 0, 2A' its snapped area.
+// 2. Exact window area. View coordinates V = R(P − E) (R the camera rotation, E the eye);
+//    window = S·(clip/w + 1) with S = (halfWidth, halfHeight)·kSubpixelScale. Perspective
+//    (clip x, clip y, d) = M·V for a 3×3 M (the projection's translation column is zero, else
+//    nothing is skipped), so 2A = det[clip_i, 1]·SxSy = det(M)det(R)SxSy·n·(P0 − E)/(d0d1d2)
+//    with n = (P1 − P0) × (P2 − P0), |n| = 2a (a the world area). Parallel (w = 1):
+//    2A = SxSy·det(R)·(Rᵀ(cx × cy))·n = q·n, cx and cy the rows of clip x and y.
+// 3. Facing margin from the cone. Every unit normal n̂ of the block is within α of the axis c
+//    (α widened by the normals' rounding, measureBackBlock). For a direction u and
+//    β = angle(n̂, c) ≤ α: n̂·u ≥ cos β (c·u) − sin β |u⊥| ≥ cos α (c·u) − sin α |u⊥| when
+//    c·u ≥ 0 (u⊥ the part of u normal to c). c·u is linear and |u⊥| convex in u, so over the
+//    box their bounds are at its corners: D = cos α · min(c'·u) − sin α · max|u⊥|, u = corner
+//    − E, c' = −sign(k)·c (perspective), and n̂·(−sign(k))(P0 − E) ≥ D. If D > 0:
+//    2A ≤ −|k|·2a·D/d_max³ (d ≤ d_max over the box, d affine). Parallel, with u = −q/|q| the
+//    same D: 2A ≤ −|q|·2a·D.
+// 4. Snapping. Each coordinate is rounded to the grid (≤ 1/2) from a value within δ ≤ 2^-11
+//    of the exact one (checked per block: the transform's ~10 roundings of 2^-53 against the
+//    magnitudes it multiplies, bounded at the box's corners). With e1 = p1 − p0, e2 = p2 − p0
+//    in window units and perturbations d1, d2 of max-norm Δ = 1 + 2δ:
+//    |2A' − 2A| ≤ Δ(|e1|₁ + |e2|₁) + 2Δ². A window edge is at most G·|P1 − P0|/d_min, with
+//    G = Sx(|cx| + Nx) + Sy(|cy| + Ny) (perspective: Δ(x/d) = cx·ΔV/d1 − (x0/d0)Δd/d1, |Δd| ≤
+//    |ΔP|; Nx, Ny the largest |clip/w| at the box's corners, which bound it over the box, x/d
+//    being linear-fractional), G = Sx|cx| + Sy|cy| and d_min = 1 in parallel. So
+//    |2A' − 2A| ≤ Δ·G·perimeter/d_min + 2Δ² ≤ 2a·ΔGρ/d_min + 2Δ², ρ the block's largest
+//    perimeter/2a (measured from
+//    the bound perimeter² ≤ 3(|e1|² + |e2|² + |e2 − e1|²), which only widens the margin).
+// 5. Hence 2A' ≤ −2a(X − ΔρY) + 2Δ² with X = |k|D/d_max³ (|q|D) and Y = G/d_min (G): negative
+//    for every triangle when X > ΔρY and minDoubleArea·(X − ΔρY) > 2Δ², each side given a
+//    1e-6 relative slack for this test's own rounding.
+//
+// A polygon that is not a triangle (facing by its normal in double), a degenerate triangle or
+// one with a non-finite point makes its block not skippable at measurement.
+
+#include <cstddef>
+
+#include "FrameTransform.h"
+#include "MeshAccess.h"
+#include "MeshCache.h"
+
+namespace facet::detail {
+
+// The back-face block of polygons [begin, end) of a mesh. With `faceNormals`, also each
+// polygon p's face normal (FaceNormal.h) into faceNormals[p], from the same cross product:
+// MeshCache reads every polygon once.
+BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
+                           glm::vec3* faceNormals = nullptr);
+
+// One frame's test of back-face blocks.
+class BackFaceTest {
+ public:
+  explicit BackFaceTest(const FrameTransform& transform);
+  // Whether every triangle of the block is culled by a mesh that skips back faces (above).
+  bool certainlyCulled(const BackBlock& block) const;
+
+ private:
+  bool mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const;
+  const FrameTransform& transform_;
+  ProjectionConstants c_;
+  bool usable_ = false;
+  double areaScale_ = 0.0;              // perspective |k|; parallel |q|
+  glm::dvec3 awayFromViewer_{0.0};      // parallel: −q/|q|
+  double facingSign_ = 1.0;             // perspective: −sign(k)
+  double rowX_ = 0.0, rowY_ = 0.0;      // |cx|, |cy| (linear parts)
+  double scaleX_ = 0.0, scaleY_ = 0.0;  // Sx, Sy
+};
+
+// Tests: skipping off (every polygon set up, as before); the margin of step 5 off (a block
+// is skipped when D > 0 alone: wrong, for the test that shows the margin matters).
+void enableBackBlockSkipping(bool on);
+bool backBlockSkippingEnabled();
+void enableBackBlockMargin(bool on);
+
+}  // namespace facet::detail

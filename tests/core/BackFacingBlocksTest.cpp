@@ -1,0 +1,282 @@
+// Back-face blocks skipped whole (BackFacingBlocks.h): renders with skipping on are the same
+// bytes and counts as with it off, on meshes of tiny triangles and slivers seen from many
+// views, perspective and parallel, near and far from the origin; and without the snapping
+// margin they are not.
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/TestMeshes.h"
+#include "../support/TestRender.h"
+#include "BackFacingBlocks.h"
+#include "MeshCache.h"
+
+namespace facet::testing {
+namespace {
+
+// Leaves skipping and its margin on, whatever a test did.
+class BackFacingBlocks : public ::testing::Test {
+ protected:
+  void TearDown() override {
+    detail::enableBackBlockSkipping(true);
+    detail::enableBackBlockMargin(true);
+  }
+};
+
+// Patches of kPolygonsPerBackBlock triangles each, every patch a small disc of random
+// orientation on a sphere of radius 1 about `center`, its triangles facing out: pixel-sized
+// ones, tiny ones (1e-4 of a pixel) and slivers (a corner within 1e-3 of the opposite edge),
+// mixed per patch as `mix` says (0: ordinary, 1: a few tiny, 2: a few slivers, 3: all tiny).
+Mesh patches(int count, unsigned seed, const glm::dvec3& center) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), positive(0.0, 1.0);
+  std::uniform_int_distribution<int> mixOf(0, 3);
+  Mesh mesh;
+  for (int patch = 0; patch < count; ++patch) {
+    glm::dvec3 normal(unit(random), unit(random), unit(random));
+    normal = glm::normalize(normal + glm::dvec3(1e-3));
+    const glm::dvec3 side = glm::normalize(glm::cross(normal, glm::dvec3(0.3, 0.5, 0.8)));
+    const glm::dvec3 up = glm::cross(normal, side);
+    const int mix = mixOf(random);
+    for (int t = 0; t < static_cast<int>(detail::kPolygonsPerBackBlock); ++t) {
+      // Points on the disc, bent slightly toward the sphere.
+      const double s = 0.15 * unit(random), u = 0.15 * unit(random);
+      const double size = (mix == 3 || (mix == 1 && t % 17 == 0)) ? 3e-7 : 0.004;
+      const glm::dvec3 a = center + normal + s * side + u * up - 0.5 * (s * s + u * u) * normal;
+      glm::dvec3 b = a + size * side;
+      glm::dvec3 c = a + size * up;
+      if (mix == 2 && t % 7 == 0) c = 0.5 * (a + b) + 1e-3 * size * up;  // a sliver
+      const std::int64_t first = mesh.addPoint(a);
+      mesh.addPoint(b);
+      mesh.addPoint(c);
+      mesh.addPolygon({first, first + 1, first + 2});  // counter-clockwise seen from outside
+    }
+  }
+  return mesh;
+}
+
+// A camera looking at `center` from `distance` in a random direction.
+Camera randomCamera(std::mt19937& random, const glm::dvec3& center, bool parallel) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), distance(2.5, 6.0);
+  const glm::dvec3 direction = glm::normalize(glm::dvec3(unit(random), unit(random), unit(random)));
+  Camera camera;
+  camera.position = center + distance(random) * direction;
+  camera.focalPoint = center;
+  camera.viewUp = std::abs(direction.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  camera.viewAngleDegrees = 30.0 + 20.0 * unit(random);
+  camera.parallelProjection = parallel;
+  camera.parallelScale = 1.3;
+  camera.nearClip = 0.1;
+  camera.farClip = 20.0;
+  return camera;
+}
+
+Rendered renderWith(const Scene& scene, const Camera& camera, bool skipping) {
+  detail::enableBackBlockSkipping(skipping);
+  Rendered r = renderScene(scene, camera, 320, 240);
+  detail::enableBackBlockSkipping(true);
+  return r;
+}
+
+// Whether two renders are the same bytes with the same counts.
+bool sameRender(const Rendered& a, const Rendered& b) {
+  const RenderStats &s = a.stats, &t = b.stats;
+  return differingPixels(a.framebuffer, b.framebuffer) == 0 && s.polygonsDrawn == t.polygonsDrawn &&
+         s.polygonsCulled == t.polygonsCulled && s.polygonsOutside == t.polygonsOutside &&
+         s.polygonsDegenerate == t.polygonsDegenerate &&
+         s.polygonsNonFinite == t.polygonsNonFinite && s.trianglesBinned == t.trianglesBinned;
+}
+
+struct Outcome {
+  int views = 0, differing = 0;
+  std::size_t blocksSkipped = 0;
+};
+
+// Renders the patches from many views with skipping on and off; closed surfaces, and a
+// material that culls back faces on an open one.
+Outcome compareViews(int views, unsigned seed, const glm::dvec3& center) {
+  const Mesh mesh = patches(48, seed, center);
+  MeshView closed = mesh.view();
+  closed.closedSurface = true;  // a promise the test keeps for the eye outside the sphere
+  closed.version = 1;
+  MeshView open = mesh.view();
+  open.version = 1;
+  Material culled;
+  culled.backfaceCulling = true;
+  LightSet lights;
+  lights.lights.push_back(
+      PointLight{center + glm::dvec3(0, 0, 9), Color(1.0f), 1.0, NoAttenuation{}});
+  const Scene scenes[2] = {oneMeshScene(closed, {}, lights), oneMeshScene(open, culled, lights)};
+  std::mt19937 random(seed);
+  Outcome outcome;
+  for (int v = 0; v < views; ++v) {
+    const Camera camera = randomCamera(random, center, v % 2 == 1);
+    const Scene& scene = scenes[v % 4 / 2];
+    const Rendered on = renderWith(scene, camera, true);
+    const Rendered off = renderWith(scene, camera, false);
+    EXPECT_EQ(off.stats.plan.blocksBackFacing, 0u);
+    outcome.blocksSkipped += on.stats.plan.blocksBackFacing;
+    outcome.differing += !sameRender(on, off);
+    ++outcome.views;
+  }
+  return outcome;
+}
+
+TEST_F(BackFacingBlocks, SkippedBlocksRenderTheSameBytesAndCountsFromManyViews) {
+  for (const glm::dvec3 center :
+       {glm::dvec3(0.0), glm::dvec3(1e6, -2e6, 3e5), glm::dvec3(-1e9, 1e9, 2e9)}) {
+    const Outcome outcome = compareViews(24, 11, center);
+    EXPECT_EQ(outcome.differing, 0) << "center " << center.x;
+    EXPECT_GT(outcome.blocksSkipped, 24u) << "center " << center.x;  // the test tests
+  }
+}
+
+// The same views with the snapping margin taken out (a block skipped whenever its cone faces
+// away): tiny triangles that snap to no area, or slivers that snap to the other winding, then
+// count (and draw) otherwise than the set-up would.
+TEST_F(BackFacingBlocks, WithoutTheMarginSomeViewDiffers) {
+  detail::enableBackBlockMargin(false);
+  int differing = 0;
+  for (const glm::dvec3 center : {glm::dvec3(0.0), glm::dvec3(1e6, -2e6, 3e5)})
+    differing += compareViews(24, 11, center).differing;
+  EXPECT_GT(differing, 0);
+}
+
+// A plane seen from its back almost edge-on (4e-4 below it at 2 to 4 away), its image a band
+// a few grid steps high through a row of pixel centers: its triangles' true windows areas are
+// negative by less than their snapping moves them, so some snap counter-clockwise and are drawn.
+// The margin keeps their blocks; without it they are skipped and those pixels lost.
+TEST_F(BackFacingBlocks, WithoutTheMarginAnEdgeOnPlaneLosesPixels) {
+  constexpr double kHeight = 1e-3;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> along(2.9, 3.1), across(-0.5, 0.5), depth(-0.09, 0.09),
+      side(-0.3, 0.3);
+  Mesh plane;
+  for (int t = 0; t < 4 * static_cast<int>(detail::kPolygonsPerBackBlock); ++t) {
+    const glm::dvec3 a(along(random), across(random), kHeight);
+    const glm::dvec3 b = a + glm::dvec3(depth(random), side(random), 0.0);
+    const glm::dvec3 c = a + glm::dvec3(depth(random), side(random), 0.0);
+    const std::int64_t first = plane.addPoint(a);
+    plane.addPoint(b);
+    plane.addPoint(c);
+    if (glm::cross(b - a, c - a).z > 0.0) {  // counter-clockwise from above: facing up
+      plane.addPolygon({first, first + 1, first + 2});
+    } else {
+      plane.addPolygon({first, first + 2, first + 1});
+    }
+  }
+  MeshView view = plane.view();
+  view.version = 1;
+  Material culled;
+  culled.backfaceCulling = true;
+  const Scene scene = oneMeshScene(view, culled);
+  Camera camera;  // below the plane, pitched down by its image's height to half a pixel
+  camera.position = {0.0, 0.0, 0.0};
+  camera.focalPoint = {1.0, 0.0, -7.84e-4};
+  camera.viewUp = {0.0, 0.0, 1.0};
+  camera.viewAngleDegrees = 30.0;
+  camera.nearClip = 0.5;
+  camera.farClip = 10.0;
+  const Rendered off = renderWith(scene, camera, false);
+  ASSERT_GT(off.stats.polygonsDrawn, 0u);  // some snapped counter-clockwise (70)
+  const Rendered on = renderWith(scene, camera, true);
+  EXPECT_EQ(on.stats.plan.blocksBackFacing, 0u);
+  EXPECT_TRUE(sameRender(on, off));
+  detail::enableBackBlockMargin(false);
+  const Rendered withoutMargin = renderWith(scene, camera, true);
+  EXPECT_GT(withoutMargin.stats.plan.blocksBackFacing, 0u);
+  EXPECT_GT(differingPixels(withoutMargin.framebuffer, off.framebuffer), 0u);
+}
+
+// Every face drawn (no culling material, not closed): nothing skipped.
+TEST_F(BackFacingBlocks, EveryFaceMeshesSkipNothing) {
+  const Mesh sphere = makeUvSphere(64, 66);
+  MeshView view = sphere.view();
+  view.version = 1;
+  const Rendered r = renderScene(oneMeshScene(view), fitCamera(sphere), 320, 240);
+  EXPECT_EQ(r.stats.plan.blocksBackFacing, 0u);
+  EXPECT_GT(r.stats.polygonsDrawn, 0u);
+}
+
+// A closed sphere edited in place (its winding reversed, a new version): its blocks are
+// measured again, and the render is the one without skipping.
+TEST_F(BackFacingBlocks, ANewVersionMeasuresItsBlocksAgain) {
+  Mesh sphere = makeUvSphere(128, 130);
+  const Camera camera = fitCamera(sphere);
+  MeshView view = sphere.view();
+  view.closedSurface = true;
+  view.version = 1;
+  Renderer renderer;
+  renderer.setThreadCount(2);
+  Framebuffer first(320, 240), again(320, 240);
+  const RenderStats before = renderer.render(oneMeshScene(view), camera, first.view());
+  EXPECT_GT(before.plan.blocksBackFacing, 0u);
+  for (std::size_t p = 0; p + 1 < sphere.offsets.size(); ++p) {  // every triangle reversed
+    const auto at = static_cast<std::size_t>(sphere.offsets[p]);
+    std::swap(sphere.connectivity[at + 1], sphere.connectivity[at + 2]);
+  }
+  view.version = 2;
+  const RenderStats after = renderer.render(oneMeshScene(view), camera, again.view());
+  EXPECT_GT(after.plan.blocksBackFacing, 0u);
+  const Rendered off = renderWith(oneMeshScene(view), camera, false);
+  EXPECT_EQ(differingPixels(again, off.framebuffer), 0u);
+  EXPECT_EQ(after.polygonsCulled, off.stats.polygonsCulled);
+  EXPECT_EQ(after.polygonsDrawn, off.stats.polygonsDrawn);
+}
+
+// A NaN point makes its block not skippable (and the mesh's back faces drawn, as a closed
+// surface with a non-finite point); with a culling material the others still are.
+TEST_F(BackFacingBlocks, NonFinitePointsKeepTheirBlocks) {
+  Mesh sphere = makeUvSphere(128, 130);
+  const Camera camera = fitCamera(sphere);
+  sphere.points[static_cast<std::size_t>(sphere.connectivity[5])].x =
+      std::numeric_limits<double>::quiet_NaN();
+  MeshView view = sphere.view();
+  view.version = 1;
+  Material culled;
+  culled.backfaceCulling = true;
+  const Rendered on = renderWith(oneMeshScene(view, culled), camera, true);
+  const Rendered off = renderWith(oneMeshScene(view, culled), camera, false);
+  EXPECT_TRUE(sameRender(on, off));
+  EXPECT_EQ(on.stats.polygonsNonFinite, off.stats.polygonsNonFinite);
+  EXPECT_GT(on.stats.polygonsNonFinite, 0u);
+  EXPECT_GT(on.stats.plan.blocksBackFacing, 0u);
+  view.closedSurface = true;
+  EXPECT_EQ(renderWith(oneMeshScene(view), camera, true).stats.plan.blocksBackFacing, 0u);
+}
+
+// The cone of a measured block: a flat patch's is narrow; a sliver, a tiny triangle under the
+// representable area or a quad makes a block not skippable.
+TEST_F(BackFacingBlocks, MeasurementRefusesWhatItCannotTrust) {
+  Mesh flat;
+  for (int t = 0; t < 4; ++t) {
+    const std::int64_t first = flat.addPoint({t, 0, 0});
+    flat.addPoint({t + 1, 0, 0});
+    flat.addPoint({t, 1, 0});
+    flat.addPolygon({first, first + 1, first + 2});
+  }
+  detail::BackBlock block = detail::measureBackBlock(flat.view(), 0, 4);
+  EXPECT_TRUE(block.skippable);
+  EXPECT_NEAR(block.axis.z, 1.0, 1e-12);
+  EXPECT_GT(block.cosAngle, 0.999999);
+  EXPECT_NEAR(block.minDoubleArea, 1.0, 1e-6);
+
+  Mesh sliver = flat;
+  sliver.points[static_cast<std::size_t>(sliver.connectivity[2])] = {0.5, 1e-9, 0.0};
+  EXPECT_FALSE(detail::measureBackBlock(sliver.view(), 0, 4).skippable);
+  Mesh quad = flat;
+  quad.addPoint({9, 9, 0});
+  quad.addPolygon({0, 1, 12, 2});
+  EXPECT_FALSE(detail::measureBackBlock(quad.view(), 0, 5).skippable);
+  Mesh folded = flat;
+  std::swap(folded.connectivity[4], folded.connectivity[5]);  // one facing the other way
+  EXPECT_FALSE(detail::measureBackBlock(folded.view(), 0, 4).skippable);
+}
+
+}  // namespace
+}  // namespace facet::testing
