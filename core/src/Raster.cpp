@@ -25,9 +25,9 @@ struct TilePlanes {
 
   // Planes whose index y·kSide + x (image coordinates, inside `tile`) lands here: the
   // painters index every plane as y·width + x − origin.
-  Planes planesFor(const PixelBounds& tile, Rgba8* color) {
+  Planes planesFor(const PixelBounds& tile) {
     const std::size_t origin = static_cast<std::size_t>(tile.y0) * kSide + tile.x0;
-    return {color, depth, polygonId, kSide, origin};
+    return {depth, polygonId, kSide, origin};
   }
 
   void clear(const PixelBounds& tile) {
@@ -201,7 +201,7 @@ template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
   TilePlanes local;  // uninitialized: clear() writes what the tile uses
   local.clear(tile);
-  const Planes planes = local.planesFor(tile, context.color);
+  const Planes planes = local.planesFor(tile);
   PaintCounts counts;
   CoarseDepth coarse(tile);
   FarthestBlocks frontPainted(tile, planes);  // read when a back face first asks
@@ -212,7 +212,9 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
                                front);
   }
   // A tile nothing was written to shows only the background (most tiles around a small
-  // object): no id to scan for, and the background's window depth everywhere.
+  // object): no id to scan for, and the background's window depth everywhere. This holds
+  // because every painter writes ids through writeFragment, which counts them: a painter that
+  // wrote planes another way would have to count its writes too.
   const bool painted = counts.written != 0;
   if (painted) counts.covered = markShownPolygons(context, local, tile);
   if (context.windowDepths) {  // the keys become window depths before they leave the cache

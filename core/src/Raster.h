@@ -21,8 +21,7 @@ namespace facet::detail {
 struct RasterContext {
   std::span<const Chunk> chunks;
   const WindowVertex* vertices;  // the frame's projected points (Transform.h)
-  Rgba8* color;                  // the framebuffer's planes (FramebufferView)
-  float* depth;
+  float* depth;  // the framebuffer's planes (FramebufferView): keys, or window depths
   std::int32_t* polygonId;
   int width;
   std::span<std::uint8_t> shown;  // out, per polygon id: a pixel of the image shows it

@@ -88,12 +88,11 @@ std::optional<float> keyOfOnlySample(const WindowVertex& a, const WindowVertex& 
                                      const WindowVertex& c, std::int64_t area, EdgeMask boundary,
                                      int x, int y);
 
-// Where a tile writes: the framebuffer's planes (full image, row 0 at the bottom; depth keys
-// while painting), or a tile's own (Raster.cpp). The painters index pixel (x, y) as
+// Where a tile writes its depth keys and polygon ids: a tile's own planes (Raster.cpp), or a
+// test's. The painters index pixel (x, y) as
 // y·width + x − origin: a tile's planes start at its first pixel's index, an offset rather
 // than pointers moved before the buffer (which the language leaves undefined).
 struct Planes {
-  Rgba8* color;
   float* depth;
   std::int32_t* polygonId;
   int width;

@@ -126,9 +126,13 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 
   const detail::TileRoutine tileRoutine =
       detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
-  const detail::RasterContext rasterContext{
-      setup.chunks,     vertices.data(), planes.color,   planes.depth,
-      planes.polygonId, planes.width,    polygons.shown, in.depthOutput ? &*transform : nullptr};
+  const detail::RasterContext rasterContext{setup.chunks,
+                                            vertices.data(),
+                                            planes.depth,
+                                            planes.polygonId,
+                                            planes.width,
+                                            polygons.shown,
+                                            in.depthOutput ? &*transform : nullptr};
   completed = completed && detail::paintTiles(runner, grid, rasterContext, tileRoutine, tiles);
   stats.rasterSeconds = runner.lap();
   return completed;

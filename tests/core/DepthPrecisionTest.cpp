@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -404,6 +406,48 @@ TEST(DepthPrecision, FarthestBlocksBoundTheirPixelsKeys) {
   }
   EXPECT_EQ(blocks.over({12, 5, 12, 5}), -std::numeric_limits<float>::infinity());
   EXPECT_GT(blocks.over({8, 8, 15, 15}), -1.0f) << "a block's own least key, not the tile's";
+}
+
+// A tile's block bounds are exact (each block's least key, over the tile's own pixels only),
+// for tiles anywhere in the image and of every edge size, in a 64 × 64 buffer indexed by the
+// tile's origin as the raster's (Raster.cpp, TilePlanes) with near junk past the tile's
+// pixels: an off-by-one that stays conservative fails here.
+TEST(DepthPrecision, FarthestBlocksAreExactForTilesAnywhereAndOfEverySize) {
+  constexpr int kSide = 64, kBlock = 8;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> key(-1.0f, 1.0f);
+  std::vector<float> depth(kSide * kSide);
+  std::vector<std::int32_t> ids(kSide * kSide);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const int tx = kSide * static_cast<int>(random() % 40),
+              ty = kSide * static_cast<int>(random() % 40);
+    const int w = 1 + static_cast<int>(random() % kSide),
+              h = 1 + static_cast<int>(random() % kSide);
+    const PixelBounds tile{tx, ty, tx + w - 1, ty + h - 1};
+    std::fill(depth.begin(), depth.end(), 1e30f);  // past the tile: never cleared, near
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        depth[y * kSide + x] = key(random);
+    const std::size_t origin = static_cast<std::size_t>(ty) * kSide + tx;
+    detail::FarthestBlocks blocks(tile, {depth.data(), ids.data(), kSide, origin});
+    const auto at = [&](int x, int y) { return depth[(y - ty) * kSide + (x - tx)]; };
+    for (int k = 0; k < 20; ++k) {
+      int x0 = tx + static_cast<int>(random() % w), x1 = tx + static_cast<int>(random() % w);
+      int y0 = ty + static_cast<int>(random() % h), y1 = ty + static_cast<int>(random() % h);
+      if (x0 > x1) std::swap(x0, x1);
+      if (y0 > y1) std::swap(y0, y1);
+      float exact = std::numeric_limits<float>::infinity();
+      for (int by = (y0 - ty) / kBlock; by <= (y1 - ty) / kBlock; ++by)
+        for (int bx = (x0 - tx) / kBlock; bx <= (x1 - tx) / kBlock; ++bx)
+          for (int y = ty + by * kBlock; y <= std::min(tile.y1, ty + by * kBlock + kBlock - 1); ++y)
+            for (int x = tx + bx * kBlock; x <= std::min(tile.x1, tx + bx * kBlock + kBlock - 1);
+                 ++x)
+              exact = std::min(exact, at(x, y));
+      ASSERT_EQ(blocks.over({x0, y0, x1, y1}), exact)
+          << "tile at " << tx << ", " << ty << " of " << w << " x " << h << ", box " << x0 << ", "
+          << y0 << " to " << x1 << ", " << y1;
+    }
+  }
 }
 
 // The reject's margin above the vertex keys, where it is needed: a triangle whose key at a

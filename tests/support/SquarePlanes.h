@@ -15,7 +15,7 @@ struct SquarePlanes {
   static constexpr int kSide = kSideValue;
   std::vector<float> depth = std::vector<float>(kSide * kSide, detail::kBackgroundDepthKey);
   std::vector<std::int32_t> ids = std::vector<std::int32_t>(kSide * kSide, -1);
-  detail::Planes planes() { return {nullptr, depth.data(), ids.data(), kSide}; }
+  detail::Planes planes() { return {depth.data(), ids.data(), kSide}; }
 };
 
 }  // namespace facet::testing
