@@ -7,6 +7,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
+#include "vtkFacetSeconds.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -30,11 +31,6 @@
 
 namespace {
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string RankList(const std::vector<int>& ranks)
 {
@@ -302,7 +298,7 @@ void vtkFacetCompositor::Composite(vtkFacetImageRenderer& image,
   }
   if (composited)
   {
-    this->Report(image, output, cost, SecondsSince(start));
+    this->Report(image, output, cost, vtkFacetSecondsSince(start));
   }
 #else
   (void)start;
@@ -331,7 +327,7 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
 
   Clock::time_point start = Clock::now();
   icet.Pack(image, pixels, rendered, rendered ? estimates : nullptr, layout);
-  cost.PackSeconds = SecondsSince(start);
+  cost.PackSeconds = vtkFacetSecondsSince(start);
 
   // Every rank learns whether every rank composited, and the bytes they sent, before any
   // rank gives up: the broadcast below is collective too.
@@ -364,7 +360,7 @@ bool vtkFacetCompositor::RunIceT(vtkFacetImageRenderer& image,
   {
     icet.Unpack(image, estimates, layout);
   }
-  cost.UnpackSeconds = SecondsSince(start);
+  cost.UnpackSeconds = vtkFacetSecondsSince(start);
   return true;
 }
 

@@ -4,6 +4,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkDoubleArray.h"
 #include "vtkFacetMessages.h"
+#include "vtkFacetSeconds.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -28,11 +29,6 @@
 #include <cstdlib>
 
 namespace {
-double SecondsSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Memory for an image plane that the renderer writes directly: 2 MiB-aligned and advised
 // to use transparent huge pages when large. Released with free(), which VTK calls.
 void* AllocatePlane(std::size_t bytes)
@@ -144,7 +140,7 @@ void vtkFacetImageRenderer::Start(vtkAlgorithm* algorithm)
 
 void vtkFacetImageRenderer::ConversionDone()
 {
-  this->ConversionSeconds = SecondsSince(this->StartTime);
+  this->ConversionSeconds = vtkFacetSecondsSince(this->StartTime);
   this->Algorithm->UpdateProgress(0.05);
 }
 
@@ -293,7 +289,7 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
   {
     this->ForEachPixelBlock(writeOutput);
   }
-  this->OutputSeconds = SecondsSince(outputStart);
+  this->OutputSeconds = vtkFacetSecondsSince(outputStart);
   this->AddFieldData(output, stats, conversions);
   this->Algorithm->UpdateProgress(1.0);
   return true;
@@ -319,7 +315,7 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
   vtkFieldData* fieldData = output->GetFieldData();
   fieldData->Initialize();
   AddNamedComponents<vtkDoubleArray>(
-    fieldData, "FacetRenderSeconds", { { "Total", SecondsSince(this->StartTime) } });
+    fieldData, "FacetRenderSeconds", { { "Total", vtkFacetSecondsSince(this->StartTime) } });
   AddNamedComponents<vtkDoubleArray>(fieldData,
     "FacetPhaseSeconds",
     { { "Conversion", this->ConversionSeconds },
@@ -410,6 +406,6 @@ void vtkFacetImageRenderer::AddToReport(vtkImageData* output, const std::string&
   }
   if (vtkDataArray* total = fieldData->GetArray("FacetRenderSeconds"))
   {
-    total->SetComponent(0, 0, SecondsSince(this->StartTime));
+    total->SetComponent(0, 0, vtkFacetSecondsSince(this->StartTime));
   }
 }
