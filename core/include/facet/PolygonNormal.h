@@ -199,10 +199,6 @@ inline std::optional<glm::dvec3> sliverNormal(const glm::dvec3& a, const glm::dv
   return cross / sine;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 /// triangleNormal's common case, and what it computed on the way (MeshCache measures
 /// blocks of triangles from the same cross product): `plain` when the numbers are well
 /// inside double's range and the angle at a is clearly not degenerate.
