@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "Assert.h"
 #include "FaceNormal.h"
 #include "facet/Conventions.h"
 #include "facet/PolygonNormal.h"
@@ -22,7 +23,8 @@ constexpr double kUnitRoundoff = 0x1p-53;
 // its direction by at most ~6 unit roundoffs times this (the widening below allows 1e-14 per unit,
 // 10× more).
 constexpr double kMaxShape = 1e6;
-// The widest cone kept: a block wider could not face away from any viewpoint with a margin.
+// The widest cone kept (a cost cut-off: a wider block faces away from few viewpoints; the
+// angle test in finish() is what the proof needs).
 constexpr double kSmallestCosine = 0.05;
 // The coordinates' rounding before snapping must stay below this (step 4).
 constexpr double kLargestRounding = 0x1p-11;
@@ -66,6 +68,7 @@ class BackBlockMeasure {
       trusted_ = false;
       return;
     }
+    FACET_ASSERT(count_ < kPolygonsPerBackBlock);  // a block is at most that many polygons
     normals_[count_++] = unitNormal;
     sum_ += unitNormal;
     minAreaSquared_ = std::min(minAreaSquared_, triangle.lengthSquared);
@@ -210,11 +213,15 @@ bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
     ndcY = std::max(ndcY, std::abs(corner.y / w));
   }
   if (c_.parallel) minW = maxW = 1.0;
-  // Step 4: the transform's rounding of a window coordinate, generously bounded.
-  const double roundingX =
-      32.0 * kUnitRoundoff * scaleX_ * (rowX_ * reach / minW + std::abs(c_.clipX.w) + ndcX + 1.0);
-  const double roundingY =
-      32.0 * kUnitRoundoff * scaleY_ * (rowY_ * reach / minW + std::abs(c_.clipY.w) + ndcY + 1.0);
+  // Step 1's outcode margin, 1e-9·(w + |x|), must cover the transform's rounding of clip x
+  // and y (~u·|row|·reach): a tenth of it at most.
+  if (!(kUnitRoundoff * std::max(rowX_, rowY_) * reach <= 1e-10 * minW)) return false;
+  // Step 4: the transform's rounding of a window coordinate, generously bounded: window x is
+  // clip x / d, so the rounding of d (~u·reach) enters multiplied by |x/d| too (review20c).
+  const double roundingX = 32.0 * kUnitRoundoff * scaleX_ *
+                           ((rowX_ + ndcX) * reach / minW + std::abs(c_.clipX.w) + ndcX + 1.0);
+  const double roundingY = 32.0 * kUnitRoundoff * scaleY_ *
+                           ((rowY_ + ndcY) * reach / minW + std::abs(c_.clipY.w) + ndcY + 1.0);
   if (!(std::max(roundingX, roundingY) <= kLargestRounding)) return false;
   const double edgeScale = c_.parallel ? scaleX_ * rowX_ + scaleY_ * rowY_
                                        : scaleX_ * (rowX_ + ndcX) + scaleY_ * (rowY_ + ndcY);

@@ -11,9 +11,10 @@
 // P0 P1 P2 of the block (exact double points, what the transform reads):
 //
 // 1. Every corner is inside the clip volume: the block's box is, each corner by
-//    FrameTransform::boxInsideClipVolume's margin (the volume is convex, so every point of
-//    the box is; the transform's own rounding, 1e-16 of the same magnitudes, cannot move a
-//    point across). So the triangle is not clipped, nor outside, nor non-finite: facing
+//    FrameTransform::boxInsideClipVolume's margin 1e-9·(w + |x|) (the volume is convex, so
+//    every point of the box is; the transform's own rounding of clip x and y, ~2^-53 of
+//    |row|·reach, is checked per block to be a tenth of that margin at most, so it cannot
+//    move a point across). So the triangle is not clipped, nor outside, nor non-finite: facing
 //    decides it (runTriangle and the batch alike), culled iff 2A' < 0, 2A' its snapped area.
 // 2. Exact window area. View coordinates V = R(P − E) (R the camera rotation, E the eye);
 //    window = S·(clip/w + 1) with S = (halfWidth, halfHeight)·kSubpixelScale. Perspective
@@ -31,7 +32,8 @@
 //    same D: 2A ≤ −|q|·2a·D.
 // 4. Snapping. Each coordinate is rounded to the grid (≤ 1/2) from a value within δ ≤ 2^-11
 //    of the exact one (checked per block: the transform's ~10 roundings of 2^-53 against the
-//    magnitudes it multiplies, bounded at the box's corners). With e1 = p1 − p0, e2 = p2 − p0
+//    magnitudes it multiplies, bounded at the box's corners — including the rounding of d,
+//    which enters window x = clip x / d multiplied by |x/d|). With e1 = p1 − p0, e2 = p2 − p0
 //    in window units and perturbations d1, d2 of max-norm Δ = 1 + 2δ:
 //    |2A' − 2A| ≤ Δ(|e1|₁ + |e2|₁) + 2Δ². A window edge is at most G·|P1 − P0|/d_min, with
 //    G = Sx(|cx| + Nx) + Sy(|cy| + Ny) (perspective: Δ(x/d) = cx·ΔV/d1 − (x0/d0)Δd/d1, |Δd| ≤

@@ -10,11 +10,13 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "BackFacingBlocks.h"
 #include "MeshCache.h"
+#include "SetupBatch.h"
 
 namespace facet::testing {
 namespace {
@@ -23,6 +25,7 @@ namespace {
 class BackFacingBlocks : public ::testing::Test {
  protected:
   void TearDown() override {
+    detail::useSimdTarget(0);
     detail::enableBackBlockSkipping(true);
     detail::enableBackBlockMargin(true);
   }
@@ -227,6 +230,35 @@ TEST_F(BackFacingBlocks, ANewVersionMeasuresItsBlocksAgain) {
   EXPECT_EQ(differingPixels(again, off.framebuffer), 0u);
   EXPECT_EQ(after.polygonsCulled, off.stats.polygonsCulled);
   EXPECT_EQ(after.polygonsDrawn, off.stats.polygonsDrawn);
+}
+
+// A versioned closed sphere turning: skipping on gives the bytes and counts of skipping off on
+// 1, 2 and 8 threads and on every SIMD target (the set-up's batches are what it skips).
+TEST_F(BackFacingBlocks, SkippingIsTheSameBytesOnEveryThreadCountAndTarget) {
+  const Mesh sphere = makeUvSphere(128, 130);
+  MeshView view = sphere.view();
+  view.closedSurface = true;
+  view.version = 1;
+  const Scene scene = oneMeshScene(view);
+  Camera camera = fitCamera(sphere);
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  for (int turn = 0; turn < 3; ++turn) {
+    camera.position = glm::dvec3(glm::rotate(glm::dmat4(1.0), 0.4 * turn, glm::dvec3(0, 1, 0)) *
+                                 glm::dvec4(camera.position - camera.focalPoint, 0.0)) +
+                      camera.focalPoint;
+    const Rendered off = renderWith(scene, camera, false);
+    for (const detail::SimdTarget& target : targets) {
+      detail::useSimdTarget(target.bits);
+      for (int threads : {1, 2, 8}) {
+        RenderOptions options;
+        options.threads = threads;
+        const Rendered on = renderScene(scene, camera, 320, 240, options);
+        EXPECT_GT(on.stats.plan.blocksBackFacing, 0u) << target.name << ", " << threads;
+        EXPECT_TRUE(sameRender(on, off)) << target.name << ", " << threads << " threads";
+      }
+    }
+    detail::useSimdTarget(0);
+  }
 }
 
 // A NaN point makes its block not skippable (and the mesh's back faces drawn, as a closed
