@@ -58,7 +58,10 @@ struct RenderRules {
   /// bound on the error this introduces (RenderPlan::LightCulling). 0 leaves out only lights
   /// that contribute nothing at all. (default: 0)
   double lightTolerance = 0.0;
-  bool geometryOutsideView = true;                     ///< (default: on)
+  /// Blocks of polygons outside the view are not transformed or set up; with it, so are the
+  /// blocks of back faces certain to be culled (a mesh that skips its back faces: a closed
+  /// surface, or a culling material), reported as RenderPlan::blocksBackFacing. (default: on)
+  bool geometryOutsideView = true;
   HierarchicalZ hiddenGeometry = HierarchicalZ::Auto;  ///< (default: Auto)
   bool ambientOnly = true;                             ///< (default: on)
   bool oneColor = true;                                ///< (default: on)
