@@ -26,14 +26,17 @@ std::size_t testBlocks(const MeshFacts& facts, const FrameTransform& transform,
   return outside;
 }
 
-// The transform tasks (Transform.h) that the visible blocks' points fall in.
+// Marks the transform tasks (Transform.h) that a block's points fall in.
+void markTasksOf(const PointSpan& span, std::uint8_t* tasks) {
+  if (span.first > span.last) return;  // a block that uses no point
+  std::fill(tasks + span.first / kPointsPerTransformTask,
+            tasks + span.last / kPointsPerTransformTask + 1, std::uint8_t{1});
+}
+
+// The transform tasks that the visible blocks' points fall in.
 void markNeededTasks(const MeshFacts& facts, const std::uint8_t* visible, std::uint8_t* tasks) {
-  for (std::size_t b = 0; b < facts.blocks.size(); ++b) {
-    const PointSpan span = facts.blockPoints[b];
-    if (!visible[b] || span.first > span.last) continue;
-    std::fill(tasks + span.first / kPointsPerTransformTask,
-              tasks + span.last / kPointsPerTransformTask + 1, std::uint8_t{1});
-  }
+  for (std::size_t b = 0; b < facts.blocks.size(); ++b)
+    if (visible[b]) markTasksOf(facts.blockPoints[b], tasks);
 }
 
 // Whether decideBackFaces will skip the mesh's back faces, known before its points are
@@ -55,12 +58,8 @@ bool backBlockInView(const std::uint8_t* visible, std::size_t b) {
 // The transform tasks that the back-face blocks in view and not skipped use.
 void markTasksOfBackBlocks(const MeshFacts& facts, const std::uint8_t* visible,
                            const std::uint8_t* back, std::uint8_t* tasks) {
-  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
-    const PointSpan span = facts.backBlocks[b].points;
-    if (!backBlockInView(visible, b) || back[b] || span.first > span.last) continue;
-    std::fill(tasks + span.first / kPointsPerTransformTask,
-              tasks + span.last / kPointsPerTransformTask + 1, std::uint8_t{1});
-  }
+  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b)
+    if (backBlockInView(visible, b) && !back[b]) markTasksOf(facts.backBlocks[b].points, tasks);
 }
 
 std::size_t polygonsOutside(const MeshFacts& facts, const MeshView& mesh,
