@@ -231,17 +231,15 @@ bench: build
 
 # Facet against VTK (MSAA off and default), raw llvmpipe (OSMesa), an Embree ray caster and
 # the memory-bound limit, in one run and one table (bench/peers.py). Configures again so
-# that CMake finds the peers' libraries just installed. Xvfb with 512 clients: two runs of
-# 2026-11-22 stopped in their second round with "bad X server connection", one of 2026-11-23
-# in its first (the rerun a minute later passed); the run does not hold connections open
-# (Xvfb's descriptors stay at 10-11 through three rounds), so the cause is not the client
-# count and not known: Xvfb's own messages go to $(BUILD_DIR)/xvfb-bench-peers.log for the
-# next time.
+# that CMake finds the peers' libraries just installed. Under Xvfb as the plugin suite runs it
+# (tests/plugin/xvfb_run.sh: a display and an X authority file of its own outside /tmp, the run
+# tried again when VTK reports "bad X server connection" — four runs of 2026-11-22/23 under
+# plain xvfb-run stopped so, in any round, nothing in Xvfb's log).
 bench-peers: deps
 	$(call install-missing,$(PEER_PACKAGES))
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target all benchmarks
-	xvfb-run -a -e $(BUILD_DIR)/xvfb-bench-peers.log -s "-screen 0 1920x1080x24 -maxclients 512" \
+	XVFB_SCREEN=1920x1080x24 tests/plugin/xvfb_run.sh \
 	  /usr/bin/python3 bench/peers.py --build-dir $(BUILD_DIR)
 
 # The stability catalogue (tests/stability/) through Facet and through VTK's OpenGL pipeline
