@@ -37,7 +37,7 @@ Update closed and Update every face, one after the other, in one process): each 
 of two frames a second apart, and the verdict is on the median of those ratios.
 
     make bench-peers
-    xvfb-run -a -s "-screen 0 1920x1080x24 -maxclients 512" /usr/bin/python3 bench/peers.py --sizes 500000
+    XVFB_SCREEN=1920x1080x24 tests/plugin/xvfb_run.sh /usr/bin/python3 bench/peers.py --sizes 500000
 """
 import argparse
 import glob
