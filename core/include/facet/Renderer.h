@@ -66,8 +66,8 @@ class Renderer {
   /// order and concurrently on the renderer's threads: for elementwise work on the image
   /// while its ids are in cache (the VTK filter widens the polygon ids of a band into its
   /// CellId array), in place of a second pass over the planes. (Large color and depth planes
-  /// are streamed past the caches when nothing in the render reads them back.) A stopped render may have
-  /// passed some bands before it clears the target; an exception the callback throws leaves
+  /// are streamed past the caches when nothing in the render reads them back.) A stopped render may
+  /// have passed some bands before it clears the target; an exception the callback throws leaves
   /// render() as the progress callback's does. With depth output off the depth plane holds
   /// depth keys. Under a QualityRenderer, `target` is the planes that renderer hands the
   /// render: its sample grid when it supersamples, and at one sample a band whose polygons
