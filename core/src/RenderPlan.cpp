@@ -60,13 +60,25 @@ void describeRule(std::ostream& out, const RenderPlan& plan, Rule rule) {
     out << " of " << plan.lightCulling.lights;
     describeLights(out, plan.lightCulling);
   } else if (rule == Rule::GeometryOutsideView) {
-    out << " (" << plan.blocksOutside << " of " << plan.blocksTested << " blocks tested; "
-        << plan.blocksBackFacing << " back-facing blocks skipped whole)";
+    out << " (" << plan.blocksOutside << " of " << plan.blocksTested << " blocks tested)";
   } else if (rule == Rule::HiddenGeometry) {
     out << " (estimated depth complexity " << plan.depthComplexity << ", mean triangle box "
         << plan.meanTriangleBox << " px)";
   }
   out << "\n";
+}
+
+// The back-facing blocks skipped with Rule::GeometryOutsideView: a line of their own, as
+// their polygons are counted culled, not outside.
+void describeBackFacingBlocks(std::ostream& out, const RenderPlan& plan) {
+  const bool allowed = plan.rule(Rule::GeometryOutsideView).allowed;
+  out << "    "
+      << (!allowed                    ? "off   "
+          : plan.blocksBackFacing > 0 ? "fired "
+                                      : "idle  ")
+      << "back-facing blocks (with " << ruleName(Rule::GeometryOutsideView)
+      << "): " << plan.polygonsBackFacing << " polygons counted culled, not set up ("
+      << plan.blocksBackFacing << " blocks)\n";
 }
 
 }  // namespace
@@ -137,6 +149,7 @@ std::string RenderPlan::describe() const {
   out << "  rules (off / idle / fired: what each left out):\n";
   for (int r = 0; r < kRuleCount; ++r)
     describeRule(out, *this, static_cast<Rule>(r));
+  describeBackFacingBlocks(out, *this);
   return out.str();
 }
 
