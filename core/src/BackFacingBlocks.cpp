@@ -45,8 +45,8 @@ namespace {
 class BackBlockMeasure {
  public:
   void addPoint(std::size_t id, const glm::dvec3& point) {
-    block_.points.first = std::min(block_.points.first, id);
-    block_.points.last = std::max(block_.points.last, id);
+    points_.first = std::min(points_.first, id);
+    points_.last = std::max(points_.last, id);
     if (detail::isFinite(point)) {  // qualified: see MeshCache.cpp's boundPoints
       block_.box.add(point);
     } else {
@@ -78,9 +78,12 @@ class BackBlockMeasure {
   // Any other polygon: its block is never skipped.
   void addOther() { trusted_ = false; }
   BackBlock finish();
+  // The ids its polygons use.
+  const PointSpan& points() const { return points_; }
 
  private:
   BackBlock block_;
+  PointSpan points_;
   glm::dvec3 normals_[kPolygonsPerBackBlock];
   std::size_t count_ = 0;
   glm::dvec3 sum_{0.0};
@@ -112,8 +115,8 @@ BackBlock BackBlockMeasure::finish() {
 
 // The block's point ids as two spans, split at the middle of their range (MeshCache.h): its
 // ids read again, from the caches (cheaper than keeping them in the first pass, measured).
-void splitPointSpan(const MeshView& mesh, std::size_t begin, std::size_t end, BackBlock& block) {
-  const PointSpan all = block.points;
+void splitPointSpan(const MeshView& mesh, std::size_t begin, std::size_t end, const PointSpan& all,
+                    BackBlock& block) {
   block.lowPoints = all;
   if (all.first > all.last) return;
   const std::size_t middle = all.first + (all.last - all.first) / 2;
@@ -164,7 +167,7 @@ BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t 
     }
   });
   BackBlock block = measure.finish();
-  splitPointSpan(mesh, begin, end, block);
+  splitPointSpan(mesh, begin, end, measure.points(), block);
   return block;
 }
 

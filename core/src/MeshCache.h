@@ -41,11 +41,11 @@ static_assert(kBackBlockBits <= kBlockBits);
 // area and a shape whose normal the measurement can trust (BackFacingBlocks.cpp,
 // measureBackBlock).
 struct BackBlock {
-  Box box;           // the points its triangles use
-  PointSpan points;  // their ids
-  // The same ids as two spans, split at the middle of `points`: a block of a mesh ordered in
-  // strips (a quarter ring of a UV sphere's two rings) uses two runs far apart, and the
-  // points between them may be used only by blocks that are skipped (ViewCulling.cpp).
+  Box box;  // the points its triangles use
+  // Their ids, as two spans split at the middle of their range (the second may be empty): a
+  // block of a mesh ordered in strips (a quarter ring of a UV sphere's two rings) uses two
+  // runs far apart, and the points between them may be used only by blocks that are skipped
+  // (ViewCulling.cpp).
   PointSpan lowPoints, highPoints;
   glm::dvec3 axis{0.0};
   double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding

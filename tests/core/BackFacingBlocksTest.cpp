@@ -334,8 +334,7 @@ TEST_F(BackFacingBlocks, ABlockOfTwoRingsKeepsTwoPointSpans) {
         detail::measureBackBlock(view, begin, begin + detail::kPolygonsPerBackBlock);
     const detail::PointSpan &low = block.lowPoints, &high = block.highPoints;
     ASSERT_LE(low.first, low.last);
-    EXPECT_EQ(low.first, block.points.first);
-    EXPECT_EQ(std::max(low.last, high.first <= high.last ? high.last : 0), block.points.last);
+    EXPECT_TRUE(high.first > high.last || high.first > low.last);
     for (std::size_t p = begin; p < begin + detail::kPolygonsPerBackBlock; ++p) {
       for (std::int64_t c = sphere.offsets[p]; c < sphere.offsets[p + 1]; ++c) {
         const auto id = static_cast<std::size_t>(sphere.connectivity[static_cast<std::size_t>(c)]);
