@@ -31,17 +31,34 @@ void vtkFacetRendererToImageFilter::vtkInternals::MapIds(vtkRenderer* renderer,
   this->Image.GetSize(size);
   const bool gradient = renderer->GetGradientBackground();
   const double *bottom = renderer->GetBackground(), *top = renderer->GetBackground2();
+  // One actor: its cell ids straight from its converter (for one part, in SIMD lanes,
+  // streamed: vtkFacetActorConverter::CellIdsOf), then its actor id where it shows.
+  const bool oneActor = this->Leaves.size() == 1;
+  if (oneActor)
+  {
+    this->Leaves[0]->Converter.CellIdsOf(
+      polygonIds, cellIds, begin, end, this->Image.StreamsIdPlanes());
+  }
   for (vtkIdType i = begin; i < end; ++i)
   {
     const std::int32_t id = polygonIds[i];
     if (id < 0)
     {
-      cellIds[i] = actorIds[i] = -1;
+      actorIds[i] = -1;
+      if (!oneActor)
+      {
+        cellIds[i] = -1;
+      }
       const int y = static_cast<int>(i / size[0]);
       for (int c = 0; gradient && c < 3; ++c)
       {
         rgba[4 * i + c] = GradientByte(bottom[c], top[c], y, size[1]);
       }
+      continue;
+    }
+    if (oneActor)
+    {
+      actorIds[i] = this->Leaves[0]->PropIndex;
       continue;
     }
     const std::size_t k = static_cast<std::size_t>(

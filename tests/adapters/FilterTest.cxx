@@ -856,24 +856,8 @@ TEST(Output, CellIdsOfPolysAfterVertsAndLinesInLargeAndSmallImages)
     const bool streamed =
       static_cast<std::size_t>(width) * height * sizeof(vtkIdType) >= facet::kStreamedPlaneBytes;
     EXPECT_EQ(streamed, width > 1000);
-    vtkNew<vtkPoints> points;
-    vtkNew<vtkCellArray> verts, lines, polys;
-    const vtkIdType vertex = points->InsertNextPoint(1.0, 1.0, 0.0);
-    verts->InsertNextCell(1, &vertex);
-    verts->InsertNextCell(1, &vertex);
-    const vtkIdType line[2] = { vertex, vertex };
-    lines->InsertNextCell(2, line);
     const int columns = (width - 13) / side, rows = (height - 7) / side; // background beyond
-    for (int j = 0; j < rows; ++j)
-    {
-      for (int i = 0; i < columns; ++i)
-      {
-        AddSquare(points, polys, i * side, j * side, (i + 1) * side, (j + 1) * side);
-      }
-    }
-    vtkSmartPointer<vtkPolyData> data = PolyData(points, polys);
-    data->SetVerts(verts);
-    data->SetLines(lines);
+    vtkSmartPointer<vtkPolyData> data = SquareGridAfterVertsAndALine(columns, rows, side, 2);
     vtkNew<vtkFacetRenderFilter> filter;
     filter->SetInputData(data);
     filter->SetSize(width, height);
