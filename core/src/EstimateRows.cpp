@@ -43,7 +43,7 @@ inline bool greyWord(std::uint32_t word) {
 inline bool fieldsOf(Rgba8 color, std::int32_t id, const EstimateBound* fixedBounds, int x,
                      EstimateField* fields, std::size_t stride, int planes) {
   const std::uint32_t word = wordOf(color);
-  const std::uint32_t q = id < 0 ? 0 : fixedBounds[id];
+  const std::uint32_t q = id < 0 ? 0 : fixedBounds ? fixedBounds[id] : 1;
   for (int j = 0; j < planes / 2; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
     fields[2 * j * stride + x] = static_cast<EstimateField>(id < 0 ? 0 : c + q);
@@ -132,7 +132,7 @@ HWY_INLINE bool FieldsOf(const Rgba8* colors, const std::int32_t* ids,
     const auto backgroundI = id < hn::Zero(di);
     const auto background = hn::RebindMask(du, backgroundI);
     const auto index = hn::IfThenZeroElse(backgroundI, id);
-    const auto q = gatherFixedBounds(fixedBounds, index);
+    const auto q = fixedBounds ? gatherFixedBounds(fixedBounds, index) : hn::Set(du, 1u);
     const auto color = kById ? hn::GatherIndex(du, words, index) : hn::LoadU(du, words + x);
     const auto word = hn::IfThenZeroElse(background, color);
     const auto plus = hn::IfThenZeroElse(background, q);

@@ -64,7 +64,9 @@ static_assert(kEstimateCap + 1 < (1u << 16), "a fixed bound fits 16 bits");
 // (plane k at fields + k·stride), from its color and its polygon's fixed bound q (ids[x]
 // indexes fixedBounds, whose count is even: the lanes read them as 32-bit pairs; < 0: the
 // background, whose fields are 0): field 2j is c_j·kEstimateUnit + q and field 2j+1 is
-// (255 − c_j)·kEstimateUnit + q. Returns whether every covered sample there is grey.
+// (255 − c_j)·kEstimateUnit + q. Null fixedBounds: every polygon's q is 1 (a bound of 0: the
+// estimate's colour part alone, which the summary-only estimate adds its mesh-wide bound to,
+// QualityRenderer.cpp). Returns whether every covered sample there is grey.
 bool neighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
                      int begin, int end, EstimateField* fields, std::size_t stride,
                      int planes = kEstimateFields);

@@ -32,6 +32,7 @@
 #include "EstimateHook.h"
 #include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
+#include "FlatErrorBoundOfMesh.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
 #include "RendererInputs.h"
@@ -265,6 +266,32 @@ std::optional<detail::BatchLighting> facingLighting(
   return facing;
 }
 
+// What a mesh's polygons share for the summary-only estimate (FlatErrorBoundOfMesh.h), from
+// their terms and its points.
+detail::MeshBoundExtent extentOf(const MeshView& mesh, std::span<const detail::BoundTerms> terms) {
+  detail::MeshBoundExtent extent;
+  for (std::size_t p = 0; p < terms.size(); ++p) {
+    const detail::BoundTerms& t = terms[p];
+    if (t.radius < 0.0f) {
+      extent.degenerate.push_back(p);
+    } else if (!(t.sinNormalSpread < 1.0f)) {
+      extent.wide.push_back(p);
+    } else {
+      extent.radius = std::max(extent.radius, t.radius);
+      extent.sinNormalSpread = std::max(extent.sinNormalSpread, t.sinNormalSpread);
+    }
+  }
+  detail::withTypedMesh(mesh, [&](auto points, auto) {
+    for (std::size_t i = 0; i < mesh.points.count; ++i) {
+      const glm::dvec3 point = points[i];
+      if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) continue;
+      extent.low = glm::min(extent.low, point);
+      extent.high = glm::max(extent.high, point);
+    }
+  });
+  return extent;
+}
+
 }  // namespace
 
 const char* toString(Shading shading) {
@@ -307,6 +334,7 @@ struct QualityRenderer::MeshTerms {
   };
   Key key;
   std::vector<detail::BoundTerms> polygons;
+  detail::MeshBoundExtent extent;  // what the polygons share, for the summary-only estimate
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
@@ -600,9 +628,24 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
                        });
 }
 
+// Whether the summary-only estimate takes the frame (FlatErrorBoundOfMesh.h): no spot light,
+// and every mesh diffuse with one colour per polygon; else the per-polygon bounds.
+bool summaryApplies(const Scene& scene, std::span<const PreparedMaterial> materials) {
+  for (const Light& light : scene.lights.lights)
+    if (std::holds_alternative<SpotLight>(light)) return false;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshView& mesh = scene.meshes[m].mesh;
+    if (!mesh.pointColors.empty() || !mesh.scalarTexture.empty() || materials[m].specular > 0.0)
+      return false;
+  }
+  return true;
+}
+
 // The predicted RMSE and maximum from the rows' sums of pixel estimates (in fixed point:
-// exact integers, the same in any order).
-void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stats) {
+// exact integers, the same in any order), each with `added` fixed-point steps more (the
+// summary-only estimate's, estimateSummary), capped at 255.
+void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stats,
+                  double added = 0.0) {
   std::uint64_t squares = 0, covered = 0;
   std::uint32_t largest = 0;
   for (const detail::EstimateSums& row : rows) {
@@ -610,11 +653,15 @@ void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stat
     covered += row.covered;
     largest = std::max(largest, row.largest);
   }
-  const double unit = detail::kEstimateUnit;
-  stats.predictedMaxError = largest / unit;
-  stats.predictedRmse =
-      covered > 0 ? std::sqrt(static_cast<double>(squares) / static_cast<double>(covered)) / unit
-                  : 0.0;
+  if (covered == 0) {
+    stats.predictedMaxError = stats.predictedRmse = 0.0;
+    return;
+  }
+  const double unit = detail::kEstimateUnit, cap = detail::kEstimateCap;
+  const double rootMeanSquare =
+      std::sqrt(static_cast<double>(squares) / static_cast<double>(covered));
+  stats.predictedMaxError = std::min(cap, largest + added) / unit;
+  stats.predictedRmse = std::min(cap, rootMeanSquare + added) / unit;
 }
 
 // A count rounded up to an even one (the fixed bounds are read in 32-bit pairs).
@@ -765,11 +812,11 @@ void QualityRenderer::hookUp(
     const Frame& frame, const detail::BatchLighting* facing,
     detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
         boundOne,
-    detail::EstimateHook& hook) {
+    bool summary, detail::EstimateHook& hook) {
   const std::size_t meshCount = frame.scene.meshes.size();
   meshTerms_.clear();
-  for (const MeshTerms& terms : frame.terms)
-    meshTerms_.push_back(terms.polygons.data());
+  for (const MeshTerms& terms : frame.terms)  // none for the summary: the shade bounds nothing
+    meshTerms_.push_back(summary ? nullptr : terms.polygons.data());
   polygonBounds_.resize(frame.firstPolygon.back());
   fixedBounds_.resize(evenCount(polygonBounds_.size()));
   // The pixels' part at one sample per pixel only (a pixel of more samples needs them all).
@@ -787,8 +834,8 @@ void QualityRenderer::hookUp(
   hook.facingLighting = facing;
   hook.materials = frame.batchMaterials.data();
   hook.boundOne = boundOne;
-  hook.bounds = polygonBounds_.data();
-  hook.fixedBounds = fixedBounds_.data();
+  hook.bounds = summary ? nullptr : polygonBounds_.data();
+  hook.fixedBounds = summary ? nullptr : fixedBounds_.data();  // null: the colour part alone
   hook.bounded = std::make_unique<std::atomic<bool>[]>(meshCount);
   hook.height = frame.samples.height;
   hook.rows = pixels ? rowSums_.data() : nullptr;
@@ -819,6 +866,48 @@ void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook
   } else {
     setPredicted(rowSums_, stats);
   }
+  estimated_ = stats;
+  stats.estimateSeconds = secondsSince(start);
+}
+
+// The summary-only estimate (QualityStats::predicted*, no image): flat at one sample per
+// pixel without the per-polygon bounds. The resolve estimated each pixel with every polygon's
+// bound taken as 0 (EstimateRows.h: null fixed bounds), e'_p = min(cap, G_p + 0.5), G_p the
+// largest channel difference between the pixel's flat colour and those its 3 × 3
+// neighbourhood shows; the per-pixel estimate is e_p = min(cap, max_q (D(c_p, c_q) + b_q) +
+// 0.5) ≤ e'_p + B for B ≥ every shown polygon's bound b_q, in the fixed point too (each
+// field's ⌈b_q·unit⌉ ≤ ⌈B·unit⌉). So max e'_p + B bounds the maximum, and by Minkowski's
+// inequality √(mean e_p²) ≤ √(mean (e'_p + B)²) ≤ √(mean e'_p²) + B bounds the RMSE: both at
+// least the per-pixel estimate's (tested), at the price of B where a polygon's own bound is
+// below the largest. B is the largest over meshes of largestFlatBound (FlatErrorBoundOfMesh.h),
+// which takes no work per polygon; 255 when a polygon without a normal shows.
+void QualityRenderer::estimateSummary(const Frame& frame, QualityStats& stats) {
+  const Clock::time_point start = Clock::now();
+  FACET_ASSERT(renderer_.shownPolygons().size() == frame.firstPolygon.back());
+  const std::uint8_t* shown = renderer_.shownPolygons().data();
+  double largest = 0.0;
+  for (std::size_t m = 0; m < frame.scene.meshes.size(); ++m) {
+    const detail::MeshBoundExtent& extent = frame.terms[m].extent;
+    const auto anyShown = [&](const std::vector<std::size_t>& polygons) {
+      return std::any_of(polygons.begin(), polygons.end(),
+                         [&](std::size_t p) { return shown[frame.firstPolygon[m] + p] != 0; });
+    };
+    if (anyShown(extent.degenerate)) {
+      largest = 255.0;
+      break;
+    }
+    const SceneMesh& mesh = frame.scene.meshes[m];
+    const glm::dvec3 surface = mesh.mesh.polygonColors.empty()
+                                   ? glm::min(glm::dvec3(mesh.material.color), kMaxRadiance)
+                                   : glm::dvec3(1.0);  // 8-bit colours
+    const float sine = anyShown(extent.wide) ? 2.0f : extent.sinNormalSpread;
+    const std::optional<double> bound =
+        detail::largestFlatBound(frame.scene.lights, frame.materials[m], surface, extent, sine);
+    FACET_ASSERT(bound.has_value());  // summaryApplies
+    largest = std::max(largest, *bound);
+  }
+  // exact: a power of two
+  setPredicted(rowSums_, stats, std::ceil(std::min(largest, 255.0) * detail::kEstimateUnit));
   estimated_ = stats;
   stats.estimateSeconds = secondsSince(start);
 }
@@ -910,11 +999,14 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
                       const glm::dvec3& normal) {
     return fusedFrame->boundOne(m, polygon, center, normal);
   };
+  bool summary = false;  // the summary-only estimate (estimateSummary)
   if (fused) {
     fusedFrame.emplace(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
     fusedFrame->prepareBatches(terms_);
     facing = facingLighting(fusedFrame->batchLighting);
-    hookUp(*fusedFrame, facing ? &*facing : nullptr, boundOne, hook);
+    summary =
+        g == 1 && !settings.errorEstimateImage && summaryApplies(scene, fusedFrame->materials);
+    hookUp(*fusedFrame, facing ? &*facing : nullptr, boundOne, summary, hook);
   }
   struct Unhook {  // also when the render throws
     Renderer& renderer;
@@ -929,7 +1021,11 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     return stats;
   }
   if (fused && stats.render.plan.path != RenderPath::Resolve) {
-    finishFused(*fusedFrame, hook, target, stats);
+    if (summary) {
+      estimateSummary(*fusedFrame, stats);
+    } else {
+      finishFused(*fusedFrame, hook, target, stats);
+    }
     estimatedFor_ = estimateFor;
     const Clock::time_point phase = Clock::now();
     if (g > 1) shadeAndResolve(*fusedFrame, target, stats);
@@ -1026,6 +1122,7 @@ void QualityRenderer::updateTerms(const Scene& scene) {
             terms.polygons[p] = termsOf(corners);
           });
         });
+    terms.extent = extentOf(mesh, terms.polygons);
     terms.key = key;
   }
 }

@@ -185,7 +185,8 @@ class QualityRenderer {
       const Frame& frame, const detail::BatchLighting* facing,
       detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
           boundOne,
-      detail::EstimateHook& hook);
+      bool summary, detail::EstimateHook& hook);
+  void estimateSummary(const Frame& frame, QualityStats& stats);
   void finishFused(const Frame& frame, const detail::EstimateHook& hook,
                    const FramebufferView& target, QualityStats& stats);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);

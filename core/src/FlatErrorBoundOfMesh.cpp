@@ -1,0 +1,149 @@
+// largestFlatBound (FlatErrorBoundOfMesh.h): FlatErrorBound.cpp's bound, its worst case over
+// every polygon of a mesh, for diffuse materials under directional and point lights.
+//
+// Derivation (the steps of FlatErrorBound.cpp, with the angle θ between the flat normal and
+// the light taken at its worst instead of per polygon):
+//  1. A polygon's interpolated normals lie within α of its flat normal, α ≤ A, the mesh's
+//     largest spread; a point light at P sees the polygon's ball (center c, radius r) within
+//     β = asin(r/|P − c|) ≤ asin(R/d_lo) = B, R the largest radius, d_lo the distance from P
+//     to the mesh's box (c lies in the box). So ∠(N, L) is within Δ = A + B of the flat θ.
+//  2. c(t) = clamp(cos t, 0, 1) moves by at most sin Δ (Δ ≤ 90°; else 1) between angles
+//     |a − b| ≤ Δ in [0, π], whatever θ: for a < b ≤ 90°, cos a − cos b = ∫_a^b sin t dt ≤
+//     ∫_{90°−(b−a)}^{90°} sin t dt = sin(b − a) (sin rises on [0, 90°]); for a < 90° < b it
+//     is cos a = sin(90° − a) ≤ sin(b − a); past 90° both are 0. So the diffuse factor
+//     D = clamp(N·L) (Lambert) or A_l + (F_l − A_l)·clamp(N·L) (Lerp) is within
+//     δ = slope·sin Δ of the flat one (slope 1, or |F_l − A_l|), and |D| ≤ D_max (1, or
+//     max(|A_l|, |F_l|)).
+//  3. Light arriving: the distances from P to the polygon's ball, [d − r, d + r], lie in
+//     [max(0, d_lo − R), d_hi + R] (d_hi: to the box's farthest corner), so the attenuation
+//     E lies in [E_lo, E_hi], its factors there (non-increasing in distance), and a
+//     polygon's own range of E is at most S = min(E_hi − E_lo, 2R·|E'|max), |E'|max the
+//     steepest slope over those distances (steepestSlope).
+//  4. |E·D − E_f·D_f| ≤ |E − E_f|·|D| + E_f·|D − D_f| ≤ S·D_max + E_hi·δ,
+//     which is at least FlatErrorBound.cpp's deviation max(E_hi·D_hi − E_f·D_f,
+//     E_f·D_f − E_lo·D_lo) of every polygon (its D_hi, D_lo are within δ of D_f, by 2).
+//  5. Per channel Kd·Cd ⊙ Σ over lights, Cd at most `surface`; capped at 1, times 255.
+// The float lanes the fused estimate takes (boundShadeColumns) lie above the double bound by
+// at most κ·E_hi per light (κ = 2^-16·D', D' = max(1, |A_l|, |F_l|, |F_l − A_l|)) and Kd
+// rounded up by 2^-20 (FlatErrorBoundBatch.cpp); here each light adds twice that, Kd is
+// taken 2^-18 higher and the sum 2^-30 relatively, which covers them and this double
+// arithmetic's own rounding (a few dozen operations of relative error 2^-53).
+// Specular terms (their exponent's alignment, the viewer's cone) and spot cones are left to
+// the per-polygon estimate: nothing is returned.
+
+#include "FlatErrorBoundOfMesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <variant>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "Overloaded.h"
+#include "Radiance.h"
+
+namespace facet::detail {
+namespace {
+
+// sin(min(a + b, 90°)) for angles of sines sa, sb in [0, 1] (≥ 1: 90°).
+double sineOfSum(double sa, double sb) {
+  if (!(sa < 1.0) || !(sb < 1.0)) return 1.0;
+  const double ca = std::sqrt((1.0 - sa) * (1.0 + sa)), cb = std::sqrt((1.0 - sb) * (1.0 + sb));
+  if (ca * cb - sa * sb <= 0.0) return 1.0;  // a + b ≥ 90°
+  return std::min(1.0, sa * cb + ca * sb);
+}
+
+// The distances from p to the nearest and farthest points of the box.
+std::pair<double, double> distancesToBox(const glm::dvec3& p, const glm::dvec3& low,
+                                         const glm::dvec3& high) {
+  const glm::dvec3 nearest = glm::clamp(p, low, high);
+  const glm::dvec3 farthest = glm::max(glm::abs(p - low), glm::abs(p - high));
+  return {glm::length(p - nearest), glm::length(farthest)};
+}
+
+// The largest |dE/dd| of the attenuation over distances [nearest, farthest] (∞ when it cannot
+// say: min() above then takes E_hi − E_lo). Quadratic, E = 1/q(d) with q = a + b·d + c·d²:
+// |E'| = q'/q², q' = b + 2c·d rising and q rising in d, so at most q'(farthest)/q(nearest)²
+// (q raised to 1/kMaxAttenuation as attenuationFactor does, where E is flat). Falloff
+// distance F: E = 1 up to F, F/d beyond, |E'| = F/d² ≤ F/max(F, nearest)².
+double steepestSlope(const Attenuation& attenuation, double nearest, double farthest) {
+  constexpr double kUnknown = std::numeric_limits<double>::infinity();
+  return std::visit(Overloaded{
+                        [](const NoAttenuation&) { return 0.0; },
+                        [&](const QuadraticAttenuation& q) {
+                          if (!(q.constant >= 0.0 && q.linear >= 0.0 && q.quadratic >= 0.0))
+                            return kUnknown;
+                          const double low = std::max(
+                              q.constant + q.linear * nearest + q.quadratic * nearest * nearest,
+                              1.0 / kMaxAttenuation);
+                          const double slope =
+                              (q.linear + 2.0 * q.quadratic * farthest) / (low * low);
+                          return std::isfinite(slope) ? slope * (1.0 + 0x1p-40) : kUnknown;
+                        },
+                        [&](const FalloffDistanceAttenuation& f) {
+                          if (!(f.distance > 0.0)) return kUnknown;
+                          const double d = std::max(f.distance, nearest);
+                          const double slope = f.distance / (d * d);
+                          return std::isfinite(slope) ? slope * (1.0 + 0x1p-40) : kUnknown;
+                        },
+                    },
+                    attenuation);
+}
+
+}  // namespace
+
+std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& m,
+                                       const glm::dvec3& surface, const MeshBoundExtent& extent,
+                                       float sinNormalSpread) {
+  if (m.specular > 0.0) return std::nullopt;
+  const bool lerp = m.material.diffuseModel == DiffuseModel::Lerp;
+  const double slope = lerp ? std::abs(m.lerpFull - m.lerpAmbient) : 1.0;
+  const double diffuseMax = lerp ? std::max(std::abs(m.lerpAmbient), std::abs(m.lerpFull)) : 1.0;
+  const double kappa = 2.0 * 0x1p-16 * std::max({1.0, diffuseMax, slope});
+  const double radius = extent.radius;
+  const bool empty = !(extent.low.x <= extent.high.x);
+  glm::dvec3 sum(0.0);
+  for (const Light& light : lights.lights) {
+    if (std::holds_alternative<SpotLight>(light)) return std::nullopt;
+    double lightSine = 0.0, eLo = 1.0, eHi = 1.0, eSpan = 0.0;
+    glm::dvec3 radiance(0.0);
+    std::visit(
+        Overloaded{
+            [&](const DirectionalLight& l) { radiance = boundRadianceOf(l.color, l.intensity); },
+            [&](const PointLight& l) {
+              radiance = boundRadianceOf(l.color, l.intensity);
+              if (empty) return;
+              const auto [nearest, farthest] = distancesToBox(l.position, extent.low, extent.high);
+              // Widened by 2^-20 of the coordinates: above the few roundings of these
+              // distances and of the float centers the shade's lanes light (a few
+              // 2^-24 of the coordinates), which may lie that far outside the box.
+              const double slack =
+                  0x1p-20 * (glm::length(l.position) +
+                             std::max(glm::length(extent.low), glm::length(extent.high)));
+              const double dLo = nearest - slack, dHi = farthest + slack;
+              lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
+              const double closest = std::max(0.0, dLo - radius), furthest = dHi + radius;
+              eHi = attenuationFactor(l.attenuation, closest);
+              eLo = attenuationFactor(l.attenuation, furthest);
+              // A polygon's own distances span 2r ≤ 2R: its light moves by at most
+              // 2R times the attenuation's steepest slope over the box's distances.
+              eSpan = std::min(eHi - eLo,
+                               2.0 * radius * steepestSlope(l.attenuation, closest, furthest));
+            },
+            [&](const SpotLight&) {},
+        },
+        light);
+    const double delta = slope * sineOfSum(sinNormalSpread, lightSine);
+    const double deviation = eSpan * diffuseMax + eHi * delta + kappa * eHi;
+    sum += radiance * deviation;
+  }
+  const double diffuse = m.diffuse * (1.0 + 0x1p-18);
+  const glm::dvec3 total = diffuse * glm::abs(surface) * sum * (1.0 + 0x1p-30);
+  const double largest = std::min(1.0, std::max({total.x, total.y, total.z}));
+  return std::isfinite(largest) ? 255.0 * largest : 255.0;
+}
+
+}  // namespace facet::detail
