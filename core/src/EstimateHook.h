@@ -67,6 +67,9 @@ struct EstimateHook {
   // same in the resolve's fixed point (fixedBoundOf; an even count).
   float* bounds = nullptr;
   EstimateBound* fixedBounds = nullptr;
+  // The resolve reads fixedBounds[id >> boundShift]: with the summary-only estimate, one bound
+  // per block of polygons (QualityRenderer.cpp, FlatErrorBoundOfMesh.h), the shade none.
+  int boundShift = 0;
   std::unique_ptr<std::atomic<bool>[]> bounded;  // per mesh: the shade phase bounded it
 
   // The resolve's part, at one sample per pixel (null rows: none). Out: per pixel row its

@@ -1,12 +1,12 @@
 // largestFlatBound (FlatErrorBoundOfMesh.h): FlatErrorBound.cpp's bound, its worst case over
-// every polygon of a mesh, for diffuse materials under directional and point lights.
+// every polygon of a block, for diffuse materials under directional and point lights.
 //
 // Derivation (the steps of FlatErrorBound.cpp, with the angle θ between the flat normal and
 // the light taken at its worst instead of per polygon):
-//  1. A polygon's interpolated normals lie within α of its flat normal, α ≤ A, the mesh's
+//  1. A polygon's interpolated normals lie within α of its flat normal, α ≤ A, the block's
 //     largest spread; a point light at P sees the polygon's ball (center c, radius r) within
 //     β = asin(r/|P − c|) ≤ asin(R/d_lo) = B, R the largest radius, d_lo the distance from P
-//     to the mesh's box (c lies in the box). So ∠(N, L) is within Δ = A + B of the flat θ.
+//     to the block's box (c lies in the box). So ∠(N, L) is within Δ = A + B of the flat θ.
 //  2. c(t) = clamp(cos t, 0, 1) moves by at most sin Δ (Δ ≤ 90°; else 1) between angles
 //     |a − b| ≤ Δ in [0, π], whatever θ: for a < b ≤ 90°, cos a − cos b = ∫_a^b sin t dt ≤
 //     ∫_{90°−(b−a)}^{90°} sin t dt = sin(b − a) (sin rises on [0, 90°]); for a < 90° < b it
@@ -96,8 +96,7 @@ double steepestSlope(const Attenuation& attenuation, double nearest, double fart
 }  // namespace
 
 std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& m,
-                                       const glm::dvec3& surface, const MeshBoundExtent& extent,
-                                       float sinNormalSpread) {
+                                       const glm::dvec3& surface, const MeshBoundExtent& extent) {
   if (m.specular > 0.0) return std::nullopt;
   const bool lerp = m.material.diffuseModel == DiffuseModel::Lerp;
   const double slope = lerp ? std::abs(m.lerpFull - m.lerpAmbient) : 1.0;
@@ -136,7 +135,7 @@ std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMat
             [&](const SpotLight&) {},
         },
         light);
-    const double delta = slope * sineOfSum(sinNormalSpread, lightSine);
+    const double delta = slope * sineOfSum(extent.sinNormalSpread, lightSine);
     const double deviation = eSpan * diffuseMax + eHi * delta + kappa * eHi;
     sum += radiance * deviation;
   }

@@ -1,16 +1,18 @@
 #pragma once
 
-// The summary-only estimate's bound (QualityRenderer.cpp): one number per mesh and frame that
-// is at least FlatErrorBound::bound (and its float lanes, boundShadeColumns) of every ordinary
-// polygon of the mesh, found from what the polygons share — the largest radius and normal
-// spread, kept per mesh version, and the box the mesh lies in — with no work per polygon per
-// frame. The derivation is in FlatErrorBoundOfMesh.cpp.
+// The summary-only estimate's bound (QualityRenderer.cpp): one number per block of
+// kBoundBlock consecutive polygons and frame that is at least FlatErrorBound::bound (and its
+// float lanes, boundShadeColumns) of every polygon of the block that has a normal, found from
+// what they share — the largest radius and normal spread, and the box they lie in, kept per
+// mesh version — with no work per polygon per frame. The derivation is in
+// FlatErrorBoundOfMesh.cpp.
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <optional>
-#include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 #include "facet/Color.h"
@@ -19,26 +21,33 @@
 
 namespace facet::detail {
 
-// What a mesh's polygons share for the bound, per mesh version. The ordinary polygons are
-// those with a normal and a spread below 90°; the others are listed by index, for the frame
-// to check whether it shows any.
+// Polygons per block: 2^kBoundBlockShift. A mesh's consecutive polygons are mostly
+// neighbours (strips, rings, a scan's order), so a block's bound is near its polygons'; and
+// the bounds of a 500k-polygon mesh are 16 kB, which the per-pixel rule reads from L1.
+inline constexpr int kBoundBlockShift = 6;
+inline constexpr std::size_t kBoundBlock = std::size_t{1} << kBoundBlockShift;
+
+// What a block's polygons with a normal share for the bound (BoundTerms: EstimateHook.h).
 struct MeshBoundExtent {
-  float radius = 0.0f;           // the largest radius of an ordinary polygon (rounded up)
-  float sinNormalSpread = 0.0f;  // the largest sine of an ordinary polygon's spread
-  // The box every finite point lies in (low > high: no point).
+  float radius = 0.0f;           // the largest radius (rounded up)
+  float sinNormalSpread = 0.0f;  // the largest sine of a spread (2: 90° or more)
+  // The box their corners lie in (low > high: none).
   glm::dvec3 low{std::numeric_limits<double>::infinity()};
   glm::dvec3 high{-std::numeric_limits<double>::infinity()};
-  std::vector<std::size_t> degenerate;  // no normal: their bound is 255
-  std::vector<std::size_t> wide;        // a spread of 90° or more
+
+  void add(float polygonRadius, float sine, const glm::dvec3& corner) {
+    radius = std::max(radius, polygonRadius);
+    sinNormalSpread = std::max(sinNormalSpread, sine);
+    low = glm::min(low, corner);
+    high = glm::max(high, corner);
+  }
 };
 
-// The largest bound, in 8-bit units, of a polygon of a mesh within `extent`'s radius and box
-// and of a spread of sine at most `sinNormalSpread` (extent.sinNormalSpread, or 2 for a frame
-// that shows a wide polygon), of material `material` and surface colors at most `surface` per
-// channel, under `lights`; nothing where this bound does not apply (a spot light, a specular
-// material: the caller takes the per-polygon estimate). Never NaN; at most 255.
+// The largest bound, in 8-bit units, of a polygon within `extent` (its radius, spread and box)
+// of material `material` and surface colors at most `surface` per channel, under `lights`;
+// nothing where this bound does not apply (a spot light, a specular material: the caller
+// takes the per-polygon estimate). Never NaN; at most 255.
 std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& material,
-                                       const glm::dvec3& surface, const MeshBoundExtent& extent,
-                                       float sinNormalSpread);
+                                       const glm::dvec3& surface, const MeshBoundExtent& extent);
 
 }  // namespace facet::detail

@@ -266,32 +266,6 @@ std::optional<detail::BatchLighting> facingLighting(
   return facing;
 }
 
-// What a mesh's polygons share for the summary-only estimate (FlatErrorBoundOfMesh.h), from
-// their terms and its points.
-detail::MeshBoundExtent extentOf(const MeshView& mesh, std::span<const detail::BoundTerms> terms) {
-  detail::MeshBoundExtent extent;
-  for (std::size_t p = 0; p < terms.size(); ++p) {
-    const detail::BoundTerms& t = terms[p];
-    if (t.radius < 0.0f) {
-      extent.degenerate.push_back(p);
-    } else if (!(t.sinNormalSpread < 1.0f)) {
-      extent.wide.push_back(p);
-    } else {
-      extent.radius = std::max(extent.radius, t.radius);
-      extent.sinNormalSpread = std::max(extent.sinNormalSpread, t.sinNormalSpread);
-    }
-  }
-  detail::withTypedMesh(mesh, [&](auto points, auto) {
-    for (std::size_t i = 0; i < mesh.points.count; ++i) {
-      const glm::dvec3 point = points[i];
-      if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) continue;
-      extent.low = glm::min(extent.low, point);
-      extent.high = glm::max(extent.high, point);
-    }
-  });
-  return extent;
-}
-
 }  // namespace
 
 const char* toString(Shading shading) {
@@ -334,7 +308,10 @@ struct QualityRenderer::MeshTerms {
   };
   Key key;
   std::vector<detail::BoundTerms> polygons;
-  detail::MeshBoundExtent extent;  // what the polygons share, for the summary-only estimate
+  // The summary-only estimate's (FlatErrorBoundOfMesh.h): per block of kBoundBlock polygons
+  // what those with a normal share, and the polygons without one.
+  std::vector<detail::MeshBoundExtent> blocks;
+  std::vector<std::size_t> degenerate;
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
@@ -642,10 +619,8 @@ bool summaryApplies(const Scene& scene, std::span<const PreparedMaterial> materi
 }
 
 // The predicted RMSE and maximum from the rows' sums of pixel estimates (in fixed point:
-// exact integers, the same in any order), each with `added` fixed-point steps more (the
-// summary-only estimate's, estimateSummary), capped at 255.
-void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stats,
-                  double added = 0.0) {
+// exact integers, the same in any order).
+void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stats) {
   std::uint64_t squares = 0, covered = 0;
   std::uint32_t largest = 0;
   for (const detail::EstimateSums& row : rows) {
@@ -653,15 +628,11 @@ void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stat
     covered += row.covered;
     largest = std::max(largest, row.largest);
   }
-  if (covered == 0) {
-    stats.predictedMaxError = stats.predictedRmse = 0.0;
-    return;
-  }
-  const double unit = detail::kEstimateUnit, cap = detail::kEstimateCap;
-  const double rootMeanSquare =
-      std::sqrt(static_cast<double>(squares) / static_cast<double>(covered));
-  stats.predictedMaxError = std::min(cap, largest + added) / unit;
-  stats.predictedRmse = std::min(cap, rootMeanSquare + added) / unit;
+  const double unit = detail::kEstimateUnit;
+  stats.predictedMaxError = largest / unit;
+  stats.predictedRmse =
+      covered > 0 ? std::sqrt(static_cast<double>(squares) / static_cast<double>(covered)) / unit
+                  : 0.0;
 }
 
 // A count rounded up to an even one (the fixed bounds are read in 32-bit pairs).
@@ -834,8 +805,10 @@ void QualityRenderer::hookUp(
   hook.facingLighting = facing;
   hook.materials = frame.batchMaterials.data();
   hook.boundOne = boundOne;
+  if (summary) blockBounds(frame);
   hook.bounds = summary ? nullptr : polygonBounds_.data();
-  hook.fixedBounds = summary ? nullptr : fixedBounds_.data();  // null: the colour part alone
+  hook.fixedBounds = summary ? blockBounds_.data() : fixedBounds_.data();
+  hook.boundShift = summary ? detail::kBoundBlockShift : 0;
   hook.bounded = std::make_unique<std::atomic<bool>[]>(meshCount);
   hook.height = frame.samples.height;
   hook.rows = pixels ? rowSums_.data() : nullptr;
@@ -870,46 +843,67 @@ void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook
   stats.estimateSeconds = secondsSince(start);
 }
 
-// The summary-only estimate (QualityStats::predicted*, no image): flat at one sample per
-// pixel without the per-polygon bounds. The resolve estimated each pixel with every polygon's
-// bound taken as 0 (EstimateRows.h: null fixed bounds), e'_p = min(cap, G_p + 0.5), G_p the
-// largest channel difference between the pixel's flat colour and those its 3 × 3
-// neighbourhood shows; the per-pixel estimate is e_p = min(cap, max_q (D(c_p, c_q) + b_q) +
-// 0.5) ≤ e'_p + B for B ≥ every shown polygon's bound b_q, in the fixed point too (each
-// field's ⌈b_q·unit⌉ ≤ ⌈B·unit⌉). So max e'_p + B bounds the maximum, and by Minkowski's
-// inequality √(mean e_p²) ≤ √(mean (e'_p + B)²) ≤ √(mean e'_p²) + B bounds the RMSE: both at
-// least the per-pixel estimate's (tested), at the price of B where a polygon's own bound is
-// below the largest. B is the largest over meshes of largestFlatBound (FlatErrorBoundOfMesh.h),
-// which takes no work per polygon; 255 when a polygon without a normal shows.
-void QualityRenderer::estimateSummary(const Frame& frame, QualityStats& stats) {
+// The summary-only estimate (QualityStats::predicted*, no image; flat at one sample per
+// pixel under lights and materials largestFlatBound takes): the per-pixel rule of the estimate
+// with each polygon's bound b_q replaced by its block's, B ≥ b_q (FlatErrorBoundOfMesh.h),
+// found before the render (blockBounds) and read by the resolve (EstimateHook.h). Every pixel's
+// estimate max_q (D(c_p, c_q) + B_q) + 0.5 is then at least the per-pixel estimate's, in the
+// fixed point too (⌈B·unit⌉ ≥ ⌈b·unit⌉), so the RMSE and maximum are (tested): looser where
+// a block's worst polygon is worse than the pixel's, and no bound per polygon per frame.
+// A polygon without a normal (bound 255, in no block) wins no sample in practice; if one does,
+// the per-polygon bounds and the pass over the image, after the render.
+void QualityRenderer::estimateSummary(const Frame& frame, const FramebufferView& target,
+                                      QualityStats& stats) {
   const Clock::time_point start = Clock::now();
   FACET_ASSERT(renderer_.shownPolygons().size() == frame.firstPolygon.back());
-  const std::uint8_t* shown = renderer_.shownPolygons().data();
-  double largest = 0.0;
-  for (std::size_t m = 0; m < frame.scene.meshes.size(); ++m) {
-    const detail::MeshBoundExtent& extent = frame.terms[m].extent;
-    const auto anyShown = [&](const std::vector<std::size_t>& polygons) {
-      return std::any_of(polygons.begin(), polygons.end(),
-                         [&](std::size_t p) { return shown[frame.firstPolygon[m] + p] != 0; });
-    };
-    if (anyShown(extent.degenerate)) {
-      largest = 255.0;
-      break;
-    }
+  shown_ = renderer_.shownPolygons().data();
+  bool degenerateShown = false;
+  for (std::size_t m = 0; m < frame.terms.size(); ++m) {
+    for (const std::size_t p : frame.terms[m].degenerate)
+      degenerateShown = degenerateShown || shown_[frame.firstPolygon[m] + p] != 0;
+  }
+  if (degenerateShown) {
+    renderer_.parallelFor(
+        frame.firstPolygon.back(), kPolygonsPerTask,
+        [&](std::size_t begin, std::size_t end) { boundFromCorners(frame, begin, end, nullptr); });
+    estimate(frame, target, false, stats);
+  } else {
+    setPredicted(rowSums_, stats);
+  }
+  estimated_ = stats;
+  stats.estimateSeconds = secondsSince(start);
+}
+
+// The bounds of the blocks of polygon ids (blockBounds_, EstimateRows.h's fixed point, an even
+// count) for the summary-only estimate: per mesh, each block of its polygons bounded from
+// what they share (largestFlatBound); a block of ids that holds the end of one mesh and the
+// start of the next takes the larger.
+void QualityRenderer::blockBounds(const Frame& frame) {
+  const std::size_t ids = frame.firstPolygon.back();
+  blockBounds_.assign(evenCount((ids + detail::kBoundBlock - 1) / detail::kBoundBlock), 0);
+  for (std::size_t m = 0; m < frame.terms.size(); ++m) {
+    const std::vector<detail::MeshBoundExtent>& blocks = frame.terms[m].blocks;
     const SceneMesh& mesh = frame.scene.meshes[m];
     const glm::dvec3 surface = mesh.mesh.polygonColors.empty()
                                    ? glm::min(glm::dvec3(mesh.material.color), kMaxRadiance)
                                    : glm::dvec3(1.0);  // 8-bit colours
-    const float sine = anyShown(extent.wide) ? 2.0f : extent.sinNormalSpread;
-    const std::optional<double> bound =
-        detail::largestFlatBound(frame.scene.lights, frame.materials[m], surface, extent, sine);
-    FACET_ASSERT(bound.has_value());  // summaryApplies
-    largest = std::max(largest, *bound);
+    localBounds_.resize(blocks.size());
+    renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t b = begin; b < end; ++b) {
+        const std::optional<double> bound =
+            detail::largestFlatBound(frame.scene.lights, frame.materials[m], surface, blocks[b]);
+        FACET_ASSERT(bound.has_value());  // summaryApplies
+        localBounds_[b] = detail::fixedBoundOf(roundedUp(*bound));
+      }
+    });
+    const std::size_t first = frame.firstPolygon[m], count = mesh.mesh.polygons.count;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const std::size_t from = first + b * detail::kBoundBlock;
+      const std::size_t to = std::min(from + detail::kBoundBlock, first + count) - 1;
+      for (std::size_t g = from / detail::kBoundBlock; g <= to / detail::kBoundBlock; ++g)
+        blockBounds_[g] = std::max(blockBounds_[g], localBounds_[b]);
+    }
   }
-  // exact: a power of two
-  setPredicted(rowSums_, stats, std::ceil(std::min(largest, 255.0) * detail::kEstimateUnit));
-  estimated_ = stats;
-  stats.estimateSeconds = secondsSince(start);
 }
 
 // Per output pixel: its samples, shaded again where the mode asks, averaged and rounded once;
@@ -1022,7 +1016,7 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
   }
   if (fused && stats.render.plan.path != RenderPath::Resolve) {
     if (summary) {
-      estimateSummary(*fusedFrame, stats);
+      estimateSummary(*fusedFrame, target, stats);
     } else {
       finishFused(*fusedFrame, hook, target, stats);
     }
@@ -1116,13 +1110,20 @@ void QualityRenderer::updateTerms(const Scene& scene) {
                                       ? fromPointNormals(mesh, mesh.pointNormals)
                                       : computeVertexNormals(mesh, {}, parallelOn(renderer_));
     terms.polygons.resize(mesh.polygons.count);
+    terms.blocks.resize((mesh.polygons.count + detail::kBoundBlock - 1) / detail::kBoundBlock);
     renderer_.parallelFor(
         mesh.polygons.count, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
           forEachPolygon(mesh, normals, begin, end, [&](std::size_t p, const Corners& corners) {
-            terms.polygons[p] = termsOf(corners);
+            const detail::BoundTerms& t = terms.polygons[p] = termsOf(corners);
+            if (t.radius < 0.0f) return;
+            // A task's polygons are whole blocks (kPolygonsPerTask is a multiple).
+            detail::MeshBoundExtent& block = terms.blocks[p >> detail::kBoundBlockShift];
+            for (const glm::dvec3& corner : corners.points)
+              block.add(t.radius, t.sinNormalSpread, corner);
           });
         });
-    terms.extent = extentOf(mesh, terms.polygons);
+    for (std::size_t p = 0; p < terms.polygons.size(); ++p)
+      if (terms.polygons[p].radius < 0.0f) terms.degenerate.push_back(p);
     terms.key = key;
   }
 }

@@ -1,10 +1,11 @@
 // The summary-only estimate (QualityRenderer.cpp, estimateSummary: flat, one sample per pixel,
-// no ErrorEstimate image): its mesh-wide bound (FlatErrorBoundOfMesh.h) is at least every
-// polygon's bound and reaches it where a polygon meets the worst case; its predicted RMSE and
+// no ErrorEstimate image): its bound per block of polygons (FlatErrorBoundOfMesh.h) is at least
+// every polygon's bound and reaches it where a polygon meets the worst case; its predicted RMSE and
 // maximum are at least the per-pixel estimate's; and it is the same numbers for any thread
 // count and on every instruction set.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -19,6 +20,7 @@
 #include "../support/ReferenceScenes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
 #include "FlatErrorBoundOfMesh.h"
 #include "SetupBatch.h"
@@ -65,11 +67,11 @@ glm::dvec3 turnedFrom(const glm::dvec3& axis, double angle, std::mt19937& random
 }
 
 // Every polygon within the extent (center in the box, radius and spread at most the largest)
-// has its bound — the double one and the fused estimate's float lanes — at most the mesh's;
+// has its bound — the double one and the fused estimate's float lanes — at most the block's;
 // polygons placed at the worst case (the light 90° from the normal, the center nearest the
-// light) reach it, to 1 part in 1000 and 0.01 where the light arrives unattenuated: a mesh
+// light) reach it, to 1 part in 1000 and 0.01 where the light arrives unattenuated: a block
 // bound made smaller by that much fails.
-TEST(SummaryEstimate, TheMeshBoundIsAtLeastEveryPolygonsAndReachedAtTheWorstCase) {
+TEST(SummaryEstimate, TheBlockBoundIsAtLeastEveryPolygonsAndReachedAtTheWorstCase) {
   std::mt19937 random(21);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Camera camera{.position = {0.3, -0.2, 8.0}, .focalPoint = {0, 0, 0}};
@@ -87,7 +89,7 @@ TEST(SummaryEstimate, TheMeshBoundIsAtLeastEveryPolygonsAndReachedAtTheWorstCase
       extent.high = glm::dvec3(1.0);
       const glm::dvec3 surface(0.9, 0.7, 0.5);
       const std::optional<double> largest =
-          detail::largestFlatBound(c.lights, material, surface, extent, extent.sinNormalSpread);
+          detail::largestFlatBound(c.lights, material, surface, extent);
       ASSERT_TRUE(largest.has_value());
       const std::string name = c.name + ", spread " + std::to_string(spread);
       double worst = 0.0;
@@ -134,7 +136,7 @@ TEST(SummaryEstimate, TheMeshBoundIsAtLeastEveryPolygonsAndReachedAtTheWorstCase
           check(center, glm::dvec3(glm::vec3(turnedFrom(toLight, M_PI / 2, random))), 0.05,
                 std::sin(spread), Color(0.9f, 0.7f, 0.5f));
       }
-      std::printf("%-34s mesh bound %8.4f, largest polygon bound %8.4f\n", name.c_str(), *largest,
+      std::printf("%-34s block bound %8.4f, largest polygon bound %8.4f\n", name.c_str(), *largest,
                   worst);
       // The margin for the float lanes' rounding (2·2^-16 of the light's reach) aside.
       if (c.name == "directional" || c.name == "point") {
@@ -151,9 +153,9 @@ TEST(SummaryEstimate, NotTakenForSpotLightsOrSpecularMaterials) {
   LightSet spot;
   spot.lights.push_back(SpotLight{});
   EXPECT_FALSE(
-      detail::largestFlatBound(spot, PreparedMaterial(Material{}), glm::dvec3(1.0), extent, 0.0f));
+      detail::largestFlatBound(spot, PreparedMaterial(Material{}), glm::dvec3(1.0), extent));
   EXPECT_FALSE(detail::largestFlatBound(twoLights(), PreparedMaterial(shinyMaterial()),
-                                        glm::dvec3(1.0), extent, 0.0f));
+                                        glm::dvec3(1.0), extent));
 }
 
 // A scene's estimate both ways on one renderer: with the image (the per-pixel estimate's
@@ -241,6 +243,33 @@ TEST_F(SummaryEstimateTargets, TheSameNumbersOnEveryThreadCountAndInstructionSet
       EXPECT_GT(fast.predictedRmse, 0.0);
       EXPECT_EQ(fast.predictedRmse, first->predictedRmse) << target.name << ", " << threads;
       EXPECT_EQ(fast.predictedMaxError, first->predictedMaxError) << target.name << ", " << threads;
+    }
+  }
+}
+
+// The covered span of a row (EstimateRows.h: coveredSpan, which skips background four vectors
+// at a time) is its definition on every instruction set: rows of every width to 300 with
+// background runs of random length at either end and inside, and rows of background only.
+TEST_F(SummaryEstimateTargets, CoveredSpanIsItsDefinitionOnEveryInstructionSet) {
+  std::mt19937 random(7);
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    detail::useSimdTarget(target.bits);
+    for (int width = 1; width <= 300; ++width) {
+      for (int trial = 0; trial < 4; ++trial) {
+        std::vector<std::int32_t> ids(static_cast<std::size_t>(width), -1);
+        const int a = static_cast<int>(random() % (width + 1)),
+                  b = static_cast<int>(random() % (width + 1));
+        for (int x = std::min(a, b); x < std::max(a, b); ++x)
+          ids[x] = random() % 3 == 0 ? -1 : static_cast<std::int32_t>(random() % 1000);
+        int first = 0, last = width;
+        while (first < width && ids[first] < 0)
+          ++first;
+        while (last > first && ids[last - 1] < 0)
+          --last;
+        const std::array<int, 2> span = detail::coveredSpan(ids.data(), width);
+        EXPECT_EQ(span[0], first) << target.name << ", width " << width;
+        EXPECT_EQ(span[1], last) << target.name << ", width " << width;
+      }
     }
   }
 }

@@ -186,7 +186,8 @@ class QualityRenderer {
       detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
           boundOne,
       bool summary, detail::EstimateHook& hook);
-  void estimateSummary(const Frame& frame, QualityStats& stats);
+  void estimateSummary(const Frame& frame, const FramebufferView& target, QualityStats& stats);
+  void blockBounds(const Frame& frame);
   void finishFused(const Frame& frame, const detail::EstimateHook& hook,
                    const FramebufferView& target, QualityStats& stats);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
@@ -220,6 +221,9 @@ class QualityRenderer {
   // The same in the per-pixel estimate's fixed point (EstimateRows.h: fixedBoundOf), an even
   // count.
   std::vector<std::uint16_t> fixedBounds_;
+  // The summary-only estimate's: per block of polygon ids, and per block of one mesh
+  // (FlatErrorBoundOfMesh.h), in the same fixed point.
+  std::vector<std::uint16_t> blockBounds_, localBounds_;
   std::vector<detail::EstimateSums> rowSums_;         // per pixel row: the fused estimate's
   std::vector<const detail::BoundTerms*> meshTerms_;  // per mesh: terms_'s, for the hook
   std::vector<std::uint8_t> reshade_;    // per polygon id: shaded again (visible ones only)
