@@ -57,11 +57,15 @@ double sineOfSum(double sa, double sb) {
 }
 
 // The distances from p to the nearest and farthest points of the box.
-std::pair<double, double> distancesToBox(const glm::dvec3& p, const glm::dvec3& low,
-                                         const glm::dvec3& high) {
-  const glm::dvec3 nearest = glm::clamp(p, low, high);
-  const glm::dvec3 farthest = glm::max(glm::abs(p - low), glm::abs(p - high));
-  return {glm::length(p - nearest), glm::length(farthest)};
+double distanceToBox(const glm::dvec3& p, const glm::dvec3& low, const glm::dvec3& high) {
+  return glm::length(p - glm::clamp(p, low, high));
+}
+double farthestInBox(const glm::dvec3& p, const glm::dvec3& low, const glm::dvec3& high) {
+  return glm::length(glm::max(glm::abs(p - low), glm::abs(p - high)));
+}
+
+double largestMagnitude(const glm::dvec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }
 
 // The largest |dE/dd| of the attenuation over distances [nearest, farthest] (∞ when it cannot
@@ -115,15 +119,17 @@ std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMat
             [&](const PointLight& l) {
               radiance = boundRadianceOf(l.color, l.intensity);
               if (empty) return;
-              const auto [nearest, farthest] = distancesToBox(l.position, extent.low, extent.high);
-              // Widened by 2^-20 of the coordinates: above the few roundings of these
-              // distances and of the float centers the shade's lanes light (a few
-              // 2^-24 of the coordinates), which may lie that far outside the box.
+              // Widened by 2^-20 of the coordinates (their largest magnitude, times 2 > √3):
+              // above the few roundings of these distances and of the float centers the
+              // shade's lanes light (a few 2^-24 of the coordinates), which may lie that far
+              // outside the box.
               const double slack =
-                  0x1p-20 * (glm::length(l.position) +
-                             std::max(glm::length(extent.low), glm::length(extent.high)));
-              const double dLo = nearest - slack, dHi = farthest + slack;
+                  0x1p-19 * (largestMagnitude(l.position) +
+                             std::max(largestMagnitude(extent.low), largestMagnitude(extent.high)));
+              const double dLo = distanceToBox(l.position, extent.low, extent.high) - slack;
               lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
+              if (std::holds_alternative<NoAttenuation>(l.attenuation)) return;  // E = 1
+              const double dHi = farthestInBox(l.position, extent.low, extent.high) + slack;
               const double closest = std::max(0.0, dLo - radius), furthest = dHi + radius;
               eHi = attenuationFactor(l.attenuation, closest);
               eLo = attenuationFactor(l.attenuation, furthest);

@@ -23,8 +23,8 @@ namespace facet::detail {
 
 // Polygons per block: 2^kBoundBlockShift. A mesh's consecutive polygons are mostly
 // neighbours (strips, rings, a scan's order), so a block's bound is near its polygons'; and
-// the bounds of a 500k-polygon mesh are 16 kB, which the per-pixel rule reads from L1.
-inline constexpr int kBoundBlockShift = 6;
+// the bounds of a 500k-polygon mesh are 8 kB, which the per-pixel rule reads from L1.
+inline constexpr int kBoundBlockShift = 7;
 inline constexpr std::size_t kBoundBlock = std::size_t{1} << kBoundBlockShift;
 
 // What a block's polygons with a normal share for the bound (BoundTerms: EstimateHook.h).
