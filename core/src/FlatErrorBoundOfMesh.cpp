@@ -64,6 +64,12 @@ double farthestInBox(const glm::dvec3& p, const glm::dvec3& low, const glm::dvec
   return glm::length(glm::max(glm::abs(p - low), glm::abs(p - high)));
 }
 
+// A quadratic attenuation of constant term only (vtkLight's default, 1/a0 at every distance).
+bool constantFactor(const Attenuation& attenuation) {
+  const auto* q = std::get_if<QuadraticAttenuation>(&attenuation);
+  return q && q->linear == 0.0 && q->quadratic == 0.0;
+}
+
 double largestMagnitude(const glm::dvec3& v) {
   return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }
@@ -129,6 +135,12 @@ std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMat
               const double dLo = distanceToBox(l.position, extent.low, extent.high) - slack;
               lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
               if (std::holds_alternative<NoAttenuation>(l.attenuation)) return;  // E = 1
+              // E = 1/a0 at every distance whose square does not overflow (coordinates below
+              // 1e150: distances below 4e150).
+              if (constantFactor(l.attenuation) && slack < 0x1p-19 * 1e150) {
+                eHi = eLo = attenuationFactor(l.attenuation, 0.0);
+                return;
+              }
               const double dHi = farthestInBox(l.position, extent.low, extent.high) + slack;
               const double closest = std::max(0.0, dLo - radius), furthest = dHi + radius;
               eHi = attenuationFactor(l.attenuation, closest);
