@@ -17,7 +17,9 @@
 //    bytes as the pass over the finished image, in place of a second read of the planes.
 //
 // The resolve's part at one sample per pixel only; QualityRenderer runs the pass over the
-// samples otherwise.
+// samples otherwise. Without the ErrorEstimate image (the summary alone), under the lights and
+// materials FlatErrorBoundOfMesh.h takes, the shade bounds nothing and the resolve reads one
+// bound per block of polygon ids, found before the render (QualityRenderer::blockBounds).
 
 #include <atomic>
 #include <cstddef>

@@ -297,6 +297,8 @@ ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& option
   });
 }
 
+static_assert(kPolygonsPerTask % detail::kBoundBlock == 0, "updateTerms: whole blocks per task");
+
 // Per scene mesh, its polygons' bound terms for the arrays and version in `key`.
 struct QualityRenderer::MeshTerms {
   struct Key {
@@ -1116,7 +1118,8 @@ void QualityRenderer::updateTerms(const Scene& scene) {
           forEachPolygon(mesh, normals, begin, end, [&](std::size_t p, const Corners& corners) {
             const detail::BoundTerms& t = terms.polygons[p] = termsOf(corners);
             if (t.radius < 0.0f) return;
-            // A task's polygons are whole blocks (kPolygonsPerTask is a multiple).
+            // A task's polygons are whole blocks (parallelFor's ranges start at multiples of
+            // kPolygonsPerTask, a multiple of kBoundBlock).
             detail::MeshBoundExtent& block = terms.blocks[p >> detail::kBoundBlockShift];
             for (const glm::dvec3& corner : corners.points)
               block.add(t.radius, t.sinNormalSpread, corner);
