@@ -105,62 +105,80 @@ double steepestSlope(const Attenuation& attenuation, double nearest, double fart
 
 }  // namespace
 
-std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& m,
-                                       const glm::dvec3& surface, const MeshBoundExtent& extent) {
+std::optional<BlockBoundSetup> prepareBlockBound(const LightSet& lights, const PreparedMaterial& m,
+                                                 const glm::dvec3& surface) {
   if (m.specular > 0.0) return std::nullopt;
+  BlockBoundSetup setup;
   const bool lerp = m.material.diffuseModel == DiffuseModel::Lerp;
-  const double slope = lerp ? std::abs(m.lerpFull - m.lerpAmbient) : 1.0;
-  const double diffuseMax = lerp ? std::max(std::abs(m.lerpAmbient), std::abs(m.lerpFull)) : 1.0;
-  const double kappa = 2.0 * 0x1p-16 * std::max({1.0, diffuseMax, slope});
+  setup.slope = lerp ? std::abs(m.lerpFull - m.lerpAmbient) : 1.0;
+  setup.diffuseMax = lerp ? std::max(std::abs(m.lerpAmbient), std::abs(m.lerpFull)) : 1.0;
+  setup.kappa = 2.0 * 0x1p-16 * std::max({1.0, setup.diffuseMax, setup.slope});
+  setup.scale = m.diffuse * (1.0 + 0x1p-18) * glm::abs(surface);
+  for (const Light& light : lights.lights) {
+    BlockBoundSetup::Source source;
+    if (const auto* d = std::get_if<DirectionalLight>(&light)) {
+      source.radiance = boundRadianceOf(d->color, d->intensity);
+    } else if (const auto* l = std::get_if<PointLight>(&light)) {
+      source.point = l;
+      source.radiance = boundRadianceOf(l->color, l->intensity);
+      source.magnitude = largestMagnitude(l->position);
+      source.unattenuated = std::holds_alternative<NoAttenuation>(l->attenuation);
+      source.constant = constantFactor(l->attenuation);
+      source.factor = attenuationFactor(l->attenuation, 0.0);
+    } else {
+      return std::nullopt;  // a spot light
+    }
+    setup.lights.push_back(source);
+  }
+  return setup;
+}
+
+double largestFlatBound(const BlockBoundSetup& setup, const MeshBoundExtent& extent) {
   const double radius = extent.radius;
   const bool empty = !(extent.low.x <= extent.high.x);
+  const double boxMagnitude =
+      empty ? 0.0 : std::max(largestMagnitude(extent.low), largestMagnitude(extent.high));
   glm::dvec3 sum(0.0);
-  for (const Light& light : lights.lights) {
-    if (std::holds_alternative<SpotLight>(light)) return std::nullopt;
+  for (const BlockBoundSetup::Source& source : setup.lights) {
     double lightSine = 0.0, eLo = 1.0, eHi = 1.0, eSpan = 0.0;
-    glm::dvec3 radiance(0.0);
-    std::visit(
-        Overloaded{
-            [&](const DirectionalLight& l) { radiance = boundRadianceOf(l.color, l.intensity); },
-            [&](const PointLight& l) {
-              radiance = boundRadianceOf(l.color, l.intensity);
-              if (empty) return;
-              // Widened by 2^-20 of the coordinates (their largest magnitude, times 2 > √3):
-              // above the few roundings of these distances and of the float centers the
-              // shade's lanes light (a few 2^-24 of the coordinates), which may lie that far
-              // outside the box.
-              const double slack =
-                  0x1p-19 * (largestMagnitude(l.position) +
-                             std::max(largestMagnitude(extent.low), largestMagnitude(extent.high)));
-              const double dLo = distanceToBox(l.position, extent.low, extent.high) - slack;
-              lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
-              if (std::holds_alternative<NoAttenuation>(l.attenuation)) return;  // E = 1
-              // E = 1/a0 at every distance whose square does not overflow (coordinates below
-              // 1e150: distances below 4e150).
-              if (constantFactor(l.attenuation) && slack < 0x1p-19 * 1e150) {
-                eHi = eLo = attenuationFactor(l.attenuation, 0.0);
-                return;
-              }
-              const double dHi = farthestInBox(l.position, extent.low, extent.high) + slack;
-              const double closest = std::max(0.0, dLo - radius), furthest = dHi + radius;
-              eHi = attenuationFactor(l.attenuation, closest);
-              eLo = attenuationFactor(l.attenuation, furthest);
-              // A polygon's own distances span 2r ≤ 2R: its light moves by at most
-              // 2R times the attenuation's steepest slope over the box's distances.
-              eSpan = std::min(eHi - eLo,
-                               2.0 * radius * steepestSlope(l.attenuation, closest, furthest));
-            },
-            [&](const SpotLight&) {},
-        },
-        light);
-    const double delta = slope * sineOfSum(extent.sinNormalSpread, lightSine);
-    const double deviation = eSpan * diffuseMax + eHi * delta + kappa * eHi;
-    sum += radiance * deviation;
+    if (const PointLight* l = source.point; l && !empty) {
+      // Widened by 2^-20 of the coordinates (their largest magnitude, times 2 > √3): above
+      // the few roundings of these distances and of the float centers the shade's lanes
+      // light (a few 2^-24 of the coordinates), which may lie that far outside the box.
+      const double slack = 0x1p-19 * (source.magnitude + boxMagnitude);
+      const double dLo = distanceToBox(l->position, extent.low, extent.high) - slack;
+      lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
+      if (source.unattenuated) {
+        // E = 1
+      } else if (source.constant && slack < 0x1p-19 * 1e150) {
+        // E = 1/a0 at every distance whose square does not overflow (coordinates below
+        // 1e150: distances below 4e150).
+        eHi = eLo = source.factor;
+      } else {
+        const double dHi = farthestInBox(l->position, extent.low, extent.high) + slack;
+        const double closest = std::max(0.0, dLo - radius), furthest = dHi + radius;
+        eHi = attenuationFactor(l->attenuation, closest);
+        eLo = attenuationFactor(l->attenuation, furthest);
+        // A polygon's own distances span 2r ≤ 2R: its light moves by at most 2R times the
+        // attenuation's steepest slope over the box's distances.
+        eSpan =
+            std::min(eHi - eLo, 2.0 * radius * steepestSlope(l->attenuation, closest, furthest));
+      }
+    }
+    const double delta = setup.slope * sineOfSum(extent.sinNormalSpread, lightSine);
+    const double deviation = eSpan * setup.diffuseMax + eHi * delta + setup.kappa * eHi;
+    sum += source.radiance * deviation;
   }
-  const double diffuse = m.diffuse * (1.0 + 0x1p-18);
-  const glm::dvec3 total = diffuse * glm::abs(surface) * sum * (1.0 + 0x1p-30);
+  const glm::dvec3 total = setup.scale * sum * (1.0 + 0x1p-30);
   const double largest = std::min(1.0, std::max({total.x, total.y, total.z}));
   return std::isfinite(largest) ? 255.0 * largest : 255.0;
+}
+
+std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& m,
+                                       const glm::dvec3& surface, const MeshBoundExtent& extent) {
+  const std::optional<BlockBoundSetup> setup = prepareBlockBound(lights, m, surface);
+  if (!setup) return std::nullopt;
+  return largestFlatBound(*setup, extent);
 }
 
 }  // namespace facet::detail

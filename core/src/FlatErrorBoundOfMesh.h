@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
@@ -49,5 +50,24 @@ struct MeshBoundExtent {
 // takes the per-polygon estimate). Never NaN; at most 255.
 std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& material,
                                        const glm::dvec3& surface, const MeshBoundExtent& extent);
+
+// The same in two steps: what depends on the frame's lights and a mesh's material, once per
+// frame and mesh (nothing where the bound does not apply), then each block.
+struct BlockBoundSetup {
+  struct Source {
+    const PointLight* point = nullptr;  // null: a directional light
+    glm::dvec3 radiance{0.0};
+    double magnitude = 0.0;  // the light position's largest coordinate magnitude
+    bool unattenuated = false, constant = false;
+    double factor = 1.0;  // the attenuation at distance 0 (all of it when constant)
+  };
+  std::vector<Source> lights;
+  double slope = 1.0, diffuseMax = 1.0, kappa = 0.0;
+  glm::dvec3 scale{0.0};  // Kd·|Cd|, Kd with its margin
+};
+std::optional<BlockBoundSetup> prepareBlockBound(const LightSet& lights,
+                                                 const PreparedMaterial& material,
+                                                 const glm::dvec3& surface);
+double largestFlatBound(const BlockBoundSetup& setup, const MeshBoundExtent& extent);
 
 }  // namespace facet::detail

@@ -889,14 +889,14 @@ void QualityRenderer::blockBounds(const Frame& frame) {
     const glm::dvec3 surface = mesh.mesh.polygonColors.empty()
                                    ? glm::min(glm::dvec3(mesh.material.color), kMaxRadiance)
                                    : glm::dvec3(1.0);  // 8-bit colours
+    const std::optional<detail::BlockBoundSetup> setup =
+        detail::prepareBlockBound(frame.scene.lights, frame.materials[m], surface);
+    FACET_ASSERT(setup.has_value());  // summaryApplies
     localBounds_.resize(blocks.size());
     renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t b = begin; b < end; ++b) {
-        const std::optional<double> bound =
-            detail::largestFlatBound(frame.scene.lights, frame.materials[m], surface, blocks[b]);
-        FACET_ASSERT(bound.has_value());  // summaryApplies
-        localBounds_[b] = detail::fixedBoundOf(roundedUp(*bound));
-      }
+      for (std::size_t b = begin; b < end; ++b)
+        localBounds_[b] =
+            detail::fixedBoundOf(roundedUp(detail::largestFlatBound(*setup, blocks[b])));
     });
     const std::size_t first = frame.firstPolygon[m], count = mesh.mesh.polygons.count;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
