@@ -702,7 +702,11 @@ TEST(Quality, EstimateReportedWithEveryRenderOfTheScene)
   vtkDataArray* estimate = grab->GetOutput()->GetPointData()->GetArray("ErrorEstimate");
   ASSERT_NE(estimate, nullptr);
   ASSERT_EQ(estimate->GetNumberOfValues(), Width * Height);
-  EXPECT_FLOAT_EQ(static_cast<float>(estimate->GetRange()[1]), static_cast<float>(predictedMax));
+  // Without the array the summary may take one bound per block of polygons in place of each
+  // polygon's (QualityRenderer.h, errorEstimateImage): at least the image's, and its own then.
+  EXPECT_LE(static_cast<float>(estimate->GetRange()[1]), static_cast<float>(predictedMax));
+  EXPECT_FLOAT_EQ(static_cast<float>(estimate->GetRange()[1]),
+    static_cast<float>(FieldValue(grab->GetOutput(), "FacetErrorEstimate", "PredictedMax")));
   long onBackground = 0;
   for (int y = 0; y < Height; ++y)
   {
