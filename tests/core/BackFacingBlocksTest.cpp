@@ -3,6 +3,7 @@
 // views, perspective and parallel, near and far from the origin; and without the snapping
 // margin they are not.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -396,6 +397,62 @@ TEST_F(BackFacingBlocks, ThePlanReportsSkippedBlocksOnALineOfTheirOwn) {
   const Rendered ruleOff = renderScene(scene, camera, 320, 240, noViewCulling);
   EXPECT_EQ(ruleOff.stats.plan.blocksBackFacing, 0u);
   EXPECT_NE(ruleOff.stats.describe().find("off   back-facing blocks"), std::string::npos);
+}
+
+// `mesh` with its point ids permuted at random: each back-face block then uses ids all over
+// the mesh (its two spans cover nearly all of them), not two runs of a ring.
+Mesh shuffledPoints(const Mesh& mesh, unsigned seed) {
+  std::vector<std::int64_t> newId(mesh.points.size());
+  for (std::size_t i = 0; i < newId.size(); ++i)
+    newId[i] = static_cast<std::int64_t>(i);
+  std::mt19937 random(seed);
+  std::shuffle(newId.begin(), newId.end(), random);
+  Mesh shuffled = mesh;
+  for (std::size_t i = 0; i < newId.size(); ++i)
+    shuffled.points[static_cast<std::size_t>(newId[i])] = mesh.points[i];
+  for (std::int64_t& id : shuffled.connectivity)
+    id = newId[static_cast<std::size_t>(id)];
+  return shuffled;
+}
+
+// The points a drawn block needs are transformed whatever the layout of their ids and
+// whichever of two meshes they belong to (FrameMesh::neededPoints, per 128 points, from each
+// back-face block's two spans): renders with back-face blocks skipped and blocks outside the
+// view left out, from views that leave part of each sphere out, are the same bytes as with
+// neither.
+TEST_F(BackFacingBlocks, NeededPointsOfEveryLayoutAndMeshAreTransformed) {
+  const Mesh ordered = makeUvSphere(160, 120, 1.0, glm::dvec3(-0.6, 0.0, 0.0));
+  const Mesh shuffled = shuffledPoints(makeUvSphere(150, 110, 0.8, glm::dvec3(0.9, 0.2, 0.0)), 7);
+  Scene scene;
+  scene.meshes.push_back({closedView(ordered), {}});
+  scene.meshes.push_back({closedView(shuffled), {}});
+  scene.lights.lights.push_back(PointLight{glm::dvec3(0, 0, 9), Color(1.0f), 1.0, NoAttenuation{}});
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  std::size_t skipped = 0, outside = 0;
+  for (int v = 0; v < 12; ++v) {
+    SCOPED_TRACE("view " + std::to_string(v));
+    const double a = angle(random), b = angle(random) / 4.0 - 0.4;
+    Camera camera;
+    camera.focalPoint = glm::dvec3(0.3 * std::cos(a), 0.3 * std::sin(a), 0.0);
+    camera.position = camera.focalPoint + 4.0 * glm::dvec3(std::cos(a) * std::cos(b), std::sin(b),
+                                                           std::sin(a) * std::cos(b));
+    camera.viewUp = {0.0, 1.0, 0.0};
+    camera.viewAngleDegrees = 14.0 + 2.0 * v;  // a part of each sphere out of view
+    RenderOptions neither;
+    neither.rules.geometryOutsideView = false;
+    const Rendered reference = renderWith(scene, camera, false);
+    const Rendered plain = renderScene(scene, camera, 320, 240, neither);
+    ASSERT_EQ(reference.stats.plan.blocksBackFacing, 0u);
+    const Rendered both = renderWith(scene, camera, true);
+    EXPECT_EQ(differingPixels(both.framebuffer, plain.framebuffer), 0u);
+    EXPECT_EQ(differingPixels(reference.framebuffer, plain.framebuffer), 0u);
+    EXPECT_EQ(both.stats.polygonsDrawn, plain.stats.polygonsDrawn);
+    skipped += both.stats.plan.blocksBackFacing;
+    outside += both.stats.plan.blocksOutside;
+  }
+  EXPECT_GT(skipped, 12u);  // the test tests both
+  EXPECT_GT(outside, 12u);
 }
 
 }  // namespace
