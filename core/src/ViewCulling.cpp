@@ -82,9 +82,6 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
       flags.testsBackBlocks
           ? std::size_t(std::count(flags.back, flags.back + facts.backBlocks.size(), 1))
           : 0;
-  // Only the last back-face block may be short.
-  const std::size_t lastBlock = facts.backBlocks.size() - 1;
-  const std::size_t lastBlockPolygons = mesh.mesh().polygons.count - (lastBlock << kBackBlockBits);
   const std::uint8_t* visibleOrAll = flags.outside > 0 ? flags.visible : nullptr;
   if (flags.outside > 0) {
     culling.blocksOutside += flags.outside;
@@ -92,6 +89,10 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
     mesh.visibleBlocks = flags.visible;
   }
   if (skipped > 0) {
+    // Only the last back-face block may be short (skipped > 0: there is one).
+    const std::size_t lastBlock = facts.backBlocks.size() - 1;
+    const std::size_t lastBlockPolygons =
+        mesh.mesh().polygons.count - (lastBlock << kBackBlockBits);
     culling.backBlocksSkipped += skipped;
     culling.backPolygonsSkipped += (skipped - flags.back[lastBlock]) * kPolygonsPerBackBlock +
                                    flags.back[lastBlock] * lastBlockPolygons;

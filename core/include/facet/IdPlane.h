@@ -18,7 +18,8 @@ inline constexpr std::size_t kStreamedPlaneBytes = std::size_t{4} << 20;
 /// ids[0, count) into out[0, count): first + id where a polygon shows (id >= 0), -1 where none
 /// (id < 0). In SIMD lanes on the best instruction set of this CPU (the same bytes on every
 /// one); `stream`: by streaming stores (no write-allocate read), fenced before it returns,
-/// for a plane of kStreamedPlaneBytes or more.
+/// for a plane of kStreamedPlaneBytes or more. Defined in Resolve.cpp, beside the resolve's
+/// colors: both write rows through one Highway store loop.
 void widenPolygonIds(const std::int32_t* ids, std::int64_t* out, std::size_t count,
                      std::int64_t first, bool stream);
 
