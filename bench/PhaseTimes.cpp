@@ -11,8 +11,13 @@
 // START turns the camera that many degrees before the first frame: past 90 the sphere's far
 // half comes first in mesh order (every face drawn: its back faces are binned before the
 // front faces over them).
+// ARRAYS picks the arrays' types as an adapter hands them over: f64 (the default: float
+// points, 64-bit cells, the set-up instantiation the figures are for), d64, f32 or d32 (d:
+// double points, as VTK's vtkPoints default; 32: 32-bit offsets and connectivity). The
+// points are the same values in float or double, so the types change the code, not the mesh.
 //
 //   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
+//                               [ARRAYS]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -25,6 +30,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "TurningView.h"
@@ -59,18 +66,40 @@ std::uint64_t fingerprint(const Framebuffer& framebuffer) {
   return hash;
 }
 
+// The sphere's arrays in the types ARRAYS names (see the top), kept alive for the view.
+struct SphereArrays {
+  std::vector<float> xyzFloat;
+  std::vector<double> xyzDouble;
+  std::vector<std::int32_t> offsets32, connectivity32;
+
+  MeshView view(const Mesh& sphere, std::string_view arrays, bool closed) {
+    for (const auto& p : sphere.points) {
+      for (const double c : {p.x, p.y, p.z}) {
+        xyzFloat.push_back(static_cast<float>(c));
+        xyzDouble.push_back(static_cast<float>(c));  // the float points' values
+      }
+    }
+    const bool doublePoints = arrays[0] == 'd';
+    const PointArray points =
+        doublePoints ? PointArray::ofXyz(xyzDouble) : PointArray::ofXyz(xyzFloat);
+    if (arrays.substr(1) != "32") {
+      return {points, PolygonArray::of(sphere.offsets, sphere.connectivity), {}, closed};
+    }
+    offsets32.assign(sphere.offsets.begin(), sphere.offsets.end());
+    connectivity32.assign(sphere.connectivity.begin(), sphere.connectivity.end());
+    return {points, PolygonArray::of(offsets32, connectivity32), {}, closed};
+  }
+};
+
 int run(int triangles, bool closed, int frames, int threads, double turn, std::uint64_t version,
-        double start) {
+        double start, std::string_view arrays) {
   // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles, as
   // CoreBench's sphereWithTriangles picks it (the same spheres as facet_bench's).
   const int theta = static_cast<int>(std::lround(std::sqrt(triangles / 2.0)));
   const Mesh sphere = testing::makeUvSphere(theta, theta + 2);
-  std::vector<float> xyz;
-  for (const auto& p : sphere.points)
-    xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
+  SphereArrays storage;
+  MeshView view = storage.view(sphere, arrays, closed);
   Camera camera = testing::fitCamera(sphere);
-  MeshView view{
-      PointArray::ofXyz(xyz), PolygonArray::of(sphere.offsets, sphere.connectivity), {}, closed};
   view.version = version;
   Scene scene;
   scene.meshes.push_back({view, Material{}});
@@ -93,13 +122,14 @@ int run(int triangles, bool closed, int frames, int threads, double turn, std::u
   }
   const double* s = best.seconds;
   std::printf(
-      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, best of %d frames, ms: "
+      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, arrays %s, best of %d "
+      "frames, ms: "
       "validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
       "frame: %zu fragments written, %zu back-facing blocks skipped, planes %016llx; first frame: "
       "validate %.3f total %.3f\n",
       triangles, int(closed), threads, turn, start, static_cast<unsigned long long>(version),
-      frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3,
-      last.fragmentsWritten, last.plan.blocksBackFacing,
+      std::string(arrays).c_str(), frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
+      s[4] * 1e3, s[5] * 1e3, last.fragmentsWritten, last.plan.blocksBackFacing,
       static_cast<unsigned long long>(fingerprint(framebuffer)), first.validateSeconds * 1e3,
       first.totalSeconds * 1e3);
   return 0;
@@ -114,13 +144,18 @@ int main(int argc, char** argv) {
         stderr,
         "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
         "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned] "
-        "[START degrees turned before the first frame, default 0]\n",
+        "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32]\n",
         argv[0], bench::kTurnDegreesPerFrame);
+    return 2;
+  }
+  const std::string_view arrays = argc > 8 ? argv[8] : "f64";
+  if (arrays != "f64" && arrays != "d64" && arrays != "f32" && arrays != "d32") {
+    std::fprintf(stderr, "ARRAYS is f64, d64, f32 or d32, not %s\n", argv[8]);
     return 2;
   }
   return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
              argc > 4 ? std::atoi(argv[4]) : 2,
              argc > 5 ? std::atof(argv[5]) : bench::kTurnDegreesPerFrame,
              argc > 6 ? std::strtoull(argv[6], nullptr, 10) : 1,
-             argc > 7 ? std::atof(argv[7]) : 0.0);
+             argc > 7 ? std::atof(argv[7]) : 0.0, arrays);
 }

@@ -13,6 +13,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "AppendBuffer.h"
 #include "FrameTransform.h"
 #include "RasterTriangle.h"
 #include "Triangulate.h"
@@ -112,22 +113,31 @@ struct PolygonCounts {
   std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
 };
 
+template <class T>
+using HugePageAppendBuffer = AppendBuffer<T, HugePageAllocator<T>>;
+
+// A tile's entries in one chunk (kFragmentBit, kSmallTriangleBit): appended by the set-up's
+// inlined binning helpers (Binning.h) whatever the inliner's budget, read as a span.
+using Bin = AppendBuffer<std::uint32_t>;
+
 // A run of consecutive draw positions that one task sets up and bins. Its bins list, per
 // tile, indices into `triangles`; tiles read the chunks in order, so every tile sees its
 // triangles in draw order whatever the chunking (which depends on the thread count) was.
 struct Chunk {
   std::size_t begin = 0, end = 0;
-  HugePageVector<BinnedTriangle> triangles;
-  HugePageVector<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
-  HugePageVector<BinnedFragment> fragments;
-  HugePageVector<SmallTriangle> smallTriangles;
+  // The binned records, appended as the bins are (AppendBuffer.h: inlined whatever the
+  // inliner's budget, growth out of line), in huge pages when large.
+  HugePageAppendBuffer<BinnedTriangle> triangles;
+  HugePageAppendBuffer<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
+  HugePageAppendBuffer<BinnedFragment> fragments;
+  HugePageAppendBuffer<SmallTriangle> smallTriangles;
   std::vector<WindowVertex> clippedVertices;
-  std::vector<std::vector<std::uint32_t>> bins;
+  std::vector<Bin> bins;
   // With the depth test, the back-facing polygons' entries (every face drawn), per tile: a
   // tile paints them after every chunk's `bins`, so that most fail losesEverywhere behind the
   // front faces already painted, and an exact depth tie keeps the front face (writeFragment).
-  std::vector<std::vector<std::uint32_t>> backBins;
-  std::vector<std::vector<std::uint32_t>>& binsFor(bool last) { return last ? backBins : bins; }
+  std::vector<Bin> backBins;
+  std::vector<Bin>& binsFor(bool last) { return last ? backBins : bins; }
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <span>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -127,7 +128,7 @@ constexpr std::size_t kPrefetchTriangle = 8;
 constexpr std::size_t kPrefetchVertices = 4;
 
 [[gnu::always_inline]] inline void prefetchAhead(const WindowVertex* vertices, const Chunk& chunk,
-                                                 const std::vector<std::uint32_t>& bin,
+                                                 std::span<const std::uint32_t> bin,
                                                  std::size_t k) {
   if (k + kPrefetchTriangle < bin.size()) {
     const std::uint32_t entry = bin[k + kPrefetchTriangle];
@@ -156,7 +157,7 @@ constexpr std::size_t kPrefetchVertices = 4;
 // bins, every face drawn).
 template <DepthMode kMode, bool kCoarse>
 [[gnu::always_inline]] inline void paintBin(const RasterContext& context, const Chunk& chunk,
-                                            const std::vector<std::uint32_t>& bin,
+                                            std::span<const std::uint32_t> bin,
                                             const PixelBounds& tile, const Planes& planes,
                                             PaintCounts& counts, CoarseDepth& coarse,
                                             FarthestBlocks* front) {
