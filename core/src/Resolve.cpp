@@ -195,8 +195,10 @@ namespace {
 // KiB), which the hardware prefetchers do not follow; a band of whole rows streams.
 constexpr int kRowsPerTask = 8;
 // With the estimate, taller bands, resolved kRowsPerTask rows at a time and each step's rows
-// estimated right after (ResolvedBandEstimate): a band estimates the row either side of it as
-// well, its colors gathered again by polygon id, 2 rows more per band, a quarter of 8.
+// estimated right after (ResolvedBandEstimate). A band also finds the fields of the row either
+// side of it, with the colors gathered again by polygon id (another task's rows): 2 rows a
+// band, 3.5 times a band row's cost each at 500k; a sixteenth of the rows at 32, a quarter at
+// 8. 64 was no faster (bench/estimate-cost.md).
 constexpr int kRowsPerEstimatingTask = 32;
 
 HWY_EXPORT(ResolveColors);
