@@ -89,10 +89,24 @@ struct EstimateHook {
   }
 };
 
-// The resolve's part: the estimate of pixel rows [y0, y1] of a resolved band into hook.rows
-// (and hook.image), from the planes of ids and colors (`width` wide) and the colors per
-// polygon id (EstimateRows.h: the same bytes as QualityRenderer's pass over the image).
-void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, const Rgba8* colors,
-                          const std::int32_t* ids, int width, int y0, int y1);
+// The resolve's part: the estimate of a resolved band's pixel rows [y0, y1] into hook.rows (and
+// hook.image), from the planes of ids and colors (`width` wide) and the colors per polygon id
+// (EstimateRows.h: the same bytes as QualityRenderer's pass over the image), row by row as
+// the band resolves them: each row's estimate right after the row below it is resolved, while
+// its colors and ids are in cache. The rows just outside the band (another task's, maybe
+// being written) take their colors by id.
+class ResolvedBandEstimate {
+ public:
+  ResolvedBandEstimate(const EstimateHook& hook, const Rgba8* polygonColors, const Rgba8* colors,
+                       const std::int32_t* ids, int width, int y0, int y1);
+  // Rows [y0, through] are resolved (through ≤ y1, not less than the last call's): estimates
+  // every row whose neighbours are, all of them once through is y1.
+  void resolvedThrough(int through);
+
+ private:
+  const EstimateHook& hook_;
+  EstimateGrid grid_;
+  int next_;  // the next row whose maxima to find
+};
 
 }  // namespace facet::detail

@@ -79,6 +79,12 @@ inline std::uint32_t sampleEstimateOf(const EstimateField* above, const Estimate
   return std::min(largest - 1 + kEstimateUnit / 2, kEstimateCap);
 }
 
+inline void addEstimate(EstimateSums& sums, std::uint32_t e) {
+  sums.squares += static_cast<std::uint64_t>(e) * e;
+  sums.largest = std::max(sums.largest, e);
+  sums.covered += e != 0;
+}
+
 }  // namespace
 }  // namespace facet::detail
 #endif  // FACET_ESTIMATE_ROWS_SCALAR
@@ -196,17 +202,68 @@ void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out, 
     rowMaximumOf(in, x, out, stride, planes);
 }
 
-template <int kPlanes>
+// EstimateSums over lanes of estimates (each below 2^15, its square below 2^30), added into
+// an EstimateSums at the end: integers, so the same sums in any order.
+#if HWY_TARGET == HWY_SCALAR  // one lane: no 64-bit repartition of it
+struct EstimateSumLanes {
+  EstimateSums lanes;
+  HWY_INLINE void add(hn::Vec<DU> e) { addEstimate(lanes, hn::GetLane(e)); }
+  HWY_INLINE void addTo(EstimateSums& sums) const {
+    sums.squares += lanes.squares;
+    sums.largest = std::max(sums.largest, lanes.largest);
+    sums.covered += lanes.covered;
+  }
+};
+#else
+struct EstimateSumLanes {
+  using D64 = hn::Repartition<std::uint64_t, DU>;
+  hn::Vec<D64> squares;
+  hn::Vec<DU> largest, covered;
+
+  // Written out: an implicit constructor is not compiled for the target.
+  HWY_INLINE EstimateSumLanes()
+      : squares(hn::Zero(D64())), largest(hn::Zero(DU())), covered(hn::Zero(DU())) {}
+  HWY_INLINE void add(hn::Vec<DU> e) {
+    const DU du;
+    const hn::Repartition<std::uint64_t, DU> d64;
+    largest = hn::Max(largest, e);
+    covered = covered + hn::IfThenElseZero(e != hn::Zero(du), hn::Set(du, 1u));
+    // The even lanes' squares, then the odd lanes' moved down, in 64-bit lanes.
+    const auto odd = hn::BitCast(du, hn::ShiftRight<32>(hn::BitCast(d64, e)));
+    squares = squares + hn::MulEven(e, e) + hn::MulEven(odd, odd);
+  }
+  HWY_INLINE void addTo(EstimateSums& sums) const {
+    const DU du;
+    const hn::Repartition<std::uint64_t, DU> d64;
+    constexpr std::size_t kMax = HWY_MAX_BYTES / sizeof(std::uint32_t);
+    HWY_ALIGN std::uint64_t wide[kMax];
+    HWY_ALIGN std::uint32_t narrow[2][kMax];
+    hn::Store(squares, d64, wide);
+    hn::Store(largest, du, narrow[0]);
+    hn::Store(covered, du, narrow[1]);
+    for (std::size_t i = 0; i < hn::Lanes(d64); ++i)
+      sums.squares += wide[i];
+    for (std::size_t i = 0; i < hn::Lanes(du); ++i) {
+      sums.largest = std::max(sums.largest, narrow[0][i]);
+      sums.covered += narrow[1][i];
+    }
+  }
+};
+#endif
+
+// The estimates of [begin, end) into `out` (kStore) and their sums into `sums` (kSum).
+template <int kPlanes, bool kStore, bool kSum>
 HWY_INLINE void SampleEstimatesOf(const EstimateField* above, const EstimateField* row,
                                   const EstimateField* below, std::size_t stride,
                                   const Rgba8* colors, const std::int32_t* ids, int begin, int end,
-                                  std::uint32_t* out) {
+                                  std::uint32_t* out, EstimateSums* sums) {
   const DU du;
   const DH dh;
   const DI di;
   const int lanes = static_cast<int>(hn::Lanes(du));
   const auto* words = reinterpret_cast<const std::uint32_t*>(colors);
   const auto cap = hn::Set(du, kEstimateCap);
+  EstimateSumLanes sumLanes;
   int x = begin;
   for (; x + lanes <= end; x += lanes) {
     const auto word = hn::LoadU(du, words + x);
@@ -223,20 +280,42 @@ HWY_INLINE void SampleEstimatesOf(const EstimateField* above, const EstimateFiel
     }
     const auto estimate = hn::Min(largest + hn::Set(du, kEstimateUnit / 2 - 1), cap);
     const auto background = hn::RebindMask(du, hn::LoadU(di, ids + x) < hn::Zero(di));
-    hn::StoreU(hn::IfThenZeroElse(background, estimate), du, out + x);
+    const auto e = hn::IfThenZeroElse(background, estimate);
+    if constexpr (kStore) hn::StoreU(e, du, out + x);
+    if constexpr (kSum) sumLanes.add(e);
   }
-  for (; x < end; ++x)
-    out[x] = sampleEstimateOf(above, row, below, stride, colors, ids, x, kPlanes);
+  if constexpr (kSum) sumLanes.addTo(*sums);
+  for (; x < end; ++x) {
+    const std::uint32_t e = sampleEstimateOf(above, row, below, stride, colors, ids, x, kPlanes);
+    if constexpr (kStore) out[x] = e;
+    if constexpr (kSum) addEstimate(*sums, e);
+  }
 }
 
 void SampleEstimates(const EstimateField* above, const EstimateField* row,
                      const EstimateField* below, std::size_t stride, const Rgba8* colors,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out, int planes) {
   if (planes == kGreyFields) {
-    SampleEstimatesOf<kGreyFields>(above, row, below, stride, colors, ids, begin, end, out);
+    SampleEstimatesOf<kGreyFields, true, false>(above, row, below, stride, colors, ids, begin, end,
+                                                out, nullptr);
   } else {
-    SampleEstimatesOf<kEstimateFields>(above, row, below, stride, colors, ids, begin, end, out);
+    SampleEstimatesOf<kEstimateFields, true, false>(above, row, below, stride, colors, ids, begin,
+                                                    end, out, nullptr);
   }
+}
+
+EstimateSums SampleEstimateSums(const EstimateField* above, const EstimateField* row,
+                                const EstimateField* below, std::size_t stride, const Rgba8* colors,
+                                const std::int32_t* ids, int begin, int end, int planes) {
+  EstimateSums sums;
+  if (planes == kGreyFields) {
+    SampleEstimatesOf<kGreyFields, false, true>(above, row, below, stride, colors, ids, begin, end,
+                                                nullptr, &sums);
+  } else {
+    SampleEstimatesOf<kEstimateFields, false, true>(above, row, below, stride, colors, ids, begin,
+                                                    end, nullptr, &sums);
+  }
+  return sums;
 }
 
 // coveredSpan: whole groups of background skipped four vectors at a time, then one (a row of
@@ -273,41 +352,14 @@ std::array<int, 2> CoveredSpan(const std::int32_t* ids, int width) {
 
 EstimateSums SumEstimates(const std::uint32_t* estimates, int begin, int end) {
   EstimateSums sums;
+  EstimateSumLanes sumLanes;
   int x = begin;
-#if HWY_TARGET != HWY_SCALAR
-  const DU du;
-  const hn::Repartition<std::uint64_t, DU> d64;
-  const int lanes = static_cast<int>(hn::Lanes(du));
-  auto squares = hn::Zero(d64);
-  auto largest = hn::Zero(du), covered = hn::Zero(du);
-  for (; x + lanes <= end; x += lanes) {
-    const auto e = hn::LoadU(du, estimates + x);
-    largest = hn::Max(largest, e);
-    covered = covered + hn::IfThenElseZero(e != hn::Zero(du), hn::Set(du, 1u));
-    // Each estimate is below 2^15, its square below 2^30: the even lanes' squares, then the
-    // odd lanes' moved down, in 64-bit lanes.
-    const auto odd = hn::BitCast(du, hn::ShiftRight<32>(hn::BitCast(d64, e)));
-    squares = squares + hn::MulEven(e, e) + hn::MulEven(odd, odd);
-  }
-  constexpr std::size_t kMax = HWY_MAX_BYTES / sizeof(std::uint32_t);
-  HWY_ALIGN std::uint64_t wide[kMax];
-  HWY_ALIGN std::uint32_t narrow[2][kMax];
-  hn::Store(squares, d64, wide);
-  hn::Store(largest, du, narrow[0]);
-  hn::Store(covered, du, narrow[1]);
-  for (std::size_t i = 0; i < hn::Lanes(d64); ++i)
-    sums.squares += wide[i];
-  for (std::size_t i = 0; i < hn::Lanes(du); ++i) {
-    sums.largest = std::max(sums.largest, narrow[0][i]);
-    sums.covered += narrow[1][i];
-  }
-#endif
-  for (; x < end; ++x) {
-    const std::uint32_t e = estimates[x];
-    sums.squares += static_cast<std::uint64_t>(e) * e;
-    sums.largest = std::max(sums.largest, e);
-    sums.covered += e != 0;
-  }
+  const int lanes = static_cast<int>(hn::Lanes(DU()));
+  for (; x + lanes <= end; x += lanes)
+    sumLanes.add(hn::LoadU(DU(), estimates + x));
+  sumLanes.addTo(sums);
+  for (; x < end; ++x)
+    addEstimate(sums, estimates[x]);
   return sums;
 }
 
@@ -321,6 +373,7 @@ HWY_EXPORT(NeighbourFields);
 HWY_EXPORT(NeighbourFieldsById);
 HWY_EXPORT(RowMaxima);
 HWY_EXPORT(SampleEstimates);
+HWY_EXPORT(SampleEstimateSums);
 HWY_EXPORT(SumEstimates);
 HWY_EXPORT(CoveredSpan);
 
@@ -352,6 +405,13 @@ void sampleEstimates(const EstimateField* above, const EstimateField* row,
                      const std::int32_t* ids, int begin, int end, std::uint32_t* out, int planes) {
   HWY_DYNAMIC_DISPATCH(SampleEstimates)
   (above, row, below, stride, colors, ids, begin, end, out, planes);
+}
+
+EstimateSums sampleEstimateSums(const EstimateField* above, const EstimateField* row,
+                                const EstimateField* below, std::size_t stride, const Rgba8* colors,
+                                const std::int32_t* ids, int begin, int end, int planes) {
+  return HWY_DYNAMIC_DISPATCH(SampleEstimateSums)(above, row, below, stride, colors, ids, begin,
+                                                  end, planes);
 }
 
 std::array<int, 2> coveredSpan(const std::int32_t* ids, int width) {
@@ -416,14 +476,7 @@ void EstimateSpace::expand(int r) {
   planes[r % 3] = kEstimateFields;
 }
 
-void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole) {
-  const std::size_t row = static_cast<std::size_t>(r) * width;
-  std::uint32_t* out = samples.data() + static_cast<std::size_t>(r % side) * width;
-  const auto [first, last] = spans[r % 3];
-  if (whole) {
-    std::fill(out, out + first, 0u);
-    std::fill(out + last, out + width, 0u);
-  }
+int EstimateSpace::planesAround(const EstimateGrid& grid, int r) {
   // Grey only if the three rows are (the rows outside the grid are zeros, any planes).
   int count = kGreyFields;
   for (int n = r - 1; n <= r + 1; ++n)
@@ -432,9 +485,30 @@ void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole)
     for (int n = r - 1; n <= r + 1; ++n)
       if (n >= 0 && n < grid.height) expand(n);
   }
+  return count;
+}
+
+void EstimateSpace::estimateSamples(const EstimateGrid& grid, int r, bool whole) {
+  const std::size_t row = static_cast<std::size_t>(r) * width;
+  std::uint32_t* out = samples.data() + static_cast<std::size_t>(r % side) * width;
+  const auto [first, last] = spans[r % 3];
+  if (whole) {
+    std::fill(out, out + first, 0u);
+    std::fill(out + last, out + width, 0u);
+  }
+  const int count = planesAround(grid, r);
   sampleEstimates(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
                   maximaOf(r + 1, grid.height), stride, grid.colors + row, grid.ids + row, first,
                   last, out, count);
+}
+
+EstimateSums EstimateSpace::sampleSums(const EstimateGrid& grid, int r) {
+  const std::size_t row = static_cast<std::size_t>(r) * width;
+  const auto [first, last] = spans[r % 3];
+  const int count = planesAround(grid, r);
+  return sampleEstimateSums(maximaOf(r - 1, grid.height), maximaOf(r, grid.height),
+                            maximaOf(r + 1, grid.height), stride, grid.colors + row, grid.ids + row,
+                            first, last, count);
 }
 
 const std::uint32_t* EstimateSpace::pixelEstimates() {
@@ -452,25 +526,42 @@ const std::uint32_t* EstimateSpace::pixelEstimates() {
   return pixels.data();
 }
 
-void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, const Rgba8* colors,
-                          const std::int32_t* ids, int width, int y0, int y1) {
-  // One space per thread, kept: the resolve's tasks are bands, not threads.
-  thread_local EstimateSpace space;
-  space.resize(width, 1);
-  const EstimateGrid grid{ids, colors, hook.fixedBounds, polygonColors, width, hook.height,
-                          y0,  y1,     hook.boundShift};
-  const bool image = hook.image != nullptr;
-  for (int r = y0 - 1; r <= y1 + 1; ++r) {
-    if (r >= 0 && r < hook.height) space.findMaxima(grid, r);
+namespace {
+// One space per thread, kept: the resolve's tasks are bands, not threads, and a thread
+// estimates one band at a time.
+thread_local EstimateSpace resolvedBandSpace;
+}  // namespace
+
+ResolvedBandEstimate::ResolvedBandEstimate(const EstimateHook& hook, const Rgba8* polygonColors,
+                                           const Rgba8* colors, const std::int32_t* ids, int width,
+                                           int y0, int y1)
+    : hook_(hook),
+      grid_{ids, colors, hook.fixedBounds, polygonColors, width, hook.height,
+            y0,  y1,     hook.boundShift},
+      next_(y0 - 1) {
+  resolvedBandSpace.resize(width, 1);
+}
+
+void ResolvedBandEstimate::resolvedThrough(int through) {
+  EstimateSpace& space = resolvedBandSpace;
+  const bool image = hook_.image != nullptr;
+  // The row below the band is found by id once the band's last row is resolved.
+  const int last = through >= grid_.ownLast ? grid_.ownLast + 1 : through;
+  for (; next_ <= last; ++next_) {
+    const int r = next_;
+    if (r >= 0 && r < hook_.height) space.findMaxima(grid_, r);
     const int y = r - 1;
-    if (y < y0) continue;
-    space.estimateSamples(grid, y, image);  // else only the span is read
+    if (y < grid_.ownFirst) continue;
+    if (!image) {  // the sums alone, in the same pass
+      hook_.rows[y] = space.sampleSums(grid_, y);
+      continue;
+    }
+    space.estimateSamples(grid_, y, true);
     const std::uint32_t* pixels = space.pixelEstimates();
-    const auto [first, last] = space.spans[y % 3];
-    hook.rows[y] = estimateSums(pixels, first, last);
-    if (!image) continue;
-    float* out = hook.image + static_cast<std::size_t>(y) * width;
-    for (int x = 0; x < width; ++x)  // exact: a power-of-two scale
+    const auto [first, end] = space.spans[y % 3];
+    hook_.rows[y] = estimateSums(pixels, first, end);
+    float* out = hook_.image + static_cast<std::size_t>(y) * grid_.width;
+    for (int x = 0; x < grid_.width; ++x)  // exact: a power-of-two scale
       out[x] = static_cast<float>(pixels[x]) / static_cast<float>(kEstimateUnit);
   }
 }

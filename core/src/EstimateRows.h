@@ -93,6 +93,13 @@ struct EstimateSums {
 };
 EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end);
 
+// estimateSums of the estimates sampleEstimates finds, without storing them (one sample per
+// pixel, where the sample's estimate is the pixel's).
+EstimateSums sampleEstimateSums(const EstimateField* above, const EstimateField* row,
+                                const EstimateField* below, std::size_t stride, const Rgba8* colors,
+                                const std::int32_t* ids, int begin, int end,
+                                int planes = kEstimateFields);
+
 // neighbourFields with each sample's color its polygon's, polygonColors[ids[x]] (the resolve's
 // gather), in place of a row of colors.
 bool neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
@@ -145,6 +152,8 @@ struct EstimateSpace {
   // The estimates of sample row r (its maxima and its neighbours' found) into samples' row
   // r % side; 0 outside its covered span where `whole` (else left as they were).
   void estimateSamples(const EstimateGrid& grid, int r, bool whole);
+  // At one sample per pixel: the sums of sample row r's estimates (estimateSums), not stored.
+  EstimateSums sampleSums(const EstimateGrid& grid, int r);
   // Pixel row y's estimates (samples holds its sample rows): the mean of its samples',
   // rounded up, plus 0.5 for rounding that mean, capped; 0 where no sample is covered.
   const std::uint32_t* pixelEstimates();
@@ -156,6 +165,9 @@ struct EstimateSpace {
   }
   // Row r's maxima with all kEstimateFields planes (a grey row's red pair copied).
   void expand(int r);
+  // The planes sample row r's estimate reads: kGreyFields if its rows and its neighbours' are
+  // grey, else kEstimateFields (those rows expanded).
+  int planesAround(const EstimateGrid& grid, int r);
 };
 
 }  // namespace facet::detail

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "Resolve.cpp"
@@ -193,6 +194,12 @@ namespace {
 // rows are 256 bytes of each plane, each in a page of its own (a 1080p row of ids is 7.5
 // KiB), which the hardware prefetchers do not follow; a band of whole rows streams.
 constexpr int kRowsPerTask = 8;
+// With the estimate, taller bands, resolved kRowsPerTask rows at a time and each step's rows
+// estimated right after (ResolvedBandEstimate). A band also finds the fields of the row either
+// side of it, with the colors gathered again by polygon id (another task's rows): 2 rows a
+// band, 3.5 times a band row's cost each at 500k; a sixteenth of the rows at 32, a quarter at
+// 8. 64 was no faster (bench/estimate-cost.md).
+constexpr int kRowsPerEstimatingTask = 32;
 
 HWY_EXPORT(ResolveColors);
 HWY_EXPORT(ResolveDepths);
@@ -214,22 +221,28 @@ float resolvedDepth(const FrameTransform& transform, float key) {
 
 bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContext& context) {
   const PixelBounds viewport = grid.viewport();
-  const int bands = (viewport.y1 - viewport.y0 + kRowsPerTask) / kRowsPerTask;
   // The estimate reads the band's colors right after it is resolved: from the caches.
   const bool estimatesRows = context.estimate && context.estimate->rows;
+  const int rowsPerTask = estimatesRows ? kRowsPerEstimatingTask : kRowsPerTask;
+  const int bands = (viewport.y1 - viewport.y0 + rowsPerTask) / rowsPerTask;
   const std::size_t colorBytes = static_cast<std::size_t>(viewport.x1 - viewport.x0 + 1) *
                                  static_cast<std::size_t>(viewport.y1 - viewport.y0 + 1) *
                                  sizeof(Rgba8);
   const bool stream = !estimatesRows && colorBytes >= kStreamedColorBytes;
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
-    const int y0 = viewport.y0 + static_cast<int>(b) * kRowsPerTask;
-    const int y1 = std::min(viewport.y1, y0 + kRowsPerTask - 1);
-    HWY_DYNAMIC_DISPATCH(ResolveColors)(context, {viewport.x0, y0, viewport.x1, y1}, stream);
-    if (context.estimate && context.estimate->rows) {  // its rows' ids still in cache
-      estimateResolvedRows(*context.estimate, context.colors, context.color, context.polygonId,
-                           context.width, y0, y1);
+    const int y0 = viewport.y0 + static_cast<int>(b) * rowsPerTask;
+    const int y1 = std::min(viewport.y1, y0 + rowsPerTask - 1);
+    std::optional<ResolvedBandEstimate> estimate;
+    if (estimatesRows) {
+      estimate.emplace(*context.estimate, context.colors, context.color, context.polygonId,
+                       context.width, y0, y1);
     }
-    if (context.resolvedRows) (*context.resolvedRows)(*context.target, y0, y1);  // still cached
+    for (int s0 = y0; s0 <= y1; s0 += kRowsPerTask) {  // a step's rows still in cache after it
+      const int s1 = std::min(y1, s0 + kRowsPerTask - 1);
+      HWY_DYNAMIC_DISPATCH(ResolveColors)(context, {viewport.x0, s0, viewport.x1, s1}, stream);
+      if (estimate) estimate->resolvedThrough(s1);
+      if (context.resolvedRows) (*context.resolvedRows)(*context.target, s0, s1);
+    }
   });
 }
 

@@ -298,7 +298,8 @@ TEST_F(BoundBatches, NotTakenForSpotLightsSpecularMaterialsOrManyLights) {
 // The estimate's pass over a grid of samples (EstimateRows.h: fields, row maxima, sample
 // estimates) against its definition — per covered sample, over the covered samples q of its
 // 3 × 3 neighbourhood, the largest channel difference plus q's bound rounded up to 1/128,
-// plus 0.5, capped at 255 — and their sums to the last bit, on every instruction set.
+// plus 0.5, capped at 255 — and their sums to the last bit (summed apart and in the pass), on
+// every instruction set.
 TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
   std::mt19937 random(3);
   std::uniform_int_distribution<int> channel(0, 255), polygon(-3, 40);
@@ -382,6 +383,13 @@ TEST_F(BoundBatches, SampleEstimatesAreTheirDefinitionOnEveryInstructionSet) {
         EXPECT_EQ(found.squares, sums.squares) << target.name;
         EXPECT_EQ(found.largest, sums.largest) << target.name;
         EXPECT_EQ(found.covered, sums.covered) << target.name;
+        // The same sums found in the pass, without the estimates stored (the resolve's).
+        const detail::EstimateSums fused = detail::sampleEstimateSums(
+            row(y - 1), row(y), row(y + 1), stride, colors.data() + y * width,
+            ids.data() + y * width, begin, end);
+        EXPECT_EQ(fused.squares, sums.squares) << target.name;
+        EXPECT_EQ(fused.largest, sums.largest) << target.name;
+        EXPECT_EQ(fused.covered, sums.covered) << target.name;
       }
     }
   }
