@@ -434,6 +434,24 @@ TEST(SummaryEstimate, AtLeastThePerPixelEstimateWithADegeneratePolygonInView) {
       "degenerate", estimateBoth(oneMeshScene(sphere.view(), matte, twoLights()), camera));
 }
 
+// A shown polygon in no block: a backdrop so wide (1e160) that its radius overflows
+// (QualityRenderer.cpp, termsOf: no terms), behind a sphere (within the fitted clipping range). The
+// frame falls back to the per-polygon bounds: the numbers of the per-pixel estimate.
+TEST(SummaryEstimate, FallsBackWhereAShownPolygonHasNoTerms) {
+  Mesh sphere = makeUvSphere(32, 17);
+  const double wide = 1e160;
+  sphere.addPolygon({sphere.addPoint({-wide, -wide, -1.3}), sphere.addPoint({wide, -wide, -1.3}),
+                     sphere.addPoint({wide, wide, -1.3}), sphere.addPoint({-wide, wide, -1.3})});
+  Material matte;
+  matte.diffuse = 0.9;
+  const Camera camera = fitCamera(makeUvSphere(8, 5, 1.5), {0.0, 0.0, -1});
+  const Both both = estimateBoth(oneMeshScene(sphere.view(), matte, twoLights()), camera);
+  expectAtLeastThePerPixelEstimate("backdrop", both);
+  // The blocks would give more (the sphere's are looser than its polygons').
+  EXPECT_NEAR(both.fast.predictedRmse, both.exact.predictedRmse, 0.01);
+  EXPECT_NEAR(both.fast.predictedMaxError, both.exact.predictedMaxError, 0.01);
+}
+
 class SummaryEstimateTargets : public EveryTargetTest {};
 
 // The same predicted RMSE and maximum on 1, 2 and 8 threads and every instruction set.
