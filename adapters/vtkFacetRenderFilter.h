@@ -504,7 +504,9 @@ public:
   ///@{
   /**
    * Add the per-pixel error estimate as the point array `ErrorEstimate` (8-bit units; the
-   * field data then has its summary too, as with EstimateError) (default: off).
+   * field data then has its summary too, from each polygon's own bound: in the default case
+   * at most the block bounds' PredictedRMSE and PredictedMax without the array, see
+   * EstimateError) (default: off).
    */
   vtkSetMacro(ErrorEstimateArray, vtkTypeBool);
   vtkGetMacro(ErrorEstimateArray, vtkTypeBool);

@@ -25,6 +25,7 @@
 #include "FlatErrorBoundOfMesh.h"
 #include "SetupBatch.h"
 #include "facet/FlatErrorBound.h"
+#include "facet/PolygonNormal.h"
 #include "facet/QualityRenderer.h"
 
 namespace facet::testing {
@@ -150,6 +151,153 @@ TEST(SummaryEstimate, TheBlockBoundIsAtLeastEveryPolygonsAndReachedAtTheWorstCas
   }
 }
 
+// The same at the edges of the derivation, on random blocks of triangles: boxes from 1e-3
+// to 100 wide at 0, 1e6 and 1e9 from the origin; point lights inside the box, on a polygon,
+// just outside and far, unattenuated, of constant factor, steeply attenuated (a0 down to
+// 1e-6) and by a falloff distance; directional lights; the eye inside the box; one- and
+// two-sided; Lambert and Lerp; spreads to 90°. Each polygon's bound — the double one at its
+// center and at that center rounded to float (the shade's sums), and the float lanes' — is
+// at most the block's, as the resolve reads them (EstimateRows.h: fixedBoundOf).
+TEST(SummaryEstimate, TheBlockBoundHoldsAtTheEdgesOfItsDerivation) {
+  std::mt19937 random(2111);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto pick = [&](auto... values) {
+    const std::array options{values...};
+    return options[random() % options.size()];
+  };
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double offset = pick(0.0, 1e6, 1e9), size = pick(1e-3, 1.0, 100.0);
+    const glm::dvec3 origin = offset * glm::dvec3(unit(random), -unit(random), unit(random));
+    const auto inBox = [&] {
+      return origin + size * glm::dvec3(unit(random), unit(random), unit(random));
+    };
+    // Triangles in the box, some tiny, some as wide as the box.
+    struct Triangle {
+      std::array<glm::dvec3, 3> corners;
+      glm::dvec3 center, normal;
+      float radius, sine;
+    };
+    std::vector<Triangle> triangles;
+    detail::MeshBoundExtent extent;
+    for (int t = 0; t < 6; ++t) {
+      Triangle triangle;
+      const glm::dvec3 a = inBox();
+      const double scale = size * pick(1e-4, 0.05, 1.0);
+      for (glm::dvec3& corner : triangle.corners) {
+        corner = glm::clamp(a + scale * glm::dvec3(unit(random), unit(random), unit(random)),
+                            origin, origin + size);
+      }
+      const std::optional<glm::dvec3> normal =
+          triangleNormal(triangle.corners[0], triangle.corners[1], triangle.corners[2]);
+      if (!normal) continue;
+      triangle.normal = glm::dvec3(glm::vec3(*normal));
+      triangle.center = (triangle.corners[0] + triangle.corners[1] + triangle.corners[2]) / 3.0;
+      double radius = 0.0;
+      for (const glm::dvec3& corner : triangle.corners)
+        radius = std::max(radius, glm::length(corner - triangle.center));
+      triangle.radius = detail::roundedUp(radius);
+      triangle.sine = pick(0.0f, 1e-6f, 0.3f, 0.99f, 2.0f) * static_cast<float>(unit(random));
+      for (const glm::dvec3& corner : triangle.corners)
+        extent.add(triangle.radius, triangle.sine, corner);
+      triangles.push_back(triangle);
+    }
+    if (triangles.empty()) continue;
+    LightSet lights;
+    const int count = 1 + static_cast<int>(random() % 3);
+    for (int l = 0; l < count; ++l) {
+      const Triangle& near = triangles[random() % triangles.size()];
+      glm::dvec3 position;
+      switch (random() % 5) {
+        case 0:
+          position = inBox();
+          break;
+        case 1:
+          position = near.center;
+          break;  // on the polygon
+        case 2:
+          position = near.corners[0] + 1e-3 * size * near.normal;
+          break;
+        case 3:
+          position = origin - size * glm::dvec3(unit(random), 0.5, 2.0);
+          break;
+        default:
+          position = origin + 1e3 * size * glm::dvec3(unit(random), -1, 0.3);
+          break;
+      }
+      Attenuation attenuation = NoAttenuation{};
+      switch (random() % 5) {
+        case 0:
+          break;
+        case 1:
+          attenuation = QuadraticAttenuation{2.0, 0.0, 0.0};
+          break;
+        case 2:
+          attenuation = QuadraticAttenuation{pick(1e-6, 1e-2, 1.0), pick(0.0, 0.5, 3.0),
+                                             pick(0.0, 1e-4, 1.0, 100.0)};
+          break;
+        case 3:
+          attenuation = FalloffDistanceAttenuation{pick(1e-3, 0.1, 10.0) * size};
+          break;
+        default:
+          lights.lights.push_back(DirectionalLight{
+              glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, -unit(random) - 0.01), Color(0.9f),
+              1.0});
+          continue;
+      }
+      lights.lights.push_back(PointLight{position, Color(0.8f, 1.0f, 0.6f), 1.0, attenuation});
+    }
+    Material material;
+    material.diffuse = pick(0.3, 0.9, 1.0);
+    if (random() % 2) {
+      material.diffuseModel = DiffuseModel::Lerp;
+      material.lerpAmbient = pick(0.0, 0.2);
+      material.lerpFull = pick(0.5, 1.0);
+    }
+    const PreparedMaterial prepared(material);
+    const bool twoSided = random() % 2 == 0;
+    Camera camera{
+        .position = random() % 3 == 0 ? inBox() : origin + 5.0 * size * glm::dvec3(0.2, -0.3, 1.0),
+        .focalPoint = origin + 0.5 * size};
+    const glm::dvec3 surface(0.9, 0.7, 1.0);
+    const Color cd(0.9f, 0.7f, 1.0f);
+    const std::optional<double> block = detail::largestFlatBound(lights, prepared, surface, extent);
+    ASSERT_TRUE(block.has_value());
+    const detail::EstimateBound blockFixed = detail::fixedBoundOf(detail::roundedUp(*block));
+    const FlatErrorBound exact(lights, camera, twoSided);
+    const auto lighting = detail::batchLighting(lights, camera, twoSided);
+    const auto batchMaterial = detail::batchMaterial(prepared);
+    for (const Triangle& triangle : triangles) {
+      for (const glm::dvec3& center : {triangle.center, glm::dvec3(glm::vec3(triangle.center))}) {
+        PolygonShape shape;
+        shape.center = center;
+        shape.normal = triangle.normal;
+        shape.radius = triangle.radius;
+        shape.cosNormalSpread =
+            triangle.sine >= 1.0f
+                ? 0.0
+                : std::sqrt(1.0 - static_cast<double>(triangle.sine) * triangle.sine);
+        const float b = detail::roundedUp(exact.bound(shape, prepared, cd));
+        std::string name = "trial " + std::to_string(trial) + ", offset " + std::to_string(offset) +
+                           ", size " + std::to_string(size) + ", radius " +
+                           std::to_string(triangle.radius) + ", sine " +
+                           std::to_string(triangle.sine) + ": block " + std::to_string(*block);
+        EXPECT_LE(detail::fixedBoundOf(b), blockFixed) << name << ", double " << b;
+        if (lighting && batchMaterial) {
+          const float lanes =
+              detail::boundOneColumn(*lighting, *batchMaterial, center, triangle.normal, cd,
+                                     triangle.radius, triangle.sine);
+          if (!std::isnan(lanes)) {
+            EXPECT_LE(detail::fixedBoundOf(lanes), blockFixed) << name << ", lanes " << lanes;
+          }
+        }
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 10000);
+}
+
 TEST(SummaryEstimate, NotTakenForSpotLightsOrSpecularMaterials) {
   detail::MeshBoundExtent extent;
   extent.low = glm::dvec3(-1.0);
@@ -227,6 +375,81 @@ TEST(SummaryEstimate, AtLeastThePerPixelEstimateWithPolygonColorsAndSpecular) {
       estimateBoth(oneMeshScene(sphere.view(), shinyMaterial(), twoLights()), camera);
   EXPECT_EQ(shiny.fast.predictedRmse, shiny.exact.predictedRmse);
   EXPECT_EQ(shiny.fast.predictedMaxError, shiny.exact.predictedMaxError);
+}
+
+// The blocks' facts are kept per mesh version: points changed in place under a new version
+// (the sphere moved toward an attenuated light and stretched, then back) give the numbers a
+// new renderer gives, at least the per-pixel estimate's; and two meshes whose polygon ids
+// share a block (130 + 130 polygons) take the larger bound there.
+TEST(SummaryEstimate, KeptPerMeshVersionAndSharedBlocksAcrossMeshes) {
+  Mesh sphere = makeUvSphere(10, 8);  // 120 triangles
+  Mesh other = makeUvSphere(10, 8, 0.5, {1.2, 0.3, 0.0});
+  for (Mesh* mesh : {&sphere, &other}) {  // 130 polygons each: mesh 1's first ids in block 1
+    for (int k = 0; k < 10; ++k) {
+      const glm::dvec3 a = mesh->points[static_cast<std::size_t>(k)];
+      mesh->addPolygon({mesh->addPoint(a), mesh->addPoint(a + glm::dvec3(0.01, 0, 0)),
+                        mesh->addPoint(a + glm::dvec3(0, 0.01, 0.002))});
+    }
+  }
+  Material matte;
+  matte.diffuse = 0.9;
+  LightSet lights;
+  lights.lights.push_back(
+      PointLight{{0.4, 0.5, 4.0}, Color(1.0f), 1.0, QuadraticAttenuation{1.0, 0.0, 0.05}});
+  Scene scene = oneMeshScene(sphere.view(), matte, lights);
+  scene.meshes.push_back(scene.meshes[0]);
+  scene.meshes[1].mesh = other.view();
+  scene.meshes[0].mesh.version = scene.meshes[1].mesh.version = 1;
+  const Camera camera = fitCamera(makeUvSphere(8, 5, 2.0), {0.2, -0.3, -1});
+  QualitySettings summary{.estimateError = true};
+  summary.errorEstimateImage = false;
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(120, 90);
+  const std::vector<glm::dvec3> original = sphere.points;
+  for (const double stretch : {1.0, 1.8, 1.0}) {
+    for (std::size_t i = 0; i < sphere.points.size(); ++i)
+      sphere.points[i] =
+          original[i] * glm::dvec3(stretch, stretch, 1.0) + glm::dvec3(0.0, 0.0, stretch - 1.0);
+    ++scene.meshes[0].mesh.version;
+    const QualityStats kept = quality.render(scene, {}, camera, framebuffer, summary);
+    const Both fresh = estimateBoth(scene, camera);
+    const std::string name = "stretch " + std::to_string(stretch);
+    EXPECT_EQ(kept.predictedRmse, fresh.fast.predictedRmse) << name;
+    EXPECT_EQ(kept.predictedMaxError, fresh.fast.predictedMaxError) << name;
+    expectAtLeastThePerPixelEstimate(name, fresh);
+  }
+}
+
+// A polygon without a normal (collinear corners) in view: it is in no block (its bound, 255,
+// is the per-polygon estimate's); the summary is still at least the per-pixel estimate.
+TEST(SummaryEstimate, AtLeastThePerPixelEstimateWithADegeneratePolygonInView) {
+  Mesh sphere = makeUvSphere(32, 17);
+  sphere.addPolygon({sphere.addPoint({-0.5, -0.5, 1.01}), sphere.addPoint({0.0, 0.0, 1.01}),
+                     sphere.addPoint({0.5, 0.5, 1.01})});
+  Material matte;
+  matte.diffuse = 0.9;
+  const Camera camera = fitCamera(sphere, {0.0, 0.0, -1});
+  expectAtLeastThePerPixelEstimate(
+      "degenerate", estimateBoth(oneMeshScene(sphere.view(), matte, twoLights()), camera));
+}
+
+// A shown polygon in no block: a backdrop so wide (1e160) that its radius overflows
+// (QualityRenderer.cpp, termsOf: no terms), behind a sphere (within the fitted clipping range). The
+// frame falls back to the per-polygon bounds: the numbers of the per-pixel estimate.
+TEST(SummaryEstimate, FallsBackWhereAShownPolygonHasNoTerms) {
+  Mesh sphere = makeUvSphere(32, 17);
+  const double wide = 1e160;
+  sphere.addPolygon({sphere.addPoint({-wide, -wide, -1.3}), sphere.addPoint({wide, -wide, -1.3}),
+                     sphere.addPoint({wide, wide, -1.3}), sphere.addPoint({-wide, wide, -1.3})});
+  Material matte;
+  matte.diffuse = 0.9;
+  const Camera camera = fitCamera(makeUvSphere(8, 5, 1.5), {0.0, 0.0, -1});
+  const Both both = estimateBoth(oneMeshScene(sphere.view(), matte, twoLights()), camera);
+  expectAtLeastThePerPixelEstimate("backdrop", both);
+  // The blocks would give more (the sphere's are looser than its polygons').
+  EXPECT_NEAR(both.fast.predictedRmse, both.exact.predictedRmse, 0.01);
+  EXPECT_NEAR(both.fast.predictedMaxError, both.exact.predictedMaxError, 0.01);
 }
 
 class SummaryEstimateTargets : public EveryTargetTest {};
