@@ -19,7 +19,7 @@
 // The resolve's part at one sample per pixel only; QualityRenderer runs the pass over the
 // samples otherwise. Without the ErrorEstimate image (the summary alone), under the lights and
 // materials FlatErrorBoundOfMesh.h takes, the shade bounds nothing and the resolve reads one
-// bound per block of polygon ids, found before the render (QualityRenderer::blockBounds).
+// bound per block of polygon ids, found before the render (QualityRenderer::findBlockBounds).
 
 #include <atomic>
 #include <cstddef>

@@ -28,6 +28,15 @@
 // rounded up by 2^-20 (FlatErrorBoundBatch.cpp); here each light adds twice that, Kd is
 // taken 2^-18 higher and the sum 2^-30 relatively, which covers them and this double
 // arithmetic's own rounding (a few dozen operations of relative error 2^-53).
+// Their distances (u = 2^-24): the near end max(0, dist_f·(1 − 2^-20) − r) lies up to
+// 21.5u·|P − c| below |P − c| − r (u the float offset, 2.5u the distance from it, 16u its
+// widening, 2 roundings) and |P − c| ≤ √3·(|P|∞ + |c|∞): up to 37.3u·(|P|∞ + |c|∞), while
+// the box's distance is widened by 32u·(|P|∞ + |box|∞) (the slack below). The 5.3u·(|P|∞ +
+// |c|∞) short raises E_hi by a relative 10.6u·(|P|∞ + |c|∞)/near at most (|E'|/E ≤ 2/d for
+// nonnegative coefficients), within the 56u·D'·E_hi per light left over (2 × 256u here
+// against the lanes' 256u + 200u) where near ≥ (|P|∞ + |c|∞)/5. Nearer lights, and the far
+// end's like shortfall in the span S, rest on the tests
+// (SummaryEstimateTest: TheBlockBoundHoldsAtTheEdgesOfItsDerivation), not on this argument.
 // Specular terms (their exponent's alignment, the viewer's cone) and spot cones are left to
 // the per-polygon estimate: nothing is returned.
 
@@ -133,7 +142,7 @@ std::optional<BlockBoundSetup> prepareBlockBound(const LightSet& lights, const P
   return setup;
 }
 
-double largestFlatBound(const BlockBoundSetup& setup, const MeshBoundExtent& extent) {
+double largestFlatBound(const BlockBoundSetup& setup, const BlockExtent& extent) {
   const double radius = extent.radius;
   const bool empty = !(extent.low.x <= extent.high.x);
   const double boxMagnitude =
@@ -142,9 +151,9 @@ double largestFlatBound(const BlockBoundSetup& setup, const MeshBoundExtent& ext
   for (const BlockBoundSetup::Source& source : setup.lights) {
     double lightSine = 0.0, eLo = 1.0, eHi = 1.0, eSpan = 0.0;
     if (const PointLight* l = source.point; l && !empty) {
-      // Widened by 2^-20 of the coordinates (their largest magnitude, times 2 > √3): above
-      // the few roundings of these distances and of the float centers the shade's lanes
-      // light (a few 2^-24 of the coordinates), which may lie that far outside the box.
+      // Widened by 2^-19 = 32u of the coordinates' largest magnitudes: the float lanes'
+      // distances fall short by up to 37.3u of them (the derivation above says what covers
+      // the rest), this double arithmetic's by far less.
       const double slack = 0x1p-19 * (source.magnitude + boxMagnitude);
       const double dLo = distanceToBox(l->position, extent.low, extent.high) - slack;
       lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
@@ -175,7 +184,7 @@ double largestFlatBound(const BlockBoundSetup& setup, const MeshBoundExtent& ext
 }
 
 std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& m,
-                                       const glm::dvec3& surface, const MeshBoundExtent& extent) {
+                                       const glm::dvec3& surface, const BlockExtent& extent) {
   const std::optional<BlockBoundSetup> setup = prepareBlockBound(lights, m, surface);
   if (!setup) return std::nullopt;
   return largestFlatBound(*setup, extent);

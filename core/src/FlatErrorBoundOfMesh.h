@@ -29,7 +29,7 @@ inline constexpr int kBoundBlockShift = 7;
 inline constexpr std::size_t kBoundBlock = std::size_t{1} << kBoundBlockShift;
 
 // What a block's polygons with a normal share for the bound (BoundTerms: EstimateHook.h).
-struct MeshBoundExtent {
+struct BlockExtent {
   float radius = 0.0f;           // the largest radius (rounded up)
   float sinNormalSpread = 0.0f;  // the largest sine of a spread (2: 90° or more)
   // The box their corners lie in (low > high: none).
@@ -49,7 +49,7 @@ struct MeshBoundExtent {
 // nothing where this bound does not apply (a spot light, a specular material: the caller
 // takes the per-polygon estimate). Never NaN; at most 255.
 std::optional<double> largestFlatBound(const LightSet& lights, const PreparedMaterial& material,
-                                       const glm::dvec3& surface, const MeshBoundExtent& extent);
+                                       const glm::dvec3& surface, const BlockExtent& extent);
 
 // The same in two steps: what depends on the frame's lights and a mesh's material, once per
 // frame and mesh (nothing where the bound does not apply), then each block.
@@ -68,6 +68,6 @@ struct BlockBoundSetup {
 std::optional<BlockBoundSetup> prepareBlockBound(const LightSet& lights,
                                                  const PreparedMaterial& material,
                                                  const glm::dvec3& surface);
-double largestFlatBound(const BlockBoundSetup& setup, const MeshBoundExtent& extent);
+double largestFlatBound(const BlockBoundSetup& setup, const BlockExtent& extent);
 
 }  // namespace facet::detail

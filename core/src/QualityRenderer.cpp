@@ -312,7 +312,7 @@ struct QualityRenderer::MeshTerms {
   std::vector<detail::BoundTerms> polygons;
   // The summary-only estimate's (FlatErrorBoundOfMesh.h): per block of kBoundBlock polygons
   // what those with a normal share, and the polygons without one.
-  std::vector<detail::MeshBoundExtent> blocks;
+  std::vector<detail::BlockExtent> blocks;
   std::vector<std::size_t> degenerate;
 };
 
@@ -790,8 +790,10 @@ void QualityRenderer::hookUp(
   meshTerms_.clear();
   for (const MeshTerms& terms : frame.terms)  // none for the summary: the shade bounds nothing
     meshTerms_.push_back(summary ? nullptr : terms.polygons.data());
-  polygonBounds_.resize(frame.firstPolygon.back());
-  fixedBounds_.resize(evenCount(polygonBounds_.size()));
+  if (!summary) {  // the summary's are per block (findBlockBounds), the fallback sizes its own
+    polygonBounds_.resize(frame.firstPolygon.back());
+    fixedBounds_.resize(evenCount(polygonBounds_.size()));
+  }
   // The pixels' part at one sample per pixel only (a pixel of more samples needs them all).
   const bool pixels = frame.grid == 1;
   rowSums_.assign(pixels ? static_cast<std::size_t>(frame.samples.height) : 0, {});
@@ -807,7 +809,7 @@ void QualityRenderer::hookUp(
   hook.facingLighting = facing;
   hook.materials = frame.batchMaterials.data();
   hook.boundOne = boundOne;
-  if (summary) blockBounds(frame);
+  if (summary) findBlockBounds(frame);
   hook.bounds = summary ? nullptr : polygonBounds_.data();
   hook.fixedBounds = summary ? blockBounds_.data() : fixedBounds_.data();
   hook.boundShift = summary ? detail::kBoundBlockShift : 0;
@@ -848,7 +850,7 @@ void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook
 // The summary-only estimate (QualityStats::predicted*, no image; flat at one sample per
 // pixel under lights and materials largestFlatBound takes): the per-pixel rule of the estimate
 // with each polygon's bound b_q replaced by its block's, B ≥ b_q (FlatErrorBoundOfMesh.h),
-// found before the render (blockBounds) and read by the resolve (EstimateHook.h). Every pixel's
+// found before the render (findBlockBounds) and read by the resolve (EstimateHook.h). Every pixel's
 // estimate max_q (D(c_p, c_q) + B_q) + 0.5 is then at least the per-pixel estimate's, in the
 // fixed point too (⌈B·unit⌉ ≥ ⌈b·unit⌉), so the RMSE and maximum are (tested): looser where
 // a block's worst polygon is worse than the pixel's, and no bound per polygon per frame.
@@ -865,6 +867,7 @@ void QualityRenderer::estimateSummary(const Frame& frame, const FramebufferView&
       degenerateShown = degenerateShown || shown_[frame.firstPolygon[m] + p] != 0;
   }
   if (degenerateShown) {
+    polygonBounds_.resize(frame.firstPolygon.back());  // estimate sizes fixedBounds_ to match
     renderer_.parallelFor(
         frame.firstPolygon.back(), kPolygonsPerTask,
         [&](std::size_t begin, std::size_t end) { boundFromCorners(frame, begin, end, nullptr); });
@@ -880,11 +883,11 @@ void QualityRenderer::estimateSummary(const Frame& frame, const FramebufferView&
 // count) for the summary-only estimate: per mesh, each block of its polygons bounded from
 // what they share (largestFlatBound); a block of ids that holds the end of one mesh and the
 // start of the next takes the larger.
-void QualityRenderer::blockBounds(const Frame& frame) {
+void QualityRenderer::findBlockBounds(const Frame& frame) {
   const std::size_t ids = frame.firstPolygon.back();
   blockBounds_.assign(evenCount((ids + detail::kBoundBlock - 1) / detail::kBoundBlock), 0);
   for (std::size_t m = 0; m < frame.terms.size(); ++m) {
-    const std::vector<detail::MeshBoundExtent>& blocks = frame.terms[m].blocks;
+    const std::vector<detail::BlockExtent>& blocks = frame.terms[m].blocks;
     const SceneMesh& mesh = frame.scene.meshes[m];
     const glm::dvec3 surface = mesh.mesh.polygonColors.empty()
                                    ? glm::min(glm::dvec3(mesh.material.color), kMaxRadiance)
@@ -892,10 +895,10 @@ void QualityRenderer::blockBounds(const Frame& frame) {
     const std::optional<detail::BlockBoundSetup> setup =
         detail::prepareBlockBound(frame.scene.lights, frame.materials[m], surface);
     FACET_ASSERT(setup.has_value());  // summaryApplies
-    localBounds_.resize(blocks.size());
+    meshBlockBounds_.resize(blocks.size());
     renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
       for (std::size_t b = begin; b < end; ++b)
-        localBounds_[b] =
+        meshBlockBounds_[b] =
             detail::fixedBoundOf(roundedUp(detail::largestFlatBound(*setup, blocks[b])));
     });
     const std::size_t first = frame.firstPolygon[m], count = mesh.mesh.polygons.count;
@@ -903,7 +906,7 @@ void QualityRenderer::blockBounds(const Frame& frame) {
       const std::size_t from = first + b * detail::kBoundBlock;
       const std::size_t to = std::min(from + detail::kBoundBlock, first + count) - 1;
       for (std::size_t g = from / detail::kBoundBlock; g <= to / detail::kBoundBlock; ++g)
-        blockBounds_[g] = std::max(blockBounds_[g], localBounds_[b]);
+        blockBounds_[g] = std::max(blockBounds_[g], meshBlockBounds_[b]);
     }
   }
 }
@@ -1120,7 +1123,7 @@ void QualityRenderer::updateTerms(const Scene& scene) {
             if (t.radius < 0.0f) return;
             // A task's polygons are whole blocks (parallelFor's ranges start at multiples of
             // kPolygonsPerTask, a multiple of kBoundBlock).
-            detail::MeshBoundExtent& block = terms.blocks[p >> detail::kBoundBlockShift];
+            detail::BlockExtent& block = terms.blocks[p >> detail::kBoundBlockShift];
             for (const glm::dvec3& corner : corners.points)
               block.add(t.radius, t.sinNormalSpread, corner);
           });

@@ -87,7 +87,7 @@ TEST(SummaryEstimate, TheBlockBoundIsAtLeastEveryPolygonsAndReachedAtTheWorstCas
     ASSERT_TRUE(lighting && batchMaterial) << c.name;
     const FlatErrorBound exact(c.lights, camera, true);
     for (const double spread : {0.0, 0.01, 0.2, 0.7}) {
-      detail::MeshBoundExtent extent;
+      detail::BlockExtent extent;
       extent.radius = 0.05f;
       extent.sinNormalSpread = static_cast<float>(std::sin(spread));
       extent.low = glm::dvec3(-1.0);
@@ -179,7 +179,7 @@ TEST(SummaryEstimate, TheBlockBoundHoldsAtTheEdgesOfItsDerivation) {
       float radius, sine;
     };
     std::vector<Triangle> triangles;
-    detail::MeshBoundExtent extent;
+    detail::BlockExtent extent;
     for (int t = 0; t < 6; ++t) {
       Triangle triangle;
       const glm::dvec3 a = inBox();
@@ -299,7 +299,7 @@ TEST(SummaryEstimate, TheBlockBoundHoldsAtTheEdgesOfItsDerivation) {
 }
 
 TEST(SummaryEstimate, NotTakenForSpotLightsOrSpecularMaterials) {
-  detail::MeshBoundExtent extent;
+  detail::BlockExtent extent;
   extent.low = glm::dvec3(-1.0);
   extent.high = glm::dvec3(1.0);
   LightSet spot;
@@ -450,6 +450,65 @@ TEST(SummaryEstimate, FallsBackWhereAShownPolygonHasNoTerms) {
   // The blocks would give more (the sphere's are looser than its polygons').
   EXPECT_NEAR(both.fast.predictedRmse, both.exact.predictedRmse, 0.01);
   EXPECT_NEAR(both.fast.predictedMaxError, both.exact.predictedMaxError, 0.01);
+}
+
+// The per-polygon bounds are sized only by the frames that take them (the per-polygon path, or
+// the summary's fallback): one renderer taking, frame by frame, the summary, its fallback (first
+// on a renderer that never sized them, then on more ids than the last per-polygon frame's), the
+// per-pixel estimate with the image and without (a specular material), gives each frame the
+// numbers, and the image, of a fresh renderer; the fallback's are the per-pixel estimate's.
+TEST(SummaryEstimate, FramesAlternatingThePathsGiveAFreshRenderersNumbers) {
+  Mesh sphere = makeUvSphere(32, 17);
+  Mesh backdropped = sphere;  // FallsBackWhereAShownPolygonHasNoTerms's
+  const double wide = 1e160;
+  backdropped.addPolygon(
+      {backdropped.addPoint({-wide, -wide, -1.3}), backdropped.addPoint({wide, -wide, -1.3}),
+       backdropped.addPoint({wide, wide, -1.3}), backdropped.addPoint({-wide, wide, -1.3})});
+  Material matte;
+  matte.diffuse = 0.9;
+  const Scene plain = oneMeshScene(sphere.view(), matte, twoLights());
+  const Scene fallback = oneMeshScene(backdropped.view(), matte, twoLights());
+  const Scene shiny = oneMeshScene(sphere.view(), shinyMaterial(), twoLights());
+  const QualitySettings image{.estimateError = true};
+  QualitySettings summary = image;
+  summary.errorEstimateImage = false;
+  struct Step {
+    std::string name;
+    const Scene& scene;
+    const QualitySettings& settings;
+  };
+  const std::vector<Step> steps{
+      {"summary", plain, summary},       {"fallback, first", fallback, summary},
+      {"image", plain, image},           {"specular", shiny, summary},
+      {"summary again", plain, summary}, {"fallback, more ids", fallback, summary},
+      {"image again", plain, image},     {"summary last", plain, summary}};
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(120, 90);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const Step& step = steps[k];
+    const Camera camera =
+        fitCamera(makeUvSphere(8, 5, 1.5), {0.02 * static_cast<double>(k), -0.01, -1.0});
+    const QualityStats kept = quality.render(step.scene, {}, camera, framebuffer, step.settings);
+    Renderer freshRenderer;
+    QualityRenderer fresh(freshRenderer);
+    Framebuffer freshFramebuffer(120, 90);
+    const QualityStats once = fresh.render(step.scene, {}, camera, freshFramebuffer, step.settings);
+    EXPECT_GT(kept.predictedMaxError, 0.5) << step.name;
+    EXPECT_EQ(kept.predictedRmse, once.predictedRmse) << step.name;
+    EXPECT_EQ(kept.predictedMaxError, once.predictedMaxError) << step.name;
+    EXPECT_EQ(quality.errorEstimate().size(), fresh.errorEstimate().size()) << step.name;
+    EXPECT_TRUE(std::equal(quality.errorEstimate().begin(), quality.errorEstimate().end(),
+                           fresh.errorEstimate().begin(), fresh.errorEstimate().end()))
+        << step.name;
+    if (&step.scene != &fallback) continue;
+    // The fallback's numbers are the per-pixel estimate's (FallsBackWhereAShownPolygonHasNoTerms).
+    Renderer imageRenderer;
+    QualityRenderer perPixel(imageRenderer);
+    const QualityStats exact = perPixel.render(step.scene, {}, camera, freshFramebuffer, image);
+    EXPECT_NEAR(kept.predictedRmse, exact.predictedRmse, 0.01) << step.name;
+    EXPECT_NEAR(kept.predictedMaxError, exact.predictedMaxError, 0.01) << step.name;
+  }
 }
 
 class SummaryEstimateTargets : public EveryTargetTest {};

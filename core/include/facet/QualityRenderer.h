@@ -192,7 +192,7 @@ class QualityRenderer {
           boundOne,
       bool summary, detail::EstimateHook& hook);
   void estimateSummary(const Frame& frame, const FramebufferView& target, QualityStats& stats);
-  void blockBounds(const Frame& frame);
+  void findBlockBounds(const Frame& frame);
   void finishFused(const Frame& frame, const detail::EstimateHook& hook,
                    const FramebufferView& target, QualityStats& stats);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
@@ -222,13 +222,15 @@ class QualityRenderer {
   // (QualityRenderer.cpp).
   struct MeshTerms;
   std::vector<MeshTerms> terms_;
-  std::vector<float> polygonBounds_;  // per polygon id, 8-bit units (visible ones only)
+  // Per polygon id, 8-bit units (visible ones only); sized only by frames that bound
+  // polygons one by one (not the summary-only estimate, but its fallback).
+  std::vector<float> polygonBounds_;
   // The same in the per-pixel estimate's fixed point (EstimateRows.h: fixedBoundOf), an even
   // count.
   std::vector<std::uint16_t> fixedBounds_;
   // The summary-only estimate's: per block of polygon ids, and per block of one mesh
   // (FlatErrorBoundOfMesh.h), in the same fixed point.
-  std::vector<std::uint16_t> blockBounds_, localBounds_;
+  std::vector<std::uint16_t> blockBounds_, meshBlockBounds_;
   std::vector<detail::EstimateSums> rowSums_;         // per pixel row: the fused estimate's
   std::vector<const detail::BoundTerms*> meshTerms_;  // per mesh: terms_'s, for the hook
   std::vector<std::uint8_t> reshade_;    // per polygon id: shaded again (visible ones only)
