@@ -27,6 +27,8 @@ class AppendBuffer {
   static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>,
                 "records are copied by memcpy when the buffer grows");
   using Traits = std::allocator_traits<Allocator>;
+  static_assert(Traits::is_always_equal::value,
+                "grow() and release() each make their own allocator: it must have no state");
 
  public:
   AppendBuffer() = default;

@@ -64,6 +64,21 @@ TEST(AppendBuffer, AppendsItsOwnRecordWhileGrowing) {
   }
 }
 
+// Records aligned beyond what operator new guarantees (16 bytes): every growth's storage, small
+// (an ordinary allocation) or of huge pages, keeps their alignment.
+TEST(AppendBuffer, KeepsTheRecordsAlignmentInHugePages) {
+  struct alignas(64) Line {
+    std::uint32_t word;
+  };
+  AppendBuffer<Line, HugePageAllocator<Line>> buffer;
+  for (std::uint32_t k = 0; k < (1u << 16); ++k) {  // 4 MiB: both kinds of storage
+    buffer.push_back({k});
+    ASSERT_EQ(reinterpret_cast<std::uintptr_t>(buffer.data()) % alignof(Line), 0u)
+        << "capacity " << buffer.capacity();
+  }
+  EXPECT_EQ(buffer[12345].word, 12345u);
+}
+
 TEST(AppendBuffer, MovesHandOverTheStorage) {
   std::vector<AppendBuffer<std::uint32_t>> bins(3);
   bins[1].push_back(42);

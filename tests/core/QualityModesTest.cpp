@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -549,6 +550,45 @@ TEST(QualityRenderer, FusedEstimateIsTheSeparatePassesBytes) {
       for (std::size_t i = 0; i < passes.size(); ++i)
         differ += fused.estimate[i] != passes[i];
       EXPECT_EQ(differ, 0u) << name << ", " << samples << " samples: pixels whose estimate differs";
+    }
+  }
+}
+
+// The resolve estimates bands of 32 rows, 8 at a time, and takes the rows either side of a band
+// by polygon id: at heights that put a band's or a step's edge on every row position (1 row,
+// not a multiple of 8 or 32, 1030) and widths with SIMD tails, with more threads than bands,
+// its estimate and summary are the pass over the finished image's to the byte.
+TEST(QualityRenderer, FusedEstimateIsTheSeparatePassesAtEveryBandEdge) {
+  const Mesh sphere = makeUvSphere(24, 13);
+  Scene scene = sphereScene(sphere);
+  scene.meshes[0].mesh.version = 1;
+  const Camera camera = sphereCamera();
+  const QualitySettings image{.samplesPerPixel = 1, .estimateError = true};
+  QualitySettings summary = image;
+  summary.errorEstimateImage = false;
+  const std::pair<int, int> sizes[] = {{37, 1},  {37, 2},  {37, 7},     {37, 9},
+                                       {37, 31}, {37, 33}, {37, 41},    {37, 63},
+                                       {37, 65}, {37, 70}, {1031, 1030}};
+  for (const auto [width, height] : sizes) {
+    Renderer renderer;
+    QualityRenderer quality(renderer);
+    Framebuffer framebuffer(width, height);
+    const QualityStats summed = quality.render(scene, {}, camera, framebuffer, summary);
+    renderer.setBackground(Color(0.2f, 0.3f, 0.4f));  // the separate passes, the image made
+    const QualityStats separate = quality.render(scene, {}, camera, framebuffer, image);
+    ASSERT_FALSE(separate.estimateKept) << width << " x " << height;
+    const std::span<const float> passes = quality.errorEstimate();
+    EXPECT_GT(separate.predictedMaxError, 0.5) << width << " x " << height;
+    EXPECT_EQ(summed.predictedRmse, separate.predictedRmse) << width << " x " << height;
+    EXPECT_EQ(summed.predictedMaxError, separate.predictedMaxError) << width << " x " << height;
+    for (const int threads : {1, 8}) {
+      const Output fused = renderQuality(scene, camera, width, height, image, threads);
+      EXPECT_EQ(fused.stats.predictedRmse, separate.predictedRmse)
+          << width << " x " << height << ", " << threads << " threads";
+      EXPECT_EQ(fused.stats.predictedMaxError, separate.predictedMaxError)
+          << width << " x " << height << ", " << threads << " threads";
+      EXPECT_TRUE(std::ranges::equal(fused.estimate, passes))
+          << width << " x " << height << ", " << threads << " threads";
     }
   }
 }

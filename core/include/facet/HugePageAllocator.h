@@ -25,6 +25,10 @@ template <class T>
 struct HugePageAllocator {
   using value_type = T;
   static constexpr std::size_t kHugePage = std::size_t{2} << 20;
+  // Records aligned beyond plain operator new's guarantee (alignas(32), alignas(64)) take the
+  // aligned form in the small buffers too, as std::allocator does.
+  static constexpr bool kOverAligned = alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__;
+  static constexpr std::align_val_t kAlignment{alignof(T)};
 
   HugePageAllocator() = default;
   template <class U>
@@ -32,7 +36,10 @@ struct HugePageAllocator {
 
   T* allocate(std::size_t count) {
     const std::size_t bytes = count * sizeof(T);
-    if (bytes < kHugePage) return static_cast<T*>(::operator new(bytes));
+    if (bytes < kHugePage) {
+      if constexpr (kOverAligned) return static_cast<T*>(::operator new(bytes, kAlignment));
+      return static_cast<T*>(::operator new(bytes));
+    }
     const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     void* p = ::operator new (rounded, std::align_val_t{kHugePage});
 #if defined(__linux__)
@@ -44,7 +51,11 @@ struct HugePageAllocator {
   void deallocate(T* p, std::size_t count) noexcept {
     const std::size_t bytes = count * sizeof(T);
     if (bytes < kHugePage) {
-      ::operator delete(p);
+      if constexpr (kOverAligned) {
+        ::operator delete(p, kAlignment);
+      } else {
+        ::operator delete(p);
+      }
     } else {
       ::operator delete (p, std::align_val_t{kHugePage});
     }
