@@ -30,13 +30,12 @@
 // arithmetic's own rounding (a few dozen operations of relative error 2^-53).
 // Their distances (u = 2^-24): the near end max(0, dist_f·(1 − 2^-20) − r) lies up to
 // 21.5u·|P − c| below |P − c| − r (u the float offset, 2.5u the distance from it, 16u its
-// widening, 2 roundings) and |P − c| ≤ √3·(|P|∞ + |c|∞): up to 37.3u·(|P|∞ + |c|∞), while
-// the box's distance is widened by 32u·(|P|∞ + |box|∞) (the slack below). The 5.3u·(|P|∞ +
-// |c|∞) short raises E_hi by a relative 10.6u·(|P|∞ + |c|∞)/near at most (|E'|/E ≤ 2/d for
-// nonnegative coefficients), within the 56u·D'·E_hi per light left over (2 × 256u here
-// against the lanes' 256u + 200u) where near ≥ (|P|∞ + |c|∞)/5. Nearer lights, and the far
-// end's like shortfall in the span S, rest on the tests
-// (SummaryEstimateTest: TheBlockBoundHoldsAtTheEdgesOfItsDerivation), not on this argument.
+// widening, 2 roundings) and |P − c| ≤ √3·(|P|∞ + |c|∞): up to 37.3u·(|P|∞ + |c|∞), within
+// the 64u·(|P|∞ + |box|∞) the box's nearest distance is lowered by (the slack below). The far
+// end (dist + r)(1 + 2^-20) lies at most 21.5u·(|P − c| + r) above |P − c| + r ≤ dHi + R,
+// within the box's farthest end raised by the slack and then by 2^-18 = 64u of itself. So the
+// lanes' ends lie inside the box's at any distance of the light
+// (TheBlockBoundHoldsAtTheEdgesOfItsDerivation checks it at the edges).
 // Specular terms (their exponent's alignment, the viewer's cone) and spot cones are left to
 // the per-polygon estimate: nothing is returned.
 
@@ -151,21 +150,22 @@ double largestFlatBound(const BlockBoundSetup& setup, const BlockExtent& extent)
   for (const BlockBoundSetup::Source& source : setup.lights) {
     double lightSine = 0.0, eLo = 1.0, eHi = 1.0, eSpan = 0.0;
     if (const PointLight* l = source.point; l && !empty) {
-      // Widened by 2^-19 = 32u of the coordinates' largest magnitudes: the float lanes'
-      // distances fall short by up to 37.3u of them (the derivation above says what covers
-      // the rest), this double arithmetic's by far less.
-      const double slack = 0x1p-19 * (source.magnitude + boxMagnitude);
+      // Widened by 2^-18 = 64u of the coordinates' largest magnitudes: the float lanes'
+      // distances miss by up to 37.3u of them (the derivation above), this double
+      // arithmetic's by far less.
+      const double slack = 0x1p-18 * (source.magnitude + boxMagnitude);
       const double dLo = distanceToBox(l->position, extent.low, extent.high) - slack;
       lightSine = dLo > 0.0 ? radius / dLo : 2.0;  // NaN (a point at infinity): 1 below
       if (source.unattenuated) {
         // E = 1
-      } else if (source.constant && slack < 0x1p-19 * 1e150) {
+      } else if (source.constant && slack < 0x1p-18 * 1e150) {
         // E = 1/a0 at every distance whose square does not overflow (coordinates below
         // 1e150: distances below 4e150).
         eHi = eLo = source.factor;
       } else {
         const double dHi = farthestInBox(l->position, extent.low, extent.high) + slack;
-        const double closest = std::max(0.0, dLo - radius), furthest = dHi + radius;
+        const double closest = std::max(0.0, dLo - radius);
+        const double furthest = (dHi + radius) * (1.0 + 0x1p-18);
         eHi = attenuationFactor(l->attenuation, closest);
         eLo = attenuationFactor(l->attenuation, furthest);
         // A polygon's own distances span 2r ≤ 2R: its light moves by at most 2R times the
