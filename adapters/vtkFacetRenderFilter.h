@@ -492,9 +492,9 @@ public:
    * mixes creased and flat polygons). A new background alone keeps the last estimate. Not
    * free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080, about 2 % of
    * the core's frame in instructions and 4-5 % in CPU in the default case (8-11 % on the
-   * per-polygon path; bench/estimate-cost.md), and once per mesh about as much as its first conversion (README,
-   * "An estimate of a render's error"). Off, a flat one-sample
-   * render is the plain rasterizer (default: on).
+   * per-polygon path; bench/estimate-cost.md), and once per mesh about as much as its first
+   * conversion (README, "An estimate of a render's error"). Off, a flat one-sample render is the
+   * plain rasterizer (default: on).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);
   vtkGetMacro(EstimateError, vtkTypeBool);
