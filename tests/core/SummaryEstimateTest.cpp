@@ -68,6 +68,25 @@ auto pickOne(Random& random, Values... values) {
   return options[random() % options.size()];
 }
 
+// A point light's attenuation for a scene `size` wide: none, of constant factor, steep
+// (a0 down to 1e-6, a1 and a2 to 1/size and 1/size²) or by a falloff distance from a hundredth
+// of the size to a hundred times it.
+template <class Random>
+Attenuation randomAttenuation(Random& random, double size) {
+  const auto pick = [&](auto... values) { return pickOne(random, values...); };
+  switch (random() % 4) {
+    case 0:
+      return NoAttenuation{};
+    case 1:
+      return QuadraticAttenuation{pick(0.5, 2.0), 0.0, 0.0};
+    case 2:
+      return QuadraticAttenuation{pick(1e-6, 1e-3, 1.0), pick(0.0, 1.0 / size),
+                                  pick(0.0, 1.0 / (size * size))};
+    default:
+      return FalloffDistanceAttenuation{pick(0.01, 0.3, 0.5, 2.0, 100.0) * size};
+  }
+}
+
 // A unit vector at angle `angle` from `axis`.
 glm::dvec3 turnedFrom(const glm::dvec3& axis, double angle, std::mt19937& random) {
   std::normal_distribution<double> normal;
@@ -305,11 +324,11 @@ TEST(SummaryEstimate, TheBlockBoundHoldsAtTheEdgesOfItsDerivation) {
 // Where the block bound is tightest: a one-triangle block, a sliver lying across the light's
 // direction in its plane (the box's nearest point as near as the center, the flat diffuse
 // factor 0 or nearly, a corner normal turned by the spread toward the light), at 0 to 1e9
-// from the origin and 1e-6 to 1e3 wide, the light 1.0001 to 1e6 widths away, unattenuated, of
-// constant factor, steeply attenuated or by a falloff distance, or directional; Lambert and
-// Lerp. The double bound and the float lanes never exceed the block's, as numbers (not only
-// as the resolve's fixed point); the lanes come within 2e-5 of it, and at most three quarters
-// of the block's margin for their rounding (2·2^-16 of each light's reach) is theirs.
+// from the origin and 1e-6 to 1e3 wide, the light 1.0001 to 1e6 widths away
+// (randomAttenuation's) or directional; Lambert and Lerp. The double bound and the float lanes
+// never exceed the block's, as numbers (not only as the resolve's fixed point); the lanes come
+// within 2e-5 of it, and at most three quarters of the block's margin for their rounding (2·2^-16
+// of each light's reach) is theirs.
 TEST(SummaryEstimate, TheBlockBoundHoldsWhereItIsTightest) {
   std::mt19937_64 random(24);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -344,21 +363,7 @@ TEST(SummaryEstimate, TheBlockBoundHoldsWhereItIsTightest) {
     if (random() % 3 == 2)
       direction = glm::normalize(
           glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5) + 1e-3);
-    Attenuation attenuation = NoAttenuation{};
-    switch (random() % 4) {
-      case 0:
-        break;
-      case 1:
-        attenuation = QuadraticAttenuation{pick(0.5, 2.0), 0.0, 0.0};
-        break;
-      case 2:
-        attenuation = QuadraticAttenuation{pick(1e-6, 1.0), pick(0.0, 1.0 / size),
-                                           pick(0.0, 1.0 / (size * size))};
-        break;
-      default:
-        attenuation = FalloffDistanceAttenuation{pick(0.5, 2.0, 100.0) * size};
-        break;
-    }
+    const Attenuation attenuation = randomAttenuation(random, size);
     LightSet lights;
     if (random() % 6 == 0) {
       lights.lights.push_back(DirectionalLight{-direction, Color(pick(1.0f, 0.8f)), 1.0});
@@ -715,6 +720,46 @@ TEST(SummaryEstimate, FramesAlternatingThePathsGiveAFreshRenderersNumbers) {
     EXPECT_NEAR(kept.predictedRmse, exact.predictedRmse, 0.01) << step.name;
     EXPECT_NEAR(kept.predictedMaxError, exact.predictedMaxError, 0.01) << step.name;
   }
+}
+
+// The summary against the per-pixel estimate on random scenes at the edges the block bound's
+// tests take one polygon at a time, here through the render (terms, blocks, the resolve):
+// spheres of 8 to 64 segments, 1e-3 to 1e3 wide at 0 to 1e6 from the origin, a point light
+// 0.1 % to twice their radius off their surface (randomAttenuation's), with or without a
+// directional light; Lambert and Lerp; seen from the light's side or the far one.
+TEST(SummaryEstimate, AtLeastThePerPixelEstimateOnRandomScenesAtTheEdges) {
+  std::mt19937_64 random(99);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto pick = [&](auto... values) { return pickOne(random, values...); };
+  int lit = 0;
+  for (int trial = 0; trial < 80; ++trial) {
+    const double offset = pick(0.0, 1e3, 1e6), scale = pick(1e-3, 1.0, 1e3);
+    const glm::dvec3 center = offset * glm::dvec3(unit(random), -unit(random), unit(random));
+    const int segments = pick(8, 24, 64);
+    const Mesh sphere = makeUvSphere(segments, segments / 2 + 1, scale, center);
+    LightSet lights;
+    const glm::dvec3 toward =
+        glm::normalize(glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, -1.0));
+    const double reach = scale * pick(1.001, 1.05, 1.3, 3.0);
+    const Attenuation attenuation = randomAttenuation(random, scale);
+    lights.lights.push_back(PointLight{center + reach * toward, Color(1.0f), 1.0, attenuation});
+    if (random() % 2) lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.5f)});
+    Material material;
+    material.diffuse = pick(0.5, 1.0);
+    if (random() % 2) {
+      material.diffuseModel = DiffuseModel::Lerp;
+      material.lerpAmbient = pick(0.0, 0.3);
+      material.lerpFull = pick(0.6, 1.0);
+    }
+    Scene scene = oneMeshScene(sphere.view(), material, lights);
+    const Camera camera = fitCamera(sphere, random() % 4 == 0 ? toward : -toward);
+    const Both both = estimateBoth(scene, camera, 2);
+    const std::string name = "trial " + std::to_string(trial);
+    lit += both.exact.predictedMaxError > 1.0;
+    EXPECT_GE(both.fast.predictedMaxError, both.exact.predictedMaxError) << name;
+    EXPECT_GE(both.fast.predictedRmse, both.exact.predictedRmse) << name;
+  }
+  EXPECT_GT(lit, 60);  // most scenes show their light's error
 }
 
 class SummaryEstimateTargets : public EveryTargetTest {};
