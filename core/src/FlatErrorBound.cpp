@@ -124,11 +124,19 @@ LightTerms lightTerms(const Light& light, const PolygonShape& polygon, const glm
           [&](const auto& l) {  // point and spot lights
             radiance = detail::boundRadianceOf(l.color, l.intensity);
             const glm::dvec3 offset = l.position - polygon.center;
-            const double d = glm::length(offset);
+            double d = glm::length(offset);
             // One division, its reciprocal multiplied (as FlatErrorBoundBatch.cpp, where
             // divisions are much of a batch's time).
-            const double inverse = 1.0 / d;
-            if (d > 0.0 && std::isfinite(d)) toLight = offset * inverse;
+            double inverse = 1.0 / d;
+            if (d > 0.0 && std::isfinite(d)) {
+              toLight = offset * inverse;
+            } else if (const auto unit = detail::normalizeRobust(offset); unit && d > 0.0) {
+              // So far that the square overflows: the renderer lights the polygon from the
+              // light's direction at its distance all the same (Lighting.cpp, towardLight).
+              toLight = unit->unit;
+              d = unit->length;
+              inverse = 1.0 / d;
+            }
             lightAngle = Angle::ofConeSine(d > 0.0 ? polygon.radius * inverse : 2.0);
             const double near = std::max(0.0, d - polygon.radius), far = d + polygon.radius;
             factor = {attenuationFactor(l.attenuation, far), attenuationFactor(l.attenuation, d),

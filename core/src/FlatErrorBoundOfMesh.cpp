@@ -18,7 +18,9 @@
 //     [max(0, d_lo − R), d_hi + R] (d_hi: to the box's farthest corner), so the attenuation
 //     E lies in [E_lo, E_hi], its factors there (non-increasing in distance), and a
 //     polygon's own range of E is at most S = min(E_hi − E_lo, 2R·|E'|max), |E'|max the
-//     steepest slope over those distances (steepestSlope).
+//     steepest slope over those distances (steepestSlope; E_hi − E_lo where that quotient
+//     overflows or leaves the normal numbers). Distances are taken without overflow of their
+//     squares (lengthOf): the renderer lights a polygon from a light 1e200 away.
 //  4. |E·D − E_f·D_f| ≤ |E − E_f|·|D| + E_f·|D − D_f| ≤ S·D_max + E_hi·δ,
 //     which is at least FlatErrorBound.cpp's deviation max(E_hi·D_hi − E_f·D_f,
 //     E_f·D_f − E_lo·D_lo) of every polygon (its D_hi, D_lo are within δ of D_f, by 2).
@@ -35,7 +37,11 @@
 // end (dist + r)(1 + 2^-20) lies at most 21.5u·(|P − c| + r) above |P − c| + r ≤ dHi + R,
 // within the box's farthest end raised by the slack and then by 2^-18 = 64u of itself. So the
 // lanes' ends lie inside the box's at any distance of the light
-// (TheBlockBoundHoldsAtTheEdgesOfItsDerivation checks it at the edges).
+// (TheBlockBoundHoldsAtTheEdgesOfItsDerivation checks it at the edges). Their span,
+// (dist + r)(1 + 2^-20) − dist(1 − 2^-20) + r, is 2r + 2^-19·dist: past 2R, |E'|·2^-19·dist
+// ≤ 2^-18·E (|E'|·d ≤ 2E for 1/(a0 + a1 d + a2 d²) and for F/d), within the second κ.
+// TheBlockBoundHoldsWhereItIsTightest finds the lanes within 2e-5 of the block where it is
+// tight, with half its κ to spare; a block of one κ fails it.
 // Specular terms (their exponent's alignment, the viewer's cone) and spot cones are left to
 // the per-polygon estimate: nothing is returned.
 
@@ -52,6 +58,7 @@
 
 #include "Overloaded.h"
 #include "Radiance.h"
+#include "Vector.h"
 
 namespace facet::detail {
 namespace {
@@ -64,12 +71,21 @@ double sineOfSum(double sa, double sb) {
   return std::min(1.0, sa * cb + ca * sb);
 }
 
+// |v|, also where its square overflows (a light beyond 1e154: the renderer lights from it at
+// its distance all the same, Lighting.cpp's towardLight); ∞ where v is not finite.
+double lengthOf(const glm::dvec3& v) {
+  const double length = glm::length(v);
+  if (std::isfinite(length)) return length;
+  const std::optional<UnitAndLength> unit = normalizeRobust(v);
+  return unit ? unit->length : length;
+}
+
 // The distances from p to the nearest and farthest points of the box.
 double distanceToBox(const glm::dvec3& p, const glm::dvec3& low, const glm::dvec3& high) {
-  return glm::length(p - glm::clamp(p, low, high));
+  return lengthOf(p - glm::clamp(p, low, high));
 }
 double farthestInBox(const glm::dvec3& p, const glm::dvec3& low, const glm::dvec3& high) {
-  return glm::length(glm::max(glm::abs(p - low), glm::abs(p - high)));
+  return lengthOf(glm::max(glm::abs(p - low), glm::abs(p - high)));
 }
 
 // A quadratic attenuation of constant term only (vtkLight's default, 1/a0 at every distance).
@@ -89,6 +105,16 @@ double largestMagnitude(const glm::dvec3& v) {
 // distance F: E = 1 up to F, F/d beyond, |E'| = F/d² ≤ F/max(F, nearest)².
 double steepestSlope(const Attenuation& attenuation, double nearest, double farthest) {
   constexpr double kUnknown = std::numeric_limits<double>::infinity();
+  // rise / square rounded up, where its few roundings are relative: ∞ where the square
+  // overflows (the quotient would be 0) or the quotient leaves the normal numbers.
+  const auto upward = [&](double rise, double square) {
+    const double slope = rise / square;
+    if (rise == 0.0) return 0.0;
+    const bool normal = std::isfinite(square) && slope >= std::numeric_limits<double>::min() &&
+                        slope <= std::numeric_limits<double>::max() &&
+                        rise >= std::numeric_limits<double>::min();
+    return normal ? slope * (1.0 + 0x1p-40) : kUnknown;
+  };
   return std::visit(Overloaded{
                         [](const NoAttenuation&) { return 0.0; },
                         [&](const QuadraticAttenuation& q) {
@@ -97,15 +123,12 @@ double steepestSlope(const Attenuation& attenuation, double nearest, double fart
                           const double low = std::max(
                               q.constant + q.linear * nearest + q.quadratic * nearest * nearest,
                               1.0 / kMaxAttenuation);
-                          const double slope =
-                              (q.linear + 2.0 * q.quadratic * farthest) / (low * low);
-                          return std::isfinite(slope) ? slope * (1.0 + 0x1p-40) : kUnknown;
+                          return upward((q.linear + 2.0 * q.quadratic * farthest), low * low);
                         },
                         [&](const FalloffDistanceAttenuation& f) {
                           if (!(f.distance > 0.0)) return kUnknown;
                           const double d = std::max(f.distance, nearest);
-                          const double slope = f.distance / (d * d);
-                          return std::isfinite(slope) ? slope * (1.0 + 0x1p-40) : kUnknown;
+                          return upward(f.distance, d * d);
                         },
                     },
                     attenuation);
