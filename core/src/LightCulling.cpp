@@ -149,7 +149,9 @@ Judgement judgePositional(const glm::dvec3& position, const Attenuation& attenua
     if (!isFinite(box)) return {};
     if (cone && coneMissesBox(position, axis, darkFromDegrees(*cone), box)) continue;
     reaches = true;
-    const double distance = glm::length(box.closestPoint(position) - position) * kNearer;
+    // normalizeRobust's length: a distance beyond ~1e154 is finite although its square is not.
+    const auto toBox = detail::normalizeRobust(box.closestPoint(position) - position);
+    const double distance = (toBox ? toBox->length : 0.0) * kNearer;
     const double factor = attenuationFactor(attenuation, distance);
     for (int c = 0; c < 3; ++c) {
       const double gain = gainOf(targets.meshes[m], c);

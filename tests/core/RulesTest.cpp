@@ -123,6 +123,22 @@ TEST(LightsThatReachNothing, ToleranceStaysWithinTheReportedBound) {
   EXPECT_THROW(Renderer().setRules({.lightTolerance = -1.0}), Error);
 }
 
+// A light so far that its distance's square overflows still reaches at full strength when
+// its falloff distance is farther still: the culling's distance must not become +inf.
+TEST(LightsThatReachNothing, LightsBeyondTheSquaresRangeAreJudgedAtTheirDistance) {
+  const Mesh sphere = makeUvSphere(16, 8);
+  LightSet lights;
+  lights.lights.push_back(
+      PointLight{{0, 0, 1e200}, Color(1.0f), 1.0, FalloffDistanceAttenuation{1e300}});
+  const Scene scene = oneMeshScene(sphere.view(), {}, lights);
+  RenderOptions tolerant;
+  tolerant.rules.lightTolerance = 0.01;
+  const Rendered culled = renderScene(scene, fitCamera(sphere), 64, 48, tolerant);
+  EXPECT_EQ(culled.stats.plan.lightCulling.belowTolerance, 0u) << culled.stats.describe();
+  const Rendered kept = renderScene(scene, fitCamera(sphere), 64, 48);
+  EXPECT_EQ(largestChannelDifference(kept.framebuffer, culled.framebuffer), 0);
+}
+
 // The exact cone test against an independent minimization of the angle over the box's
 // surface (pattern search on each face: the set of points within an angle < 90° of the
 // axis is convex, so the angle has no other minimum on a face).
