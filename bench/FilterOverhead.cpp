@@ -17,6 +17,7 @@
 //
 //   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
 //                                   [--no-estimate] [--turn=DEGREES] [--per-frame]
+//                                   [--bench-lit-as-filter]
 //   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
 //   build/bin/facet_filter_overhead 1000 1 1 20     # 2M triangles, closed, one thread
 //   build/bin/facet_filter_overhead 500 1 2 10 3840 2160   # at 4K
@@ -27,6 +28,8 @@
 // `make bench-peers` time it (on by default, as the filter's default). --turn: the degrees
 // the camera turns before each frame (default 0.5; bench-peers' Update() turns 360 / frames,
 // facet_bench's BM_Sphere 1 from the fitted view). --per-frame: each frame's times.
+// --bench-lit-as-filter: the bench mesh lit as the filter lights (VTK's attenuation 1, 0, 0),
+// so that "core / bench mesh" is the two meshes' order alone.
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -96,6 +99,12 @@ double median(const std::vector<Sample>& samples, double Sample::*field) {
   for (const Sample& s : samples)
     values.push_back(s.*field);
   return median(values);
+}
+
+// Each field's median.
+Sample median(const std::vector<Sample>& samples) {
+  return {median(samples, &Sample::wall), median(samples, &Sample::cpu),
+          median(samples, &Sample::faults)};
 }
 
 // Per phase, its seconds in each frame.
@@ -199,6 +208,29 @@ struct BenchMesh {
   }
 };
 
+// A bare core renderer drawing one mesh with a headlight (VTK's positional light at the
+// camera, attenuated as given) into a framebuffer of its own.
+struct CoreSide {
+  facet::Scene scene;
+  facet::Renderer renderer;
+  facet::Framebuffer framebuffer;
+  facet::Attenuation attenuation;
+  facet::RenderStats stats;
+
+  CoreSide(const facet::MeshView& mesh, int threads, int width, int height,
+           facet::Attenuation lightAttenuation)
+      : framebuffer(width, height), attenuation(lightAttenuation) {
+    scene.meshes.push_back({mesh, facet::Material{}});
+    scene.lights.ambient.intensity = 0.0;
+    renderer.setThreadCount(threads);
+  }
+  void render(vtkCamera* camera) {
+    const facet::Camera view = cameraOf(camera);
+    scene.lights.lights = {facet::PointLight{view.position, facet::Color(1.0f), 1.0, attenuation}};
+    stats = renderer.render(scene, view, framebuffer);
+  }
+};
+
 // The median of the ratios a[i] / b[i] of frames rendered one after the other.
 double medianRatio(const std::vector<Sample>& a, const std::vector<Sample>& b,
                    double Sample::*field) {
@@ -210,7 +242,7 @@ double medianRatio(const std::vector<Sample>& a, const std::vector<Sample>& b,
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool estimate = true, perFrame = false;
+  bool estimate = true, perFrame = false, benchLitAsFilter = false;
   double turnDegrees = 0.5;
   std::vector<char*> positional{argv[0]};
   for (int i = 1; i < argc; ++i) {
@@ -219,6 +251,8 @@ int main(int argc, char** argv) {
       estimate = false;
     else if (arg == "--per-frame")
       perFrame = true;
+    else if (arg == "--bench-lit-as-filter")
+      benchLitAsFilter = true;
     else if (arg.substr(0, 7) == "--turn=")
       turnDegrees = std::atof(argv[i] + 7);
     else
@@ -229,7 +263,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate] "
-                 "[--turn=DEGREES] [--per-frame]\n",
+                 "[--turn=DEGREES] [--per-frame] [--bench-lit-as-filter]\n",
                  argv[0]);
     return 2;
   }
@@ -282,35 +316,14 @@ int main(int argc, char** argv) {
                                           int64s(polys->GetConnectivityArray64()));
   mesh.version = 1;
   mesh.closedSurface = closed && facet::isClosedSurface(mesh);
-  facet::Scene scene;
-  scene.meshes.push_back({mesh, facet::Material{}});
-  scene.lights.ambient.intensity = 0.0;
-  facet::Renderer renderer;
-  renderer.setThreadCount(threads);
-  facet::Framebuffer framebuffer(width, height);
-
-  facet::RenderStats coreStats;
-  const auto renderCore = [&] {
-    const facet::Camera view = cameraOf(camera);
-    scene.lights.lights = {facet::PointLight{view.position, facet::Color(1.0f), 1.0,
-                                             facet::QuadraticAttenuation{1.0, 0.0, 0.0}}};
-    coreStats = renderer.render(scene, view, framebuffer);
-  };
+  CoreSide core(mesh, threads, width, height, facet::QuadraticAttenuation{1.0, 0.0, 0.0});
   // BM_Sphere's frame at the same camera: its mesh and its light (no attenuation).
   const BenchMesh benchMesh(theta, closed);
-  facet::Scene benchScene;
-  benchScene.meshes.push_back({benchMesh.view, facet::Material{}});
-  benchScene.lights.ambient.intensity = 0.0;
-  facet::Renderer benchRenderer;
-  benchRenderer.setThreadCount(threads);
-  facet::Framebuffer benchFramebuffer(width, height);
-  facet::RenderStats benchStats;
-  const auto renderBench = [&] {
-    const facet::Camera view = cameraOf(camera);
-    benchScene.lights.lights = {
-      facet::PointLight{view.position, facet::Color(1.0f), 1.0, facet::NoAttenuation{}}};
-    benchStats = benchRenderer.render(benchScene, view, benchFramebuffer);
-  };
+  CoreSide bench(benchMesh.view, threads, width, height,
+                 benchLitAsFilter ? facet::Attenuation{facet::QuadraticAttenuation{1.0, 0.0, 0.0}}
+                                  : facet::Attenuation{facet::NoAttenuation{}});
+  const auto renderCore = [&] { core.render(camera); };
+  const auto renderBench = [&] { bench.render(camera); };
 
   const Sample firstUpdate = timed([&] { filter->Update(); });
   renderCore();
@@ -322,22 +335,20 @@ int main(int argc, char** argv) {
     updates.push_back(timed([&] { filter->Update(); }));
     addFilterPhases(updatePhases, filter->GetOutput(), updates.back().wall);
     cores.push_back(timed(renderCore));
-    addCorePhases(corePhases, coreStats);
-    addCoreCounts(coreCounts, coreStats);
+    addCorePhases(corePhases, core.stats);
+    addCoreCounts(coreCounts, core.stats);
     benches.push_back(timed(renderBench));
-    addCorePhases(benchPhases, benchStats);
-    addCoreCounts(benchCounts, benchStats);
+    addCorePhases(benchPhases, bench.stats);
+    addCoreCounts(benchCounts, bench.stats);
     if (perFrame)
-      std::printf("  frame %d at %.0f degrees, ms wall / CPU: Update %.2f / %.2f, core %.2f / "
-                  "%.2f, bench mesh %.2f / %.2f\n",
-                  f, (f + 1) * turnDegrees, 1e3 * updates.back().wall, 1e3 * updates.back().cpu,
-                  1e3 * cores.back().wall, 1e3 * cores.back().cpu, 1e3 * benches.back().wall,
-                  1e3 * benches.back().cpu);
+      std::printf(
+          "  frame %d at %.0f degrees, ms wall / CPU: Update %.2f / %.2f, core %.2f / "
+          "%.2f, bench mesh %.2f / %.2f\n",
+          f, (f + 1) * turnDegrees, 1e3 * updates.back().wall, 1e3 * updates.back().cpu,
+          1e3 * cores.back().wall, 1e3 * cores.back().cpu, 1e3 * benches.back().wall,
+          1e3 * benches.back().cpu);
   }
-  const Sample u{median(updates, &Sample::wall), median(updates, &Sample::cpu),
-                 median(updates, &Sample::faults)};
-  const Sample c{median(cores, &Sample::wall), median(cores, &Sample::cpu),
-                 median(cores, &Sample::faults)};
+  const Sample u = median(updates), c = median(cores), b = median(benches);
   std::printf(
       "%d triangles, %d x %d, %s, %d threads, median of %d frames in turn: Update() %.1f ms "
       "(CPU %.1f ms, %.0f page faults), core %.1f ms (CPU %.1f ms, %.0f page faults); "
@@ -345,16 +356,14 @@ int main(int argc, char** argv) {
       2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
       1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
       u.cpu / c.cpu, firstUpdate.wall, estimate ? "" : "; estimate off");
-  const Sample b{median(benches, &Sample::wall), median(benches, &Sample::cpu),
-                 median(benches, &Sample::faults)};
-  std::printf("  turn %.1f degrees per frame; bench mesh (BM_Sphere's) %.1f ms (CPU %.1f ms); "
-              "median of the per-frame ratios, wall / CPU: Update/core %.3f / %.3f, "
-              "core/bench mesh %.3f / %.3f, Update/bench mesh %.3f / %.3f\n",
-              turnDegrees, 1e3 * b.wall, 1e3 * b.cpu, medianRatio(updates, cores, &Sample::wall),
-              medianRatio(updates, cores, &Sample::cpu), medianRatio(cores, benches, &Sample::wall),
-              medianRatio(cores, benches, &Sample::cpu),
-              medianRatio(updates, benches, &Sample::wall),
-              medianRatio(updates, benches, &Sample::cpu));
+  std::printf(
+      "  turn %.1f degrees per frame; bench mesh (BM_Sphere's) %.1f ms (CPU %.1f ms); "
+      "median of the per-frame ratios, wall / CPU: Update/core %.3f / %.3f, "
+      "core/bench mesh %.3f / %.3f, Update/bench mesh %.3f / %.3f\n",
+      turnDegrees, 1e3 * b.wall, 1e3 * b.cpu, medianRatio(updates, cores, &Sample::wall),
+      medianRatio(updates, cores, &Sample::cpu), medianRatio(cores, benches, &Sample::wall),
+      medianRatio(cores, benches, &Sample::cpu), medianRatio(updates, benches, &Sample::wall),
+      medianRatio(updates, benches, &Sample::cpu));
   updatePhases.print("Update()");
   corePhases.print("core");
   benchPhases.print("bench mesh");
