@@ -218,7 +218,7 @@ def filter_overhead_ratios(args, bin_dir):
             result = subprocess.run(
                 [str(program), str(PEER_SIZES[triangles]), str(closed), str(args.threads),
                  str(args.frames), "--no-estimate", f"--turn={360.0 / args.frames}"],
-                check=True, capture_output=True, text=True).stdout
+                check=False, capture_output=True, text=True).stdout  # no figures: left out
             found = re.search(r"Update/core ([\d.]+) / ([\d.]+), core/bench mesh ([\d.]+) / "
                               r"([\d.]+)", result)
             if found:
