@@ -45,10 +45,10 @@ public:
       const vtkIdType start = row * width;
       const Span shown = ShownSpan(polygonIds + start, static_cast<int>(width));
       Span& last = this->Spans[static_cast<std::size_t>(row)];
-      const int first = std::min(last.First, shown.First), stop = std::max(last.Last, shown.Last);
-      if (first < stop)
+      const Span both = Union(last, shown);
+      if (both.First < both.Last)
       {
-        write(start + first, start + stop);
+        write(start + both.First, start + both.Last);
       }
       last = shown;
     }
@@ -62,6 +62,19 @@ private:
   };
   /// The columns of one row between its first and last polygon (empty: none).
   static Span ShownSpan(const std::int32_t* ids, int width);
+  /// The smallest span holding both (an empty one adds nothing).
+  static Span Union(const Span& a, const Span& b)
+  {
+    if (a.First == a.Last)
+    {
+      return b;
+    }
+    if (b.First == b.Last)
+    {
+      return a;
+    }
+    return Span{ std::min(a.First, b.First), std::max(a.Last, b.Last) };
+  }
 
   std::vector<Span> Spans;
   int Width = 0;
