@@ -177,10 +177,19 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
     pointData->AddArray(OutputArray(kept, name, 1, pixels));
     return kept != nullptr;
   };
+  const vtkIdTypeArray* lastCellIds = this->CellIds;
   const bool allocated = add(this->Depth, settings.Depth, "Depth") &&
     add(this->CellIds, settings.CellIds, "CellId") &&
     add(this->ActorIds, settings.ActorIds, "ActorId") &&
     add(this->RankIds, settings.RankIds, "RankId");
+  // CellId alone, in the plane the last frame wrote at this size, may skip the background
+  // it already holds.
+  this->SkipsBackgroundIds = allocated && settings.CellIdsOnly && this->CellIds &&
+    this->CellIds == lastCellIds && width == this->Width && height == this->Height;
+  if (!this->SkipsBackgroundIds)
+  {
+    this->CellIdSpans.Forget(width, height);
+  }
   if (!this->Rgba || !allocated)
   {
     messages.AddError("cannot allocate the " + std::to_string(width) + " x " +
@@ -231,6 +240,18 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
       mapIds(polygonIds, begin, end);
     }
   };
+  // A band's CellId: only where this frame's or the last one's ids are not background.
+  const auto writeBandIds = [&](vtkIdType firstRow, vtkIdType endRow) {
+    if (!this->SkipsBackgroundIds)
+    {
+      mapIds(polygonIds, firstRow * this->Width, endRow * this->Width);
+      return;
+    }
+    this->CellIdSpans.WriteChanged(
+      polygonIds, firstRow, endRow, [&](vtkIdType begin, vtkIdType end) {
+        mapIds(polygonIds, begin, end);
+      });
+  };
   const bool writesOutput = mapIds || renderDepth;
   std::atomic<int> rowsWritten{ 0 };
   struct Unhook // the callback refers to this frame: gone with it, also on an exception
@@ -263,8 +284,17 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
         : [&](const facet::FramebufferView& view, int y0, int y1) {
             if (view.polygonId == polygonIds && view.width == this->Width)
             {
-              writeOutput(static_cast<vtkIdType>(y0) * this->Width,
-                static_cast<vtkIdType>(y1 + 1) * this->Width);
+              const vtkIdType begin = static_cast<vtkIdType>(y0) * this->Width,
+                              end = static_cast<vtkIdType>(y1 + 1) * this->Width;
+              if (renderDepth)
+              {
+                std::copy(
+                  renderDepth + begin, renderDepth + end, this->Depth->GetPointer(0) + begin);
+              }
+              if (mapIds)
+              {
+                writeBandIds(y0, y1 + 1);
+              }
               rowsWritten += y1 - y0 + 1;
             }
           });
@@ -287,6 +317,7 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
   const Clock::time_point outputStart = Clock::now();
   if (writesOutput && (stats.aborted || rowsWritten != this->Height))
   {
+    this->CellIdSpans.Forget(this->Width, this->Height); // every id written
     this->ForEachPixelBlock(writeOutput);
   }
   this->OutputSeconds = vtkFacetSecondsSince(outputStart);

@@ -37,6 +37,7 @@
 #ifndef vtkFacetImageRenderer_h
 #define vtkFacetImageRenderer_h
 
+#include "vtkFacetBackgroundSpans.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h" // the members below: complete for the implicit destructor
 #include "vtkIntArray.h"
@@ -80,6 +81,10 @@ public:
     /// renderer's depth plane is then one of this class's own, copied into Depth, so that the
     /// next render can still reuse the frame it holds.
     bool Composited = false;
+    /// The IdMap writes CellId alone and every background pixel alike (vtkFacetRenderFilter's
+    /// CellLabels without RankId): a kept CellId plane then skips the background the last
+    /// frame left in it (vtkFacetBackgroundSpans).
+    bool CellIdsOnly = false;
     facet::RenderRules Rules; ///< which rules may leave work out, incremental rendering
     int Threads = 0;          ///< 0: one per hardware thread
     facet::Visibility Visibility = facet::Visibility::ZBuffer;
@@ -203,6 +208,10 @@ private:
   vtkSmartPointer<vtkIntArray> RankIds;
   facet::HugePageVector<float> RenderDepth; // the renderer's depth plane, if OwnDepthPlane
   bool OwnDepthPlane = false; // the output's Depth was held by others or composited into
+  // Where CellId may need writing: only the front end's ids of one plane, kept and
+  // untouched since the last frame, can skip rows' background (vtkFacetBackgroundSpans).
+  vtkFacetBackgroundSpans CellIdSpans;
+  bool SkipsBackgroundIds = false; // this frame writes CellId within CellIdSpans only
   vtkAlgorithm* Algorithm = nullptr;
   int Width = 0;
   int Height = 0;

@@ -54,6 +54,7 @@ vtkFacetImageRenderer::Settings vtkFacetRenderFilter::vtkInternals::SettingsOf(
   settings.Depth = filter->OutputDepth || parallel;
   settings.CellIds = filter->OutputCellIds || parallel;
   settings.RankIds = settings.Composited = parallel;
+  settings.CellIdsOnly = !parallel; // CellLabels: RankId too when parallel
   settings.Rules.lightTolerance = filter->LightCullingTolerance;
   settings.Rules.incremental = filter->IncrementalRendering != 0;
   return settings;

@@ -8,14 +8,28 @@
 // Update() less the filter's own FacetRenderSeconds: the executive and the field data) and of
 // the core frame's phases.
 //
-//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate]
+// A third side, "bench mesh", is facet_bench's BM_Sphere frame at the same camera: the
+// makeUvSphere mesh (vtkSphereSource's topology, but its triangles listed ring by ring where
+// vtkSphereSource lists them meridian by meridian) with BM_Sphere's unattenuated light. The
+// per-frame ratios say how much of "Update closed against core closed" in `make bench-peers`
+// is the filter and how much is the two benches drawing differently ordered meshes
+// (bench/filter_overhead.md, id24).
+//
+//   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
+//                                   [--no-estimate] [--turn=DEGREES] [--per-frame]
+//                                   [--bench-lit-as-filter]
 //   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
 //   build/bin/facet_filter_overhead 1000 1 1 20     # 2M triangles, closed, one thread
 //   build/bin/facet_filter_overhead 500 1 2 10 3840 2160   # at 4K
+//   build/bin/facet_filter_overhead 500 1 2 10 --no-estimate --turn=36  # bench-peers' turn
 //
 // (THETA: vtkSphereSource's theta resolution, phi = theta + 2: 2·theta² triangles.)
 // --no-estimate: the filter's EstimateError off, as bench/filter_speed.py and
-// `make bench-peers` time it (on by default, as the filter's default).
+// `make bench-peers` time it (on by default, as the filter's default). --turn: the degrees
+// the camera turns before each frame (default 0.5; bench-peers' Update() turns 360 / frames,
+// facet_bench's BM_Sphere 1 from the fitted view). --per-frame: each frame's times.
+// --bench-lit-as-filter: the bench mesh lit as the filter lights (VTK's attenuation 1, 0, 0),
+// so that "core / bench mesh" is the two meshes' order alone.
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -35,6 +49,7 @@
 
 #include "facet/Framebuffer.h"
 #include "facet/Renderer.h"
+#include "support/TestMeshes.h"
 
 #include <sys/resource.h>
 
@@ -44,6 +59,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -83,6 +99,12 @@ double median(const std::vector<Sample>& samples, double Sample::*field) {
   for (const Sample& s : samples)
     values.push_back(s.*field);
   return median(values);
+}
+
+// Each field's median.
+Sample median(const std::vector<Sample>& samples) {
+  return {median(samples, &Sample::wall), median(samples, &Sample::cpu),
+          median(samples, &Sample::faults)};
 }
 
 // Per phase, its seconds in each frame.
@@ -141,6 +163,17 @@ void addCorePhases(PhaseSeries& series, const facet::RenderStats& s) {
               {"total", s.totalSeconds}});
 }
 
+// The frame's work counts, in thousands (printed by PhaseSeries as if milliseconds).
+void addCoreCounts(PhaseSeries& series, const facet::RenderStats& s) {
+  const auto thousands = [](std::size_t n) { return 1e-6 * static_cast<double>(n); };
+  series.add({{"drawn", thousands(s.polygonsDrawn)},
+              {"culled", thousands(s.polygonsCulled)},
+              {"binned", thousands(s.trianglesBinned)},
+              {"hidden", thousands(s.trianglesHidden)},
+              {"fragments", thousands(s.fragmentsWritten)},
+              {"shaded", thousands(s.polygonsShaded)}});
+}
+
 // The filter's camera conversion for a plain perspective vtkCamera (vtkFacetSceneConverter).
 facet::Camera cameraOf(vtkCamera* camera) {
   const auto vec = [](const double* v) { return glm::dvec3(v[0], v[1], v[2]); };
@@ -153,14 +186,84 @@ facet::Camera cameraOf(vtkCamera* camera) {
   c.farClip = camera->GetClippingRange()[1];
   return c;
 }
+// facet_bench's BM_Sphere mesh (bench/CoreBench.cpp): makeUvSphere's order, float points,
+// 64-bit cells, versioned, the closed-surface hint when asked.
+struct BenchMesh {
+  std::vector<float> xyz;
+  std::vector<std::int64_t> offsets, connectivity;
+  facet::MeshView view;
+
+  BenchMesh(int theta, bool closed) {
+    // vtkSphereSource's radius (0.5), for the same camera; BM_Sphere's radius 1 with a camera
+    // fitted to it draws the same image.
+    const facet::Mesh sphere = facet::testing::makeUvSphere(theta, theta + 2, 0.5);
+    for (const glm::dvec3& p : sphere.points)
+      xyz.insert(xyz.end(), {float(p.x), float(p.y), float(p.z)});
+    offsets = sphere.offsets;
+    connectivity = sphere.connectivity;
+    view.points = facet::PointArray::ofXyz(xyz);
+    view.polygons = facet::PolygonArray::of(offsets, connectivity);
+    view.version = 1;
+    view.closedSurface = closed && facet::isClosedSurface(view);
+  }
+};
+
+// A bare core renderer drawing one mesh with a headlight (VTK's positional light at the
+// camera, attenuated as given) into a framebuffer of its own.
+struct CoreSide {
+  facet::Scene scene;
+  facet::Renderer renderer;
+  facet::Framebuffer framebuffer;
+  facet::Attenuation attenuation;
+  facet::RenderStats stats;
+
+  CoreSide(const facet::MeshView& mesh, int threads, int width, int height,
+           facet::Attenuation lightAttenuation)
+      : framebuffer(width, height), attenuation(lightAttenuation) {
+    scene.meshes.push_back({mesh, facet::Material{}});
+    scene.lights.ambient.intensity = 0.0;
+    renderer.setThreadCount(threads);
+  }
+  void render(vtkCamera* camera) {
+    const facet::Camera view = cameraOf(camera);
+    scene.lights.lights = {facet::PointLight{view.position, facet::Color(1.0f), 1.0, attenuation}};
+    stats = renderer.render(scene, view, framebuffer);
+  }
+};
+
+// The median of the ratios a[i] / b[i] of frames rendered one after the other.
+double medianRatio(const std::vector<Sample>& a, const std::vector<Sample>& b,
+                   double Sample::*field) {
+  std::vector<double> ratios;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    ratios.push_back(a[i].*field / b[i].*field);
+  return median(ratios);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool estimate = !(argc > 1 && std::string_view(argv[argc - 1]) == "--no-estimate");
-  if (!estimate) --argc;  // the positional arguments come before it
+  bool estimate = true, perFrame = false, benchLitAsFilter = false;
+  double turnDegrees = 0.5;
+  std::vector<char*> positional{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg(argv[i]);
+    if (arg == "--no-estimate")
+      estimate = false;
+    else if (arg == "--per-frame")
+      perFrame = true;
+    else if (arg == "--bench-lit-as-filter")
+      benchLitAsFilter = true;
+    else if (arg.substr(0, 7) == "--turn=")
+      turnDegrees = std::atof(argv[i] + 7);
+    else
+      positional.push_back(argv[i]);
+  }
+  argc = static_cast<int>(positional.size());
+  argv = positional.data();
   if (argc < 3) {
     std::fprintf(stderr,
-                 "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate]\n",
+                 "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate] "
+                 "[--turn=DEGREES] [--per-frame] [--bench-lit-as-filter]\n",
                  argv[0]);
     return 2;
   }
@@ -213,35 +316,39 @@ int main(int argc, char** argv) {
                                           int64s(polys->GetConnectivityArray64()));
   mesh.version = 1;
   mesh.closedSurface = closed && facet::isClosedSurface(mesh);
-  facet::Scene scene;
-  scene.meshes.push_back({mesh, facet::Material{}});
-  scene.lights.ambient.intensity = 0.0;
-  facet::Renderer renderer;
-  renderer.setThreadCount(threads);
-  facet::Framebuffer framebuffer(width, height);
+  CoreSide core(mesh, threads, width, height, facet::QuadraticAttenuation{1.0, 0.0, 0.0});
+  // BM_Sphere's frame at the same camera: its mesh and its light (no attenuation).
+  const BenchMesh benchMesh(theta, closed);
+  CoreSide bench(benchMesh.view, threads, width, height,
+                 benchLitAsFilter ? facet::Attenuation{facet::QuadraticAttenuation{1.0, 0.0, 0.0}}
+                                  : facet::Attenuation{facet::NoAttenuation{}});
+  const auto renderCore = [&] { core.render(camera); };
+  const auto renderBench = [&] { bench.render(camera); };
 
-  facet::RenderStats coreStats;
-  const auto renderCore = [&] {
-    const facet::Camera view = cameraOf(camera);
-    scene.lights.lights = {facet::PointLight{view.position, facet::Color(1.0f), 1.0,
-                                             facet::QuadraticAttenuation{1.0, 0.0, 0.0}}};
-    coreStats = renderer.render(scene, view, framebuffer);
-  };
   const Sample firstUpdate = timed([&] { filter->Update(); });
   renderCore();
-  std::vector<Sample> updates, cores;
-  PhaseSeries updatePhases, corePhases;
+  renderBench();
+  std::vector<Sample> updates, cores, benches;
+  PhaseSeries updatePhases, corePhases, benchPhases, coreCounts, benchCounts;
   for (int f = 0; f < frames; ++f) {
-    camera->Azimuth(0.5);
+    camera->Azimuth(turnDegrees);
     updates.push_back(timed([&] { filter->Update(); }));
     addFilterPhases(updatePhases, filter->GetOutput(), updates.back().wall);
     cores.push_back(timed(renderCore));
-    addCorePhases(corePhases, coreStats);
+    addCorePhases(corePhases, core.stats);
+    addCoreCounts(coreCounts, core.stats);
+    benches.push_back(timed(renderBench));
+    addCorePhases(benchPhases, bench.stats);
+    addCoreCounts(benchCounts, bench.stats);
+    if (perFrame)
+      std::printf(
+          "  frame %d at %.0f degrees, ms wall / CPU: Update %.2f / %.2f, core %.2f / "
+          "%.2f, bench mesh %.2f / %.2f\n",
+          f, (f + 1) * turnDegrees, 1e3 * updates.back().wall, 1e3 * updates.back().cpu,
+          1e3 * cores.back().wall, 1e3 * cores.back().cpu, 1e3 * benches.back().wall,
+          1e3 * benches.back().cpu);
   }
-  const Sample u{median(updates, &Sample::wall), median(updates, &Sample::cpu),
-                 median(updates, &Sample::faults)};
-  const Sample c{median(cores, &Sample::wall), median(cores, &Sample::cpu),
-                 median(cores, &Sample::faults)};
+  const Sample u = median(updates), c = median(cores), b = median(benches);
   std::printf(
       "%d triangles, %d x %d, %s, %d threads, median of %d frames in turn: Update() %.1f ms "
       "(CPU %.1f ms, %.0f page faults), core %.1f ms (CPU %.1f ms, %.0f page faults); "
@@ -249,7 +356,18 @@ int main(int argc, char** argv) {
       2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
       1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
       u.cpu / c.cpu, firstUpdate.wall, estimate ? "" : "; estimate off");
+  std::printf(
+      "  turn %.1f degrees per frame; bench mesh (BM_Sphere's) %.1f ms (CPU %.1f ms); "
+      "median of the per-frame ratios, wall / CPU: Update/core %.3f / %.3f, "
+      "core/bench mesh %.3f / %.3f, Update/bench mesh %.3f / %.3f\n",
+      turnDegrees, 1e3 * b.wall, 1e3 * b.cpu, medianRatio(updates, cores, &Sample::wall),
+      medianRatio(updates, cores, &Sample::cpu), medianRatio(cores, benches, &Sample::wall),
+      medianRatio(cores, benches, &Sample::cpu), medianRatio(updates, benches, &Sample::wall),
+      medianRatio(updates, benches, &Sample::cpu));
   updatePhases.print("Update()");
   corePhases.print("core");
+  benchPhases.print("bench mesh");
+  coreCounts.print("core, thousands");
+  benchCounts.print("bench mesh, thousands");
   return 0;
 }

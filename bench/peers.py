@@ -15,8 +15,12 @@ light at the camera, at 1920x1080 with one sample per pixel (except "VTK default
                the geometric normal, RGBA + depth + primitive id (build/bin/embree_peer);
                its BVH build, done once per mesh, is a column of its own
   core         Facet's core, facet_bench's BM_Sphere (Google Benchmark mean; every face drawn
-               / closed-surface hint): the filter's frame without the filter, a versioned mesh
-               and the camera turning a degree per frame (bench/TurningView.h)
+               / closed-surface hint): a versioned mesh and the camera turning a degree per
+               frame (bench/TurningView.h), in a process of its own after the others. Not
+               quite the filter's frame: its sphere lists the triangles ring by ring (the
+               filter's vtkSphereSource meridian by meridian), its light is unattenuated;
+               the Update/core section at the end compares the two in one process
+               (bench/filter_overhead.md, id24)
   Update       vtkFacetRenderFilter.Update() from Python, the camera turning 360/--frames
                degrees before each (the median frame of a whole turn), RGBA + Depth + CellId
                output (bench/filter_speed.py; every face / closed check)
@@ -42,6 +46,7 @@ of two frames a second apart, and the verdict is on the median of those ratios.
 import argparse
 import glob
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -196,6 +201,44 @@ def print_paired_targets(ratios, frames):
               f"(target <= {bounds[name]}) {verdict}")
 
 
+def filter_overhead_ratios(args, bin_dir):
+    """{(triangles, closed): (Update/core wall, CPU, core/bench mesh wall, CPU)}: the filter's
+    Update() and the core's frame on the same arrays at the same camera, frame by frame in turn
+    in one process (build/bin/facet_filter_overhead, the camera turning as Update's above),
+    with facet_bench's BM_Sphere mesh as a third side. The table's "core" and "Update" columns
+    are of separate processes minutes apart; these are not."""
+    program = bin_dir / "facet_filter_overhead"
+    if not program.is_file():
+        return {}
+    ratios = {}
+    for triangles in args.sizes:
+        if triangles not in SIZES:
+            continue
+        for closed in (1, 0):
+            result = subprocess.run(
+                [str(program), str(PEER_SIZES[triangles]), str(closed), str(args.threads),
+                 str(args.frames), "--no-estimate", f"--turn={360.0 / args.frames}"],
+                check=False, capture_output=True, text=True).stdout  # no figures: left out
+            found = re.search(r"Update/core ([\d.]+) / ([\d.]+), core/bench mesh ([\d.]+) / "
+                              r"([\d.]+)", result)
+            if found:
+                ratios[(triangles, closed)] = tuple(float(v) for v in found.groups())
+    return ratios
+
+
+def print_filter_overhead(ratios, frames):
+    print(f"\nUpdate() against the core's frame in one process, frame by frame in turn "
+          f"(build/bin/facet_filter_overhead, {frames} frames, the camera turning as Update's; "
+          "median of the per-frame ratios, wall / CPU). 'core' here renders the filter's own "
+          "arrays (vtkSphereSource's triangle order, the filter's light); 'bench mesh' is "
+          "facet_bench's BM_Sphere mesh (rings in place of meridians, an unattenuated light) at "
+          "the same camera:")
+    for (triangles, closed), (update_wall, update_cpu, core_wall, core_cpu) in ratios.items():
+        name = "closed" if closed else "every face"
+        print(f"  {triangles:>8} {name:<10}  Update / core {update_wall:.3f} / {update_cpu:.3f}"
+              f"   core / bench mesh {core_wall:.3f} / {core_cpu:.3f}")
+
+
 def median_rows(rounds):
     """{triangles: row}: each column's median over the rounds (None where never measured);
     the first round's reports and covered pixels."""
@@ -307,6 +350,7 @@ def main():
 
     from filter_speed import facet_frame_timer
     ratios = paired_ratios(args, facet_frame_timer) if args.paired_frames > 0 else {}
+    overhead = filter_overhead_ratios(args, args.build_dir / "bin")
     load_end = uptime()
 
     rows = median_rows(rounds)
@@ -314,6 +358,8 @@ def main():
     print_targets(rounds)
     if ratios:
         print_paired_targets(ratios, args.paired_frames)
+    if overhead:
+        print_filter_overhead(overhead, args.frames)
     print("Speed check per round (ms; a slower host shows larger): "
           + ", ".join(f"{1000 * s:.1f}" for s in speeds))
     print()

@@ -50,6 +50,8 @@ struct Settings
   double Hue[2] = { 0.0, 0.667 };
   double Background[3] = { 0.1, 0.2, 0.3 };
   double Azimuth = 20.0;
+  double Distance = 3.0;        ///< of the camera from the focal point (FitCameraToInput off)
+  double Pan[2] = { 0.0, 0.0 }; ///< the camera and its focal point moved by (x, y)
   bool ColorByScalars = true;
   int Interpolation = VTK_FLAT;
 };
@@ -86,8 +88,9 @@ struct Rig
     this->Filter->GetProperty()->SetInterpolation(s.Interpolation);
     this->Table->SetHueRange(s.Hue[0], s.Hue[1]);
     this->Filter->SetBackground(s.Background[0], s.Background[1], s.Background[2]);
-    this->Camera->SetPosition(0.0, 0.5, 3.0);
-    this->Camera->SetFocalPoint(0.0, 0.0, 0.0);
+    const double scale = s.Distance / 3.0;
+    this->Camera->SetPosition(s.Pan[0], s.Pan[1] + 0.5 * scale, 3.0 * scale);
+    this->Camera->SetFocalPoint(s.Pan[0], s.Pan[1], 0.0);
     this->Camera->Azimuth(s.Azimuth);
     this->Filter->SetScalarVisibility(s.ColorByScalars);
     this->Filter->Update();
@@ -373,6 +376,54 @@ TEST_F(Incremental, OutputArraysNobodyHoldsAreReused)
   EXPECT_EQ(third[1], first[1]);
   EXPECT_EQ(third[2], first[2]);
   EXPECT_TRUE(std::memcmp(heldRgba->GetVoidPointer(0), heldBytes.data(), heldBytes.size()) == 0);
+}
+
+// A kept CellId plane is written only where this frame's or the last frame's ids are not
+// background (vtkFacetBackgroundSpans): frame after frame the sphere turns, grows, shrinks,
+// moves out of rows and columns and leaves the image, at 160 x 120 (plain stores) and at
+// 1031 x 1030 (a plane streamed past the caches, rows not a multiple of the SIMD width), and
+// every frame has the bytes of a fresh filter's.
+TEST_F(Incremental, KeptCellIdsEqualAFreshFiltersAsTheViewMoves)
+{
+  for (const auto& [width, height] : { std::pair{ Width, Height }, { 1031, 1030 } })
+  {
+    Rig kept(this->Input);
+    kept.Filter->FitCameraToInputOff();
+    kept.Filter->SetSize(width, height);
+    const vtkDataArray* plane = nullptr;
+    Settings view;
+    for (const auto& [azimuth, distance, panX, panY] :
+      std::vector<std::tuple<double, double, double, double>>{ { 20, 3, 0, 0 },
+        { 35, 3, 0, 0 },
+        { 35, 1.5, 0, 0 },
+        { 50, 6, 0, 0 },
+        { 50, 6, 0.6, 0 },
+        { 60, 6, -0.8, 0.3 },
+        { 70, 1.2, 0, 0 },
+        { 70, 3, 0, -0.9 },
+        { 70, 3, 9, 9 },
+        { 80, 3, 0, 0 } })
+    {
+      view.Azimuth = azimuth;
+      view.Distance = distance;
+      view.Pan[0] = panX;
+      view.Pan[1] = panY;
+      vtkImageData* image = kept.Render(view);
+      const vtkDataArray* cellIds = image->GetPointData()->GetArray("CellId");
+      EXPECT_TRUE(plane == nullptr || cellIds == plane) << "the plane is kept";
+      plane = cellIds;
+      Rig fresh(this->Input);
+      fresh.Filter->FitCameraToInputOff();
+      fresh.Filter->SetSize(width, height);
+      vtkImageData* expected = fresh.Render(view);
+      SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height) + ", azimuth " +
+        std::to_string(azimuth) + ", distance " + std::to_string(distance) + ", pan " +
+        std::to_string(panX) + ", " + std::to_string(panY));
+      const std::string got = Bytes(image, "CellId"), want = Bytes(expected, "CellId");
+      ASSERT_FALSE(want.empty());
+      EXPECT_TRUE(got == want) << "CellId differs: " << FirstDifference(got, want, 8);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
