@@ -19,7 +19,8 @@
 // The resolve's part at one sample per pixel only; QualityRenderer runs the pass over the
 // samples otherwise. Without the ErrorEstimate image (the summary alone), under the lights and
 // materials FlatErrorBoundOfMesh.h takes, the shade bounds nothing and the resolve reads one
-// bound per block of polygon ids, found before the render (QualityRenderer::findBlockBounds).
+// bound per block of polygon ids, found after the raster for the blocks it shows
+// (QualityRenderer::findBlockBounds, called through beforeResolve).
 
 #include <atomic>
 #include <cstddef>
@@ -72,6 +73,10 @@ struct EstimateHook {
   // The resolve reads fixedBounds[id >> boundShift]: with the summary-only estimate, one bound
   // per block of polygons (QualityRenderer.cpp, FlatErrorBoundOfMesh.h), the shade none.
   int boundShift = 0;
+  // Called once the frame's shown polygons are final (Renderer::shownPolygons), before the
+  // resolve reads fixedBounds (null: nothing to call): the summary-only estimate finds its
+  // block bounds there, only for the blocks that show (QualityRenderer::findBlockBounds).
+  FunctionRef<void()> beforeResolve;
   std::unique_ptr<std::atomic<bool>[]> bounded;  // per mesh: the shade phase bounded it
 
   // The resolve's part, at one sample per pixel (null rows: none). Out: per pixel row its

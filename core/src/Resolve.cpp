@@ -223,6 +223,7 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
   const PixelBounds viewport = grid.viewport();
   // The estimate reads the band's colors right after it is resolved: from the caches.
   const bool estimatesRows = context.estimate && context.estimate->rows;
+  if (context.estimate && context.estimate->beforeResolve) context.estimate->beforeResolve();
   const int rowsPerTask = estimatesRows ? kRowsPerEstimatingTask : kRowsPerTask;
   const int bands = (viewport.y1 - viewport.y0 + rowsPerTask) / rowsPerTask;
   const std::size_t colorBytes = static_cast<std::size_t>(viewport.x1 - viewport.x0 + 1) *
