@@ -22,6 +22,7 @@
 // bound per block of polygon ids, found after the raster for the blocks it shows
 // (QualityRenderer::findBlockBounds, called through beforeResolve).
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -107,6 +108,10 @@ class ResolvedBandEstimate {
   // Rows [y0, through] are resolved (through ≤ y1, not less than the last call's): estimates
   // every row whose neighbours are, all of them once through is y1.
   void resolvedThrough(int through);
+  // Where the resolve may write the covered span (coveredSpan's) of each of the band's rows,
+  // row y0 + i at [i], before resolvedThrough passes it: then that row's ids are not read
+  // again to find it. A row left without one is found from its ids.
+  std::array<int, 2>* resolvedSpans();
 
  private:
   const EstimateHook& hook_;
