@@ -183,9 +183,10 @@ int main(int argc, char** argv) {
   if (sizes.empty()) sizes = {500, 1000};
   if (frames < 1 || rounds < 1 || badSide ||
       std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
-    std::fprintf(stderr,
-                 "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
-                 "                           [--phases] [--only off|on] [--per-pixel] [--headlight]\n");
+    std::fprintf(
+        stderr,
+        "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
+        "                           [--phases] [--only off|on] [--per-pixel] [--headlight]\n");
     return 2;
   }
   std::printf(
