@@ -891,11 +891,12 @@ void QualityRenderer::estimateSummary(const Frame& frame, const FramebufferView&
 // fixed point) for the summary-only estimate, called by the render between its raster and its
 // resolve (EstimateHook::beforeResolve): per mesh, each block of its polygons that shows one
 // bounded from what they share (largestFlatBound); a block of ids that holds the end of one
-// mesh and the start of the next takes the larger of those that show. The resolve reads a
-// block's bound only for the ids of the id plane, every one shown (the raster's flags are
-// read from it): the blocks that show none (the far side of a closed surface, about half)
-// are left 0. Under directional lights alone the bounds do not depend on the camera: kept per
-// mesh version (MeshTerms::fixedBlockBounds).
+// mesh and the start of the next takes the larger. The resolve reads a block's bound only for
+// the ids of the id plane, every one shown (the raster's flags are read from it): the blocks
+// that show none (the far side of a closed surface, about half) are left 0. Under directional
+// lights alone the bounds do not depend on the camera: kept per mesh version
+// (MeshTerms::fixedBlockBounds) and taken whole (testing which show would cost more than the
+// merge).
 void QualityRenderer::findBlockBounds(const Frame& frame) {
   const std::span<const std::uint8_t> shown = renderer_.shownPolygons();
   FACET_ASSERT(shown.size() == frame.firstPolygon.back());
@@ -939,7 +940,6 @@ void QualityRenderer::findBlockBounds(const Frame& frame) {
     const std::vector<std::uint16_t>& bounds = kept ? terms.fixedBlockBounds : meshBlockBounds_;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
       const auto [from, to] = blockIds(b);
-      if (kept && !detail::anyShown(shown.data(), from, to)) continue;
       for (std::size_t g = from / detail::kBoundBlock; g <= (to - 1) / detail::kBoundBlock; ++g)
         blockBounds_[g] = std::max(blockBounds_[g], bounds[b]);
     }
