@@ -5,7 +5,7 @@
 // the moment weighs on both alike; CPU time of the process (CLOCK_PROCESS_CPUTIME_ID).
 //
 //   facet_estimate_cost [segments...] [--frames N] [--rounds R] [--phases] [--only off|on]
-//                       [--per-pixel]
+//                       [--per-pixel] [--headlight]
 //
 // Per sphere (segments around; ~2·segments² triangles: 500 → 500k, 1000 → 2M) and round:
 // the median CPU of a frame off and on and the ratio, the estimate's own wall time outside the
@@ -22,6 +22,8 @@
 // --per-pixel: the estimate asks for the ErrorEstimate image too, which takes the per-pixel
 // estimate (every polygon's bound per frame, the 3 × 3 rule with it) in place of the
 // summary-only one (QualityRenderer.cpp, estimateSummary): its cost and figures to compare.
+// --headlight: the light is the filter's default, vtkRenderer's headlight (not positional: a
+// DirectionalLight from the eye to the focal point), in place of the point light at the eye.
 
 #include <algorithm>
 #include <chrono>
@@ -86,7 +88,8 @@ void printPhases(const PhaseSeconds& off, const PhaseSeconds& on) {
   std::printf("\n");
 }
 
-void measure(int segments, int frames, int round, Side side, bool phases, bool perPixel) {
+void measure(int segments, int frames, int round, Side side, bool phases, bool perPixel,
+             bool headlight) {
   const Mesh sphere = testing::makeUvSphere(segments, segments + 2);
   Camera camera = testing::fitCamera(sphere);
   Scene scene;
@@ -96,7 +99,11 @@ void measure(int segments, int frames, int round, Side side, bool phases, bool p
   PointLight light;
   light.position = camera.position;
   light.attenuation = QuadraticAttenuation{1.0, 0.0, 0.0};
-  scene.lights.lights.push_back(light);
+  if (headlight) {
+    scene.lights.lights.push_back(DirectionalLight{camera.focalPoint - camera.position});
+  } else {
+    scene.lights.lights.push_back(light);
+  }
   scene.lights.ambient.intensity = 0.0;
 
   Renderer plainRenderer, estimatingRenderer;
@@ -152,13 +159,15 @@ int main(int argc, char** argv) {
   std::vector<int> sizes;
   int frames = 16, rounds = 3;
   Side side = Side::Both;
-  bool phases = false, badSide = false, perPixel = false;
+  bool phases = false, badSide = false, perPixel = false, headlight = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--phases") {
       phases = true;
     } else if (arg == "--per-pixel") {
       perPixel = true;
+    } else if (arg == "--headlight") {
+      headlight = true;
     } else if (arg == "--only" && i + 1 < argc) {
       const std::string which = argv[++i];
       side = which == "off" ? Side::Off : Side::On;
@@ -174,9 +183,10 @@ int main(int argc, char** argv) {
   if (sizes.empty()) sizes = {500, 1000};
   if (frames < 1 || rounds < 1 || badSide ||
       std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
-    std::fprintf(stderr,
-                 "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
-                 "                           [--phases] [--only off|on] [--per-pixel]\n");
+    std::fprintf(
+        stderr,
+        "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
+        "                           [--phases] [--only off|on] [--per-pixel] [--headlight]\n");
     return 2;
   }
   std::printf(
@@ -185,6 +195,6 @@ int main(int argc, char** argv) {
   std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int round = 1; round <= rounds; ++round) {
     for (const int segments : sizes)
-      measure(segments, frames, round, side, phases, perPixel);
+      measure(segments, frames, round, side, phases, perPixel, headlight);
   }
 }

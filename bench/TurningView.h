@@ -27,11 +27,16 @@ inline Camera turned(Camera camera, double degrees) {
   return camera;
 }
 
-// Turns `camera` by `degrees` and moves the scene's headlight (its first light, a point
-// light) to the new eye.
+// Turns `camera` by `degrees` and moves the scene's headlight (its first light: a point light
+// at the eye, or a directional one from the eye to the focal point) with it.
 inline void turnView(Camera& camera, Scene& scene, double degrees) {
   camera = turned(camera, degrees);
-  std::get<PointLight>(scene.lights.lights.at(0)).position = camera.position;
+  Light& headlight = scene.lights.lights.at(0);
+  if (auto* directional = std::get_if<DirectionalLight>(&headlight)) {
+    directional->direction = camera.focalPoint - camera.position;
+  } else {
+    std::get<PointLight>(headlight).position = camera.position;
+  }
 }
 
 }  // namespace facet::bench

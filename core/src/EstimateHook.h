@@ -19,8 +19,10 @@
 // The resolve's part at one sample per pixel only; QualityRenderer runs the pass over the
 // samples otherwise. Without the ErrorEstimate image (the summary alone), under the lights and
 // materials FlatErrorBoundOfMesh.h takes, the shade bounds nothing and the resolve reads one
-// bound per block of polygon ids, found before the render (QualityRenderer::findBlockBounds).
+// bound per block of polygon ids, found after the raster for the blocks it shows
+// (QualityRenderer::findBlockBounds, called through beforeResolve).
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -72,6 +74,10 @@ struct EstimateHook {
   // The resolve reads fixedBounds[id >> boundShift]: with the summary-only estimate, one bound
   // per block of polygons (QualityRenderer.cpp, FlatErrorBoundOfMesh.h), the shade none.
   int boundShift = 0;
+  // Called once the frame's shown polygons are final (Renderer::shownPolygons), before the
+  // resolve reads fixedBounds (null: nothing to call): the summary-only estimate finds its
+  // block bounds there, only for the blocks that show (QualityRenderer::findBlockBounds).
+  FunctionRef<void()> beforeResolve;
   std::unique_ptr<std::atomic<bool>[]> bounded;  // per mesh: the shade phase bounded it
 
   // The resolve's part, at one sample per pixel (null rows: none). Out: per pixel row its
@@ -102,6 +108,10 @@ class ResolvedBandEstimate {
   // Rows [y0, through] are resolved (through ≤ y1, not less than the last call's): estimates
   // every row whose neighbours are, all of them once through is y1.
   void resolvedThrough(int through);
+  // Where the resolve may write the covered span (coveredSpan's) of each of the band's rows,
+  // row y0 + i at [i], before resolvedThrough passes it: then that row's ids are not read
+  // again to find it. A row left without one is found from its ids.
+  std::array<int, 2>* resolvedSpans();
 
  private:
   const EstimateHook& hook_;

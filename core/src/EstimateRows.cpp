@@ -435,10 +435,10 @@ void EstimateSpace::resize(int sampleWidth, int gridSide) {
   pixels.assign(static_cast<std::size_t>(width / side), 0);
 }
 
-void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
+void EstimateSpace::findMaxima(const EstimateGrid& grid, int r, const std::array<int, 2>* span) {
   const std::size_t row = static_cast<std::size_t>(r) * width;
   const std::int32_t* ids = grid.ids + row;
-  const auto [first, last] = coveredSpan(ids, width);
+  const auto [first, last] = span ? *span : coveredSpan(ids, width);
   EstimateField* out = at(maxima[r % 3]);
   const auto [wasFirst, wasLast] = written[r % 3];
   for (int k = 0; k < planes[r % 3]; ++k)
@@ -540,6 +540,11 @@ ResolvedBandEstimate::ResolvedBandEstimate(const EstimateHook& hook, const Rgba8
             y0,  y1,     hook.boundShift},
       next_(y0 - 1) {
   resolvedBandSpace.resize(width, 1);
+  resolvedBandSpace.bandSpans.assign(static_cast<std::size_t>(y1 - y0 + 1), {-1, -1});
+}
+
+std::array<int, 2>* ResolvedBandEstimate::resolvedSpans() {
+  return resolvedBandSpace.bandSpans.data();
 }
 
 void ResolvedBandEstimate::resolvedThrough(int through) {
@@ -549,7 +554,12 @@ void ResolvedBandEstimate::resolvedThrough(int through) {
   const int last = through >= grid_.ownLast ? grid_.ownLast + 1 : through;
   for (; next_ <= last; ++next_) {
     const int r = next_;
-    if (r >= 0 && r < hook_.height) space.findMaxima(grid_, r);
+    if (r >= 0 && r < hook_.height) {
+      const bool own = r >= grid_.ownFirst && r <= grid_.ownLast;
+      const std::array<int, 2>* span =
+          own ? &space.bandSpans[static_cast<std::size_t>(r - grid_.ownFirst)] : nullptr;
+      space.findMaxima(grid_, r, span && (*span)[0] >= 0 ? span : nullptr);
+    }
     const int y = r - 1;
     if (y < grid_.ownFirst) continue;
     if (!image) {  // the sums alone, in the same pass

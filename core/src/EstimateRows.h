@@ -143,12 +143,14 @@ struct EstimateSpace {
   std::vector<EstimateField> zeros;
   std::vector<std::uint32_t> samples;  // the estimates of a pixel row's sample rows
   std::vector<std::uint32_t> pixels;   // a pixel row's, with more than one sample
+  // A resolved band's rows' covered spans, when the resolve finds them (EstimateHook.h).
+  std::vector<std::array<int, 2>> bandSpans;
 
   void resize(int sampleWidth, int gridSide);
   // Sample row r's row maxima into maxima[r % 3]: the fields of its covered span and of two
   // samples either side (the neighbours' fields that maxima read), the maxima over one sample
-  // either side; zero elsewhere.
-  void findMaxima(const EstimateGrid& grid, int r);
+  // either side; zero elsewhere. `span`: the row's coveredSpan when the caller has it.
+  void findMaxima(const EstimateGrid& grid, int r, const std::array<int, 2>* span = nullptr);
   // The estimates of sample row r (its maxima and its neighbours' found) into samples' row
   // r % side; 0 outside its covered span where `whole` (else left as they were).
   void estimateSamples(const EstimateGrid& grid, int r, bool whole);

@@ -60,10 +60,20 @@ struct BlockBoundSetup {
     double magnitude = 0.0;  // the light position's largest coordinate magnitude
     bool unattenuated = false, constant = false;
     double factor = 1.0;  // the attenuation at distance 0 (all of it when constant)
+    friend bool operator==(const Source&, const Source&) = default;
   };
   std::vector<Source> lights;
   double slope = 1.0, diffuseMax = 1.0, kappa = 0.0;
   glm::dvec3 scale{0.0};  // Kd·|Cd|, Kd with its margin
+
+  // Every light directional: a block's bound is then its normal spread's alone (no light
+  // position, no distance: E = 1, β = 0), the same for every frame of a mesh version under
+  // an equal setup, wherever the camera and the lights' directions are.
+  bool cameraIndependent() const {
+    return std::all_of(lights.begin(), lights.end(),
+                       [](const Source& source) { return source.point == nullptr; });
+  }
+  friend bool operator==(const BlockBoundSetup&, const BlockBoundSetup&) = default;
 };
 std::optional<BlockBoundSetup> prepareBlockBound(const LightSet& lights,
                                                  const PreparedMaterial& material,

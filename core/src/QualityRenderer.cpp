@@ -314,6 +314,11 @@ struct QualityRenderer::MeshTerms {
   // what those with a normal share, and the polygons without one.
   std::vector<detail::BlockExtent> blocks;
   std::vector<std::size_t> degenerate;
+  // Under directional lights alone, the blocks' bounds (fixedBoundOf) for the setup they were
+  // found for: the same every frame until the mesh version, the lights' colors or the
+  // material change (BlockBoundSetup::cameraIndependent).
+  std::optional<detail::BlockBoundSetup> fixedSetup;
+  std::vector<std::uint16_t> fixedBlockBounds;
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
@@ -809,7 +814,10 @@ void QualityRenderer::hookUp(
   hook.facingLighting = facing;
   hook.materials = frame.batchMaterials.data();
   hook.boundOne = boundOne;
-  if (summary) findBlockBounds(frame);
+  if (summary) {  // found once the render's raster has marked the shown polygons
+    const std::size_t ids = frame.firstPolygon.back();
+    blockBounds_.assign(evenCount((ids + detail::kBoundBlock - 1) / detail::kBoundBlock), 0);
+  }
   hook.bounds = summary ? nullptr : polygonBounds_.data();
   hook.fixedBounds = summary ? blockBounds_.data() : fixedBounds_.data();
   hook.boundShift = summary ? detail::kBoundBlockShift : 0;
@@ -850,7 +858,7 @@ void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook
 // The summary-only estimate (QualityStats::predicted*, no image; flat at one sample per
 // pixel under lights and materials largestFlatBound takes): the per-pixel rule of the estimate
 // with each polygon's bound b_q replaced by its block's, B ≥ b_q (FlatErrorBoundOfMesh.h),
-// found before the render (findBlockBounds) and read by the resolve (EstimateHook.h). Every pixel's
+// found after the raster (findBlockBounds) and read by the resolve (EstimateHook.h). Every pixel's
 // estimate max_q (D(c_p, c_q) + B_q) + 0.5 is then at least the per-pixel estimate's, in the
 // fixed point too (⌈B·unit⌉ ≥ ⌈b·unit⌉), so the RMSE and maximum are (tested): looser where
 // a block's worst polygon is worse than the pixel's, and no bound per polygon per frame.
@@ -879,34 +887,61 @@ void QualityRenderer::estimateSummary(const Frame& frame, const FramebufferView&
   stats.estimateSeconds = secondsSince(start);
 }
 
-// The bounds of the blocks of polygon ids (blockBounds_, EstimateRows.h's fixed point, an even
-// count) for the summary-only estimate: per mesh, each block of its polygons bounded from
-// what they share (largestFlatBound); a block of ids that holds the end of one mesh and the
-// start of the next takes the larger.
+// The bounds of the blocks of polygon ids (blockBounds_, sized by hookUp; EstimateRows.h's
+// fixed point) for the summary-only estimate, called by the render between its raster and its
+// resolve (EstimateHook::beforeResolve): per mesh, each block of its polygons that shows one
+// bounded from what they share (largestFlatBound); a block of ids that holds the end of one
+// mesh and the start of the next takes the larger. The resolve reads a block's bound only for
+// the ids of the id plane, every one shown (the raster's flags are read from it): the blocks
+// that show none (the far side of a closed surface, about half) are left 0. Under directional
+// lights alone the bounds do not depend on the camera: kept per mesh version
+// (MeshTerms::fixedBlockBounds) and taken whole (testing which show would cost more than the
+// merge).
 void QualityRenderer::findBlockBounds(const Frame& frame) {
-  const std::size_t ids = frame.firstPolygon.back();
-  blockBounds_.assign(evenCount((ids + detail::kBoundBlock - 1) / detail::kBoundBlock), 0);
+  const std::span<const std::uint8_t> shown = renderer_.shownPolygons();
+  FACET_ASSERT(shown.size() == frame.firstPolygon.back());
+  FACET_ASSERT(frame.terms.data() == terms_.data());
+  std::fill(blockBounds_.begin(), blockBounds_.end(), 0);
   for (std::size_t m = 0; m < frame.terms.size(); ++m) {
-    const std::vector<detail::BlockExtent>& blocks = frame.terms[m].blocks;
+    MeshTerms& terms = terms_[m];
     const SceneMesh& mesh = frame.scene.meshes[m];
     const glm::dvec3 surface = mesh.mesh.polygonColors.empty()
                                    ? glm::min(glm::dvec3(mesh.material.color), kMaxRadiance)
                                    : glm::dvec3(1.0);  // 8-bit colours
-    const std::optional<detail::BlockBoundSetup> setup =
+    std::optional<detail::BlockBoundSetup> setup =
         detail::prepareBlockBound(frame.scene.lights, frame.materials[m], surface);
     FACET_ASSERT(setup.has_value());  // summaryApplies
-    meshBlockBounds_.resize(blocks.size());
-    renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t b = begin; b < end; ++b)
-        meshBlockBounds_[b] =
-            detail::fixedBoundOf(roundedUp(detail::largestFlatBound(*setup, blocks[b])));
-    });
     const std::size_t first = frame.firstPolygon[m], count = mesh.mesh.polygons.count;
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const auto blockIds = [&](std::size_t b) {  // the ids of the mesh's block b
       const std::size_t from = first + b * detail::kBoundBlock;
-      const std::size_t to = std::min(from + detail::kBoundBlock, first + count) - 1;
-      for (std::size_t g = from / detail::kBoundBlock; g <= to / detail::kBoundBlock; ++g)
-        blockBounds_[g] = std::max(blockBounds_[g], meshBlockBounds_[b]);
+      return std::array<std::size_t, 2>{from, std::min(from + detail::kBoundBlock, first + count)};
+    };
+    const std::vector<detail::BlockExtent>& blocks = terms.blocks;
+    const auto boundOf = [&](std::size_t b) {
+      return detail::fixedBoundOf(roundedUp(detail::largestFlatBound(*setup, blocks[b])));
+    };
+    const bool kept = setup->cameraIndependent();
+    if (kept && terms.fixedSetup != setup) {
+      terms.fixedBlockBounds.resize(blocks.size());
+      renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b)
+          terms.fixedBlockBounds[b] = boundOf(b);
+      });
+      terms.fixedSetup = std::move(setup);
+    } else if (!kept) {
+      meshBlockBounds_.resize(blocks.size());
+      renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+          const auto [from, to] = blockIds(b);
+          meshBlockBounds_[b] = detail::anyShown(shown.data(), from, to) ? boundOf(b) : 0;
+        }
+      });
+    }
+    const std::vector<std::uint16_t>& bounds = kept ? terms.fixedBlockBounds : meshBlockBounds_;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const auto [from, to] = blockIds(b);
+      for (std::size_t g = from / detail::kBoundBlock; g <= (to - 1) / detail::kBoundBlock; ++g)
+        blockBounds_[g] = std::max(blockBounds_[g], bounds[b]);
     }
   }
 }
@@ -1007,6 +1042,8 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
         g == 1 && !settings.errorEstimateImage && summaryApplies(scene, fusedFrame->materials);
     hookUp(*fusedFrame, facing ? &*facing : nullptr, boundOne, summary, hook);
   }
+  auto findBlocks = [&] { findBlockBounds(*fusedFrame); };
+  if (summary) hook.beforeResolve = findBlocks;
   struct Unhook {  // also when the render throws
     Renderer& renderer;
     ~Unhook() { renderer.estimateHook_ = nullptr; }

@@ -8,6 +8,7 @@
 // target gives the scalar conversion's bytes.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -116,14 +117,58 @@ HWY_INLINE void colorRow(const std::uint32_t* colors, std::uint32_t background,
       [&](std::size_t x) { return colorGroup(colors, backgroundColor, ids + x); });
 }
 
-void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, bool stream) {
+// colorRow<false>, also finding the span [first, last) of the row's covered pixels
+// (coveredSpan's, EstimateRows.h; {count, count} when none) from the test of each vector for
+// the background that the colors take anyway: the estimate's pass does not read the row's ids
+// again for it.
+HWY_INLINE std::array<int, 2> colorRowFindingSpan(const std::uint32_t* colors,
+                                                  std::uint32_t background, const std::int32_t* ids,
+                                                  std::uint32_t* color, std::size_t count) {
+  const DC di;
+  const DCU du;
+  const std::size_t lanes = hn::Lanes(du);
+  const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
+  std::size_t first = count, last = 0;  // within the first and the last vector not background
+  std::size_t x = 0;
+  for (; x + lanes <= count; x += lanes) {
+    const hn::Vec<DC> id = hn::LoadU(di, ids + x);
+    const hn::Mask<DC> none = id < hn::Zero(di);
+    if (hn::AllTrue(di, none)) {
+      hn::StoreU(backgroundColor, du, color + x);
+      continue;
+    }
+    if (first == count) first = x;
+    last = x + lanes;
+    const hn::Vec<DCU> shown = hn::GatherIndex(du, colors, hn::IfThenZeroElse(none, id));
+    hn::StoreU(hn::IfThenElse(hn::RebindMask(du, none), backgroundColor, shown), du, color + x);
+  }
+  for (; x < count; ++x) {
+    color[x] = ids[x] < 0 ? background : colors[ids[x]];
+    if (ids[x] < 0) continue;
+    if (first == count) first = x;
+    last = x + 1;
+  }
+  while (first < last && ids[first] < 0)
+    ++first;
+  while (last > first && ids[last - 1] < 0)
+    --last;
+  const int end = static_cast<int>(count);
+  return first < last ? std::array<int, 2>{static_cast<int>(first), static_cast<int>(last)}
+                      : std::array<int, 2>{end, end};
+}
+
+void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, bool stream,
+                   std::array<int, 2>* spans) {
   const auto* colors = reinterpret_cast<const std::uint32_t*>(context.colors);
   const std::uint32_t background = wordOf(context.background);
   const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
   for (int y = pixels.y0; y <= pixels.y1; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * context.width + pixels.x0;
     auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
-    if (stream) {
+    if (spans) {
+      spans[y - pixels.y0] =
+          colorRowFindingSpan(colors, background, context.polygonId + row, color, width);
+    } else if (stream) {
       colorRow<true>(colors, background, context.polygonId + row, color, width);
     } else {
       colorRow<false>(colors, background, context.polygonId + row, color, width);
@@ -223,12 +268,14 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
   const PixelBounds viewport = grid.viewport();
   // The estimate reads the band's colors right after it is resolved: from the caches.
   const bool estimatesRows = context.estimate && context.estimate->rows;
+  if (context.estimate && context.estimate->beforeResolve) context.estimate->beforeResolve();
   const int rowsPerTask = estimatesRows ? kRowsPerEstimatingTask : kRowsPerTask;
   const int bands = (viewport.y1 - viewport.y0 + rowsPerTask) / rowsPerTask;
   const std::size_t colorBytes = static_cast<std::size_t>(viewport.x1 - viewport.x0 + 1) *
                                  static_cast<std::size_t>(viewport.y1 - viewport.y0 + 1) *
                                  sizeof(Rgba8);
   const bool stream = !estimatesRows && colorBytes >= kStreamedColorBytes;
+  const bool wholeRows = viewport.x0 == 0 && viewport.x1 + 1 == context.width;
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
     const int y0 = viewport.y0 + static_cast<int>(b) * rowsPerTask;
     const int y1 = std::min(viewport.y1, y0 + rowsPerTask - 1);
@@ -239,7 +286,11 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
     }
     for (int s0 = y0; s0 <= y1; s0 += kRowsPerTask) {  // a step's rows still in cache after it
       const int s1 = std::min(y1, s0 + kRowsPerTask - 1);
-      HWY_DYNAMIC_DISPATCH(ResolveColors)(context, {viewport.x0, s0, viewport.x1, s1}, stream);
+      // The rows' covered spans, found as they resolve, for the estimate (whole rows only).
+      std::array<int, 2>* spans =
+          estimate && wholeRows ? estimate->resolvedSpans() + (s0 - y0) : nullptr;
+      HWY_DYNAMIC_DISPATCH(ResolveColors)
+      (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans);
       if (estimate) estimate->resolvedThrough(s1);
       if (context.resolvedRows) (*context.resolvedRows)(*context.target, s0, s1);
     }

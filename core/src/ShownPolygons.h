@@ -34,4 +34,19 @@ void forEachShownPolygon(const std::uint8_t* flags, std::size_t begin, std::size
   }
 }
 
+// Whether any of flags [begin, end) is set, eight at a time, from the first (a block of
+// polygon ids is shown iff one of its polygons is: most shown blocks answer at their first
+// eight, a block that shows none reads them all).
+inline bool anyShown(const std::uint8_t* flags, std::size_t begin, std::size_t end) {
+  std::size_t polygon = begin;
+  for (; polygon + 8 <= end; polygon += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, flags + polygon, sizeof word);
+    if (word != 0) return true;
+  }
+  for (; polygon < end; ++polygon)
+    if (flags[polygon]) return true;
+  return false;
+}
+
 }  // namespace facet::detail

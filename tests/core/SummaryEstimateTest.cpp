@@ -553,6 +553,16 @@ void expectAtLeastThePerPixelEstimate(const std::string& name, const Both& both)
   EXPECT_LE(both.fast.predictedRmse, both.fast.predictedMaxError) << name;
 }
 
+// A renderer's summary that kept facts from earlier frames (`kept`) is a fresh renderer's, and
+// at least the per-pixel estimate.
+void expectAFreshRenderersNumbers(const std::string& name, const QualityStats& kept,
+                                  const Scene& scene, const Camera& camera) {
+  const Both fresh = estimateBoth(scene, camera);
+  EXPECT_EQ(kept.predictedRmse, fresh.fast.predictedRmse) << name;
+  EXPECT_EQ(kept.predictedMaxError, fresh.fast.predictedMaxError) << name;
+  expectAtLeastThePerPixelEstimate(name, fresh);
+}
+
 // The summary against the per-pixel estimate (the ErrorEstimate image's, the summary it gives)
 // on spheres from 8 to 128 segments under each light: its maximum and RMSE are at least
 // those (how much more is printed).
@@ -624,12 +634,50 @@ TEST(SummaryEstimate, KeptPerMeshVersionAndSharedBlocksAcrossMeshes) {
           original[i] * glm::dvec3(stretch, stretch, 1.0) + glm::dvec3(0.0, 0.0, stretch - 1.0);
     ++scene.meshes[0].mesh.version;
     const QualityStats kept = quality.render(scene, {}, camera, framebuffer, summary);
-    const Both fresh = estimateBoth(scene, camera);
-    const std::string name = "stretch " + std::to_string(stretch);
-    EXPECT_EQ(kept.predictedRmse, fresh.fast.predictedRmse) << name;
-    EXPECT_EQ(kept.predictedMaxError, fresh.fast.predictedMaxError) << name;
-    expectAtLeastThePerPixelEstimate(name, fresh);
+    expectAFreshRenderersNumbers("stretch " + std::to_string(stretch), kept, scene, camera);
   }
+}
+
+// Under directional lights alone the blocks' bounds are kept per mesh version (they depend on
+// the normals' spread, not on the camera or the lights' directions: BlockBoundSetup::
+// cameraIndependent). One renderer turning the camera and the lights, then dimming a light,
+// then a material of another diffuse weight, then the mesh's points moved under a new
+// version, gives each frame a fresh renderer's numbers, at least the per-pixel estimate's.
+TEST(SummaryEstimate, DirectionalBoundsAreKeptUntilTheLightsMaterialOrMeshChange) {
+  Mesh sphere = makeUvSphere(40, 21);
+  const std::vector<glm::dvec3> original = sphere.points;
+  Material matte;
+  matte.diffuse = 0.9;
+  LightSet lights;
+  lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
+  lights.lights.push_back(DirectionalLight{{1, 0.5, -1}, Color(0.6f, 0.5f, 0.4f)});
+  Scene scene = oneMeshScene(sphere.view(), matte, lights);
+  scene.meshes[0].mesh.version = 1;
+  QualitySettings summary{.estimateError = true};
+  summary.errorEstimateImage = false;
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(120, 90);
+  std::vector<double> maxima;
+  for (int k = 0; k < 7; ++k) {
+    const double turn = 0.05 * k;
+    std::get<DirectionalLight>(scene.lights.lights[0]).direction = {-1 + turn, -1, -2};
+    if (k == 3) std::get<DirectionalLight>(scene.lights.lights[1]).intensity = 0.5;
+    if (k == 4) scene.meshes[0].material.diffuse = 0.6;
+    if (k == 5) {
+      for (std::size_t i = 0; i < sphere.points.size(); ++i)
+        sphere.points[i] = original[i] * glm::dvec3(1.6, 1.0, 1.0);
+      ++scene.meshes[0].mesh.version;
+    }
+    const Camera camera = fitCamera(makeUvSphere(8, 5, 1.8), {0.1 * turn, -0.2, -1});
+    const QualityStats kept = quality.render(scene, {}, camera, framebuffer, summary);
+    expectAFreshRenderersNumbers("frame " + std::to_string(k), kept, scene, camera);
+    maxima.push_back(kept.predictedMaxError);
+  }
+  // Dimming a light, a weaker material and a stretched sphere each moved the numbers.
+  EXPECT_NE(maxima[3], maxima[2]);
+  EXPECT_NE(maxima[4], maxima[3]);
+  EXPECT_NE(maxima[5], maxima[4]);
 }
 
 // A polygon without a normal (collinear corners) in view: it is in no block (its bound, 255,
