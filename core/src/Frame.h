@@ -127,6 +127,9 @@ struct Chunk {
   // front faces already painted, and an exact depth tie keeps the front face (writeFragment).
   std::vector<std::vector<std::uint32_t>> backBins;
   std::vector<std::vector<std::uint32_t>>& binsFor(bool last) { return last ? backBins : bins; }
+  // A two-pass frame's back-facing polygons (global ids, in draw order) that the front pass
+  // put off to the back pass (SetupPass, Setup.h).
+  std::vector<std::uint32_t> deferredBack;
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;

@@ -15,6 +15,7 @@
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "Binning.h"
+#include "Raster.h"
 #include "RasterTriangle.h"
 #include "SetupBatch.h"
 #include "facet/Error.h"
@@ -34,6 +35,7 @@ class SetupBatches : public EveryTargetTest {
   void TearDown() override {
     EveryTargetTest::TearDown();
     detail::enableSetupBatches(true);
+    detail::enableTwoPassFrames(true);
   }
   // Every target this CPU has, the best first and the portable one last.
   static std::vector<SimdTarget> targets() {
@@ -256,6 +258,19 @@ struct SceneCase {
   RenderOptions options;
 };
 
+// The same bytes and set-up counts.
+void expectSameRender(const Rendered& before, const Rendered& after) {
+  EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u) << "pixels differ";
+  const RenderStats &s = before.stats, &t = after.stats;
+  EXPECT_EQ(s.polygonsDrawn, t.polygonsDrawn);
+  EXPECT_EQ(s.polygonsCulled, t.polygonsCulled);
+  EXPECT_EQ(s.polygonsOutside, t.polygonsOutside);
+  EXPECT_EQ(s.polygonsDegenerate, t.polygonsDegenerate);
+  EXPECT_EQ(s.trianglesBinned, t.trianglesBinned);
+  EXPECT_EQ(s.trianglesClipped, t.trianglesClipped);
+  EXPECT_EQ(s.fragmentsWritten, t.fragmentsWritten);  // a dropped back face writes none
+}
+
 // Renders every case without batches, then with them on every target, and compares bytes and
 // the set-up's counts.
 void expectSameRenders(const std::vector<SceneCase>& cases,
@@ -270,16 +285,7 @@ void expectSameRenders(const std::vector<SceneCase>& cases,
       SCOPED_TRACE(target.name);
       detail::useSimdTarget(target.bits);
       ASSERT_STREQ(detail::simdTargetInUse(), target.name);
-      const Rendered after = renderScene(c.scene, c.camera, c.width, c.height, c.options);
-      EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u) << "pixels differ";
-      const RenderStats &s = before.stats, &t = after.stats;
-      EXPECT_EQ(s.polygonsDrawn, t.polygonsDrawn);
-      EXPECT_EQ(s.polygonsCulled, t.polygonsCulled);
-      EXPECT_EQ(s.polygonsOutside, t.polygonsOutside);
-      EXPECT_EQ(s.polygonsDegenerate, t.polygonsDegenerate);
-      EXPECT_EQ(s.trianglesBinned, t.trianglesBinned);
-      EXPECT_EQ(s.trianglesClipped, t.trianglesClipped);
-      EXPECT_EQ(s.fragmentsWritten, t.fragmentsWritten);
+      expectSameRender(before, renderScene(c.scene, c.camera, c.width, c.height, c.options));
     }
   }
 }
@@ -386,6 +392,62 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
                      optionsWith(Visibility::ZBuffer, threads)});
   }
   expectSameRenders(cases, targets());
+}
+
+// A sphere with a band of polygons left out and its far half first in polygon order: the
+// back faces show through the band, and most others hide behind the front faces.
+Mesh sphereWithBand(int theta) {
+  const Mesh sphere = makeUvSphere(theta, theta + 2);
+  Mesh banded;
+  banded.points = sphere.points;
+  const std::size_t polygons = sphere.offsets.size() - 1;
+  for (std::size_t p = 0; p < polygons; ++p) {
+    const auto begin = static_cast<std::size_t>(sphere.offsets[p]);
+    const auto end = static_cast<std::size_t>(sphere.offsets[p + 1]);
+    const glm::dvec3 corner = sphere.points[static_cast<std::size_t>(sphere.connectivity[begin])];
+    if (std::abs(corner.y - 0.2) < 0.15) continue;  // the band
+    banded.connectivity.insert(banded.connectivity.end(), sphere.connectivity.begin() + begin,
+                               sphere.connectivity.begin() + end);
+    banded.offsets.push_back(static_cast<std::int64_t>(banded.connectivity.size()));
+  }
+  return banded;
+}
+
+// A two-pass frame (Raster.h: every face drawn, back faces set up after the front faces are
+// painted, the hidden ones dropped) against the same frame in one pass: the same bytes and
+// counts, on every target and thread count, with the clipper and polygons of many corners.
+TEST_F(SetupBatches, TwoPassFramesRenderAsOnePassOnEveryTarget) {
+  const Mesh banded = sphereWithBand(120);
+  const Camera bandCamera = fitCamera(banded, {0.3, -0.2, -1.0});
+  const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
+  Camera bunnyCamera = fitCamera(bunny, {0.2, -0.3, -1.0});
+  bunnyCamera.nearClip *= 1.3;  // the clipper runs too
+  const Mesh strip = mixedStrip(12000, 7);
+  std::vector<SceneCase> cases;
+  for (int threads : {1, 2, 8}) {
+    const RenderOptions options = optionsWith(Visibility::ZBuffer, threads);
+    const std::string suffix = ", " + std::to_string(threads) + " threads";
+    cases.push_back({"sphere with a band cut out" + suffix, oneMeshScene(banded.view()), bandCamera,
+                     320, 240, options});
+    cases.push_back({"bunny" + suffix, oneMeshScene(bunny.view()), bunnyCamera, 640, 480, options});
+    cases.push_back({"triangles and quads" + suffix, oneMeshScene(strip.view()),
+                     pixelCamera(160, 120), 160, 120, options});
+  }
+  for (const SceneCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    detail::enableTwoPassFrames(false);
+    const Rendered before = renderScene(c.scene, c.camera, c.width, c.height, c.options);
+    detail::enableTwoPassFrames(true);
+    EXPECT_GT(before.stats.pixelsCovered, 0u);
+    for (const SimdTarget& target : targets()) {
+      SCOPED_TRACE(target.name);
+      use(target);
+      const Rendered after = renderScene(c.scene, c.camera, c.width, c.height, c.options);
+      expectSameRender(before, after);
+      EXPECT_EQ(before.stats.pixelsCovered, after.stats.pixelsCovered);
+      EXPECT_EQ(before.stats.plan.depthComplexity, after.stats.plan.depthComplexity);
+    }
+  }
 }
 
 // A bin entry's 30 bits of index (Binning.h): at the limit the set-up throws facet::Error
