@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <cstdlib>
+#include <string_view>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -316,8 +318,13 @@ bool paintBackTiles(PhaseRunner& runner, const TileGrid& grid, const RasterConte
 }
 
 namespace {
-std::atomic<bool> twoPassesOn{true};
-}
+// Off unless FACET_TWO_PASS_FRAMES=1 (the measurements of bench/core-frame-issue11.md,
+// section 18, with one build): it does not pay yet.
+std::atomic<bool> twoPassesOn{[] {
+  const char* value = std::getenv("FACET_TWO_PASS_FRAMES");
+  return value != nullptr && std::string_view(value) == "1";
+}()};
+}  // namespace
 
 void enableTwoPassFrames(bool on) {
   twoPassesOn = on;

@@ -58,7 +58,10 @@ bool paintFrontTiles(PhaseRunner& runner, const TileGrid& grid, const RasterCont
 bool paintBackTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,
                     std::vector<PaintCounts>& counts);
 
-// Tests: off, every frame's raster runs in one pass (the frame before two passes).
+// Whether frames that may (every face drawn, the depth test, no forced coarse depth) run in two
+// passes. Off by default: at 20k triangles the planes' round trip cost a third more, and at 500k
+// and 2M the back faces' second set-up cost what their dropped binning and painting saved
+// (bench/core-frame-issue11.md, section 18). For tests and the measurements that go on.
 void enableTwoPassFrames(bool on);
 bool twoPassFramesEnabled();
 

@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
@@ -35,7 +36,7 @@ class SetupBatches : public EveryTargetTest {
   void TearDown() override {
     EveryTargetTest::TearDown();
     detail::enableSetupBatches(true);
-    detail::enableTwoPassFrames(true);
+    detail::enableTwoPassFrames(false);
   }
   // Every target this CPU has, the best first and the portable one last.
   static std::vector<SimdTarget> targets() {
@@ -247,6 +248,63 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
         }
       }
     }
+  }
+}
+
+// A two-pass frame's back pass (SetupPass::Back): a batch given the front faces' blocks drops
+// as `hidden` exactly the lanes it would keep that hiddenBehind (RasterTriangle.h, scalar)
+// rejects, on every target, and keeps the others as without the blocks.
+TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
+  const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
+  std::vector<WindowVertex> corners = randomTriangles(20000, 13);
+  std::mt19937 random(17);
+  std::uniform_real_distribution<float> key(0.45f, 0.55f), block(0.4f, 0.7f), unit(0.0f, 1.0f);
+  for (WindowVertex& corner : corners)
+    corner.depth = key(random);
+  detail::FrontDepthBlocks blocks;
+  blocks.resize(grid);
+  for (std::size_t t = 0; t < grid.count(); ++t) {
+    float measured[detail::FrontDepthBlocks::kPerTile];
+    for (float& b : measured)
+      b = unit(random) < 0.1f ? -std::numeric_limits<float>::infinity() : block(random);
+    blocks.store(t, measured);
+  }
+  const std::size_t triangles = corners.size() / 3;
+  for (const SimdTarget& target : targets()) {
+    SCOPED_TRACE(target.name);
+    use(target);
+    std::size_t mismatches = 0, hidden = 0, kept = 0;
+    for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
+      TriangleBatch batch{};
+      for (int lane = 0; lane < kBatchSize; ++lane) {
+        for (int j = 0; j < 3; ++j)
+          batch.v[j][lane] = corners[3 * (first + lane) + j];
+        batch.triangle[lane] = lane % 7 != 3;
+      }
+      detail::BatchVerdicts without, with;
+      detail::classifyBatch(batch, grid, false, true, without);
+      detail::classifyBatch(batch, grid, false, true, with, &blocks);
+      ASSERT_EQ(with.kept() | with.hidden, without.kept());
+      ASSERT_EQ(with.kept() & with.hidden, 0u);
+      for (std::uint32_t rest = without.kept(); rest != 0; rest &= rest - 1) {
+        const int lane = std::countr_zero(rest);
+        const bool clockwise = (without.clockwise >> lane) & 1u;
+        const auto& samples = without.samples;
+        const PixelBounds box{samples.x0[lane], samples.y0[lane], samples.x1[lane],
+                              samples.y1[lane]};
+        const bool expected =
+            detail::hiddenBehind(batch.v[0][lane], batch.v[clockwise ? 2 : 1][lane],
+                                 batch.v[clockwise ? 1 : 2][lane], box, blocks);
+        const bool got = (with.hidden >> lane) & 1u;
+        if (got != expected && ++mismatches <= 5)
+          ADD_FAILURE() << "lane " << lane << " of batch " << first / kBatchSize << ": hidden "
+                        << got << ", hiddenBehind " << expected;
+        hidden += got, kept += !got;
+      }
+    }
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_GT(hidden, triangles / 50);
+    EXPECT_GT(kept, triangles / 50);
   }
 }
 
