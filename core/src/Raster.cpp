@@ -209,8 +209,8 @@ template <DepthMode kMode, bool kCoarse>
 
 // The painted tile's shown polygons marked, its keys made window depths (if asked), and its
 // planes written to the image's.
-void finishTile(const RasterContext& context, TilePlanes& local, const PixelBounds& tile,
-                PaintCounts& counts) {
+[[gnu::always_inline]] inline void finishTile(const RasterContext& context, TilePlanes& local,
+                                              const PixelBounds& tile, PaintCounts& counts) {
   // A tile nothing was written to shows only the background (most tiles around a small
   // object): no id to scan for, and the background's window depth everywhere. This holds
   // because every painter writes ids through writeFragment, which counts them: a painter that

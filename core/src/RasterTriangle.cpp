@@ -472,10 +472,12 @@ struct RejectMargin {
 };
 [[gnu::always_inline]] inline RejectMargin rejectMarginOf(const WindowVertex& a,
                                                           const WindowVertex& b,
-                                                          const WindowVertex& c, int extent) {
+                                                          const WindowVertex& c,
+                                                          const PixelBounds& box) {
   const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
   const double fineArea = edgeFunction(pa, pb, pc);
   if (!(fineArea > 0.0)) return {fineArea, 0.0};
+  const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
   const double dk1 = static_cast<double>(b.depth) - a.depth;
   const double dk2 = static_cast<double>(c.depth) - a.depth;
   const double slopeTimesArea = std::abs(dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) +
@@ -505,8 +507,7 @@ struct RejectMargin {
   const bool fromBlocks = blocks >= nearest;
   float farthest = fromBlocks ? blocks : farthestKeyDownTo(box, planes, nearest);
   if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
-  const RejectMargin bound =
-      rejectMarginOf(a, b, c, std::max(box.x1 - box.x0, box.y1 - box.y0) + 1);
+  const RejectMargin bound = rejectMarginOf(a, b, c, box);
   if (!(bound.fineArea > 0.0)) return false;
   if ((static_cast<double>(farthest) - nearest) * bound.fineArea >= bound.margin) return true;
   if (!fromBlocks) return false;
@@ -578,8 +579,7 @@ bool hiddenBehind(const WindowVertex& a, const WindowVertex& b, const WindowVert
   const float nearest = std::max(std::max(a.depth, b.depth), c.depth);
   const float farthest = front.over(box);
   if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
-  const RejectMargin bound =
-      rejectMarginOf(a, b, c, std::max(box.x1 - box.x0, box.y1 - box.y0) + 1);
+  const RejectMargin bound = rejectMarginOf(a, b, c, box);
   return bound.fineArea > 0.0 &&
          (static_cast<double>(farthest) - static_cast<double>(nearest)) * bound.fineArea >=
              bound.margin;
