@@ -22,6 +22,8 @@
 
 namespace facet::detail {
 
+struct BackBlock;  // MeshCache.h
+
 // A range of one mesh's points or polygons: the unit of the validation, transform and
 // shading tasks, which never straddle meshes.
 struct MeshRange {
@@ -61,6 +63,9 @@ struct FrameMesh {
   // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
   // shade phase from the points (an unversioned mesh).
   const glm::vec3* faceNormals = nullptr;
+  // Per back-face block, what the mesh version's measurement knows (MeshCache.h); null: an
+  // unversioned mesh. A two-pass frame's back pass may drop blocks whole (HiddenBlocks.h).
+  const BackBlock* backBlockFacts = nullptr;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }

@@ -7,6 +7,7 @@
 
 #include "Binning.h"
 #include "Clipper.h"
+#include "HiddenBlocks.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
 #include "SetupBatch.h"
@@ -323,8 +324,14 @@ class PolygonSetup {
   [[gnu::noinline]] void deferCulled(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
                                      int lanes) {
     const std::uint32_t used = (1u << lanes) - 1;
-    for (std::uint32_t rest = verdicts.culled & used; rest != 0; rest &= rest - 1)
-      defer(lanePolygon[std::countr_zero(rest)]);
+    const std::uint32_t culled = verdicts.culled & used;
+    std::vector<std::uint32_t>& list = chunk_.deferredBack;
+    std::size_t at = list.size();
+    list.resize(at + static_cast<std::size_t>(std::popcount(culled)));
+    std::uint32_t* out = list.data();
+    for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1)
+      out[at++] =
+          static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
   }
 
   [[gnu::noinline]] void defer(std::size_t polygon) {
@@ -537,27 +544,63 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
                          PointsT points, PolygonsT polygons, std::size_t first) {
   PolygonSetup<PointsT, PolygonsT, false> setup(context, chunk, mesh, points, polygons);
   const std::vector<std::uint32_t>& ids = chunk.deferredBack;
-  std::size_t end = first;
-  while (end < ids.size() && ids[end] >= mesh.firstPolygon && ids[end] < mesh.endPolygon())
-    ++end;
+  const auto endId = static_cast<std::uint32_t>(mesh.endPolygon());
+  const std::size_t end = static_cast<std::size_t>(
+      std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId) -
+      ids.begin());
+  // EXPERIMENT (HiddenBlocks.h): the deferred back faces of a block whose box is hidden
+  // behind the front blocks, dropped before any per-polygon work (counted as drawn). The ids
+  // ascend (z-buffer order): a block's are found by a binary search.
+  std::optional<HiddenBlockTest> blocks;
+  if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled())
+    blocks.emplace(context.transform, context.grid, *context.front);
+  // The end of the ids of the block of ids[k], and whether it is hidden.
+  const auto blockOf = [&](std::size_t k, bool& hidden) {
+    const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+    const auto next =
+        static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
+    hidden = blocks->hidden(mesh.backBlockFacts[block].box);
+    return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
+                                                     ids.begin() + static_cast<std::ptrdiff_t>(end),
+                                                     next) -
+                                    ids.begin());
+  };
+  // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
+  const auto forEachShown = [&](const auto& each) {
+    for (std::size_t k = first; k < end;) {
+      bool hidden = false;
+      const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
+      if (blocks) hiddenBlockDebug(hidden, blockEnd - k);
+      if (hidden) {
+        chunk.counts.drawn += blockEnd - k;
+        chunk.counts.trianglesBinned += blockEnd - k;
+        k = blockEnd;
+        continue;
+      }
+      for (; k < blockEnd; ++k)
+        each(ids[k] - mesh.firstPolygon);
+    }
+  };
   if (!setupBatchesEnabled()) {
-    for (std::size_t k = first; k < end; ++k)
-      setup.run(ids[k] - mesh.firstPolygon);
+    forEachShown([&](std::size_t polygon) { setup.run(polygon); });
     return end;
   }
   TriangleBatch batch{};
   BatchVerdicts verdicts;
   std::size_t lanePolygon[kBatchSize];
-  for (std::size_t k = first; k < end; k += kBatchSize) {
-    const int lanes = static_cast<int>(std::min<std::size_t>(kBatchSize, end - k));
-    for (int lane = 0; lane < lanes; ++lane) {
-      lanePolygon[lane] = ids[k + static_cast<std::size_t>(lane)] - mesh.firstPolygon;
-      setup.loadOne(lanePolygon[lane], batch, lane);
-    }
+  int lanes = 0;
+  const auto settleBatch = [&] {
     std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
     classifyBatch(batch, context.grid, false, true, verdicts, context.front);
     setup.settle(verdicts, lanePolygon, lanes);
-  }
+    lanes = 0;
+  };
+  forEachShown([&](std::size_t polygon) {
+    lanePolygon[lanes] = polygon;
+    setup.loadOne(polygon, batch, lanes);
+    if (++lanes == kBatchSize) settleBatch();
+  });
+  if (lanes > 0) settleBatch();
   return end;
 }
 
