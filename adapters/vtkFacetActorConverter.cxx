@@ -228,11 +228,12 @@ vtkIdType vtkFacetActorConverter::CellIdOf(std::int64_t polygon) const
 void vtkFacetActorConverter::CellIdsOf(const std::int32_t* polygonIds,
   vtkIdType* cellIds,
   vtkIdType begin,
-  vtkIdType end) const
+  vtkIdType end,
+  bool stream) const
 {
   if (this->Parts.size() == 1)
   {
-    this->Parts[0]->Geometry.CellIdsOf(polygonIds, cellIds, begin, end);
+    this->Parts[0]->Geometry.CellIdsOf(polygonIds, cellIds, begin, end, stream);
     return;
   }
   for (vtkIdType i = begin; i < end; ++i)

@@ -67,11 +67,13 @@ public:
 
   /// The cell of the actor's polygon `polygon` (0 = its first) in its part's vtkPolyData.
   vtkIdType CellIdOf(std::int64_t polygon) const;
-  /// CellIdOf for the ids in [begin, end) of an id plane of the actor alone (-1: -1).
+  /// CellIdOf for the ids in [begin, end) of an id plane of the actor alone (-1: -1);
+  /// `stream` as vtkFacetPolyDataConverter::CellIdsOf.
   void CellIdsOf(const std::int32_t* polygonIds,
     vtkIdType* cellIds,
     vtkIdType begin,
-    vtkIdType end) const;
+    vtkIdType end,
+    bool stream) const;
 
   /// How many parts the last Update converted (0: every conversion was kept).
   int GetNumberOfConversions() const;

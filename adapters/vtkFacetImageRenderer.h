@@ -46,6 +46,7 @@
 #include "vtkUnsignedCharArray.h" // a member below
 
 #include "facet/HugePageAllocator.h"
+#include "facet/IdPlane.h"
 #include "facet/Renderer.h"
 
 #include <chrono>
@@ -164,6 +165,15 @@ public:
 
   /// Runs work(begin, end) over the pixels on the renderer's threads.
   void ForEachPixelBlock(const std::function<void(vtkIdType begin, vtkIdType end)>& work);
+
+  /// Whether an IdMap streams its id planes past the caches (64-bit ids of this image make a
+  /// plane of facet::kStreamedPlaneBytes or more).
+  bool StreamsIdPlanes() const
+  {
+    return static_cast<std::size_t>(this->Width) * static_cast<std::size_t>(this->Height) *
+      sizeof(vtkIdType) >=
+      facet::kStreamedPlaneBytes;
+  }
 
   /// The last render's polygon id plane (before the IdMap), width × height.
   const std::int32_t* GetPolygonIds() const { return this->PolygonIds.data(); }

@@ -54,11 +54,13 @@ public:
 
   /// The vtkPolyData cell id of a Facet polygon id; -1 for the background id (-1).
   vtkIdType CellIdOf(std::int32_t polygonId) const;
-  /// CellIdOf for the ids in [begin, end) of an image's id plane.
+  /// CellIdOf for the ids in [begin, end) of an image's id plane; `stream`: stores around
+  /// the caches, for a large plane (facet/IdPlane.h, vtkFacetImageRenderer::StreamsIdPlanes).
   void CellIdsOf(const std::int32_t* polygonIds,
     vtkIdType* cellIds,
     vtkIdType begin,
-    vtkIdType end) const;
+    vtkIdType end,
+    bool stream) const;
 
   /// The strip (0-based, among the strips) that produced strip triangle `triangle`.
   vtkIdType StripOfTriangle(std::size_t triangle) const { return this->StripOf[triangle]; }

@@ -193,40 +193,21 @@ int vtkFacetRenderFilter::RequestData(vtkInformation*,
   internals.BoundsOf(this, input, parallel, bounds);
   const facet::Camera camera = internals.ViewOf(this, bounds, scene);
 
-  // Render straight into the output's arrays, then composite across processes.
-  vtkFacetImageRenderer::Settings settings = internals.SettingsOf(this, parallel);
-  const bool rendered = internals.Render(this, scene, camera, settings, output);
+  // Render straight into the output's arrays in the quality mode asked for, then composite
+  // across processes.
+  vtkFacetFrame frame{ scene,
+    camera,
+    internals.SettingsOf(this, parallel),
+    internals.QualityOf(this, parallel),
+    {},
+    internals.Actor.GetNumberOfConversions() };
+  frame.MapIds = internals.CellLabels(frame.Image);
+  const bool rendered = frame.Render(output, internals.Image, internals.Quality, messages);
   if (parallel)
   {
     internals.Composite(this, output, rendered);
   }
   return messages.Report(this, output);
-}
-
-//------------------------------------------------------------------------------
-bool vtkFacetRenderFilter::vtkInternals::Render(vtkFacetRenderFilter* filter,
-  const facet::Scene& scene,
-  const facet::Camera& camera,
-  vtkFacetImageRenderer::Settings& settings,
-  vtkImageData* output)
-{
-  const int conversions = this->Actor.GetNumberOfConversions();
-  settings.RenderWith =
-    this->Quality.Prepare(QualityOf(filter, settings.Composited), this->Messages);
-  if (!this->Image.Render(
-        scene, camera, settings, output, this->CellLabels(settings), conversions, this->Messages))
-  {
-    return false;
-  }
-  this->Quality.AddOutputs(scene,
-    camera,
-    this->Image.GetPolygonIds(),
-    settings.Background,
-    settings.TwoSidedLighting,
-    filter->NumberOfThreads,
-    output,
-    this->Messages);
-  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -241,7 +222,8 @@ vtkFacetImageRenderer::IdMap vtkFacetRenderFilter::vtkInternals::CellLabels(
   vtkDataArray* globalIds = ranks ? this->GlobalIds : nullptr;
   return [this, ranks, globalIds](const std::int32_t* polygonIds, vtkIdType begin, vtkIdType end) {
     vtkIdType* cellIds = this->Image.GetCellIds()->GetPointer(0);
-    this->Actor.CellIdsOf(polygonIds, cellIds, begin, end);
+    // Streamed past the caches unless the compositor reads them back at once.
+    this->Actor.CellIdsOf(polygonIds, cellIds, begin, end, !ranks && this->Image.StreamsIdPlanes());
     if (ranks)
     {
       this->Compositor.LabelPixels(

@@ -480,15 +480,20 @@ public:
    * (`FacetErrorEstimate`: PredictedRMSE, PredictedMax, 8-bit units, and Seconds, its own
    * cost outside the render): per pixel a bound on how far flat shading is from the converged
    * Phong image. Once per mesh version (not per frame) it computes the vertex normals (on the
-   * filter's threads) and keeps each polygon's radius and normal spread (8 bytes); per render
-   * the render's shade phase bounds the polygons it lights as it lights them (in SIMD lanes
-   * for point and directional lights and a material without specular) and, at one sample per
-   * pixel, its resolve estimates each band of pixels as it resolves it, in integers, writing
-   * no image unless ErrorEstimateArray asks; a new background alone keeps the last estimate. Not
-   * free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080, about 8-11 % of the
-   * core's frame (bench/estimate-cost.md) and 6-9 % of an Update() (every face drawn;
-   * bench/filter_speed.py --overhead), and once per mesh about as much as its first conversion
-   * (README, "An estimate of a render's error"; bench/estimate-cost.md). Off, a flat one-sample
+   * filter's threads) and keeps each polygon's radius and normal spread (8 bytes) and, per
+   * block of 128 polygon ids, the largest of them and the block's box. Per render, in the
+   * filter's default case (flat, one sample per pixel, no ErrorEstimateArray, point or
+   * directional lights, no specular, one color per polygon) each block's worst case is
+   * bounded before the render and the resolve estimates each band of pixels from those block
+   * bounds as it resolves it, in integers; otherwise the shade phase bounds each polygon it
+   * lights (in SIMD lanes for point and directional lights and a material without specular).
+   * The block bounds are never below the polygons' own, so the summary is at least the
+   * per-polygon estimate (a few percent looser on a smooth sphere, up to 2x where a block
+   * mixes creased and flat polygons). A new background alone keeps the last estimate. Not
+   * free: with a turning camera, 0.5M- or 2M-triangle spheres at 1920 x 1080, about 4.5 % of
+   * the core's frame in the default case (8-11 % on the per-polygon path;
+   * bench/estimate-cost.md), and once per mesh about as much as its first conversion (README,
+   * "An estimate of a render's error"). Off, a flat one-sample
    * render is the plain rasterizer (default: on).
    */
   vtkSetMacro(EstimateError, vtkTypeBool);

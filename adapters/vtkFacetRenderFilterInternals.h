@@ -22,6 +22,7 @@
 #include "vtkFacetActorConverter.h"
 #include "vtkFacetColoringMapper.h"
 #include "vtkFacetCompositor.h"
+#include "vtkFacetFrame.h"
 #include "vtkFacetImageRenderer.h"
 #include "vtkFacetMessages.h"
 #include "vtkFacetQuality.h"
@@ -72,14 +73,6 @@ public:
   vtkCamera* CameraFor(vtkCamera* camera, bool fit, const double bounds[6], int width, int height);
   // The camera to render with, fitted to `bounds` if automatic, and the scene's lights.
   facet::Camera ViewOf(vtkFacetRenderFilter* filter, const double bounds[6], facet::Scene& scene);
-
-  // Renders in the quality mode asked for, with its reports; false after an error
-  // (vtkFacetRenderFilter.cxx).
-  bool Render(vtkFacetRenderFilter* filter,
-    const facet::Scene& scene,
-    const facet::Camera& camera,
-    vtkFacetImageRenderer::Settings& settings,
-    vtkImageData* output);
 
   // The bounds to fit the automatic camera to: the input's finite points, across processes
   // those of every piece (this is where the processes first meet: the compositor's Prepare,

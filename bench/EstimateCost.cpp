@@ -5,6 +5,7 @@
 // the moment weighs on both alike; CPU time of the process (CLOCK_PROCESS_CPUTIME_ID).
 //
 //   facet_estimate_cost [segments...] [--frames N] [--rounds R] [--phases] [--only off|on]
+//                       [--per-pixel]
 //
 // Per sphere (segments around; ~2·segments² triangles: 500 → 500k, 1000 → 2M) and round:
 // the median CPU of a frame off and on and the ratio, the estimate's own wall time outside the
@@ -18,6 +19,9 @@
 // render's): where the estimate's CPU goes, phase by phase.
 // --only off|on: renders with that renderer alone (both still take the first frame), so that
 // callgrind or perf stat counts one side; the other side's columns then read 0.
+// --per-pixel: the estimate asks for the ErrorEstimate image too, which takes the per-pixel
+// estimate (every polygon's bound per frame, the 3 × 3 rule with it) in place of the
+// summary-only one (QualityRenderer.cpp, estimateSummary): its cost and figures to compare.
 
 #include <algorithm>
 #include <chrono>
@@ -82,7 +86,7 @@ void printPhases(const PhaseSeconds& off, const PhaseSeconds& on) {
   std::printf("\n");
 }
 
-void measure(int segments, int frames, int round, Side side, bool phases) {
+void measure(int segments, int frames, int round, Side side, bool phases, bool perPixel) {
   const Mesh sphere = testing::makeUvSphere(segments, segments + 2);
   Camera camera = testing::fitCamera(sphere);
   Scene scene;
@@ -102,7 +106,7 @@ void measure(int segments, int frames, int round, Side side, bool phases) {
   Framebuffer plainImage(1920, 1080), estimatingImage(1920, 1080);
   QualitySettings off, on;
   on.estimateError = true;
-  on.errorEstimateImage = false;  // the filter's default: the summary in field data
+  on.errorEstimateImage = perPixel;  // off: the filter's default, the summary in field data
 
   double start = cpuSeconds();
   plain.render(scene, {}, camera, plainImage, off);
@@ -148,11 +152,13 @@ int main(int argc, char** argv) {
   std::vector<int> sizes;
   int frames = 16, rounds = 3;
   Side side = Side::Both;
-  bool phases = false, badSide = false;
+  bool phases = false, badSide = false, perPixel = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--phases") {
       phases = true;
+    } else if (arg == "--per-pixel") {
+      perPixel = true;
     } else if (arg == "--only" && i + 1 < argc) {
       const std::string which = argv[++i];
       side = which == "off" ? Side::Off : Side::On;
@@ -170,7 +176,7 @@ int main(int argc, char** argv) {
       std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
     std::fprintf(stderr,
                  "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
-                 "                           [--phases] [--only off|on]\n");
+                 "                           [--phases] [--only off|on] [--per-pixel]\n");
     return 2;
   }
   std::printf(
@@ -179,6 +185,6 @@ int main(int argc, char** argv) {
   std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int round = 1; round <= rounds; ++round) {
     for (const int segments : sizes)
-      measure(segments, frames, round, side, phases);
+      measure(segments, frames, round, side, phases, perPixel);
   }
 }

@@ -95,11 +95,13 @@ int run(int triangles, bool closed, int frames, int threads, double turn, std::u
   std::printf(
       "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, best of %d frames, ms: "
       "validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
-      "frame: %zu fragments written, planes %016llx; first frame: validate %.3f total %.3f\n",
+      "frame: %zu fragments written, %zu back-facing blocks skipped, planes %016llx; first frame: "
+      "validate %.3f total %.3f\n",
       triangles, int(closed), threads, turn, start, static_cast<unsigned long long>(version),
       frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3,
-      last.fragmentsWritten, static_cast<unsigned long long>(fingerprint(framebuffer)),
-      first.validateSeconds * 1e3, first.totalSeconds * 1e3);
+      last.fragmentsWritten, last.plan.blocksBackFacing,
+      static_cast<unsigned long long>(fingerprint(framebuffer)), first.validateSeconds * 1e3,
+      first.totalSeconds * 1e3);
   return 0;
 }
 

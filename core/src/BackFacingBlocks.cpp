@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -14,8 +15,7 @@
 namespace facet::detail {
 namespace {
 
-bool skippingOn = true;
-bool marginOn = true;
+thread_local ScopedBackBlockSettings::Settings settingsOnThisThread;
 
 constexpr double kUnitRoundoff = 0x1p-53;
 // Largest perimeter² / doubled area (1/sin of the smallest angle, within a factor; the
@@ -45,9 +45,9 @@ namespace {
 class BackBlockMeasure {
  public:
   void addPoint(std::size_t id, const glm::dvec3& point) {
-    block_.points.first = std::min(block_.points.first, id);
-    block_.points.last = std::max(block_.points.last, id);
-    if (isFinite(point)) {
+    points_.first = std::min(points_.first, id);
+    points_.last = std::max(points_.last, id);
+    if (detail::isFinite(point)) {  // qualified: see MeshCache.cpp's boundPoints
       block_.box.add(point);
     } else {
       block_.allFinite = trusted_ = false;
@@ -78,9 +78,12 @@ class BackBlockMeasure {
   // Any other polygon: its block is never skipped.
   void addOther() { trusted_ = false; }
   BackBlock finish();
+  // The ids its polygons use.
+  const PointSpan& points() const { return points_; }
 
  private:
   BackBlock block_;
+  PointSpan points_;
   glm::dvec3 normals_[kPolygonsPerBackBlock];
   std::size_t count_ = 0;
   glm::dvec3 sum_{0.0};
@@ -108,6 +111,27 @@ BackBlock BackBlockMeasure::finish() {
   block_.maxPerimeterPerDoubleArea = std::sqrt(maxRatioSquared_) * (1.0 + 1e-8);
   block_.skippable = true;
   return block_;
+}
+
+// The block's point ids as two spans, split at the middle of their range (MeshCache.h): its
+// ids read again, from the caches (cheaper than keeping them in the first pass, measured).
+void splitPointSpan(const MeshView& mesh, std::size_t begin, std::size_t end, const PointSpan& all,
+                    BackBlock& block) {
+  block.lowPoints = all;
+  if (all.first > all.last) return;
+  const std::size_t middle = all.first + (all.last - all.first) / 2;
+  std::size_t lowLast = all.first, highFirst = SIZE_MAX;
+  withTypedMesh(mesh, [&](auto, auto polygons) {
+    for (std::size_t p = begin; p < end; ++p) {
+      for (std::size_t k = 0, n = polygons.size(p); k < n; ++k) {
+        const std::size_t id = polygons.pointId(p, k);
+        lowLast = std::max(lowLast, id <= middle ? id : all.first);
+        highFirst = std::min(highFirst, id <= middle ? SIZE_MAX : id);
+      }
+    }
+  });
+  block.lowPoints.last = lowLast;
+  if (highFirst <= all.last) block.highPoints = {highFirst, all.last};
 }
 
 }  // namespace
@@ -142,11 +166,15 @@ BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t 
       if (faceNormals) faceNormals[p] = faceNormalOf(n, vertexAt);
     }
   });
-  return measure.finish();
+  BackBlock block = measure.finish();
+  splitPointSpan(mesh, begin, end, measure.points(), block);
+  return block;
 }
 
 BackFaceTest::BackFaceTest(const FrameTransform& transform)
-    : transform_(transform), c_(transform.constants()) {
+    : transform_(transform),
+      c_(transform.constants()),
+      margin_(ScopedBackBlockSettings::current().margin) {
   scaleX_ = c_.halfWidth * kSubpixelScale;
   scaleY_ = c_.halfHeight * kSubpixelScale;
   const glm::dvec3 cx(c_.clipX), cy(c_.clipY);
@@ -188,30 +216,38 @@ bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
   // viewer, and this rejects them before any corner is projected.
   const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
   if (!mayFaceAway(block, axis)) return false;
-  double reach = 0.0, minAlong = std::numeric_limits<double>::infinity(), maxAcross = 0.0;
+  // The largest squares, rooted once: the same values as the largest roots (a correctly
+  // rounded square root is monotonic).
+  double reachSquared = 0.0, minAlong = std::numeric_limits<double>::infinity(),
+         maxAcrossSquared = 0.0;
   for (int i = 0; i < 8; ++i) {
     const glm::dvec3 u = block.box.corner(i) - c_.eye;
-    reach = std::max(reach, glm::length(u));
-    double along = 0.0, across = 0.0;
-    split(c_.parallel ? awayFromViewer_ : u, axis, along, across);
+    reachSquared = std::max(reachSquared, glm::dot(u, u));
+    const glm::dvec3& direction = c_.parallel ? awayFromViewer_ : u;
+    const double along = glm::dot(axis, direction);
+    const glm::dvec3 across = direction - along * axis;
     minAlong = std::min(minAlong, along);
-    maxAcross = std::max(maxAcross, across);
+    maxAcrossSquared = std::max(maxAcrossSquared, glm::dot(across, across));
   }
+  const double reach = std::sqrt(reachSquared), maxAcross = std::sqrt(maxAcrossSquared);
   // Less this test's rounding of u and its parts.
   const double facing =
       block.cosAngle * minAlong - block.sinAngle * maxAcross - 1e-12 * (c_.parallel ? 1.0 : reach);
   if (!(facing > 0.0)) return false;
   ClipPoint corners[8];
   if (!transform_.boxInsideClipVolume(block.box, corners)) return false;  // step 1
-  if (!marginOn) return true;
-  double minW = std::numeric_limits<double>::infinity(), maxW = 0.0, ndcX = 0.0, ndcY = 0.0;
+  if (!margin_) return true;
+  // Nx and Ny bounded by the largest |clip x| and |clip y| over the smallest w (w > 0 at
+  // every corner, step 1): two divisions rather than sixteen, a bound a little wider.
+  double minW = std::numeric_limits<double>::infinity(), maxW = 0.0, maxX = 0.0, maxY = 0.0;
   for (const ClipPoint& corner : corners) {
     const double w = c_.parallel ? corner.h : corner.d;
     minW = std::min(minW, w);
     maxW = std::max(maxW, w);
-    ndcX = std::max(ndcX, std::abs(corner.x / w));
-    ndcY = std::max(ndcY, std::abs(corner.y / w));
+    maxX = std::max(maxX, std::abs(corner.x));
+    maxY = std::max(maxY, std::abs(corner.y));
   }
+  const double ndcX = maxX / minW * (1.0 + 1e-15), ndcY = maxY / minW * (1.0 + 1e-15);
   if (c_.parallel) minW = maxW = 1.0;
   // Step 1's outcode margin, 1e-9·(w + |x|), must cover the transform's rounding of clip x
   // and y (~u·|row|·reach): a tenth of it at most.
@@ -233,16 +269,17 @@ bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
          block.minDoubleArea * perArea > 2.0 * kSnapDelta * kSnapDelta * (1.0 + kSlack);
 }
 
-void enableBackBlockSkipping(bool on) {
-  skippingOn = on;
+ScopedBackBlockSettings::ScopedBackBlockSettings(Settings settings)
+    : previous_(settingsOnThisThread) {
+  settingsOnThisThread = settings;
 }
 
-bool backBlockSkippingEnabled() {
-  return skippingOn;
+ScopedBackBlockSettings::~ScopedBackBlockSettings() {
+  settingsOnThisThread = previous_;
 }
 
-void enableBackBlockMargin(bool on) {
-  marginOn = on;
+ScopedBackBlockSettings::Settings ScopedBackBlockSettings::current() {
+  return settingsOnThisThread;
 }
 
 }  // namespace facet::detail

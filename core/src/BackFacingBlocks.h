@@ -37,8 +37,9 @@
 //    in window units and perturbations d1, d2 of max-norm Δ = 1 + 2δ:
 //    |2A' − 2A| ≤ Δ(|e1|₁ + |e2|₁) + 2Δ². A window edge is at most G·|P1 − P0|/d_min, with
 //    G = Sx(|cx| + Nx) + Sy(|cy| + Ny) (perspective: Δ(x/d) = cx·ΔV/d1 − (x0/d0)Δd/d1, |Δd| ≤
-//    |ΔP|; Nx, Ny the largest |clip/w| at the box's corners, which bound it over the box, x/d
-//    being linear-fractional), G = Sx|cx| + Sy|cy| and d_min = 1 in parallel. So
+//    |ΔP|; Nx, Ny bounds of |clip/w| over the box: the largest |clip x| and |clip y| at its
+//    corners over the smallest w there, both affine over the box, w > 0 (step 1)), G =
+//    Sx|cx| + Sy|cy| and d_min = 1 in parallel. So
 //    |2A' − 2A| ≤ Δ·G·perimeter/d_min + 2Δ² ≤ 2a·ΔGρ/d_min + 2Δ², ρ the block's largest
 //    perimeter/2a (measured from
 //    the bound perimeter² ≤ 3(|e1|² + |e2|² + |e2 − e1|²), which only widens the margin).
@@ -75,6 +76,7 @@ class BackFaceTest {
   const FrameTransform& transform_;
   ProjectionConstants c_;
   bool usable_ = false;
+  bool margin_ = true;                  // ScopedBackBlockSettings
   double areaScale_ = 0.0;              // perspective |k|; parallel |q|
   glm::dvec3 awayFromViewer_{0.0};      // parallel: −q/|q|
   double facingSign_ = 1.0;             // perspective: −sign(k)
@@ -82,10 +84,26 @@ class BackFaceTest {
   double scaleX_ = 0.0, scaleY_ = 0.0;  // Sx, Sy
 };
 
-// Tests: skipping off (every polygon set up, as before); the margin of step 5 off (a block
-// is skipped when D > 0 alone: wrong, for the test that shows the margin matters).
-void enableBackBlockSkipping(bool on);
-bool backBlockSkippingEnabled();
-void enableBackBlockMargin(bool on);
+// Tests only: how the renders started on this thread treat back-face blocks while an object
+// of this class lives (a render reads them once, when it starts, on its calling thread; a
+// nested object restores the outer one's). Skipping off: every polygon is set up, as before.
+// Margin off: a block is skipped when D > 0 alone (wrong: for the test that shows the margin
+// matters).
+class ScopedBackBlockSettings {
+ public:
+  struct Settings {
+    bool skipping = true;
+    bool margin = true;
+  };
+  explicit ScopedBackBlockSettings(Settings settings);
+  ~ScopedBackBlockSettings();
+  ScopedBackBlockSettings(const ScopedBackBlockSettings&) = delete;
+  ScopedBackBlockSettings& operator=(const ScopedBackBlockSettings&) = delete;
+  // This thread's settings (the defaults outside any object).
+  static Settings current();
+
+ private:
+  Settings previous_;
+};
 
 }  // namespace facet::detail

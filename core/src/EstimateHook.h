@@ -17,7 +17,9 @@
 //    bytes as the pass over the finished image, in place of a second read of the planes.
 //
 // The resolve's part at one sample per pixel only; QualityRenderer runs the pass over the
-// samples otherwise.
+// samples otherwise. Without the ErrorEstimate image (the summary alone), under the lights and
+// materials FlatErrorBoundOfMesh.h takes, the shade bounds nothing and the resolve reads one
+// bound per block of polygon ids, found before the render (QualityRenderer::blockBounds).
 
 #include <atomic>
 #include <cstddef>
@@ -67,6 +69,9 @@ struct EstimateHook {
   // same in the resolve's fixed point (fixedBoundOf; an even count).
   float* bounds = nullptr;
   EstimateBound* fixedBounds = nullptr;
+  // The resolve reads fixedBounds[id >> boundShift]: with the summary-only estimate, one bound
+  // per block of polygons (QualityRenderer.cpp, FlatErrorBoundOfMesh.h), the shade none.
+  int boundShift = 0;
   std::unique_ptr<std::atomic<bool>[]> bounded;  // per mesh: the shade phase bounded it
 
   // The resolve's part, at one sample per pixel (null rows: none). Out: per pixel row its

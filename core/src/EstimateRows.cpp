@@ -40,10 +40,10 @@ inline bool greyWord(std::uint32_t word) {
 
 // The scalar definitions; the SIMD loops below end with them. fieldsOf returns whether the
 // sample is grey or the background.
-inline bool fieldsOf(Rgba8 color, std::int32_t id, const EstimateBound* fixedBounds, int x,
-                     EstimateField* fields, std::size_t stride, int planes) {
+inline bool fieldsOf(Rgba8 color, std::int32_t id, const EstimateBound* fixedBounds, int shift,
+                     int x, EstimateField* fields, std::size_t stride, int planes) {
   const std::uint32_t word = wordOf(color);
-  const std::uint32_t q = id < 0 ? 0 : fixedBounds[id];
+  const std::uint32_t q = id < 0 ? 0 : fixedBounds[id >> shift];
   for (int j = 0; j < planes / 2; ++j) {
     const std::uint32_t c = scaledChannel(word, j);
     fields[2 * j * stride + x] = static_cast<EstimateField>(id < 0 ? 0 : c + q);
@@ -118,7 +118,7 @@ HWY_INLINE hn::Vec<DU> gatherFixedBounds(const EstimateBound* fixedBounds, hn::V
 // gathers it; else read from the row of colors.
 template <bool kById, int kPlanes>
 HWY_INLINE bool FieldsOf(const Rgba8* colors, const std::int32_t* ids,
-                         const EstimateBound* fixedBounds, int begin, int end,
+                         const EstimateBound* fixedBounds, int shift, int begin, int end,
                          EstimateField* fields, std::size_t stride) {
   const DU du;
   const DH dh;
@@ -132,7 +132,7 @@ HWY_INLINE bool FieldsOf(const Rgba8* colors, const std::int32_t* ids,
     const auto backgroundI = id < hn::Zero(di);
     const auto background = hn::RebindMask(du, backgroundI);
     const auto index = hn::IfThenZeroElse(backgroundI, id);
-    const auto q = gatherFixedBounds(fixedBounds, index);
+    const auto q = gatherFixedBounds(fixedBounds, hn::ShiftRightSame(index, shift));
     const auto color = kById ? hn::GatherIndex(du, words, index) : hn::LoadU(du, words + x);
     const auto word = hn::IfThenZeroElse(background, color);
     const auto plus = hn::IfThenZeroElse(background, q);
@@ -151,30 +151,32 @@ HWY_INLINE bool FieldsOf(const Rgba8* colors, const std::int32_t* ids,
   for (; x < end; ++x) {
     const std::int32_t id = ids[x];
     const Rgba8 color = !kById ? colors[x] : id < 0 ? Rgba8{} : colors[id];
-    grey = fieldsOf(color, id, fixedBounds, x, fields, stride, kPlanes) && grey;
+    grey = fieldsOf(color, id, fixedBounds, shift, x, fields, stride, kPlanes) && grey;
   }
   return grey;
 }
 
 template <bool kById>
 HWY_INLINE bool FieldsOfPlanes(const Rgba8* colors, const std::int32_t* ids,
-                               const EstimateBound* fixedBounds, int begin, int end,
+                               const EstimateBound* fixedBounds, int shift, int begin, int end,
                                EstimateField* fields, std::size_t stride, int planes) {
-  return planes == kGreyFields
-             ? FieldsOf<kById, kGreyFields>(colors, ids, fixedBounds, begin, end, fields, stride)
-             : FieldsOf<kById, kEstimateFields>(colors, ids, fixedBounds, begin, end, fields,
-                                                stride);
+  return planes == kGreyFields ? FieldsOf<kById, kGreyFields>(colors, ids, fixedBounds, shift,
+                                                              begin, end, fields, stride)
+                               : FieldsOf<kById, kEstimateFields>(colors, ids, fixedBounds, shift,
+                                                                  begin, end, fields, stride);
 }
 
 bool NeighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
-                     int begin, int end, EstimateField* fields, std::size_t stride, int planes) {
-  return FieldsOfPlanes<false>(colors, ids, fixedBounds, begin, end, fields, stride, planes);
+                     int begin, int end, EstimateField* fields, std::size_t stride, int planes,
+                     int shift) {
+  return FieldsOfPlanes<false>(colors, ids, fixedBounds, shift, begin, end, fields, stride, planes);
 }
 
 bool NeighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
                          const EstimateBound* fixedBounds, int begin, int end,
-                         EstimateField* fields, std::size_t stride, int planes) {
-  return FieldsOfPlanes<true>(polygonColors, ids, fixedBounds, begin, end, fields, stride, planes);
+                         EstimateField* fields, std::size_t stride, int planes, int shift) {
+  return FieldsOfPlanes<true>(polygonColors, ids, fixedBounds, shift, begin, end, fields, stride,
+                              planes);
 }
 
 void RowMaxima(const EstimateField* in, int begin, int end, EstimateField* out, std::size_t stride,
@@ -237,19 +239,31 @@ void SampleEstimates(const EstimateField* above, const EstimateField* row,
   }
 }
 
-// coveredSpan: whole groups of background skipped a vector at a time (a row of 1080p is often
-// half background; one branch per id was most of the time of finding the span).
+// coveredSpan: whole groups of background skipped four vectors at a time, then one (a row of
+// 1080p is often half background; one branch per id was most of the time of finding the
+// span, and one test per vector most of what was left: the ids are all below 0 where the
+// AND of four vectors is, by its sign bits).
 std::array<int, 2> CoveredSpan(const std::int32_t* ids, int width) {
   const DI di;
   const int lanes = static_cast<int>(hn::Lanes(di));
   const auto background = [&](int x) {
     return hn::AllTrue(di, hn::LoadU(di, ids + x) < hn::Zero(di));
   };
+  const auto background4 = [&](int x) {
+    const auto both =
+        hn::And(hn::And(hn::LoadU(di, ids + x), hn::LoadU(di, ids + x + lanes)),
+                hn::And(hn::LoadU(di, ids + x + 2 * lanes), hn::LoadU(di, ids + x + 3 * lanes)));
+    return hn::AllTrue(di, both < hn::Zero(di));
+  };
   int first = 0, last = width;
+  while (first + 4 * lanes <= width && background4(first))
+    first += 4 * lanes;
   while (first + lanes <= width && background(first))
     first += lanes;
   while (first < width && ids[first] < 0)
     ++first;
+  while (last - 4 * lanes >= first && background4(last - 4 * lanes))
+    last -= 4 * lanes;
   while (last - lanes >= first && background(last - lanes))
     last -= lanes;
   while (last > first && ids[last - 1] < 0)
@@ -315,16 +329,17 @@ EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end) {
 }
 
 bool neighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
-                     int begin, int end, EstimateField* fields, std::size_t stride, int planes) {
+                     int begin, int end, EstimateField* fields, std::size_t stride, int planes,
+                     int shift) {
   return HWY_DYNAMIC_DISPATCH(NeighbourFields)(colors, ids, fixedBounds, begin, end, fields, stride,
-                                               planes);
+                                               planes, shift);
 }
 
 bool neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
                          const EstimateBound* fixedBounds, int begin, int end,
-                         EstimateField* fields, std::size_t stride, int planes) {
+                         EstimateField* fields, std::size_t stride, int planes, int shift) {
   return HWY_DYNAMIC_DISPATCH(NeighbourFieldsById)(polygonColors, ids, fixedBounds, begin, end,
-                                                   fields, stride, planes);
+                                                   fields, stride, planes, shift);
 }
 
 void rowMaxima(const EstimateField* in, int begin, int end, EstimateField* out, std::size_t stride,
@@ -376,10 +391,10 @@ void EstimateSpace::findMaxima(const EstimateGrid& grid, int r) {
   const auto fieldsOf = [&](int count) {
     if (grid.polygonColors && (r < grid.ownFirst || r > grid.ownLast)) {
       return neighbourFieldsById(grid.polygonColors, ids, grid.fixedBounds, fieldsBegin, fieldsEnd,
-                                 at(fields), stride, count);
+                                 at(fields), stride, count, grid.boundShift);
     }
     return neighbourFields(grid.colors + row, ids, grid.fixedBounds, fieldsBegin, fieldsEnd,
-                           at(fields), stride, count);
+                           at(fields), stride, count, grid.boundShift);
   };
   // Tried grey after a grey row (taken again with all planes if it is not), else all planes.
   bool grey = lastGrey && fieldsOf(kGreyFields);
@@ -442,7 +457,8 @@ void estimateResolvedRows(const EstimateHook& hook, const Rgba8* polygonColors, 
   // One space per thread, kept: the resolve's tasks are bands, not threads.
   thread_local EstimateSpace space;
   space.resize(width, 1);
-  const EstimateGrid grid{ids, colors, hook.fixedBounds, polygonColors, width, hook.height, y0, y1};
+  const EstimateGrid grid{ids, colors, hook.fixedBounds, polygonColors, width, hook.height,
+                          y0,  y1,     hook.boundShift};
   const bool image = hook.image != nullptr;
   for (int r = y0 - 1; r <= y1 + 1; ++r) {
     if (r >= 0 && r < hook.height) space.findMaxima(grid, r);

@@ -64,10 +64,12 @@ static_assert(kEstimateCap + 1 < (1u << 16), "a fixed bound fits 16 bits");
 // (plane k at fields + k·stride), from its color and its polygon's fixed bound q (ids[x]
 // indexes fixedBounds, whose count is even: the lanes read them as 32-bit pairs; < 0: the
 // background, whose fields are 0): field 2j is c_j·kEstimateUnit + q and field 2j+1 is
-// (255 − c_j)·kEstimateUnit + q. Returns whether every covered sample there is grey.
+// (255 − c_j)·kEstimateUnit + q. With `shift`, q is fixedBounds[id >> shift]: one bound per
+// block of 2^shift polygon ids (the summary-only estimate's, FlatErrorBoundOfMesh.h). Returns
+// whether every covered sample there is grey.
 bool neighbourFields(const Rgba8* colors, const std::int32_t* ids, const EstimateBound* fixedBounds,
                      int begin, int end, EstimateField* fields, std::size_t stride,
-                     int planes = kEstimateFields);
+                     int planes = kEstimateFields, int shift = 0);
 
 // For x in [begin, end) and planes k < planes: out[x] = max(in[x − 1], in[x], in[x + 1]) (the
 // caller keeps in[begin − 1] and in[end] readable).
@@ -95,7 +97,8 @@ EstimateSums estimateSums(const std::uint32_t* estimates, int begin, int end);
 // gather), in place of a row of colors.
 bool neighbourFieldsById(const Rgba8* polygonColors, const std::int32_t* ids,
                          const EstimateBound* fixedBounds, int begin, int end,
-                         EstimateField* fields, std::size_t stride, int planes = kEstimateFields);
+                         EstimateField* fields, std::size_t stride, int planes = kEstimateFields,
+                         int shift = 0);
 
 // The span [first, last) of a row's covered samples (ids ≥ 0).
 std::array<int, 2> coveredSpan(const std::int32_t* ids, int width);
@@ -111,6 +114,7 @@ struct EstimateGrid {
   const Rgba8* polygonColors = nullptr;
   int width = 0, height = 0;
   int ownFirst = 0, ownLast = -1;
+  int boundShift = 0;  // fixedBounds per block of 2^boundShift ids (neighbourFields)
 };
 
 // One task's space for the estimate's pass (QualityRenderer.cpp, EstimateHook.h), kept from

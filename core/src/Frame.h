@@ -54,9 +54,10 @@ struct FrameMesh {
   // transform phase.
   bool skipBackFaces = false;
   // Rule::GeometryOutsideView (ViewCulling.h): per block of polygons, whether it may be
-  // seen, and per transform task, whether a visible block uses its points. Null: all.
+  // seen, and per kPointsPerNeededFlag points (Transform.h), whether a block that is set up
+  // uses them. Null: all.
   const std::uint8_t* visibleBlocks = nullptr;
-  const std::uint8_t* neededTasks = nullptr;
+  const std::uint8_t* neededPoints = nullptr;
   // Per back-face block (MeshCache.h, BackFacingBlocks.h): every triangle in it would be
   // culled, so none is set up. Null: none.
   const std::uint8_t* backBlocks = nullptr;

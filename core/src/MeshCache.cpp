@@ -1,7 +1,6 @@
 #include "MeshCache.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "BackFacingBlocks.h"
 #include "FaceNormal.h"
@@ -15,17 +14,15 @@ constexpr std::size_t kPolygonsPerTask = 1 << 18;
 constexpr std::size_t kPointsPerBoundsTask = 1 << 16;
 constexpr std::size_t kBlocksPerTask = 64;
 
-bool isFinite(const glm::dvec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-
 // The box of the finite points among [begin, end); false when some point is not finite.
 bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& box) {
   return withTypedMesh(mesh, [&](auto points, auto) {
     bool finite = true;
     for (std::size_t i = begin; i < end; ++i) {
       const glm::dvec3 p = points[i];
-      if (isFinite(p)) {
+      // Qualified: in the unity build LightCulling.cpp's isFinite(const Box&), in the same
+      // anonymous namespace, would hide detail::isFinite from unqualified lookup here.
+      if (detail::isFinite(p)) {
         box.add(p);
       } else {
         finite = false;
@@ -35,31 +32,26 @@ bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& 
   });
 }
 
-// Block b's box, point span and finiteness, from the points its polygons use, its
+// Block b's box and finiteness, from the points its polygons use, its
 // back-face blocks, and its polygons' normals: each polygon read once (measureBackBlock).
 void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   const std::size_t begin = b * kPolygonsPerBlock;
   const std::size_t end = std::min(mesh.polygons.count, begin + kPolygonsPerBlock);
   Box box;
-  PointSpan span;
   bool finite = true;
   for (std::size_t first = begin; first < end; first += kPolygonsPerBackBlock) {
     const BackBlock& back = facts.backBlocks[first >> kBackBlockBits] = measureBackBlock(
         mesh, first, std::min(end, first + kPolygonsPerBackBlock), facts.faceNormals.data());
     box.add(back.box);
-    span.first = std::min(span.first, back.points.first);
-    span.last = std::max(span.last, back.points.last);
     finite = finite && back.allFinite;
   }
   facts.blocks[b] = box;
-  facts.blockPoints[b] = span;
   facts.blockFinite[b] = finite;
 }
 
 void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   const std::size_t blocks = (polygons + kPolygonsPerBlock - 1) / kPolygonsPerBlock;
   facts.blocks.resize(blocks);
-  facts.blockPoints.resize(blocks);
   facts.blockFinite.resize(blocks);
   facts.faceNormals.resize(polygons);
   facts.backBlocks.resize((polygons + kPolygonsPerBackBlock - 1) / kPolygonsPerBackBlock);

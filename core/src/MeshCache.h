@@ -41,8 +41,12 @@ static_assert(kBackBlockBits <= kBlockBits);
 // area and a shape whose normal the measurement can trust (BackFacingBlocks.cpp,
 // measureBackBlock).
 struct BackBlock {
-  Box box;           // the points its triangles use
-  PointSpan points;  // their ids
+  Box box;  // the points its triangles use
+  // Their ids, as two spans split at the middle of their range (the second may be empty): a
+  // block of a mesh ordered in strips (a quarter ring of a UV sphere's two rings) uses two
+  // runs far apart, and the points between them may be used only by blocks that are skipped
+  // (ViewCulling.cpp).
+  PointSpan lowPoints, highPoints;
   glm::dvec3 axis{0.0};
   double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding
   double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down
@@ -72,7 +76,6 @@ struct MeshFacts {
   Box bounds;                             // its finite points
   bool allFinite = true;                  // no point has a NaN or infinite coordinate
   std::vector<Box> blocks;                // per block: the finite points its polygons use
-  std::vector<PointSpan> blockPoints;     // per block
   std::vector<std::uint8_t> blockFinite;  // per block: every point it uses is finite
   // Per polygon, for a measured mesh: its unit normal rounded to float (FaceNormal.h).
   std::vector<glm::vec3> faceNormals;

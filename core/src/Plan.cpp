@@ -144,6 +144,7 @@ void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous) {
   plan.blocksTested = previous.blocksTested;
   plan.blocksOutside = previous.blocksOutside;
   plan.blocksBackFacing = previous.blocksBackFacing;
+  plan.polygonsBackFacing = previous.polygonsBackFacing;
   plan.depthComplexity = previous.depthComplexity;
   plan.meanTriangleBox = previous.meanTriangleBox;
   plan.rasterRoutine = previous.rasterRoutine;

@@ -32,6 +32,7 @@
 #include "EstimateHook.h"
 #include "EstimateRows.h"
 #include "FlatErrorBoundBatch.h"
+#include "FlatErrorBoundOfMesh.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
 #include "RendererInputs.h"
@@ -296,6 +297,8 @@ ShadingMesh::ShadingMesh(const MeshView& mesh, const VertexNormalOptions& option
   });
 }
 
+static_assert(kPolygonsPerTask % detail::kBoundBlock == 0, "updateTerms: whole blocks per task");
+
 // Per scene mesh, its polygons' bound terms for the arrays and version in `key`.
 struct QualityRenderer::MeshTerms {
   struct Key {
@@ -307,6 +310,10 @@ struct QualityRenderer::MeshTerms {
   };
   Key key;
   std::vector<detail::BoundTerms> polygons;
+  // The summary-only estimate's (FlatErrorBoundOfMesh.h): per block of kBoundBlock polygons
+  // what those with a normal share, and the polygons without one.
+  std::vector<detail::MeshBoundExtent> blocks;
+  std::vector<std::size_t> degenerate;
 };
 
 QualityRenderer::QualityRenderer(Renderer& renderer) : renderer_(renderer) {}
@@ -600,6 +607,19 @@ void forRows(Renderer& renderer, int rows, const Work& work) {
                        });
 }
 
+// Whether the summary-only estimate takes the frame (FlatErrorBoundOfMesh.h): no spot light,
+// and every mesh diffuse with one colour per polygon; else the per-polygon bounds.
+bool summaryApplies(const Scene& scene, std::span<const PreparedMaterial> materials) {
+  for (const Light& light : scene.lights.lights)
+    if (std::holds_alternative<SpotLight>(light)) return false;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshView& mesh = scene.meshes[m].mesh;
+    if (!mesh.pointColors.empty() || !mesh.scalarTexture.empty() || materials[m].specular > 0.0)
+      return false;
+  }
+  return true;
+}
+
 // The predicted RMSE and maximum from the rows' sums of pixel estimates (in fixed point:
 // exact integers, the same in any order).
 void setPredicted(std::span<const detail::EstimateSums> rows, QualityStats& stats) {
@@ -765,11 +785,11 @@ void QualityRenderer::hookUp(
     const Frame& frame, const detail::BatchLighting* facing,
     detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
         boundOne,
-    detail::EstimateHook& hook) {
+    bool summary, detail::EstimateHook& hook) {
   const std::size_t meshCount = frame.scene.meshes.size();
   meshTerms_.clear();
-  for (const MeshTerms& terms : frame.terms)
-    meshTerms_.push_back(terms.polygons.data());
+  for (const MeshTerms& terms : frame.terms)  // none for the summary: the shade bounds nothing
+    meshTerms_.push_back(summary ? nullptr : terms.polygons.data());
   polygonBounds_.resize(frame.firstPolygon.back());
   fixedBounds_.resize(evenCount(polygonBounds_.size()));
   // The pixels' part at one sample per pixel only (a pixel of more samples needs them all).
@@ -787,8 +807,10 @@ void QualityRenderer::hookUp(
   hook.facingLighting = facing;
   hook.materials = frame.batchMaterials.data();
   hook.boundOne = boundOne;
-  hook.bounds = polygonBounds_.data();
-  hook.fixedBounds = fixedBounds_.data();
+  if (summary) blockBounds(frame);
+  hook.bounds = summary ? nullptr : polygonBounds_.data();
+  hook.fixedBounds = summary ? blockBounds_.data() : fixedBounds_.data();
+  hook.boundShift = summary ? detail::kBoundBlockShift : 0;
   hook.bounded = std::make_unique<std::atomic<bool>[]>(meshCount);
   hook.height = frame.samples.height;
   hook.rows = pixels ? rowSums_.data() : nullptr;
@@ -821,6 +843,69 @@ void QualityRenderer::finishFused(const Frame& frame, const detail::EstimateHook
   }
   estimated_ = stats;
   stats.estimateSeconds = secondsSince(start);
+}
+
+// The summary-only estimate (QualityStats::predicted*, no image; flat at one sample per
+// pixel under lights and materials largestFlatBound takes): the per-pixel rule of the estimate
+// with each polygon's bound b_q replaced by its block's, B ≥ b_q (FlatErrorBoundOfMesh.h),
+// found before the render (blockBounds) and read by the resolve (EstimateHook.h). Every pixel's
+// estimate max_q (D(c_p, c_q) + B_q) + 0.5 is then at least the per-pixel estimate's, in the
+// fixed point too (⌈B·unit⌉ ≥ ⌈b·unit⌉), so the RMSE and maximum are (tested): looser where
+// a block's worst polygon is worse than the pixel's, and no bound per polygon per frame.
+// A polygon without a normal (bound 255, in no block) wins no sample in practice; if one does,
+// the per-polygon bounds and the pass over the image, after the render.
+void QualityRenderer::estimateSummary(const Frame& frame, const FramebufferView& target,
+                                      QualityStats& stats) {
+  const Clock::time_point start = Clock::now();
+  FACET_ASSERT(renderer_.shownPolygons().size() == frame.firstPolygon.back());
+  shown_ = renderer_.shownPolygons().data();
+  bool degenerateShown = false;
+  for (std::size_t m = 0; m < frame.terms.size(); ++m) {
+    for (const std::size_t p : frame.terms[m].degenerate)
+      degenerateShown = degenerateShown || shown_[frame.firstPolygon[m] + p] != 0;
+  }
+  if (degenerateShown) {
+    renderer_.parallelFor(
+        frame.firstPolygon.back(), kPolygonsPerTask,
+        [&](std::size_t begin, std::size_t end) { boundFromCorners(frame, begin, end, nullptr); });
+    estimate(frame, target, false, stats);
+  } else {
+    setPredicted(rowSums_, stats);
+  }
+  estimated_ = stats;
+  stats.estimateSeconds = secondsSince(start);
+}
+
+// The bounds of the blocks of polygon ids (blockBounds_, EstimateRows.h's fixed point, an even
+// count) for the summary-only estimate: per mesh, each block of its polygons bounded from
+// what they share (largestFlatBound); a block of ids that holds the end of one mesh and the
+// start of the next takes the larger.
+void QualityRenderer::blockBounds(const Frame& frame) {
+  const std::size_t ids = frame.firstPolygon.back();
+  blockBounds_.assign(evenCount((ids + detail::kBoundBlock - 1) / detail::kBoundBlock), 0);
+  for (std::size_t m = 0; m < frame.terms.size(); ++m) {
+    const std::vector<detail::MeshBoundExtent>& blocks = frame.terms[m].blocks;
+    const SceneMesh& mesh = frame.scene.meshes[m];
+    const glm::dvec3 surface = mesh.mesh.polygonColors.empty()
+                                   ? glm::min(glm::dvec3(mesh.material.color), kMaxRadiance)
+                                   : glm::dvec3(1.0);  // 8-bit colours
+    const std::optional<detail::BlockBoundSetup> setup =
+        detail::prepareBlockBound(frame.scene.lights, frame.materials[m], surface);
+    FACET_ASSERT(setup.has_value());  // summaryApplies
+    localBounds_.resize(blocks.size());
+    renderer_.parallelFor(blocks.size(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t b = begin; b < end; ++b)
+        localBounds_[b] =
+            detail::fixedBoundOf(roundedUp(detail::largestFlatBound(*setup, blocks[b])));
+    });
+    const std::size_t first = frame.firstPolygon[m], count = mesh.mesh.polygons.count;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const std::size_t from = first + b * detail::kBoundBlock;
+      const std::size_t to = std::min(from + detail::kBoundBlock, first + count) - 1;
+      for (std::size_t g = from / detail::kBoundBlock; g <= to / detail::kBoundBlock; ++g)
+        blockBounds_[g] = std::max(blockBounds_[g], localBounds_[b]);
+    }
+  }
 }
 
 // Per output pixel: its samples, shaded again where the mode asks, averaged and rounded once;
@@ -910,11 +995,14 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
                       const glm::dvec3& normal) {
     return fusedFrame->boundOne(m, polygon, center, normal);
   };
+  bool summary = false;  // the summary-only estimate (estimateSummary)
   if (fused) {
     fusedFrame.emplace(scene, shading, settings, camera, grid, g, renderer_.twoSidedLighting());
     fusedFrame->prepareBatches(terms_);
     facing = facingLighting(fusedFrame->batchLighting);
-    hookUp(*fusedFrame, facing ? &*facing : nullptr, boundOne, hook);
+    summary =
+        g == 1 && !settings.errorEstimateImage && summaryApplies(scene, fusedFrame->materials);
+    hookUp(*fusedFrame, facing ? &*facing : nullptr, boundOne, summary, hook);
   }
   struct Unhook {  // also when the render throws
     Renderer& renderer;
@@ -929,7 +1017,11 @@ QualityStats QualityRenderer::render(const Scene& scene, std::span<const Shading
     return stats;
   }
   if (fused && stats.render.plan.path != RenderPath::Resolve) {
-    finishFused(*fusedFrame, hook, target, stats);
+    if (summary) {
+      estimateSummary(*fusedFrame, target, stats);
+    } else {
+      finishFused(*fusedFrame, hook, target, stats);
+    }
     estimatedFor_ = estimateFor;
     const Clock::time_point phase = Clock::now();
     if (g > 1) shadeAndResolve(*fusedFrame, target, stats);
@@ -1020,12 +1112,21 @@ void QualityRenderer::updateTerms(const Scene& scene) {
                                       ? fromPointNormals(mesh, mesh.pointNormals)
                                       : computeVertexNormals(mesh, {}, parallelOn(renderer_));
     terms.polygons.resize(mesh.polygons.count);
+    terms.blocks.resize((mesh.polygons.count + detail::kBoundBlock - 1) / detail::kBoundBlock);
     renderer_.parallelFor(
         mesh.polygons.count, kPolygonsPerTask, [&](std::size_t begin, std::size_t end) {
           forEachPolygon(mesh, normals, begin, end, [&](std::size_t p, const Corners& corners) {
-            terms.polygons[p] = termsOf(corners);
+            const detail::BoundTerms& t = terms.polygons[p] = termsOf(corners);
+            if (t.radius < 0.0f) return;
+            // A task's polygons are whole blocks (parallelFor's ranges start at multiples of
+            // kPolygonsPerTask, a multiple of kBoundBlock).
+            detail::MeshBoundExtent& block = terms.blocks[p >> detail::kBoundBlockShift];
+            for (const glm::dvec3& corner : corners.points)
+              block.add(t.radius, t.sinNormalSpread, corner);
           });
         });
+    for (std::size_t p = 0; p < terms.polygons.size(); ++p)
+      if (terms.polygons[p].radius < 0.0f) terms.degenerate.push_back(p);
     terms.key = key;
   }
 }

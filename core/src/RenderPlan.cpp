@@ -2,6 +2,10 @@
 
 #include <sstream>
 
+// The report's functions are [[gnu::cold]]: diagnostics, optimized for size. This file shares a
+// unity translation unit with Setup.cpp, and GCC's inline-unit-growth budget is per unit: the
+// report's inlined stream operators spent what the set-up's settle() needs to keep its bins'
+// push_back inline (bench/core-frame-issue11.md, section 19: +6 M instructions a frame at 500k).
 namespace facet {
 namespace {
 
@@ -43,13 +47,13 @@ const char* unitOf(Rule rule) {
   return "";
 }
 
-void describeLights(std::ostream& out, const RenderPlan::LightCulling& l) {
+[[gnu::cold]] void describeLights(std::ostream& out, const RenderPlan::LightCulling& l) {
   out << " (" << l.dark << " dark, " << l.outsideCone << " outside their cone, " << l.belowTolerance
       << " at most " << l.tolerance << "); error bound " << l.errorBound << " linear, "
       << l.errorBound8Bit << "/255" << (l.errorBound8Bit == 0 ? ": the same bytes" : "");
 }
 
-void describeRule(std::ostream& out, const RenderPlan& plan, Rule rule) {
+[[gnu::cold]] void describeRule(std::ostream& out, const RenderPlan& plan, Rule rule) {
   const RuleOutcome& outcome = plan.rule(rule);
   out << "    "
       << (!outcome.allowed ? "off   "
@@ -60,13 +64,25 @@ void describeRule(std::ostream& out, const RenderPlan& plan, Rule rule) {
     out << " of " << plan.lightCulling.lights;
     describeLights(out, plan.lightCulling);
   } else if (rule == Rule::GeometryOutsideView) {
-    out << " (" << plan.blocksOutside << " of " << plan.blocksTested << " blocks tested; "
-        << plan.blocksBackFacing << " back-facing blocks skipped whole)";
+    out << " (" << plan.blocksOutside << " of " << plan.blocksTested << " blocks tested)";
   } else if (rule == Rule::HiddenGeometry) {
     out << " (estimated depth complexity " << plan.depthComplexity << ", mean triangle box "
         << plan.meanTriangleBox << " px)";
   }
   out << "\n";
+}
+
+// The back-facing blocks skipped with Rule::GeometryOutsideView: a line of their own, as
+// their polygons are counted culled, not outside.
+[[gnu::cold]] void describeBackFacingBlocks(std::ostream& out, const RenderPlan& plan) {
+  const bool allowed = plan.rule(Rule::GeometryOutsideView).allowed;
+  out << "    "
+      << (!allowed                    ? "off   "
+          : plan.blocksBackFacing > 0 ? "fired "
+                                      : "idle  ")
+      << "back-facing blocks (with " << ruleName(Rule::GeometryOutsideView)
+      << "): " << plan.polygonsBackFacing << " polygons counted culled, not set up ("
+      << plan.blocksBackFacing << " blocks)\n";
 }
 
 }  // namespace
@@ -107,7 +123,7 @@ bool RenderRules::allows(Rule rule) const {
   return false;
 }
 
-std::string RenderPlan::describe() const {
+[[gnu::cold]] std::string RenderPlan::describe() const {
   std::ostringstream out;
   out << "Facet render plan: " << width << "x" << height << " pixels, " << threads
       << (threads == 1 ? " thread, " : " threads, ") << tilesX << "x" << tilesY << " tiles of "
@@ -137,10 +153,11 @@ std::string RenderPlan::describe() const {
   out << "  rules (off / idle / fired: what each left out):\n";
   for (int r = 0; r < kRuleCount; ++r)
     describeRule(out, *this, static_cast<Rule>(r));
+  describeBackFacingBlocks(out, *this);
   return out.str();
 }
 
-std::string RenderStats::describe() const {
+[[gnu::cold]] std::string RenderStats::describe() const {
   std::ostringstream out;
   out << plan.describe();
   out << "  counted: " << polygonsDrawn << " polygons drawn, " << polygonsShaded << " shaded, "

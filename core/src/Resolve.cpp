@@ -19,6 +19,7 @@
 
 #include "EstimateHook.h"
 #include "Resolve.h"
+#include "facet/IdPlane.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace facet::detail::HWY_NAMESPACE {
@@ -80,31 +81,38 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
       df, depth);
 }
 
-// One row's colors, `count` pixels from `ids` to `color`. kStream: by streaming stores where a
-// whole vector is aligned (the rest plain), so that the plane is not read before it is
-// written (the write-allocate read of 8 MB a 1080p frame).
+// out[0, count) a vector at a time: group(i) gives the lanes from i, one(i) a single value (a
+// count that is no multiple of a vector, and with kStream the values before the first aligned
+// vector). kStream: by streaming stores, so that the plane is not read before it is written
+// (the write-allocate read: 8 MB of colors a 1080p frame, 16 MB of 64-bit ids).
+template <bool kStream, class D, class T, class One, class Group>
+HWY_INLINE void storeRow(D d, T* out, std::size_t count, const One& one, const Group& group) {
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t i = 0;
+  if constexpr (kStream) {
+    for (; i < count && reinterpret_cast<std::uintptr_t>(out + i) % (lanes * sizeof(T)) != 0; ++i)
+      one(i);
+  }
+  for (; i + lanes <= count; i += lanes) {
+    if constexpr (kStream) {
+      hn::Stream(group(i), d, out + i);
+    } else {
+      hn::StoreU(group(i), d, out + i);
+    }
+  }
+  for (; i < count; ++i)
+    one(i);
+}
+
+// One row's colors, `count` pixels from `ids` to `color` (kStream: storeRow's).
 template <bool kStream>
 HWY_INLINE void colorRow(const std::uint32_t* colors, std::uint32_t background,
                          const std::int32_t* ids, std::uint32_t* color, std::size_t count) {
   const DCU du;
-  const std::size_t lanes = hn::Lanes(du);
   const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
-  const auto one = [&](std::size_t x) { color[x] = ids[x] < 0 ? background : colors[ids[x]]; };
-  std::size_t x = 0;
-  if constexpr (kStream) {
-    for (; x < count && reinterpret_cast<std::uintptr_t>(color + x) % (lanes * 4) != 0; ++x)
-      one(x);
-  }
-  for (; x + lanes <= count; x += lanes) {
-    const hn::Vec<DCU> group = colorGroup(colors, backgroundColor, ids + x);
-    if constexpr (kStream) {
-      hn::Stream(group, du, color + x);
-    } else {
-      hn::StoreU(group, du, color + x);
-    }
-  }
-  for (; x < count; ++x)  // a width that is no multiple of a group
-    one(x);
+  storeRow<kStream>(
+      du, color, count, [&](std::size_t x) { color[x] = ids[x] < 0 ? background : colors[ids[x]]; },
+      [&](std::size_t x) { return colorGroup(colors, backgroundColor, ids + x); });
 }
 
 void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, bool stream) {
@@ -142,6 +150,38 @@ void ResolveDepths(const std::int32_t* polygonId, float* depth, int planeWidth,
   }
 }
 
+// 64-bit ids, a whole vector of them, from as many 32-bit ids (half a vector).
+using DW = hn::ScalableTag<std::int64_t>;
+using DWI = hn::Rebind<std::int32_t, DW>;
+
+// ids [0, count) widened (facet/IdPlane.h; kStream: storeRow's).
+template <bool kStream>
+HWY_INLINE void widenIds(const std::int32_t* ids, std::int64_t* out, std::size_t count,
+                         std::int64_t first) {
+  const DW dw;
+  const DWI di;
+  const hn::Vec<DW> shift = hn::Set(dw, first);
+  storeRow<kStream>(
+      dw, out, count, [&](std::size_t i) { out[i] = ids[i] < 0 ? -1 : first + ids[i]; },
+      [&](std::size_t i) {
+        // Bitwise, from the 32-bit sign: -1 lanes where negative, else 0 (Highway 1.0's
+        // 64-bit IfNegativeThenElse took INT32_MIN's widened lane for not negative on SSSE3).
+        const hn::Vec<DWI> id = hn::LoadU(di, ids + i);
+        const hn::Vec<DW> negative = hn::PromoteTo(dw, hn::ShiftRight<31>(id));
+        return hn::Or(hn::AndNot(negative, hn::Add(hn::PromoteTo(dw, id), shift)), negative);
+      });
+}
+
+void WidenPolygonIds(const std::int32_t* ids, std::int64_t* out, std::size_t count,
+                     std::int64_t first, bool stream) {
+  if (stream) {
+    widenIds<true>(ids, out, count, first);
+    hwy::FlushStream();  // weakly ordered: done before the caller hands the plane on
+  } else {
+    widenIds<false>(ids, out, count, first);
+  }
+}
+
 }  // namespace facet::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -156,6 +196,7 @@ constexpr int kRowsPerTask = 8;
 
 HWY_EXPORT(ResolveColors);
 HWY_EXPORT(ResolveDepths);
+HWY_EXPORT(WidenPolygonIds);
 
 }  // namespace
 
@@ -193,4 +234,14 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
 }
 
 }  // namespace facet::detail
+
+namespace facet {
+
+void widenPolygonIds(const std::int32_t* ids, std::int64_t* out, std::size_t count,
+                     std::int64_t first, bool stream) {
+  using namespace detail;  // the dispatch table, in the anonymous namespace above
+  HWY_DYNAMIC_DISPATCH(WidenPolygonIds)(ids, out, count, first, stream);
+}
+
+}  // namespace facet
 #endif  // HWY_ONCE

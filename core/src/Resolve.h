@@ -13,6 +13,7 @@
 #include "TileGrid.h"
 #include "facet/Color.h"
 #include "facet/Framebuffer.h"
+#include "facet/IdPlane.h"
 #include "facet/Renderer.h"
 
 namespace facet::detail {
@@ -46,10 +47,9 @@ void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
 float resolvedDepth(const FrameTransform& transform, float key);
 
 // A color plane of this many bytes or more is streamed to memory (unless the estimate reads
-// it back): it would not stay in the caches for whoever reads it next, and a plain store reads
-// each line before writing it (the write-allocate read of 8 MB at 1080p). A smaller one (a
-// thumbnail, a test's image) is stored plainly, to be read from the caches.
-inline constexpr std::size_t kStreamedColorBytes = std::size_t{4} << 20;
+// it back), as a large id plane by widenPolygonIds (facet/IdPlane.h says why). A smaller one
+// (a thumbnail, a test's image) is stored plainly, to be read from the caches.
+inline constexpr std::size_t kStreamedColorBytes = kStreamedPlaneBytes;
 
 // Colors every pixel of the grid's viewport, a band of whole rows per task (Resolve.cpp says
 // why not tile by tile).

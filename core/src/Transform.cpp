@@ -13,16 +13,45 @@ namespace {
 // Polygons per sort task.
 constexpr std::size_t kPolygonsPerSortTask = 1 << 18;
 
-// Whether a task's points are used by a block in view (ViewCulling.h).
-bool needed(const FrameMesh& mesh, const MeshRange& range) {
-  return !mesh.neededTasks || mesh.neededTasks[range.begin / kPointsPerTransformTask];
+// The flags of FrameMesh::neededPoints over a task's points.
+std::size_t firstFlag(const MeshRange& r) {
+  return r.begin >> kNeededPointBits;
+}
+std::size_t endFlag(const MeshRange& r) {
+  return (r.end + kPointsPerNeededFlag - 1) >> kNeededPointBits;
 }
 
+// Whether a block that is set up uses some of a task's points (ViewCulling.h).
+bool needed(const FrameMesh& mesh, const MeshRange& r) {
+  if (!mesh.neededPoints) return true;
+  const std::uint8_t* flags = mesh.neededPoints;
+  return std::find(flags + firstFlag(r), flags + endFlag(r), std::uint8_t{1}) != flags + endFlag(r);
+}
+
+// Projects the task's points, or only its runs of needed points.
 void transformRange(const FrameMesh& mesh, const FrameTransform& transform, const MeshRange& r,
                     WindowVertex* vertices, std::uint32_t& outcodes) {
   withTypedMesh(mesh.mesh(), [&](auto points, auto) {
-    outcodes = projectPoints(transform, points.xyz + 3 * r.begin, r.end - r.begin,
-                             vertices + mesh.firstVertex + r.begin);
+    const auto project = [&](std::size_t begin, std::size_t end) {
+      return projectPoints(transform, points.xyz + 3 * begin, end - begin,
+                           vertices + mesh.firstVertex + begin);
+    };
+    if (!mesh.neededPoints) {
+      outcodes = project(r.begin, r.end);
+      return;
+    }
+    outcodes = 0;
+    const std::uint8_t* flags = mesh.neededPoints;
+    for (std::size_t f = firstFlag(r), end = endFlag(r); f < end;) {
+      if (!flags[f]) {
+        ++f;
+        continue;
+      }
+      const std::size_t runBegin = f;
+      while (f < end && flags[f])
+        ++f;
+      outcodes |= project(runBegin << kNeededPointBits, std::min(r.end, f << kNeededPointBits));
+    }
   });
 }
 

@@ -15,6 +15,12 @@ namespace facet::detail {
 
 // Points per transform task.
 inline constexpr std::size_t kPointsPerTransformTask = 1 << 14;
+// Points per flag of FrameMesh::neededPoints: a task transforms only its runs of needed
+// points. Fine enough that the part of each ring of a 2M-polygon UV sphere (1,000 points)
+// that only back-facing blocks use frees a flag or two.
+inline constexpr int kNeededPointBits = 7;
+inline constexpr std::size_t kPointsPerNeededFlag = std::size_t{1} << kNeededPointBits;
+static_assert(kPointsPerTransformTask % kPointsPerNeededFlag == 0);
 
 // The transform's tasks and, per task, the OR of its points' outcodes.
 struct PointRanges {

@@ -26,17 +26,11 @@ std::size_t testBlocks(const MeshFacts& facts, const FrameTransform& transform,
   return outside;
 }
 
-// Marks the transform tasks (Transform.h) that a block's points fall in.
-void markTasksOf(const PointSpan& span, std::uint8_t* tasks) {
-  if (span.first > span.last) return;  // a block that uses no point
-  std::fill(tasks + span.first / kPointsPerTransformTask,
-            tasks + span.last / kPointsPerTransformTask + 1, std::uint8_t{1});
-}
-
-// The transform tasks that the visible blocks' points fall in.
-void markNeededTasks(const MeshFacts& facts, const std::uint8_t* visible, std::uint8_t* tasks) {
-  for (std::size_t b = 0; b < facts.blocks.size(); ++b)
-    if (visible[b]) markTasksOf(facts.blockPoints[b], tasks);
+// Marks the needed-point flags (Transform.h) that a span of point ids falls in.
+void markPointsOf(const PointSpan& span, std::uint8_t* flags) {
+  if (span.first > span.last) return;  // no point
+  std::fill(flags + (span.first >> kNeededPointBits), flags + (span.last >> kNeededPointBits) + 1,
+            std::uint8_t{1});
 }
 
 // Whether decideBackFaces will skip the mesh's back faces, known before its points are
@@ -55,11 +49,15 @@ bool backBlockInView(const std::uint8_t* visible, std::size_t b) {
   return !visible || visible[b >> (kBlockBits - kBackBlockBits)];
 }
 
-// The transform tasks that the back-face blocks in view and not skipped use.
-void markTasksOfBackBlocks(const MeshFacts& facts, const std::uint8_t* visible,
-                           const std::uint8_t* back, std::uint8_t* tasks) {
-  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b)
-    if (backBlockInView(visible, b) && !back[b]) markTasksOf(facts.backBlocks[b].points, tasks);
+// The points that the back-face blocks in view and not skipped (`back` null: none is) use,
+// each block's as its two spans.
+void markNeededPoints(const MeshFacts& facts, const std::uint8_t* visible, const std::uint8_t* back,
+                      std::uint8_t* flags) {
+  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
+    if (!backBlockInView(visible, b) || (back && back[b])) continue;
+    markPointsOf(facts.backBlocks[b].lowPoints, flags);
+    markPointsOf(facts.backBlocks[b].highPoints, flags);
+  }
 }
 
 std::size_t polygonsOutside(const MeshFacts& facts, const MeshView& mesh,
@@ -73,8 +71,8 @@ std::size_t polygonsOutside(const MeshFacts& facts, const MeshView& mesh,
   return count;
 }
 
-std::size_t taskCount(const MeshView& mesh) {
-  return (mesh.points.count + kPointsPerTransformTask - 1) / kPointsPerTransformTask;
+std::size_t flagCount(const MeshView& mesh) {
+  return (mesh.points.count + kPointsPerNeededFlag - 1) >> kNeededPointBits;
 }
 
 // Points the mesh at its flags and counts what its tests found.
@@ -84,6 +82,9 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
       flags.testsBackBlocks
           ? std::size_t(std::count(flags.back, flags.back + facts.backBlocks.size(), 1))
           : 0;
+  // Only the last back-face block may be short.
+  const std::size_t lastBlock = facts.backBlocks.size() - 1;
+  const std::size_t lastBlockPolygons = mesh.mesh().polygons.count - (lastBlock << kBackBlockBits);
   const std::uint8_t* visibleOrAll = flags.outside > 0 ? flags.visible : nullptr;
   if (flags.outside > 0) {
     culling.blocksOutside += flags.outside;
@@ -92,12 +93,13 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
   }
   if (skipped > 0) {
     culling.backBlocksSkipped += skipped;
-    markTasksOfBackBlocks(facts, visibleOrAll, flags.back, flags.needed);
+    culling.backPolygonsSkipped += (skipped - flags.back[lastBlock]) * kPolygonsPerBackBlock +
+                                   flags.back[lastBlock] * lastBlockPolygons;
     mesh.backBlocks = flags.back;
-    mesh.neededTasks = flags.needed;
-  } else if (flags.outside > 0) {
-    markNeededTasks(facts, flags.visible, flags.needed);
-    mesh.neededTasks = flags.needed;
+  }
+  if (skipped > 0 || flags.outside > 0) {
+    markNeededPoints(facts, visibleOrAll, skipped > 0 ? flags.back : nullptr, flags.needed);
+    mesh.neededPoints = flags.needed;
   }
 }
 
@@ -107,34 +109,34 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
                            const FrameTransform& transform, bool closedSurfaces,
                            ViewCulling& culling) {
   culling.blocksTested = culling.blocksOutside = culling.polygonsOutside = 0;
-  culling.backBlocksSkipped = 0;
-  std::size_t blocks = 0, tasks = 0, backBlocks = 0;
+  culling.backBlocksSkipped = culling.backPolygonsSkipped = 0;
+  std::size_t blocks = 0, pointFlags = 0, backBlocks = 0;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     blocks += cache[m].blocks.size();
     backBlocks += cache[m].backBlocks.size();
-    tasks += taskCount(meshes[m].mesh());
+    pointFlags += flagCount(meshes[m].mesh());
   }
   culling.visibleBlocks.resize(blocks);  // pointers into these stay valid below
   culling.backBlocks.resize(backBlocks);
-  culling.neededTasks.assign(tasks, 0);
+  culling.neededPoints.assign(pointFlags, 0);
   culling.meshes.assign(meshes.size(), ViewCulling::MeshFlags{});
   culling.backRanges.clear();
-  std::size_t firstBlock = 0, firstBackBlock = 0, firstTask = 0;
+  std::size_t firstBlock = 0, firstBackBlock = 0, firstFlag = 0;
+  const bool skipping = ScopedBackBlockSettings::current().skipping;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const FrameMesh& mesh = meshes[m];
     const MeshFacts& facts = cache[m];
     ViewCulling::MeshFlags& flags = culling.meshes[m];
     flags.visible = culling.visibleBlocks.data() + firstBlock;
     flags.back = culling.backBlocks.data() + firstBackBlock;
-    flags.needed = culling.neededTasks.data() + firstTask;
+    flags.needed = culling.neededPoints.data() + firstFlag;
     firstBlock += facts.blocks.size();
     firstBackBlock += facts.backBlocks.size();
-    firstTask += taskCount(mesh.mesh());
+    firstFlag += flagCount(mesh.mesh());
     if (!cullable(mesh, facts, transform)) continue;
     culling.blocksTested += facts.blocks.size();
     flags.outside = testBlocks(facts, transform, flags.visible);
-    if (!backBlockSkippingEnabled() || !willSkipBackFaces(mesh, facts, transform, closedSurfaces))
-      continue;
+    if (!skipping || !willSkipBackFaces(mesh, facts, transform, closedSurfaces)) continue;
     flags.testsBackBlocks = true;
     for (std::size_t b = 0; b < facts.backBlocks.size(); b += kBackBlocksPerTask)
       culling.backRanges.push_back(

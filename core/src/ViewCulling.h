@@ -14,7 +14,10 @@
 // decideBackFaces will: its material culls them, or it is closed, finite and wholly in front
 // of the near plane), the back-face blocks whose every triangle it would cull
 // (BackFacingBlocks.h): those are counted as culled without being set up, and their points
-// are transformed only when a block that is set up uses them too.
+// are transformed only when a block that is set up uses them too. Which points are needed is
+// marked per kPointsPerNeededFlag points from each back-face block's two point spans
+// (MeshCache.h), so that the points between a strip's two rings that only skipped blocks use
+// are freed even where every transform task holds some drawn block's points.
 
 #include <cstdint>
 #include <span>
@@ -36,16 +39,16 @@ struct ViewCulling {
     bool testsBackBlocks = false;  // the set-up will skip its back faces
   };
   std::vector<std::uint8_t> visibleBlocks;  // per block of every culled mesh, in turn
-  std::vector<std::uint8_t> neededTasks;    // per transform task of every culled mesh
+  std::vector<std::uint8_t> neededPoints;   // per kPointsPerNeededFlag points of every mesh
   std::vector<std::uint8_t> backBlocks;     // per back-face block of every mesh, in turn
   std::size_t blocksTested = 0, blocksOutside = 0, polygonsOutside = 0;
-  std::size_t backBlocksSkipped = 0;
+  std::size_t backBlocksSkipped = 0, backPolygonsSkipped = 0;
   std::vector<MeshFlags> meshes;      // scratch, per mesh
   std::vector<MeshRange> backRanges;  // scratch: the back-face blocks' test tasks
 };
 
 // Tests the blocks of every measured mesh against the view and points the meshes with
-// blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededTasks), and
+// blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededPoints), and
 // those with back-face blocks to skip at theirs (FrameMesh::backBlocks). `closedSurfaces`:
 // Rule::ClosedSurfaces may fire (decideBackFaces). The back-face blocks are tested on the
 // runner's threads, as part of the transform phase (no progress of their own).

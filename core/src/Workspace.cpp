@@ -85,6 +85,7 @@ void Renderer::Workspace::reportViewCulling() {
   plan.blocksTested = viewCulling.blocksTested;
   plan.blocksOutside = viewCulling.blocksOutside;
   plan.blocksBackFacing = viewCulling.backBlocksSkipped;
+  plan.polygonsBackFacing = viewCulling.backPolygonsSkipped;
   detail::reportRule(plan, Rule::GeometryOutsideView, viewCulling.polygonsOutside);
 }
 

@@ -117,6 +117,36 @@ inline vtkSmartPointer<vtkPolyData> PolyData(vtkPoints* points, vtkCellArray* po
   return data;
 }
 
+// A columns × rows grid of side × side squares from the origin (square (i, j) is polygon
+// j·columns + i) after `verts` vertex cells and one line cell: its polys' cell ids start at
+// verts + 1.
+inline vtkSmartPointer<vtkPolyData> SquareGridAfterVertsAndALine(int columns,
+  int rows,
+  int side,
+  int verts)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> vertCells, lines, polys;
+  const vtkIdType vertex = points->InsertNextPoint(1.0, 1.0, 0.0);
+  for (int v = 0; v < verts; ++v)
+  {
+    vertCells->InsertNextCell(1, &vertex);
+  }
+  const vtkIdType line[2] = { vertex, vertex };
+  lines->InsertNextCell(2, line);
+  for (int j = 0; j < rows; ++j)
+  {
+    for (int i = 0; i < columns; ++i)
+    {
+      AddSquare(points, polys, i * side, j * side, (i + 1) * side, (j + 1) * side);
+    }
+  }
+  vtkSmartPointer<vtkPolyData> data = PolyData(points, polys);
+  data->SetVerts(vertCells);
+  data->SetLines(lines);
+  return data;
+}
+
 // Turns every point normal of `data` toward +x (x += dx, normalized) in place and marks the
 // normals modified: new normals on the same points, as a user edits them.
 inline void TiltPointNormals(vtkPolyData* data, double dx)

@@ -21,6 +21,8 @@
 #include "vtkStripper.h"
 #include "vtkTriangleFilter.h"
 
+#include "facet/IdPlane.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -838,6 +840,47 @@ TEST(Output, CellIdsAreTheCellsDrawnInEveryModeAndAfterAStop)
     const std::vector<vtkIdType> stopped = cellIdsOf();
     EXPECT_EQ(std::count(stopped.begin(), stopped.end(), vtkIdType{ -1 }),
       static_cast<std::ptrdiff_t>(stopped.size()));
+  }
+}
+
+//------------------------------------------------------------------------------
+// CellId of polys after verts and lines, pixel by pixel against the grid of squares drawn: in
+// an image whose CellId plane is streamed past the caches (facet::kStreamedPlaneBytes or more,
+// an odd width so that bands start at every alignment) and in one stored plainly.
+TEST(Output, CellIdsOfPolysAfterVertsAndLinesInLargeAndSmallImages)
+{
+  constexpr int side = 4; // each square covers side × side pixel centers
+  for (const auto& [width, height] : { std::pair{ 1031, 1030 }, std::pair{ 160, 120 } })
+  {
+    SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
+    const bool streamed =
+      static_cast<std::size_t>(width) * height * sizeof(vtkIdType) >= facet::kStreamedPlaneBytes;
+    EXPECT_EQ(streamed, width > 1000);
+    const int columns = (width - 13) / side, rows = (height - 7) / side; // background beyond
+    vtkSmartPointer<vtkPolyData> data = SquareGridAfterVertsAndALine(columns, rows, side, 2);
+    vtkNew<vtkFacetRenderFilter> filter;
+    filter->SetInputData(data);
+    filter->SetSize(width, height);
+    filter->SetCamera(facet_test::PixelCamera(width, height));
+    filter->SetNumberOfThreads(2);
+    filter->Update();
+    vtkImageData* image = filter->GetOutput();
+    std::size_t differing = 0;
+    for (int y = 0; y < height; ++y)
+    {
+      for (int x = 0; x < width; ++x)
+      {
+        const int i = x / side, j = y / side;
+        const vtkIdType expected = i < columns && j < rows ? 3 + j * columns + i : -1;
+        const vtkIdType cellId = CellIdAt(image, x, y);
+        if (cellId != expected && ++differing <= 5)
+        {
+          ADD_FAILURE() << "pixel " << x << ", " << y << ": " << cellId << ", expected "
+                        << expected;
+        }
+      }
+    }
+    EXPECT_EQ(differing, 0u);
   }
 }
 

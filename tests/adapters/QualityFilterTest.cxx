@@ -108,7 +108,11 @@ TEST(QualityFilter, EstimateReportedWithEveryRender)
     vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetArray("ErrorEstimate"));
   ASSERT_NE(estimate, nullptr);
   EXPECT_EQ(estimate->GetNumberOfValues(), 96 * 72);
-  EXPECT_FLOAT_EQ(estimate->GetValueRange()[1], predictedMax);
+  // Without the array the summary may take one bound per block of polygons in place of each
+  // polygon's (QualityRenderer.h, errorEstimateImage): at least the image's, and its own then.
+  EXPECT_LE(estimate->GetValueRange()[1], predictedMax);
+  EXPECT_FLOAT_EQ(estimate->GetValueRange()[1],
+    FieldValue(filter->GetOutput(), "FacetErrorEstimate", "PredictedMax"));
 
   // Off: the plain rasterizer, the same image, no estimate.
   vtkNew<vtkImageData> with;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -21,15 +22,18 @@
 namespace facet::testing {
 namespace {
 
-// Leaves skipping and its margin on, whatever a test did.
+// Leaves the default SIMD target, whatever a test did.
 class BackFacingBlocks : public ::testing::Test {
  protected:
-  void TearDown() override {
-    detail::useSimdTarget(0);
-    detail::enableBackBlockSkipping(true);
-    detail::enableBackBlockMargin(true);
-  }
+  void TearDown() override { detail::useSimdTarget(0); }
 };
+
+using Settings = detail::ScopedBackBlockSettings::Settings;
+
+// The back-face blocks' margin off while it lives.
+detail::ScopedBackBlockSettings withoutMargin() {
+  return detail::ScopedBackBlockSettings(Settings{.skipping = true, .margin = false});
+}
 
 // Patches of kPolygonsPerBackBlock triangles each, every patch a small disc of random
 // orientation on a sphere of radius 1 about `center`, its triangles facing out: pixel-sized
@@ -79,11 +83,20 @@ Camera randomCamera(std::mt19937& random, const glm::dvec3& center, bool paralle
   return camera;
 }
 
+// A closed mesh's view, versioned: its back-face blocks measured.
+MeshView closedView(const Mesh& mesh) {
+  MeshView view = mesh.view();
+  view.closedSurface = true;
+  view.version = 1;
+  return view;
+}
+
+// Renders with skipping as given (and the margin as the test left it).
 Rendered renderWith(const Scene& scene, const Camera& camera, bool skipping) {
-  detail::enableBackBlockSkipping(skipping);
-  Rendered r = renderScene(scene, camera, 320, 240);
-  detail::enableBackBlockSkipping(true);
-  return r;
+  Settings settings = detail::ScopedBackBlockSettings::current();
+  settings.skipping = skipping;
+  const detail::ScopedBackBlockSettings scoped(settings);
+  return renderScene(scene, camera, 320, 240);
 }
 
 // Whether two renders are the same bytes with the same counts.
@@ -143,7 +156,7 @@ TEST_F(BackFacingBlocks, SkippedBlocksRenderTheSameBytesAndCountsFromManyViews) 
 // away): tiny triangles that snap to no area, or slivers that snap to the other winding, then
 // count (and draw) otherwise than the set-up would.
 TEST_F(BackFacingBlocks, WithoutTheMarginSomeViewDiffers) {
-  detail::enableBackBlockMargin(false);
+  const auto noMargin = withoutMargin();
   int differing = 0;
   for (const glm::dvec3 center : {glm::dvec3(0.0), glm::dvec3(1e6, -2e6, 3e5)})
     differing += compareViews(24, 11, center).differing;
@@ -190,10 +203,10 @@ TEST_F(BackFacingBlocks, WithoutTheMarginAnEdgeOnPlaneLosesPixels) {
   const Rendered on = renderWith(scene, camera, true);
   EXPECT_EQ(on.stats.plan.blocksBackFacing, 0u);
   EXPECT_TRUE(sameRender(on, off));
-  detail::enableBackBlockMargin(false);
-  const Rendered withoutMargin = renderWith(scene, camera, true);
-  EXPECT_GT(withoutMargin.stats.plan.blocksBackFacing, 0u);
-  EXPECT_GT(differingPixels(withoutMargin.framebuffer, off.framebuffer), 0u);
+  const auto noMargin = withoutMargin();
+  const Rendered unsafe = renderWith(scene, camera, true);
+  EXPECT_GT(unsafe.stats.plan.blocksBackFacing, 0u);
+  EXPECT_GT(differingPixels(unsafe.framebuffer, off.framebuffer), 0u);
 }
 
 // Every face drawn (no culling material, not closed): nothing skipped.
@@ -236,10 +249,7 @@ TEST_F(BackFacingBlocks, ANewVersionMeasuresItsBlocksAgain) {
 // 1, 2 and 8 threads and on every SIMD target (the set-up's batches are what it skips).
 TEST_F(BackFacingBlocks, SkippingIsTheSameBytesOnEveryThreadCountAndTarget) {
   const Mesh sphere = makeUvSphere(128, 130);
-  MeshView view = sphere.view();
-  view.closedSurface = true;
-  view.version = 1;
-  const Scene scene = oneMeshScene(view);
+  const Scene scene = oneMeshScene(closedView(sphere));
   Camera camera = fitCamera(sphere);
   const std::vector<detail::SimdTarget> targets = detail::simdTargets();
   for (int turn = 0; turn < 3; ++turn) {
@@ -308,6 +318,84 @@ TEST_F(BackFacingBlocks, MeasurementRefusesWhatItCannotTrust) {
   Mesh folded = flat;
   std::swap(folded.connectivity[4], folded.connectivity[5]);  // one facing the other way
   EXPECT_FALSE(detail::measureBackBlock(folded.view(), 0, 4).skippable);
+}
+
+// A block of a ring-ordered sphere uses two runs of point ids, a quarter of two rings: its two
+// spans hold every id it uses and leave the rest of the ring between them out (what lets the
+// transform skip the points only back-facing blocks use, ViewCulling.cpp).
+TEST_F(BackFacingBlocks, ABlockOfTwoRingsKeepsTwoPointSpans) {
+  const Mesh sphere = makeUvSphere(600, 40);
+  const MeshView view = sphere.view();
+  const std::size_t blocks = view.polygons.count / detail::kPolygonsPerBackBlock;
+  std::size_t apart = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t begin = b * detail::kPolygonsPerBackBlock;
+    const detail::BackBlock block =
+        detail::measureBackBlock(view, begin, begin + detail::kPolygonsPerBackBlock);
+    const detail::PointSpan &low = block.lowPoints, &high = block.highPoints;
+    ASSERT_LE(low.first, low.last);
+    EXPECT_TRUE(high.first > high.last || high.first > low.last);
+    for (std::size_t p = begin; p < begin + detail::kPolygonsPerBackBlock; ++p) {
+      for (std::int64_t c = sphere.offsets[p]; c < sphere.offsets[p + 1]; ++c) {
+        const auto id = static_cast<std::size_t>(sphere.connectivity[static_cast<std::size_t>(c)]);
+        EXPECT_TRUE((id >= low.first && id <= low.last) || (id >= high.first && id <= high.last))
+            << "block " << b << ", point " << id;
+      }
+    }
+    apart += high.first <= high.last && high.first > low.last + 300;
+  }
+  EXPECT_GT(apart, blocks / 2);  // most blocks leave most of a ring out
+}
+
+// The settings are the thread's and the object's: a render on another thread skips while
+// this one's are off, and they return to the defaults when the object goes.
+TEST_F(BackFacingBlocks, SettingsAreScopedToTheirThreadAndObject) {
+  const Mesh sphere = makeUvSphere(128, 130);
+  const Scene scene = oneMeshScene(closedView(sphere));
+  const Camera camera = fitCamera(sphere);
+  {
+    const detail::ScopedBackBlockSettings off(Settings{.skipping = false, .margin = true});
+    EXPECT_EQ(renderScene(scene, camera, 320, 240).stats.plan.blocksBackFacing, 0u);
+    std::size_t elsewhere = 0;
+    std::thread other(
+        [&] { elsewhere = renderScene(scene, camera, 320, 240).stats.plan.blocksBackFacing; });
+    other.join();
+    EXPECT_GT(elsewhere, 0u);
+  }
+  EXPECT_TRUE(detail::ScopedBackBlockSettings::current().skipping);
+  EXPECT_GT(renderScene(scene, camera, 320, 240).stats.plan.blocksBackFacing, 0u);
+}
+
+// The plan reports the skipped blocks on a line of their own, with their polygons (counted
+// culled: the same count as without skipping), not on the view culling's line; off with that rule.
+TEST_F(BackFacingBlocks, ThePlanReportsSkippedBlocksOnALineOfTheirOwn) {
+  const Mesh sphere = makeUvSphere(100, 131);  // 25,800 triangles: the last block is short
+  const Scene scene = oneMeshScene(closedView(sphere));
+  Camera camera = fitCamera(sphere);
+  camera.position = camera.focalPoint +
+                    glm::dvec3(0.0, 0.0, 1.0) * glm::length(camera.position - camera.focalPoint);
+  camera.viewUp = {0.0, 1.0, 0.0};  // looking down the axis: the last block faces away
+  const Rendered on = renderWith(scene, camera, true);
+  const Rendered off = renderWith(scene, camera, false);
+  const RenderPlan& plan = on.stats.plan;
+  ASSERT_GT(plan.blocksBackFacing, 0u);
+  EXPECT_TRUE(sameRender(on, off));
+  EXPECT_LE(plan.polygonsBackFacing, plan.blocksBackFacing * detail::kPolygonsPerBackBlock);
+  EXPECT_GT(plan.polygonsBackFacing, (plan.blocksBackFacing - 1) * detail::kPolygonsPerBackBlock);
+  EXPECT_LE(plan.polygonsBackFacing, on.stats.polygonsCulled);
+  EXPECT_EQ(off.stats.plan.polygonsBackFacing, 0u);
+  const std::string report = on.stats.describe();
+  const std::string line = "fired back-facing blocks (with geometry outside the view): " +
+                           std::to_string(plan.polygonsBackFacing) +
+                           " polygons counted culled, not set up (" +
+                           std::to_string(plan.blocksBackFacing) + " blocks)";
+  EXPECT_NE(report.find(line), std::string::npos) << report;
+  EXPECT_EQ(report.find("back-facing blocks skipped whole"), std::string::npos) << report;
+  RenderOptions noViewCulling;
+  noViewCulling.rules.geometryOutsideView = false;
+  const Rendered ruleOff = renderScene(scene, camera, 320, 240, noViewCulling);
+  EXPECT_EQ(ruleOff.stats.plan.blocksBackFacing, 0u);
+  EXPECT_NE(ruleOff.stats.describe().find("off   back-facing blocks"), std::string::npos);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "SetupBatch.h"
 #include "ThreadPool.h"
 #include "facet/Camera.h"
+#include "facet/IdPlane.h"
 
 namespace facet::testing {
 namespace {
@@ -105,6 +106,40 @@ TEST_F(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
           }
         }
         EXPECT_EQ(differing, 0u) << width << " x " << height;
+      }
+    }
+  }
+}
+
+// widenPolygonIds (facet/IdPlane.h) against its definition on every instruction set: stored
+// plainly and streamed, from every alignment of the 64-bit plane (the streamed path's scalar
+// head) and for counts that are no multiple of a vector (its tail), ids of every sign.
+TEST_F(Resolve, WidenedIdsAreTheShiftedIdsOnEveryTarget) {
+  const Planes planes = randomPlanes(301, 37, 1 << 30, 11);
+  std::vector<std::int32_t> ids = planes.ids;
+  ids[0] = std::numeric_limits<std::int32_t>::max();
+  ids[1] = std::numeric_limits<std::int32_t>::min();
+  ids[2] = 0;
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    SCOPED_TRACE(target.name);
+    detail::useSimdTarget(target.bits);
+    for (const bool stream : {false, true}) {
+      for (const std::int64_t first : {std::int64_t{0}, std::int64_t{17}, std::int64_t{1} << 40}) {
+        for (std::size_t offset = 0; offset < 9; ++offset) {
+          const std::size_t count = ids.size() - 2 * offset;
+          std::vector<std::int64_t> out(ids.size() + 8, 5);  // 5: not written
+          widenPolygonIds(ids.data() + offset, out.data() + offset, count, first, stream);
+          std::size_t differing = 0;
+          for (std::size_t i = 0; i < out.size(); ++i) {
+            const bool inside = i >= offset && i < offset + count;
+            const std::int64_t expected = !inside ? 5 : ids[i] < 0 ? -1 : first + ids[i];
+            if (out[i] != expected && ++differing <= 5)
+              ADD_FAILURE() << "value " << i << " of " << out.size() << ": " << out[i]
+                            << ", expected " << expected;
+          }
+          EXPECT_EQ(differing, 0u)
+              << "stream " << stream << ", first " << first << ", offset " << offset;
+        }
       }
     }
   }

@@ -103,5 +103,64 @@ TEST(ErrorEstimate, BoundsTheMeasuredErrorOnTheSharedMeshes) {
   }
 }
 
+// The summary-only estimate (flat, one sample per pixel, no ErrorEstimate image: the filter's
+// default; QualityRenderer.cpp, estimateSummary) under a matte material, which it takes: its
+// maximum is at least the measured error of every pixel away from the silhouette, and its
+// RMSE at least the measured RMSE (over every covered pixel, silhouettes included).
+void expectWithinSummary(const std::string& name, const Mesh& mesh, const Camera& camera, int width,
+                         int height) {
+  Material matte;
+  matte.diffuse = 0.9;
+  Scene scene;
+  scene.meshes.push_back({mesh.view(), matte});
+  scene.lights = testing::twoLights();
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer image(width, height);
+  const QualityStats stats = quality.render(scene, {}, camera, image,
+                                            {.estimateError = true, .errorEstimateImage = false});
+  ASSERT_TRUE(quality.errorEstimate().empty());
+  renderer.forgetPreviousFrame();
+  Framebuffer imaged(width, height);  // the per-pixel estimate, for how much looser
+  const QualityStats perPixel = quality.render(scene, {}, camera, imaged, {.estimateError = true});
+  const ShadingMesh shading(mesh.view());
+  const std::vector<VertexNormals> normals{shading.normals};
+  const ReferenceRender reference =
+      renderMeshReference(scene, camera, width, height, {.samplesPerPixel = 128}, normals);
+  const ImageError error = compareImages(reference.image, toFloatImage(image));
+  double worst = 0.0;
+  std::size_t checked = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (!awayFromSilhouette(reference.image, image, x, y)) continue;
+      worst = std::max<double>(worst, error.errorImage[image.indexOf(x, y)]);
+      ++checked;
+    }
+  }
+  std::printf(
+      "%-24s summary: predicted RMSE %6.2f max %6.2f (per pixel %6.2f, %6.2f); measured "
+      "RMSE %6.2f, max away from the silhouette %6.2f (%zu pixels)\n",
+      name.c_str(), stats.predictedRmse, stats.predictedMaxError, perPixel.predictedRmse,
+      perPixel.predictedMaxError, error.rmse, worst, checked);
+  EXPECT_GE(stats.predictedRmse, perPixel.predictedRmse) << name;
+  EXPECT_GE(stats.predictedMaxError, perPixel.predictedMaxError) << name;
+  EXPECT_GT(checked, 500u) << name;
+  EXPECT_LE(worst, stats.predictedMaxError + kReferenceNoise) << name;
+  EXPECT_GE(stats.predictedRmse, error.rmse) << name;
+}
+
+TEST(ErrorEstimate, SummaryBoundsTheMeasuredErrorOnTheSphereSweepAndSharedMeshes) {
+  const Camera camera = fitCamera(testing::makeUvSphere(8, 5), {0.2, -0.3, -1});
+  for (const int segments : {8, 32, 128}) {
+    expectWithinSummary("matte sphere " + std::to_string(segments),
+                        testing::makeUvSphere(segments, segments / 2 + 1), camera, 120, 90);
+  }
+  for (const char* file : {"stanford-bunny.obj", "fandisk.obj"}) {
+    const Mesh mesh = testing::readObj(testing::sharedMeshPath(file));
+    expectWithinSummary(std::string("matte ") + file, mesh, fitCamera(mesh, {0.3, -0.2, -1}), 160,
+                        120);
+  }
+}
+
 }  // namespace
 }  // namespace facet

@@ -100,8 +100,11 @@ struct QualitySettings {
   /// image errorEstimate()). (default: off)
   bool estimateError = false;
   /// With estimateError, keep the per-pixel estimate (errorEstimate()); off, the render finds
-  /// the summary alone (the same QualityStats::predicted*) without writing the image.
-  /// (default: on)
+  /// the summary alone without writing the image: flat at one sample per pixel under point and
+  /// directional lights and a material without specular, one color per polygon, from one bound
+  /// per block of 128 polygons in place of each polygon's (QualityStats::predicted*: at least
+  /// the per-pixel estimate's, a little looser, at about a third of its cost); otherwise the
+  /// same numbers as with the image. (default: on)
   bool errorEstimateImage = true;
   /// One shading per scene mesh, in place of `shading` (a VTK scene's actors each have their
   /// property's interpolation); empty: `shading` for every mesh. (default: empty)
@@ -131,7 +134,9 @@ struct QualityStats {
   /// bound (FlatErrorBound.h) plus how far its flat color is from the pixel's, plus 0.5 for
   /// rounding — averaged over a pixel's samples; over the covered pixels, its root mean
   /// square and its maximum. Whatever the mode, it is flat shading's estimate. Silhouettes
-  /// (the background a pixel mixes in) are not part of it.
+  /// (the background a pixel mixes in) are not part of it. Without the image
+  /// (errorEstimateImage off) each polygon's bound may be its block's (QualitySettings), so
+  /// these are then at least the per-pixel estimate's.
   double predictedRmse = 0.0;
   double predictedMaxError = 0.0;
   /// The estimate is the previous render's, kept: this render only recolored that frame (a
@@ -185,7 +190,9 @@ class QualityRenderer {
       const Frame& frame, const detail::BatchLighting* facing,
       detail::FunctionRef<float(std::size_t, std::size_t, const glm::dvec3*, const glm::dvec3&)>
           boundOne,
-      detail::EstimateHook& hook);
+      bool summary, detail::EstimateHook& hook);
+  void estimateSummary(const Frame& frame, const FramebufferView& target, QualityStats& stats);
+  void blockBounds(const Frame& frame);
   void finishFused(const Frame& frame, const detail::EstimateHook& hook,
                    const FramebufferView& target, QualityStats& stats);
   void shadeAndResolve(const Frame& frame, const FramebufferView& target, QualityStats& stats);
@@ -219,6 +226,9 @@ class QualityRenderer {
   // The same in the per-pixel estimate's fixed point (EstimateRows.h: fixedBoundOf), an even
   // count.
   std::vector<std::uint16_t> fixedBounds_;
+  // The summary-only estimate's: per block of polygon ids, and per block of one mesh
+  // (FlatErrorBoundOfMesh.h), in the same fixed point.
+  std::vector<std::uint16_t> blockBounds_, localBounds_;
   std::vector<detail::EstimateSums> rowSums_;         // per pixel row: the fused estimate's
   std::vector<const detail::BoundTerms*> meshTerms_;  // per mesh: terms_'s, for the hook
   std::vector<std::uint8_t> reshade_;    // per polygon id: shaded again (visible ones only)

@@ -139,9 +139,11 @@ struct RenderPlan {
   /// Rule::GeometryOutsideView: blocks of polygons tested and found outside the view.
   std::size_t blocksTested = 0, blocksOutside = 0;
   /// Blocks of back faces of meshes that skip them, each certain to be culled whole, not set
-  /// up (their polygons are counted as culled), with their points not transformed unless a
-  /// drawn block uses them.
-  std::size_t blocksBackFacing = 0;
+  /// up (their polygons are counted as culled, RenderStats::polygonsCulled), with their
+  /// points not transformed unless a drawn block uses them; allowed with
+  /// Rule::GeometryOutsideView, reported on a line of its own. `polygonsBackFacing`: the
+  /// polygons in them.
+  std::size_t blocksBackFacing = 0, polygonsBackFacing = 0;
   /// Rule::HiddenGeometry's estimate: the pixels of the triangles' bounding boxes over the
   /// image's pixels (known once set up). Hierarchical z pays where the triangles are large
   /// and overlap many times.
