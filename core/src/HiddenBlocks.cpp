@@ -52,19 +52,25 @@ bool HiddenBlockTest::hidden(const Box& box) const {
 }
 
 namespace {
-std::atomic<bool> blocksOn{[] {
+bool hiddenBlocksSetTo(const char* setting) {
   const char* value = std::getenv("FACET_HIDDEN_BLOCKS");
-  return value != nullptr && std::strcmp(value, "1") == 0;
-}()};
+  return value != nullptr && std::strcmp(value, setting) == 0;
+}
+const bool coneOnly = hiddenBlocksSetTo("cone");
+std::atomic<bool> blocksOn{hiddenBlocksSetTo("1") || coneOnly};
 
 struct DebugCounts {
   std::atomic<std::size_t> blocks{0}, hidden{0}, polygons{0}, hiddenPolygons{0};
+  std::atomic<std::size_t> coneCertain{0}, coneCertainHidden{0}, coneCertainHiddenPolygons{0};
   std::atomic<bool> on{std::getenv("FACET_HIDDEN_BLOCKS_DEBUG") != nullptr};
   bool print = on;
   ~DebugCounts() {
     if (print)
-      std::fprintf(stderr, "hidden blocks %zu of %zu, polygons %zu of %zu\n", hidden.load(),
-                   blocks.load(), hiddenPolygons.load(), polygons.load());
+      std::fprintf(stderr,
+                   "hidden blocks %zu of %zu, polygons %zu of %zu; cone-certain blocks %zu, "
+                   "hidden %zu (polygons %zu)\n",
+                   hidden.load(), blocks.load(), hiddenPolygons.load(), polygons.load(),
+                   coneCertain.load(), coneCertainHidden.load(), coneCertainHiddenPolygons.load());
   }
 } debugCounts;
 }  // namespace
@@ -77,23 +83,46 @@ bool hiddenBlocksEnabled() {
   return blocksOn;
 }
 
+bool hiddenBlocksConeOnly() {
+  return coneOnly;
+}
+
 void countHiddenBlocks(bool on) {
   debugCounts.blocks = debugCounts.hidden = debugCounts.polygons = 0;
   debugCounts.hiddenPolygons = 0;
+  debugCounts.coneCertain = debugCounts.coneCertainHidden = 0;
+  debugCounts.coneCertainHiddenPolygons = 0;
   debugCounts.on = on;
 }
 
-HiddenBlockCounts hiddenBlockCounts() {
-  return {debugCounts.blocks, debugCounts.hidden, debugCounts.polygons, debugCounts.hiddenPolygons};
+bool countingHiddenBlocks() {
+  return debugCounts.on;
 }
 
-void hiddenBlockDebug(bool hidden, std::size_t polygons) {
+HiddenBlockCounts hiddenBlockCounts() {
+  return {debugCounts.blocks,
+          debugCounts.hidden,
+          debugCounts.polygons,
+          debugCounts.hiddenPolygons,
+          debugCounts.coneCertain,
+          debugCounts.coneCertainHidden,
+          debugCounts.coneCertainHiddenPolygons};
+}
+
+void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons) {
   if (!debugCounts.on) return;
   ++debugCounts.blocks;
   debugCounts.polygons += polygons;
   if (hidden) {
     ++debugCounts.hidden;
     debugCounts.hiddenPolygons += polygons;
+  }
+  if (coneCertain) {
+    ++debugCounts.coneCertain;
+    if (hidden) {
+      ++debugCounts.coneCertainHidden;
+      debugCounts.coneCertainHiddenPolygons += polygons;
+    }
   }
 }
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 
+#include "BackFacingBlocks.h"
 #include "Binning.h"
 #include "Clipper.h"
 #include "HiddenBlocks.h"
@@ -552,14 +553,18 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // behind the front blocks, dropped before any per-polygon work (counted as drawn). The ids
   // ascend (z-buffer order): a block's are found by a binary search.
   std::optional<HiddenBlockTest> blocks;
-  if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled())
+  std::optional<BackFaceTest> cone;
+  if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled()) {
     blocks.emplace(context.transform, context.grid, *context.front);
+    if (hiddenBlocksConeOnly() || countingHiddenBlocks()) cone.emplace(context.transform);
+  }
   // The end of the ids of the block of ids[k], and whether it is hidden.
   const auto blockOf = [&](std::size_t k, bool& hidden) {
     const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
     const auto next =
         static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
-    hidden = blocks->hidden(mesh.backBlockFacts[block].box);
+    const BackBlock& facts = mesh.backBlockFacts[block];
+    hidden = (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) && blocks->hidden(facts.box);
     return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
                                                      ids.begin() + static_cast<std::ptrdiff_t>(end),
                                                      next) -
@@ -570,7 +575,11 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     for (std::size_t k = first; k < end;) {
       bool hidden = false;
       const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
-      if (blocks) hiddenBlockDebug(hidden, blockEnd - k);
+      if (cone && countingHiddenBlocks()) {
+        const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts[block]);
+        hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
+      }
       if (hidden) {
         chunk.counts.drawn += blockEnd - k;
         chunk.counts.trianglesBinned += blockEnd - k;

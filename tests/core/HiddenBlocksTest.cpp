@@ -78,6 +78,10 @@ TEST_F(HiddenBlocks, VersionedSpheresRenderAsOnePassOnEveryTargetAndThreadCount)
         EXPECT_EQ(before.stats.pixelsCovered, after.stats.pixelsCovered);
         EXPECT_GT(counts.hidden, counts.blocks / 20) << counts.hidden << " of " << counts.blocks;
         EXPECT_LT(counts.hidden, counts.blocks);
+        // Most hidden blocks are ones the normal cones prove back-facing: the blocks a proven
+        // reject (HiddenBlocks.h, step 4) would be limited to.
+        EXPECT_GT(counts.coneCertainHidden, counts.hidden / 2)
+            << counts.coneCertainHidden << " of " << counts.hidden;
       }
     }
   }
