@@ -17,8 +17,9 @@
 //    inside the snapped one (TriangleDepth::keyAt and refine, BoxRaster::paintRows,
 //    paintSmallMask, SetupBatch's keyLanes; a small record only when every covered center is
 //    surely inside, smallLanes): without rounding, a convex combination of the three vertex
-//    keys, so at most the largest. (A polygon with a diagonal extrapolates past it by one grid
-//    step of the plane: keyRange's slope term.)
+//    keys, so at most the largest. No triangle of a tested block is clipped: its box is inside
+//    the clip volume (boxInsideClipVolume). A polygon with a diagonal extrapolates past it by
+//    one grid step of the plane: keyRange's slope term.
 // 2. The rounding is NOT bounded by the vertex keys and the block alone. BoxRaster and the
 //    small path step a row's key by keyPerPixel (n ≤ the row's pixels additions) from the
 //    row's first sample of the triangle's box, where the plane is extrapolated: the running
