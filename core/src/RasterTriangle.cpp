@@ -464,6 +464,31 @@ float floatBelow(double key) {
   return farthest;
 }
 
+// losesEverywhere's bound in the triangle's fine area F (not positive: snapping turned it over,
+// never rejected): a key `farthest` no nearer than its largest vertex key `nearest` rejects it
+// when (farthest − nearest)·F >= margin (below).
+struct RejectMargin {
+  double fineArea, margin;
+};
+[[gnu::always_inline]] inline RejectMargin rejectMarginOf(const WindowVertex& a,
+                                                          const WindowVertex& b,
+                                                          const WindowVertex& c,
+                                                          const PixelBounds& box) {
+  const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
+  const double fineArea = edgeFunction(pa, pb, pc);
+  if (!(fineArea > 0.0)) return {fineArea, 0.0};
+  const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
+  const double dk1 = static_cast<double>(b.depth) - a.depth;
+  const double dk2 = static_cast<double>(c.depth) - a.depth;
+  const double slopeTimesArea = std::abs(dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) +
+                                std::abs(dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x));
+  const double largest =
+      std::max(std::max(std::abs(a.depth), std::abs(b.depth)), std::abs(c.depth));
+  const double rounding =
+      2e-9 * (largest * fineArea + slopeTimesArea * extent * kSubpixelScale * kResidueScale);
+  return {fineArea, slopeTimesArea * kResidueScale + rounding};
+}
+
 // losesEverywhere (RasterTriangle.h): keyRange's bound is max(vertex keys) + s·kResidueScale
 // + 1e-9·(largest + s·extent·kSubpixelScale·kResidueScale) with s = (|nx| + |ny|)/F the
 // unsnapped plane's slope (numerators nx, ny over the fine area F); multiplied by F > 0 it
@@ -482,22 +507,13 @@ float floatBelow(double key) {
   const bool fromBlocks = blocks >= nearest;
   float farthest = fromBlocks ? blocks : farthestKeyDownTo(box, planes, nearest);
   if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
-  const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
-  const double fineArea = edgeFunction(pa, pb, pc);
-  if (!(fineArea > 0.0)) return false;
-  const double dk1 = static_cast<double>(b.depth) - a.depth;
-  const double dk2 = static_cast<double>(c.depth) - a.depth;
-  const double slopeTimesArea = std::abs(dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) +
-                                std::abs(dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x));
-  const double largest = std::max({std::abs(a.depth), std::abs(b.depth), std::abs(c.depth)});
-  const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
-  const double rounding =
-      2e-9 * (largest * fineArea + slopeTimesArea * extent * kSubpixelScale * kResidueScale);
-  const double margin = slopeTimesArea * kResidueScale + rounding;
-  if ((static_cast<double>(farthest) - nearest) * fineArea >= margin) return true;
+  const RejectMargin bound = rejectMarginOf(a, b, c, box);
+  if (!(bound.fineArea > 0.0)) return false;
+  if ((static_cast<double>(farthest) - nearest) * bound.fineArea >= bound.margin) return true;
   if (!fromBlocks) return false;
   farthest = farthestKeyDownTo(box, planes, nearest);
-  return farthest >= nearest && (static_cast<double>(farthest) - nearest) * fineArea >= margin;
+  return farthest >= nearest &&
+         (static_cast<double>(farthest) - nearest) * bound.fineArea >= bound.margin;
 }
 
 // Up to this many samples in its box a triangle that may be a back face is tested by
@@ -556,6 +572,17 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   small.y0 = static_cast<std::uint16_t>(box.y0);
   small.coverage = static_cast<std::uint16_t>(coverage);
   return small;
+}
+
+bool hiddenBehind(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                  const PixelBounds& box, const FrontDepthBlocks& front) {
+  const float nearest = std::max(std::max(a.depth, b.depth), c.depth);
+  const float farthest = front.over(box);
+  if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
+  const RejectMargin bound = rejectMarginOf(a, b, c, box);
+  return bound.fineArea > 0.0 &&
+         (static_cast<double>(farthest) - static_cast<double>(nearest)) * bound.fineArea >=
+             bound.margin;
 }
 
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
