@@ -116,6 +116,9 @@ struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
   std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
+  // A two-pass frame's back-face blocks dropped whole behind the front faces (HiddenBlocks.h)
+  // and their deferred polygons (also counted drawn and binned).
+  std::size_t hiddenBlocks = 0, hiddenBlockPolygons = 0;
 };
 
 template <class T>

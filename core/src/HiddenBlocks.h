@@ -1,49 +1,52 @@
 #pragma once
 
-// EXPERIMENT (every22, not proven, off unless FACET_HIDDEN_BLOCKS=1): a two-pass frame's back
-// pass drops every deferred back face of a back-face block (MeshCache.h, 256 polygons) whose
-// 3D box projects behind the front faces' 8 × 8 blocks (FrontDepthBlocks), before any
-// per-polygon work. The box gives a window box (its corners projected, rounded outward) and a
-// nearest key (its nearest corner's). Used only to measure what a whole-block reject would
-// save (bench/core-frame-issue11.md, sections 18b and 18c).
+// A two-pass frame's (Raster.h) back pass drops every deferred back face of a back-face block
+// (MeshCache.h, 256 polygons) whose 3D box projects behind the front faces' 8 × 8 pixel
+// blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted drawn and
+// binned, nothing is loaded, classified or painted. On by default in two-pass frames (the plan
+// decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off (measurements).
 //
-// What a proof needs (every23's analysis, section 18c; NOT done, so this stays off). A back
-// face is hidden when the float key it writes at every covered sample is at most the front
-// key there (writeFragment keeps the nearer key, ties keep the front face: back faces are
-// painted last in both passes). Keys are larger nearer.
-// 1. The exact key at a covered sample. A polygon that is a triangle has all three edges on its
-//    polygon's boundary (Setup.cpp, boundaryEdges), and then every paint path evaluates either
-//    the unsnapped plane at a sample surely inside the unsnapped triangle or the snapped plane
-//    inside the snapped one (TriangleDepth::keyAt and refine, BoxRaster::paintRows,
-//    paintSmallMask, SetupBatch's keyLanes; a small record only when every covered center is
-//    surely inside, smallLanes): without rounding, a convex combination of the three vertex
-//    keys, so at most the largest. No triangle of a tested block is clipped: its box is inside
-//    the clip volume (boxInsideClipVolume). A polygon with a diagonal extrapolates past it by
-//    one grid step of the plane: keyRange's slope term.
-// 2. The rounding is NOT bounded by the vertex keys and the block alone. BoxRaster and the
-//    small path step a row's key by keyPerPixel (n ≤ the row's pixels additions) from the
-//    row's first sample of the triangle's box, where the plane is extrapolated: the running
-//    key reaches K + |perX|·Lx + |perY|·Ly ≤ K + 4·Δk·E²/F (K the largest vertex key, Δk the
-//    vertex keys' range, E the triangle's window extent and F its area, both in the plane's
-//    units), so the written key may exceed the convex combination by about
-//    (n + c)·u·(K + 4·Δk·E²/F), u = 2^-53, c a few roundings per path (at(), stepsFrom and
-//    planeLanes, keyLanes). With only F ≥ 1 fine unit² (an integer), that is ~2·Δk for a
-//    100-pixel block: no reject (section 18b's route (b) missed the factor n).
-// 3. keyRange's own bound (slope·kResidueScale beyond the vertex keys) with the cone's least
-//    area (section 18b's route (a) alone) is ~4·Δk·L/m (L the block's window extent, m its
-//    least snapped area, grid units): tens of Δk on the 500k sphere, no reject either.
-// 4. Both together: a block BackFaceTest::certainlyCulled passes has only plain triangles
-//    (BackBlock::skippable), so step 1 holds, and its step 5 bounds every snapped area below by
-//    m = minDoubleArea·(X − ΔρY) − 2Δ² > 0 (grid units²), and every fine (unsnapped) area too
-//    (the residues move a point by at most 1/512 + δ < Δ/2). Then step 2's excess is at most
-//    (n + c)·u·(K + 4·Δk·L²/m) with n ≤ L/kSubpixelScale + 1: ~4e-7·Δk for a 500-pixel block
-//    if m is a tenth of a pixel² (an estimate: m not measured). Still to write and check: c for
-//    every path (operation by operation), the vertex keys bounded by the box's corner keys (the key
-//    is linear-fractional in the point: its extremes over the box are at corners) plus the
-//    transform's rounding, Δk ≤ the corner keys' range, the float rounding (monotone: a double key
-//    ≤ a float front key rounds to at most it), the window box widened by the snapping (±1/2 + δ
-//    grid steps), and certainlyCulled giving m. The reject would then apply to cone-certain blocks
-//    only.
+// Why no dropped back face could have changed anything (every24; sections 18b–18c and 21 of
+// bench/core-frame-issue11.md say how the earlier attempts fell short). Keys are larger
+// nearer. A back face is painted after every front face of its tile (both passes), and
+// writeFragment writes only a strictly nearer key: a back face whose written key is at most
+// the front key at each of its covered samples writes nothing. Nothing else of the frame is
+// read from its triangles: shading and the shown flags come from the final ids, the
+// covered count from the final ids. So, with W a key any of its triangles writes and F the
+// front key at that sample after the front pass (it only grows nearer afterwards):
+// 1. W ≤ its triangle's nearest vertex key, by construction: the block is dropped only when
+//    all its polygons are triangles (BackBlock::skippable), each painted with its three
+//    edges as polygon-boundary edges, and every paint path clamps the key it writes to the
+//    nearest vertex key then (nearestWrittenKey, RasterTriangle.h: TriangleDepth::keyAt and
+//    refine, SmallTriangle::nearestKey, SetupBatch's keyLanes). No rounding argument: the
+//    clamp is a min of two floats' worth of doubles before the one rounding to float, and
+//    rounding is monotone.
+// 2. No triangle of the block is clipped and every point of it has d > 0: its box is inside
+//    the clip volume with a margin (FrameTransform::boxInsideClipVolume), so every vertex's
+//    outcode is kInside and its window position and key are toWindow's of its own point.
+// 3. Every vertex key is at most nearestVertexKeyBound (HiddenBlocks.cpp): the view distance
+//    d is affine in the point, so its least over the box is at a corner; each computed
+//    distance (the corners' and the vertices', the same operations) is within
+//    η = 1e-14 · (the corners' largest |coordinate − eye|) of the exact one (it rounds at
+//    under 9u of that); the key, n/d in perspective and n − d in parallel projection, is
+//    monotone in d, and its own roundings (below 3u of it) are covered by the bound's
+//    1e-14. The vertex's float key is the rounding of that double: at most any float
+//    at least the bound (monotone rounding).
+// 4. Every covered sample lies within the window box of the corners' images widened by two
+//    grid steps: the projection (w = d > 0 on the box) maps the box into the convex hull of
+//    its corners' images, a vertex is snapped by at most half a grid step and the
+//    corners' and vertices' images round by far less than one, and a covered sample lies
+//    inside the snapped triangle, hence in its vertices' bounding box. Its pixel is in the
+//    pixel box tested, whose 8 × 8 blocks' least front keys (FrontDepthBlocks::over) are
+//    at most every front key there.
+// 5. So when the blocks' least key F_min ≥ the bound: W ≤ nearest vertex float key ≤ F_min ≤
+//    F: an exact tie keeps the front face, no fragment is written.
+// What it changes in the frame's report: the dropped polygons are counted drawn and binned as
+// in one pass, and the fragments written are the same (none), but their boxes' samples are
+// not added to the plan's depth complexity (RenderPlan::depthComplexity is lower than one
+// pass's), and RenderPlan reports the blocks and polygons dropped.
+// The margin test is DepthPrecision.TriangleKeysNeverPassTheirNearestVertexKey (step 1) and
+// HiddenBlocks.ApexThroughTheFrontFaceIsNeverDropped (steps 3–5).
 
 #include "Box.h"
 #include "FrameTransform.h"
@@ -56,20 +59,31 @@ class HiddenBlockTest {
  public:
   HiddenBlockTest(const FrameTransform& transform, const TileGrid& grid,
                   const FrontDepthBlocks& front)
-      : transform_(transform), viewport_(grid.viewport()), front_(front) {}
-  // Whether every triangle of points in `box` would lose the depth test everywhere to the
-  // front faces (up to what the header says is not bounded).
+      : transform_(transform),
+        viewport_(grid.viewport()),
+        front_(front),
+        eye_(transform.constants().eye),
+        near_(transform.constants().near),
+        parallel_(transform.constants().parallel) {}
+  // Whether every triangle of a triangle polygon with points in `box` loses the depth test
+  // everywhere to the front faces (the header's proof).
   bool hidden(const Box& box) const;
 
  private:
+  double nearestVertexKeyBound(double nearestDistance, double farthestDistance,
+                               double largestOffset) const;
+
   const FrameTransform& transform_;
   PixelBounds viewport_;
   const FrontDepthBlocks& front_;
+  glm::dvec3 eye_;
+  double near_;
+  bool parallel_;
 };
 
-// FACET_HIDDEN_BLOCKS=1 in the environment, or enableHiddenBlocks(true) (tests), turns it on;
-// FACET_HIDDEN_BLOCKS=cone turns it on for the blocks BackFaceTest proves back-facing only
-// (what step 4 above would allow; measured in section 18c).
+// On unless FACET_HIDDEN_BLOCKS=0 in the environment or enableHiddenBlocks(false) (tests);
+// FACET_HIDDEN_BLOCKS=cone restricts it to the blocks BackFaceTest proves back-facing
+// (measured in section 18c).
 void enableHiddenBlocks(bool on);
 bool hiddenBlocksEnabled();
 bool hiddenBlocksConeOnly();

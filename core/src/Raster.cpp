@@ -319,20 +319,25 @@ bool paintBackTiles(PhaseRunner& runner, const TileGrid& grid, const RasterConte
 }
 
 namespace {
-// Off unless FACET_TWO_PASS_FRAMES=1 (the measurements of bench/core-frame-issue11.md,
-// section 18, with one build): it does not pay yet.
-std::atomic<bool> twoPassesOn{[] {
+// FACET_TWO_PASS_FRAMES=1 or 0 forces two passes on or off (measurements); else the plan.
+std::atomic<TwoPassFrames> twoPasses{[] {
   const char* value = std::getenv("FACET_TWO_PASS_FRAMES");
-  return value != nullptr && std::string_view(value) == "1";
+  if (value == nullptr) return TwoPassFrames::ByPlan;
+  if (std::string_view(value) == "1") return TwoPassFrames::On;
+  return std::string_view(value) == "0" ? TwoPassFrames::Off : TwoPassFrames::ByPlan;
 }()};
 }  // namespace
 
 void enableTwoPassFrames(bool on) {
-  twoPassesOn = on;
+  twoPasses = on ? TwoPassFrames::On : TwoPassFrames::Off;
 }
 
-bool twoPassFramesEnabled() {
-  return twoPassesOn;
+void planTwoPassFrames() {
+  twoPasses = TwoPassFrames::ByPlan;
+}
+
+TwoPassFrames twoPassFrames() {
+  return twoPasses;
 }
 
 void addPaintCounts(std::span<const PaintCounts> tiles, RenderStats& stats) {

@@ -59,11 +59,13 @@ bool paintBackTiles(PhaseRunner& runner, const TileGrid& grid, const RasterConte
                     std::vector<PaintCounts>& counts);
 
 // Whether frames that may (every face drawn, the depth test, no forced coarse depth) run in two
-// passes. Off by default: at 20k triangles the planes' round trip cost a third more, and at 500k
-// and 2M the back faces' second set-up cost what their dropped binning and painting saved
-// (bench/core-frame-issue11.md, section 18). For tests and the measurements that go on.
+// passes: by the plan's rule by default (chooseTwoPassFrame, Plan.h); forced on or off by
+// FACET_TWO_PASS_FRAMES=1 / 0 in the environment or enableTwoPassFrames (tests, measurements),
+// back to the plan by planTwoPassFrames.
+enum class TwoPassFrames { ByPlan, Off, On };
 void enableTwoPassFrames(bool on);
-bool twoPassFramesEnabled();
+void planTwoPassFrames();
+TwoPassFrames twoPassFrames();
 
 // Adds what the tiles counted (fragments, pixels covered, triangles hidden) to `stats`.
 void addPaintCounts(std::span<const PaintCounts> tiles, RenderStats& stats);

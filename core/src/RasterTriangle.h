@@ -33,6 +33,20 @@ namespace facet::detail {
 using EdgeMask = std::uint8_t;
 inline constexpr EdgeMask kAllEdges = 0b111;
 
+// The nearest (largest) depth key a triangle may write: its nearest vertex key when all three
+// of its edges are its polygon's boundary edges (a triangle polygon, every face drawn), else
+// none (+∞: a triangle beside a diagonal continues its polygon's plane past the diagonal).
+// Every paint path clamps the key it writes to it (TriangleDepth::keyAt and refine,
+// SmallTriangle::nearestKey, SetupBatch's keyLanes): exactly the keys are convex combinations
+// of the vertex keys there, so only the rounding of the interpolation and of the stepping
+// could pass it, and the clamp makes "no written key is nearer than the nearest vertex key"
+// hold by construction, with no rounding argument (HiddenBlocks.h's proof rests on it).
+inline float nearestWrittenKey(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                               EdgeMask boundary) {
+  return boundary == kAllEdges ? std::max(std::max(a.depth, b.depth), c.depth)
+                               : std::numeric_limits<float>::infinity();
+}
+
 // Twice the signed area in fixed-point units²: > 0 counter-clockwise (front-facing).
 inline std::int64_t doubleSignedArea(const WindowVertex& a, const WindowVertex& b,
                                      const WindowVertex& c) {
@@ -308,6 +322,8 @@ struct SmallTriangle {
   // The samples the triangle covers, bit y·kSmallSide + x for the pixel (x0 + x, y0 + y): its
   // box's, by the fill rule (SmallBox::coverage).
   std::uint16_t coverage;
+  // No written key is nearer than this (nearestWrittenKey): the stepped keys are clamped to it.
+  float nearestKey;
 };
 
 // Rounds an interpolated depth key to float once; finite, so that no key ties with the
@@ -352,7 +368,9 @@ template <DepthMode kMode>
   const auto rowKey = [&t](int y) {
     return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
   };
-  const auto sameKey = [](double key, int, int) { return key; };
+  const auto sameKey = [nearest = static_cast<double>(t.nearestKey)](double key, int, int) {
+    return std::min(key, nearest);
+  };
   paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
                         counts);
 }

@@ -133,12 +133,13 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 
 // Every face drawn with the depth test, in z-buffer order, where the coarse depth is not
 // forced: the back faces may be set up after the front faces are painted (Raster.h).
-bool Renderer::Workspace::twoPassesMayPay(const detail::FrameInputs& in) const {
-  if (!detail::twoPassFramesEnabled() || !plan.depthTest || plan.sortByDepth ||
-      in.rules.hiddenGeometry == HierarchicalZ::On)
+bool Renderer::Workspace::twoPassesMayPay(const detail::FrameInputs& in) {
+  plan.twoPassFrame = false;
+  plan.everyFacePolygonsPerCoveredPixel = 0.0;
+  plan.blocksHiddenBehindFront = plan.polygonsHiddenBehindFront = 0;
+  if (!plan.depthTest || plan.sortByDepth || in.rules.hiddenGeometry == HierarchicalZ::On)
     return false;
-  return std::any_of(meshes.begin(), meshes.end(),
-                     [](const detail::FrameMesh& mesh) { return !mesh.skipBackFaces; });
+  return detail::chooseTwoPassFrame(plan, meshes, history.stats().pixelsCovered);
 }
 
 detail::RasterContext Renderer::Workspace::rasterContext(const detail::FrameInputs& in,
@@ -177,6 +178,7 @@ bool Renderer::Workspace::rasterInTwoPasses(const detail::FrameInputs& in,
   if (detail::useCoarseDepth(plan, in.rules.hiddenGeometry)) {
     detail::setUpBackFaces(runner, setupContext, setup);
     stats.setupSeconds = runner.lap();
+    plan.twoPassFrame = false;
     return rasterInOnePass(in, planes, runner, stats);
   }
   stats.setupSeconds = runner.lap();
@@ -186,6 +188,7 @@ bool Renderer::Workspace::rasterInTwoPasses(const detail::FrameInputs& in,
   setupContext.front = &frontBlocks;
   detail::setUpBackFaces(runner, setupContext, setup);
   stats.setupSeconds += runner.lap();
+  detail::reportHiddenBlocks(setup.chunks, plan);
   const bool completed = detail::paintBackTiles(runner, grid, context, tiles);
   stats.rasterSeconds += runner.lap();
   // The plan's figures from every face set up (the hidden ones counted as binned: as in one

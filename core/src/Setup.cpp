@@ -549,9 +549,10 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const std::size_t end = static_cast<std::size_t>(
       std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId) -
       ids.begin());
-  // EXPERIMENT (HiddenBlocks.h): the deferred back faces of a block whose box is hidden
-  // behind the front blocks, dropped before any per-polygon work (counted as drawn). The ids
-  // ascend (z-buffer order): a block's are found by a binary search.
+  // The deferred back faces of a block of triangle polygons (BackBlock::skippable) whose box
+  // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
+  // before any per-polygon work (counted as drawn). The ids ascend (z-buffer order): a
+  // block's are found by a binary search.
   std::optional<HiddenBlockTest> blocks;
   std::optional<BackFaceTest> cone;
   if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled()) {
@@ -564,7 +565,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     const auto next =
         static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
     const BackBlock& facts = mesh.backBlockFacts[block];
-    hidden = (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) && blocks->hidden(facts.box);
+    hidden = facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
+             blocks->hidden(facts.box);
     return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
                                                      ids.begin() + static_cast<std::ptrdiff_t>(end),
                                                      next) -
@@ -581,6 +583,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
       }
       if (hidden) {
+        ++chunk.counts.hiddenBlocks;
+        chunk.counts.hiddenBlockPolygons += blockEnd - k;
         chunk.counts.drawn += blockEnd - k;
         chunk.counts.trianglesBinned += blockEnd - k;
         k = blockEnd;
@@ -698,6 +702,14 @@ bool setUpBackFaces(PhaseRunner& runner, const SetupContext& context, SetupBuffe
     requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
                      chunk.clippedVertices.size());
   return true;
+}
+
+void reportHiddenBlocks(std::span<const Chunk> chunks, RenderPlan& plan) {
+  plan.blocksHiddenBehindFront = plan.polygonsHiddenBehindFront = 0;
+  for (const Chunk& chunk : chunks) {
+    plan.blocksHiddenBehindFront += chunk.counts.hiddenBlocks;
+    plan.polygonsHiddenBehindFront += chunk.counts.hiddenBlockPolygons;
+  }
 }
 
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {

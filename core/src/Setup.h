@@ -55,6 +55,9 @@ bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads
 // into its back bins, after what the front pass binned.
 bool setUpBackFaces(PhaseRunner& runner, const SetupContext& context, SetupBuffers& buffers);
 
+// A two-pass frame's back-face blocks dropped behind the front faces, into `plan`.
+void reportHiddenBlocks(std::span<const Chunk> chunks, RenderPlan& plan);
+
 // Adds what the set-up counted (polygons drawn, culled, ...; triangles) to `stats`.
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats);
 

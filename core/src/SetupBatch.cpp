@@ -376,7 +376,12 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
   const VD snappedKey =
       keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
   const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
-  const VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
+  VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
+  if (boundaryEdges) {  // clamped to nearestWrittenKey, as TriangleDepth::keyAt clamps
+    const VD keyB = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane));
+    const VD keyC = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane));
+    key = hn::Min(key, hn::Max(hn::Max(keyA, keyB), keyC));
+  }
   hn::Store(hn::DemoteTo(df, hn::Min(hn::Max(key, hn::Neg(largest)), largest)), df, keys + lane);
 }
 
@@ -385,7 +390,8 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
 // samples do not need) for the lanes from `lane` on: the unsnapped plane where the fine area
 // is positive, else the snapped one. Every difference of positions is an exact integer in
 // double (below 2^23), so only the operations that round follow the scalar order.
-void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, BatchVerdicts& verdicts) {
+void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges,
+                BatchVerdicts& verdicts) {
   const hn::Rebind<std::int32_t, DD> di;
   const hn::Rebind<float, DD> df;
   const auto load = [&](const std::int32_t* p) {
@@ -414,6 +420,13 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, BatchVerdicts& ver
   hn::Store(perY, dd, out.keyPerFine + lane);
   hn::Store(perX * hn::Set(dd, kSubpixelScale) * toFine, dd, out.keyPerPixel + lane);
   hn::Store(hn::DemoteTo(di, sy), di, out.firstRowFine + lane);
+  // nearestWrittenKey: the nearest vertex key with boundary edges (all three), else +∞.
+  const hn::Rebind<float, DD> dfl;
+  const auto keyOf = [&](const float* keys) { return hn::Load(dfl, keys + lane); };
+  const auto nearest = boundaryEdges
+                           ? hn::Max(hn::Max(keyOf(in.keyA), keyOf(in.keyB)), keyOf(in.keyC))
+                           : hn::Set(dfl, std::numeric_limits<float>::infinity());
+  hn::Store(nearest, dfl, out.nearestKey + lane);
 }
 
 // hiddenBehind's inputs (RasterTriangle.cpp) beyond the lanes' KeyInputs: per lane tested in
@@ -517,7 +530,7 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
     if ((verdicts.fragment >> lane) & laneMask)
       keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
-    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, verdicts);
+    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, boundaryEdges, verdicts);
   }
 }
 

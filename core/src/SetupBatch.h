@@ -75,6 +75,7 @@ struct BatchVerdicts {
   struct {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
     alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
+    alignas(64) float nearestKey[kBatchSize];
   } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
   std::uint32_t kept() const { return fragment | triangle; }
@@ -94,6 +95,7 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
   t.x0 = static_cast<std::uint16_t>(samples.x0[lane]);
   t.y0 = static_cast<std::uint16_t>(samples.y0[lane]);
   t.coverage = static_cast<std::uint16_t>(plane.coverage[lane]);
+  t.nearestKey = plane.nearestKey[lane];
   return t;
 }
 

@@ -49,7 +49,7 @@ struct Renderer::Workspace {
   detail::FrameHistory history;
 
   // The phases (Renderer.cpp). Each returns false when the progress callback asked to stop.
-  bool twoPassesMayPay(const detail::FrameInputs& in) const;
+  bool twoPassesMayPay(const detail::FrameInputs& in);
   detail::RasterContext rasterContext(const detail::FrameInputs& in, const FramebufferView& planes);
   bool rasterInOnePass(const detail::FrameInputs& in, const FramebufferView& planes,
                        detail::PhaseRunner& runner, RenderStats& stats);

@@ -36,7 +36,7 @@ class SetupBatches : public EveryTargetTest {
   void TearDown() override {
     EveryTargetTest::TearDown();
     detail::enableSetupBatches(true);
-    detail::enableTwoPassFrames(false);
+    detail::planTwoPassFrames();
   }
   // Every target this CPU has, the best first and the portable one last.
   static std::vector<SimdTarget> targets() {
@@ -148,7 +148,8 @@ bool sameRecord(const detail::SmallTriangle& a, const detail::SmallTriangle& b) 
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
   return bits(a.firstKey) == bits(b.firstKey) && bits(a.keyPerFine) == bits(b.keyPerFine) &&
          bits(a.keyPerPixel) == bits(b.keyPerPixel) && a.firstRowFine == b.firstRowFine &&
-         a.polygon == b.polygon && a.x0 == b.x0 && a.y0 == b.y0 && a.coverage == b.coverage;
+         a.polygon == b.polygon && a.x0 == b.x0 && a.y0 == b.y0 && a.coverage == b.coverage &&
+         bits(a.nearestKey) == bits(b.nearestKey);
 }
 
 // A kept triangle lane's SmallTriangle: made exactly when smallTriangleOf makes one from the
