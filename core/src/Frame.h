@@ -23,6 +23,8 @@
 
 namespace facet::detail {
 
+struct BackBlock;  // MeshCache.h
+
 // A range of one mesh's points or polygons: the unit of the validation, transform and
 // shading tasks, which never straddle meshes.
 struct MeshRange {
@@ -63,6 +65,9 @@ struct FrameMesh {
   // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
   // shade phase from the points (an unversioned mesh).
   const glm::vec3* faceNormals = nullptr;
+  // Per back-face block, what the mesh version's measurement knows (MeshCache.h); null: an
+  // unversioned mesh. A two-pass frame's back pass may drop blocks whole (HiddenBlocks.h).
+  const BackBlock* backBlockFacts = nullptr;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }
@@ -111,6 +116,9 @@ struct PolygonCounts {
   std::size_t drawn = 0, culled = 0, outside = 0, degenerate = 0, nonFinite = 0;
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
   std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
+  // A two-pass frame's back-face blocks dropped whole behind the front faces (HiddenBlocks.h)
+  // and their deferred polygons (also counted drawn and binned).
+  std::size_t hiddenBlocks = 0, hiddenBlockPolygons = 0;
 };
 
 template <class T>
@@ -138,6 +146,9 @@ struct Chunk {
   // front faces already painted, and an exact depth tie keeps the front face (writeFragment).
   std::vector<Bin> backBins;
   std::vector<Bin>& binsFor(bool last) { return last ? backBins : bins; }
+  // A two-pass frame's back-facing polygons (global ids, in draw order) that the front pass
+  // put off to the back pass (SetupPass, Setup.h).
+  std::vector<std::uint32_t> deferredBack;
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;

@@ -149,6 +149,35 @@ void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous) {
   plan.meanTriangleBox = previous.meanTriangleBox;
   plan.rasterRoutine = previous.rasterRoutine;
   plan.setupRoutine = previous.setupRoutine;
+  plan.twoPassFrame = previous.twoPassFrame;
+  plan.everyFacePolygonsPerCoveredPixel = previous.everyFacePolygonsPerCoveredPixel;
+  plan.blocksHiddenBehindFront = previous.blocksHiddenBehindFront;
+  plan.polygonsHiddenBehindFront = previous.polygonsHiddenBehindFront;
+}
+
+bool chooseTwoPassFrame(RenderPlan& plan, std::span<const FrameMesh> meshes,
+                        std::size_t previousCoveredPixels) {
+  std::size_t everyFace = 0;
+  for (const FrameMesh& mesh : meshes)
+    everyFace += mesh.skipBackFaces ? 0 : mesh.endPolygon() - mesh.firstPolygon;
+  const std::size_t covered = previousCoveredPixels > 0
+                                  ? previousCoveredPixels
+                                  : static_cast<std::size_t>(plan.width) * plan.height;
+  plan.everyFacePolygonsPerCoveredPixel =
+      static_cast<double>(everyFace) / static_cast<double>(std::max<std::size_t>(covered, 1));
+  switch (twoPassFrames()) {
+    case TwoPassFrames::On:
+      plan.twoPassFrame = everyFace > 0;
+      break;
+    case TwoPassFrames::Off:
+      plan.twoPassFrame = false;
+      break;
+    case TwoPassFrames::ByPlan:
+      plan.twoPassFrame = everyFace > 0 && plan.everyFacePolygonsPerCoveredPixel >=
+                                               kTwoPassMinPolygonsPerCoveredPixel;
+      break;
+  }
+  return plan.twoPassFrame;
 }
 
 }  // namespace facet::detail

@@ -72,6 +72,19 @@ bool useCoarseDepth(const RenderPlan& plan, HierarchicalZ mode);
 TileRoutine chooseRasterRoutine(RenderPlan& plan, std::span<const Chunk> chunks,
                                 HierarchicalZ mode);
 
+// A frame drawing every face of some mesh (the depth test, z-buffer order, the coarse depth
+// not forced) runs in two passes (Raster.h: the back faces set up after the front faces are
+// painted, whole blocks of them hidden behind the front faces dropped, HiddenBlocks.h) when
+// those meshes have at least this many polygons per pixel the previous frame covered (the
+// image's pixels before a first frame): measured, two passes took 0.78x the frame time at
+// 500k triangles (1.7 a covered pixel), 0.88x at 2M (6.9), but 1.2x at 20k (0.07), where the
+// planes' round trip outweighs the little set-up saved (bench/core-frame-issue11.md, 18b, 21).
+inline constexpr double kTwoPassMinPolygonsPerCoveredPixel = 1.0;
+// Decides plan.twoPassFrame (and reports its figures in `plan`) for a frame that may take two
+// passes; TwoPassFrames::On or Off (Raster.h) overrides the rule.
+bool chooseTwoPassFrame(RenderPlan& plan, std::span<const FrameMesh> meshes,
+                        std::size_t previousCoveredPixels);
+
 // Records that `rule` left out `skipped` items (fired when some).
 void reportRule(RenderPlan& plan, Rule rule, std::size_t skipped);
 

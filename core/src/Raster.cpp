@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <cstdlib>
 #include <span>
+#include <string_view>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -51,6 +53,16 @@ struct TilePlanes {
 #endif
       for (; x < columns; ++x)
         row[x] = value;
+    }
+  }
+
+  // The image's planes' rows of the tile (a two-pass frame's front pass left them there).
+  void readIn(const RasterContext& context, const PixelBounds& tile) {
+    const int columns = tile.x1 - tile.x0 + 1;
+    for (int y = 0; y <= tile.y1 - tile.y0; ++y) {
+      const std::size_t row = static_cast<std::size_t>(tile.y0 + y) * context.width + tile.x0;
+      std::copy_n(context.depth + row, columns, depth + y * kSide);
+      std::copy_n(context.polygonId + row, columns, polygonId + y * kSide);
     }
   }
 
@@ -196,6 +208,27 @@ template <DepthMode kMode, bool kCoarse>
   }
 }
 
+// The painted tile's shown polygons marked, its keys made window depths (if asked), and its
+// planes written to the image's.
+[[gnu::always_inline]] inline void finishTile(const RasterContext& context, TilePlanes& local,
+                                              const PixelBounds& tile, PaintCounts& counts) {
+  // A tile nothing was written to shows only the background (most tiles around a small
+  // object): no id to scan for, and the background's window depth everywhere. This holds
+  // because every painter writes ids through writeFragment, which counts them: a painter that
+  // wrote planes another way would have to count its writes too.
+  const bool painted = counts.written != 0;
+  if (painted) counts.covered = markShownPolygons(context, local, tile);
+  if (context.windowDepths) {  // the keys become window depths before they leave the cache
+    if (painted) {
+      const PixelBounds here{0, 0, tile.x1 - tile.x0, tile.y1 - tile.y0};
+      resolveDepths(local.polygonId, local.depth, TilePlanes::kSide, here, *context.windowDepths);
+    } else {
+      local.fillDepth(tile, kBackgroundWindowDepth);
+    }
+  }
+  local.writeOut(context, tile);
+}
+
 // Every chunk's front bins, then (the depth test) every chunk's back bins: chunks in draw
 // order each time, so that within either facing the polygon drawn first keeps an exact tie.
 template <DepthMode kMode, bool kCoarse>
@@ -212,22 +245,44 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
       paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse,
                                front);
   }
-  // A tile nothing was written to shows only the background (most tiles around a small
-  // object): no id to scan for, and the background's window depth everywhere. This holds
-  // because every painter writes ids through writeFragment, which counts them: a painter that
-  // wrote planes another way would have to count its writes too.
-  const bool painted = counts.written != 0;
-  if (painted) counts.covered = markShownPolygons(context, local, tile);
-  if (context.windowDepths) {  // the keys become window depths before they leave the cache
-    if (painted) {
-      const PixelBounds here{0, 0, tile.x1 - tile.x0, tile.y1 - tile.y0};
-      resolveDepths(local.polygonId, local.depth, TilePlanes::kSide, here, *context.windowDepths);
-    } else {
-      local.fillDepth(tile, kBackgroundWindowDepth);
-    }
-  }
+  finishTile(context, local, tile, counts);
+  return counts;
+}
+
+// A two-pass frame's front pass over one tile (paintFrontTiles).
+PaintCounts paintFrontOfTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
+  TilePlanes local;
+  local.clear(tile);
+  const Planes planes = local.planesFor(tile);
+  PaintCounts counts;
+  CoarseDepth unused(tile);
+  for (const Chunk& chunk : context.chunks)
+    paintBin<DepthMode::Test, false>(context, chunk, chunk.bins[t], tile, planes, counts, unused,
+                                     nullptr);
+  FarthestBlocks blocks(tile, planes);
+  context.frontBlocks->store(t, blocks.measuredBlocks());
   local.writeOut(context, tile);
   return counts;
+}
+
+// Its back pass, after the front pass's `counts`.
+void paintBackOfTile(const RasterContext& context, std::size_t t, const PixelBounds& tile,
+                     PaintCounts& counts) {
+  TilePlanes local;
+  if (counts.written != 0) {
+    local.readIn(context, tile);
+  } else {
+    local.clear(tile);  // the planes the front pass wrote: nothing read back
+  }
+  const Planes planes = local.planesFor(tile);
+  CoarseDepth unused(tile);
+  float measured[FrontDepthBlocks::kPerTile];
+  context.frontBlocks->load(t, measured);
+  FarthestBlocks front(tile, planes, measured);
+  for (const Chunk& chunk : context.chunks)
+    paintBin<DepthMode::Test, false>(context, chunk, chunk.backBins[t], tile, planes, counts,
+                                     unused, &front);
+  finishTile(context, local, tile, counts);
 }
 
 }  // namespace
@@ -244,6 +299,45 @@ bool paintTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& 
   counts.assign(grid.count(), {});
   return runner.run(Phase::Raster, grid.count(),
                     [&](std::size_t t) { counts[t] = routine(context, t, grid.bounds(t)); });
+}
+
+bool paintFrontTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,
+                     std::vector<PaintCounts>& counts) {
+  std::fill(context.shown.begin(), context.shown.end(), std::uint8_t{0});
+  counts.assign(grid.count(), {});
+  context.frontBlocks->resize(grid);
+  runner.runUnreported(grid.count(), [&](std::size_t t) {
+    counts[t] = paintFrontOfTile(context, t, grid.bounds(t));
+  });
+  return true;
+}
+
+bool paintBackTiles(PhaseRunner& runner, const TileGrid& grid, const RasterContext& context,
+                    std::vector<PaintCounts>& counts) {
+  return runner.run(Phase::Raster, grid.count(),
+                    [&](std::size_t t) { paintBackOfTile(context, t, grid.bounds(t), counts[t]); });
+}
+
+namespace {
+// FACET_TWO_PASS_FRAMES=1 or 0 forces two passes on or off (measurements); else the plan.
+std::atomic<TwoPassFrames> twoPasses{[] {
+  const char* value = std::getenv("FACET_TWO_PASS_FRAMES");
+  if (value == nullptr) return TwoPassFrames::ByPlan;
+  if (std::string_view(value) == "1") return TwoPassFrames::On;
+  return std::string_view(value) == "0" ? TwoPassFrames::Off : TwoPassFrames::ByPlan;
+}()};
+}  // namespace
+
+void enableTwoPassFrames(bool on) {
+  twoPasses = on ? TwoPassFrames::On : TwoPassFrames::Off;
+}
+
+void planTwoPassFrames() {
+  twoPasses = TwoPassFrames::ByPlan;
+}
+
+TwoPassFrames twoPassFrames() {
+  return twoPasses;
 }
 
 void addPaintCounts(std::span<const PaintCounts> tiles, RenderStats& stats) {

@@ -98,6 +98,7 @@ class TriangleDepth {
       : key0_(a.depth),
         dk1_(static_cast<double>(b.depth) - a.depth),
         dk2_(static_cast<double>(c.depth) - a.depth),
+        nearest_(nearestWrittenKey(a, b, c, boundary)),
         snappedArea_(static_cast<double>(snappedArea)),
         boundary_(boundary),
         fa_(finePoint(a, true)),
@@ -108,16 +109,19 @@ class TriangleDepth {
     unsnapped_ = fineArea > 0.0;
     inverseFineArea_ = unsnapped_ ? 1.0 / fineArea : 0.0;
   }
-  // The key of one covered sample, given its snapped edge values (unbiased).
+  // The key of one covered sample, given its snapped edge values (unbiased); never nearer
+  // than nearestWrittenKey.
   double keyAt(std::int64_t sampleX, std::int64_t sampleY, const std::int64_t (&snapped)[3]) const {
     if (unsnapped_) {
       const FinePoint s = finePoint(sampleX, sampleY);
       const double fine[3] = {edgeFunction(fb_, fc_, s), edgeFunction(fc_, fa_, s),
                               edgeFunction(fa_, fb_, s)};
-      if (!beyondBoundary(fine)) return interpolate(fine[1], fine[2], inverseFineArea_);
+      if (!beyondBoundary(fine))
+        return std::min(interpolate(fine[1], fine[2], inverseFineArea_), nearest_);
     }
-    return interpolate(static_cast<double>(snapped[1]), static_cast<double>(snapped[2]),
-                       1.0 / snappedArea_);
+    return std::min(interpolate(static_cast<double>(snapped[1]), static_cast<double>(snapped[2]),
+                                1.0 / snappedArea_),
+                    nearest_);
   }
 
   // For many samples: the key stepped along a row, keyAt() near boundary edges only.
@@ -164,7 +168,8 @@ class TriangleDepth {
     lowest = std::min({a.depth, b.depth, c.depth}) - slack;
     highest = std::max({a.depth, b.depth, c.depth}) + slack;
   }
-  // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values. A
+  // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values (the stepped
+  // key clamped as keyAt clamps: painters with boundary edges write only refine()'s keys). A
   // snapped edge value of at least sureInside_ (grid units²) means the sample is inside the
   // unsnapped edge too: residues below 1/2 change (q − p) × (s − p) by at most
   // ½(|dx| + |dy|) + |s − p|₁ + 1, and s stays in the triangle's bounding box. Far from the
@@ -173,7 +178,7 @@ class TriangleDepth {
                 const std::int64_t (&snapped)[3]) const {
     if (snapped[0] >= sureInside_[0] && snapped[1] >= sureInside_[1] &&
         snapped[2] >= sureInside_[2]) {
-      return key;
+      return std::min(key, nearest_);
     }
     return keyAt(sampleX, sampleY, snapped);
   }
@@ -191,6 +196,7 @@ class TriangleDepth {
            (isBoundary(2) && fine[2] < 0.0);
   }
   double key0_, dk1_, dk2_;
+  double nearest_;  // nearestWrittenKey
   double snappedArea_, inverseFineArea_ = 0.0;
   EdgeMask boundary_;
   bool unsnapped_ = false;
@@ -464,6 +470,31 @@ float floatBelow(double key) {
   return farthest;
 }
 
+// losesEverywhere's bound in the triangle's fine area F (not positive: snapping turned it over,
+// never rejected): a key `farthest` no nearer than its largest vertex key `nearest` rejects it
+// when (farthest − nearest)·F >= margin (below).
+struct RejectMargin {
+  double fineArea, margin;
+};
+[[gnu::always_inline]] inline RejectMargin rejectMarginOf(const WindowVertex& a,
+                                                          const WindowVertex& b,
+                                                          const WindowVertex& c,
+                                                          const PixelBounds& box) {
+  const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
+  const double fineArea = edgeFunction(pa, pb, pc);
+  if (!(fineArea > 0.0)) return {fineArea, 0.0};
+  const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
+  const double dk1 = static_cast<double>(b.depth) - a.depth;
+  const double dk2 = static_cast<double>(c.depth) - a.depth;
+  const double slopeTimesArea = std::abs(dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) +
+                                std::abs(dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x));
+  const double largest =
+      std::max(std::max(std::abs(a.depth), std::abs(b.depth)), std::abs(c.depth));
+  const double rounding =
+      2e-9 * (largest * fineArea + slopeTimesArea * extent * kSubpixelScale * kResidueScale);
+  return {fineArea, slopeTimesArea * kResidueScale + rounding};
+}
+
 // losesEverywhere (RasterTriangle.h): keyRange's bound is max(vertex keys) + s·kResidueScale
 // + 1e-9·(largest + s·extent·kSubpixelScale·kResidueScale) with s = (|nx| + |ny|)/F the
 // unsnapped plane's slope (numerators nx, ny over the fine area F); multiplied by F > 0 it
@@ -482,22 +513,13 @@ float floatBelow(double key) {
   const bool fromBlocks = blocks >= nearest;
   float farthest = fromBlocks ? blocks : farthestKeyDownTo(box, planes, nearest);
   if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
-  const FinePoint pa = finePoint(a, true), pb = finePoint(b, true), pc = finePoint(c, true);
-  const double fineArea = edgeFunction(pa, pb, pc);
-  if (!(fineArea > 0.0)) return false;
-  const double dk1 = static_cast<double>(b.depth) - a.depth;
-  const double dk2 = static_cast<double>(c.depth) - a.depth;
-  const double slopeTimesArea = std::abs(dk1 * (pc.y - pa.y) - dk2 * (pb.y - pa.y)) +
-                                std::abs(dk2 * (pb.x - pa.x) - dk1 * (pc.x - pa.x));
-  const double largest = std::max({std::abs(a.depth), std::abs(b.depth), std::abs(c.depth)});
-  const int extent = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
-  const double rounding =
-      2e-9 * (largest * fineArea + slopeTimesArea * extent * kSubpixelScale * kResidueScale);
-  const double margin = slopeTimesArea * kResidueScale + rounding;
-  if ((static_cast<double>(farthest) - nearest) * fineArea >= margin) return true;
+  const RejectMargin bound = rejectMarginOf(a, b, c, box);
+  if (!(bound.fineArea > 0.0)) return false;
+  if ((static_cast<double>(farthest) - nearest) * bound.fineArea >= bound.margin) return true;
   if (!fromBlocks) return false;
   farthest = farthestKeyDownTo(box, planes, nearest);
-  return farthest >= nearest && (static_cast<double>(farthest) - nearest) * fineArea >= margin;
+  return farthest >= nearest &&
+         (static_cast<double>(farthest) - nearest) * bound.fineArea >= bound.margin;
 }
 
 // Up to this many samples in its box a triangle that may be a back face is tested by
@@ -555,7 +577,19 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   small.x0 = static_cast<std::uint16_t>(box.x0);
   small.y0 = static_cast<std::uint16_t>(box.y0);
   small.coverage = static_cast<std::uint16_t>(coverage);
+  small.nearestKey = nearestWrittenKey(a, b, c, boundary);
   return small;
+}
+
+bool hiddenBehind(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                  const PixelBounds& box, const FrontDepthBlocks& front) {
+  const float nearest = std::max(std::max(a.depth, b.depth), c.depth);
+  const float farthest = front.over(box);
+  if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
+  const RejectMargin bound = rejectMarginOf(a, b, c, box);
+  return bound.fineArea > 0.0 &&
+         (static_cast<double>(farthest) - static_cast<double>(nearest)) * bound.fineArea >=
+             bound.margin;
 }
 
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,

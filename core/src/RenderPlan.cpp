@@ -150,6 +150,14 @@ bool RenderRules::allows(Rule rule) const {
       << "\n";
   out << "  routines: raster " << rasterRoutine << "; set-up " << setupRoutine << "; shade "
       << shadeRoutine << "\n";
+  out << "  every face: "
+      << (twoPassFrame ? "two passes (back faces after the front faces)" : "one pass") << "; "
+      << everyFacePolygonsPerCoveredPixel
+      << " polygons per covered pixel of the previous frame (two passes from 1)";
+  if (twoPassFrame)
+    out << "; " << polygonsHiddenBehindFront << " back faces in " << blocksHiddenBehindFront
+        << " blocks hidden behind the front faces, not set up";
+  out << "\n";
   out << "  rules (off / idle / fired: what each left out):\n";
   for (int r = 0; r < kRuleCount; ++r)
     describeRule(out, *this, static_cast<Rule>(r));

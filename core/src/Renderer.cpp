@@ -119,22 +119,81 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
   }
   stats.transformSeconds = runner.lap();
 
-  const detail::SetupContext setupContext{
+  detail::SetupContext setupContext{
       meshes, *transform, vertices.data(), order, grid, polygons.backFacing.data(), plan.depthTest};
+  if (twoPassesMayPay(in)) {
+    setupContext.pass = detail::SetupPass::Front;
+    completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
+    return completed && rasterInTwoPasses(in, planes, setupContext, runner, stats);
+  }
   completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
   stats.setupSeconds = runner.lap();
+  return completed && rasterInOnePass(in, planes, runner, stats);
+}
 
+// Every face drawn with the depth test, in z-buffer order, where the coarse depth is not
+// forced: the back faces may be set up after the front faces are painted (Raster.h).
+bool Renderer::Workspace::twoPassesMayPay(const detail::FrameInputs& in) {
+  plan.twoPassFrame = false;
+  plan.everyFacePolygonsPerCoveredPixel = 0.0;
+  plan.blocksHiddenBehindFront = plan.polygonsHiddenBehindFront = 0;
+  if (!plan.depthTest || plan.sortByDepth || in.rules.hiddenGeometry == HierarchicalZ::On)
+    return false;
+  return detail::chooseTwoPassFrame(plan, meshes, history.stats().pixelsCovered);
+}
+
+detail::RasterContext Renderer::Workspace::rasterContext(const detail::FrameInputs& in,
+                                                         const FramebufferView& planes) {
+  return {setup.chunks,
+          vertices.data(),
+          planes.depth,
+          planes.polygonId,
+          planes.width,
+          polygons.shown,
+          in.depthOutput ? &*transform : nullptr,
+          &frontBlocks};
+}
+
+bool Renderer::Workspace::rasterInOnePass(const detail::FrameInputs& in,
+                                          const FramebufferView& planes,
+                                          detail::PhaseRunner& runner, RenderStats& stats) {
   const detail::TileRoutine tileRoutine =
       detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
-  const detail::RasterContext rasterContext{setup.chunks,
-                                            vertices.data(),
-                                            planes.depth,
-                                            planes.polygonId,
-                                            planes.width,
-                                            polygons.shown,
-                                            in.depthOutput ? &*transform : nullptr};
-  completed = completed && detail::paintTiles(runner, grid, rasterContext, tileRoutine, tiles);
+  const bool completed =
+      detail::paintTiles(runner, grid, rasterContext(in, planes), tileRoutine, tiles);
   stats.rasterSeconds = runner.lap();
+  return completed;
+}
+
+// After the front pass's set-up: the front faces painted, the back faces set up against them
+// and painted, each tile finished. When the front faces alone call for the coarse depth
+// (large triangles, where little set-up is to be saved), the back faces are set up at once and
+// the frame painted in one pass.
+bool Renderer::Workspace::rasterInTwoPasses(const detail::FrameInputs& in,
+                                            const FramebufferView& planes,
+                                            detail::SetupContext setupContext,
+                                            detail::PhaseRunner& runner, RenderStats& stats) {
+  detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
+  setupContext.pass = detail::SetupPass::Back;
+  if (detail::useCoarseDepth(plan, in.rules.hiddenGeometry)) {
+    detail::setUpBackFaces(runner, setupContext, setup);
+    stats.setupSeconds = runner.lap();
+    plan.twoPassFrame = false;
+    return rasterInOnePass(in, planes, runner, stats);
+  }
+  stats.setupSeconds = runner.lap();
+  const detail::RasterContext context = rasterContext(in, planes);
+  detail::paintFrontTiles(runner, grid, context, tiles);
+  stats.rasterSeconds = runner.lap();
+  setupContext.front = &frontBlocks;
+  detail::setUpBackFaces(runner, setupContext, setup);
+  stats.setupSeconds += runner.lap();
+  detail::reportHiddenBlocks(setup.chunks, plan);
+  const bool completed = detail::paintBackTiles(runner, grid, context, tiles);
+  stats.rasterSeconds += runner.lap();
+  // The plan's figures from every face set up (the hidden ones counted as binned: as in one
+  // pass); the routine is the depth test's.
+  detail::chooseRasterRoutine(plan, setup.chunks, HierarchicalZ::Off);
   return completed;
 }
 

@@ -5,8 +5,10 @@
 #include <optional>
 #include <span>
 
+#include "BackFacingBlocks.h"
 #include "Binning.h"
 #include "Clipper.h"
+#include "HiddenBlocks.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
 #include "SetupBatch.h"
@@ -84,7 +86,22 @@ class PolygonSetup {
         mesh_(mesh),
         points_(points),
         polygons_(polygons),
-        meshVertices_(context.vertices + mesh.firstVertex) {}
+        meshVertices_(context.vertices + mesh.firstVertex),
+        deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front) {}
+
+  // Back faces are put off to the back pass (SetupPass::Front, every face drawn): the batch
+  // drops them as it would cull them, and settle() defers them.
+  bool defersBackFaces() const { return deferBack_; }
+
+  // Puts polygon `polygon` in lane `lane` of a batch (the back pass's scattered polygons).
+  void loadOne(std::size_t polygon, TriangleBatch& batch, int lane) const {
+    const bool triangle = polygons_.size(polygon) == 3;
+    batch.triangle[lane] = triangle;
+    if (triangle) {
+      for (int j = 0; j < 3; ++j)
+        batch.v[j][lane] = meshVertices_[polygons_.pointId(polygon, static_cast<std::size_t>(j))];
+    }
+  }
 
   // Puts `count` consecutive polygons from `first` in a batch's lanes from `lane`, each to be
   // set up there when it is a triangle with every vertex inside (SetupBatch.h); each offset
@@ -107,13 +124,18 @@ class PolygonSetup {
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
   // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
-    chunk_.counts.culled += static_cast<std::size_t>(verdicts.culledCount);
+    if (!kSkipBackFaces && deferBack_) {
+      deferCulled(verdicts, lanePolygon, lanes);
+    } else {
+      chunk_.counts.culled += static_cast<std::size_t>(verdicts.culledCount);
+    }
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
     const std::uint32_t used = (1u << lanes) - 1;
     const std::uint32_t kept = verdicts.kept() & used;
     std::size_t binned = 0;
-    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
+    for (std::uint32_t rest = ~(verdicts.dropped() | verdicts.hidden) & used; rest != 0;
+         rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
       if ((kept >> lane) & 1u) {
         bin(verdicts, lane, lanePolygon[lane]);
@@ -131,6 +153,7 @@ class PolygonSetup {
     }
     chunk_.counts.trianglesBinned += binned;
     chunk_.counts.drawn += binned;
+    if (!kSkipBackFaces && verdicts.hidden != 0) countHidden(verdicts, lanePolygon, used);
   }
 
   void run(std::size_t polygon) {
@@ -185,6 +208,10 @@ class PolygonSetup {
       ++chunk_.counts.culled;
       return;
     }
+    if (!kSkipBackFaces && deferBack_ && area < 0) {
+      defer(polygon_);
+      return;
+    }
     emit(area < 0, [&](Tally& tally) {
       keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
            tally);
@@ -219,6 +246,10 @@ class PolygonSetup {
     const bool back = !context_.transform.facesViewer(*normal, centerOf(corners));
     if (kSkipBackFaces && back) {
       ++chunk_.counts.culled;
+      return std::nullopt;
+    }
+    if (!kSkipBackFaces && deferBack_ && back) {
+      defer(polygon_);
       return std::nullopt;
     }
     return back;
@@ -269,6 +300,43 @@ class PolygonSetup {
           {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
           polygonId, last, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
+  }
+
+  // The lanes the back pass found hidden (BatchVerdicts::hidden): counted as bin() would bin
+  // them (the frame's counts, and so the plan's depth complexity, as with one pass), their
+  // facing noted. Out of line, as deferCulled: inlined, settle()'s appends went out of line
+  // (the closed 500k frame +2 % instructions).
+  [[gnu::noinline]] void countHidden(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
+                                     std::uint32_t used) {
+    const auto& samples = verdicts.samples;
+    for (std::uint32_t rest = verdicts.hidden & used; rest != 0; rest &= rest - 1) {
+      const int lane = std::countr_zero(rest);
+      chunk_.counts.boxSamples +=
+          PixelBounds{samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}
+              .area();
+      ++chunk_.counts.trianglesBinned;
+      ++chunk_.counts.drawn;
+      context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
+          (verdicts.clockwise >> lane) & 1u;
+    }
+  }
+
+  // The front pass's back lanes (the batch culled them), put off to the back pass.
+  [[gnu::noinline]] void deferCulled(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
+                                     int lanes) {
+    const std::uint32_t used = (1u << lanes) - 1;
+    const std::uint32_t culled = verdicts.culled & used;
+    std::vector<std::uint32_t>& list = chunk_.deferredBack;
+    std::size_t at = list.size();
+    list.resize(at + static_cast<std::size_t>(std::popcount(culled)));
+    std::uint32_t* out = list.data();
+    for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1)
+      out[at++] =
+          static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
+  }
+
+  [[gnu::noinline]] void defer(std::size_t polygon) {
+    chunk_.deferredBack.push_back(static_cast<std::uint32_t>(mesh_.firstPolygon + polygon));
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -373,6 +441,7 @@ class PolygonSetup {
   PointsT points_;
   PolygonsT polygons_;
   const WindowVertex* meshVertices_;
+  bool deferBack_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
   bool last_ = false;  // the polygon's triangles join the back bins (Chunk::binsFor)
@@ -401,7 +470,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   std::size_t lanePolygon[kBatchSize];
   int lanes = 0;
   const auto settleBatch = [&] {
-    classifyBatch(batch, context.grid, kSkipBackFaces, !kSkipBackFaces, verdicts);
+    classifyBatch(batch, context.grid, kSkipBackFaces || setup.defersBackFaces(), !kSkipBackFaces,
+                  verdicts);
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
@@ -467,12 +537,104 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   return position;
 }
 
+// Sets up the chunk's deferred back faces from index `first` on while they belong to `mesh`,
+// in batches unless they are off, the kept lanes tested against the front faces' blocks;
+// returns where it stopped.
+template <class PointsT, class PolygonsT>
+std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
+                         PointsT points, PolygonsT polygons, std::size_t first) {
+  PolygonSetup<PointsT, PolygonsT, false> setup(context, chunk, mesh, points, polygons);
+  const std::vector<std::uint32_t>& ids = chunk.deferredBack;
+  const auto endId = static_cast<std::uint32_t>(mesh.endPolygon());
+  const std::size_t end = static_cast<std::size_t>(
+      std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId) -
+      ids.begin());
+  // The deferred back faces of a block of triangle polygons (BackBlock::skippable) whose box
+  // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
+  // before any per-polygon work (counted as drawn). The ids ascend (z-buffer order): a
+  // block's are found by a binary search.
+  std::optional<HiddenBlockTest> blocks;
+  std::optional<BackFaceTest> cone;
+  if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled()) {
+    blocks.emplace(context.transform, context.grid, *context.front);
+    if (hiddenBlocksConeOnly() || countingHiddenBlocks()) cone.emplace(context.transform);
+  }
+  // The end of the ids of the block of ids[k], and whether it is hidden.
+  const auto blockOf = [&](std::size_t k, bool& hidden) {
+    const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+    const auto next =
+        static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
+    const BackBlock& facts = mesh.backBlockFacts[block];
+    hidden = facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
+             blocks->hidden(facts.box);
+    return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
+                                                     ids.begin() + static_cast<std::ptrdiff_t>(end),
+                                                     next) -
+                                    ids.begin());
+  };
+  // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
+  const auto forEachShown = [&](const auto& each) {
+    for (std::size_t k = first; k < end;) {
+      bool hidden = false;
+      const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
+      if (cone && countingHiddenBlocks()) {
+        const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts[block]);
+        hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
+      }
+      if (hidden) {
+        ++chunk.counts.hiddenBlocks;
+        chunk.counts.hiddenBlockPolygons += blockEnd - k;
+        chunk.counts.drawn += blockEnd - k;
+        chunk.counts.trianglesBinned += blockEnd - k;
+        k = blockEnd;
+        continue;
+      }
+      for (; k < blockEnd; ++k)
+        each(ids[k] - mesh.firstPolygon);
+    }
+  };
+  if (!setupBatchesEnabled()) {
+    forEachShown([&](std::size_t polygon) { setup.run(polygon); });
+    return end;
+  }
+  TriangleBatch batch{};
+  BatchVerdicts verdicts;
+  std::size_t lanePolygon[kBatchSize];
+  int lanes = 0;
+  const auto settleBatch = [&] {
+    std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
+    classifyBatch(batch, context.grid, false, true, verdicts, context.front);
+    setup.settle(verdicts, lanePolygon, lanes);
+    lanes = 0;
+  };
+  forEachShown([&](std::size_t polygon) {
+    lanePolygon[lanes] = polygon;
+    setup.loadOne(polygon, batch, lanes);
+    if (++lanes == kBatchSize) settleBatch();
+  });
+  if (lanes > 0) settleBatch();
+  return end;
+}
+
+// The back pass of a chunk: its deferred polygons, run by run of one mesh.
+void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
+  std::size_t next = 0;
+  while (next < chunk.deferredBack.size()) {
+    const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
+    withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
+      next = setUpBackRun(context, chunk, mesh, points, polygons, next);
+    });
+  }
+}
+
 // Draw positions come in runs that share a mesh (the whole chunk, in z-buffer mode); each
 // run is set up by code specialized for that mesh's point and index types and back-face
 // handling.
 void setUpChunk(const SetupContext& context, Chunk& chunk) {
   clearBins(chunk, context.grid);
   chunk.clippedVertices.clear();
+  chunk.deferredBack.clear();
   chunk.counts = {};
   std::size_t position = chunk.begin;
   while (position < chunk.end) {
@@ -531,6 +693,23 @@ bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads
     requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
                      chunk.clippedVertices.size());
   return completed;
+}
+
+bool setUpBackFaces(PhaseRunner& runner, const SetupContext& context, SetupBuffers& buffers) {
+  runner.runUnreported(buffers.chunks.size(),
+                       [&](std::size_t i) { setUpChunkBack(context, buffers.chunks[i]); });
+  for (const Chunk& chunk : buffers.chunks)
+    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
+                     chunk.clippedVertices.size());
+  return true;
+}
+
+void reportHiddenBlocks(std::span<const Chunk> chunks, RenderPlan& plan) {
+  plan.blocksHiddenBehindFront = plan.polygonsHiddenBehindFront = 0;
+  for (const Chunk& chunk : chunks) {
+    plan.blocksHiddenBehindFront += chunk.counts.hiddenBlocks;
+    plan.polygonsHiddenBehindFront += chunk.counts.hiddenBlockPolygons;
+  }
 }
 
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {

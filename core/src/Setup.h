@@ -15,6 +15,12 @@
 
 namespace facet::detail {
 
+// Which polygons a set-up pass takes. A two-pass frame (every face drawn with the depth test,
+// Raster.h) sets up the front faces first and puts the back-facing polygons of the meshes that
+// draw them off (Chunk::deferredBack); once the tiles' front faces are painted, it sets those
+// up, dropping (counted as drawn) every one that loses everywhere behind them.
+enum class SetupPass { All, Front, Back };
+
 struct SetupContext {
   std::span<const FrameMesh> meshes;
   const FrameTransform& transform;
@@ -25,6 +31,10 @@ struct SetupContext {
   // The depth test is on: back-facing polygons are binned in the chunks' backBins, which the
   // tiles paint after the front faces (Chunk::backBins); painter's order keeps one order.
   bool backFacesLast;
+  SetupPass pass = SetupPass::All;
+  // SetupPass::Back: the blocks of the front faces painted, which a batch's kept back faces
+  // are tested against (hiddenBehind, RasterTriangle.h); null: none dropped.
+  const FrontDepthBlocks* front = nullptr;
 };
 
 // The set-up's chunks (its output) and their ranges.
@@ -40,6 +50,13 @@ const char* setupRoutineName(bool skipBackFaces);
 // order interleaves them) sized for `threads`.
 bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
                    SetupBuffers& buffers);
+
+// SetupPass::Back: sets up every chunk's deferred back faces (SetupPass::Front put them off)
+// into its back bins, after what the front pass binned.
+bool setUpBackFaces(PhaseRunner& runner, const SetupContext& context, SetupBuffers& buffers);
+
+// A two-pass frame's back-face blocks dropped behind the front faces, into `plan`.
+void reportHiddenBlocks(std::span<const Chunk> chunks, RenderPlan& plan);
 
 // Adds what the set-up counted (polygons drawn, culled, ...; triangles) to `stats`.
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats);

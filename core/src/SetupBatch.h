@@ -60,6 +60,10 @@ struct BatchVerdicts {
   // 2 to kSmallSide² − 1 centers in a box at most kSmallSide on each side, and with
   // polygon-boundary edges every covered center surely inside them (smallTriangleOf).
   std::uint32_t small = 0;
+  // Would have been kept, but loses the depth test everywhere to the front faces already
+  // painted (a two-pass frame's back faces, hiddenBehind, RasterTriangle.h): counted as drawn,
+  // not binned; none of fragment, triangle or small.
+  std::uint32_t hidden = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   // Per kept lane: the pixel centers of its box, clipped to the viewport (inclusive).
   struct {
@@ -71,6 +75,7 @@ struct BatchVerdicts {
   struct {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
     alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
+    alignas(64) float nearestKey[kBatchSize];
   } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
   std::uint32_t kept() const { return fragment | triangle; }
@@ -90,14 +95,17 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
   t.x0 = static_cast<std::uint16_t>(samples.x0[lane]);
   t.y0 = static_cast<std::uint16_t>(samples.y0[lane]);
   t.coverage = static_cast<std::uint16_t>(plane.coverage[lane]);
+  t.nearestKey = plane.nearestKey[lane];
   return t;
 }
 
 // The verdicts for the tiles' viewport and the mesh's back-face handling (`boundaryEdges`:
 // the depth keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's
-// three edges are its polygon's).
+// three edges are its polygon's). With `front` (a two-pass frame's back faces), the kept lanes
+// hiddenBehind its blocks become `hidden` before their keys and records are made.
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts);
+                   bool boundaryEdges, BatchVerdicts& verdicts,
+                   const FrontDepthBlocks* front = nullptr);
 
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render
 // runs.

@@ -15,6 +15,7 @@
 #include "MeshCache.h"
 #include "PhaseRunner.h"
 #include "Plan.h"
+#include "Raster.h"
 #include "Setup.h"
 #include "Shade.h"
 #include "ThreadPool.h"
@@ -42,11 +43,19 @@ struct Renderer::Workspace {
   detail::SetupBuffers setup;
   detail::PolygonBuffers polygons;
   std::vector<detail::PaintCounts> tiles;
+  detail::FrontDepthBlocks frontBlocks;  // a two-pass frame's (Raster.h)
   detail::ShadeBuffers shadeBuffers;
   HugePageVector<float> ownDepth;  // the depth plane of a caller without one
   detail::FrameHistory history;
 
   // The phases (Renderer.cpp). Each returns false when the progress callback asked to stop.
+  bool twoPassesMayPay(const detail::FrameInputs& in);
+  detail::RasterContext rasterContext(const detail::FrameInputs& in, const FramebufferView& planes);
+  bool rasterInOnePass(const detail::FrameInputs& in, const FramebufferView& planes,
+                       detail::PhaseRunner& runner, RenderStats& stats);
+  bool rasterInTwoPasses(const detail::FrameInputs& in, const FramebufferView& planes,
+                         detail::SetupContext setupContext, detail::PhaseRunner& runner,
+                         RenderStats& stats);
   bool renderFull(const detail::FrameInputs& in, const detail::PathChoice& path, int threads,
                   const FramebufferView& planes, detail::PhaseRunner& runner, RenderStats& stats);
   bool renderAgain(const detail::FrameInputs& in, const detail::PathChoice& path, int threads,

@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
@@ -15,6 +16,7 @@
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "Binning.h"
+#include "Raster.h"
 #include "RasterTriangle.h"
 #include "SetupBatch.h"
 #include "facet/Error.h"
@@ -34,6 +36,7 @@ class SetupBatches : public EveryTargetTest {
   void TearDown() override {
     EveryTargetTest::TearDown();
     detail::enableSetupBatches(true);
+    detail::planTwoPassFrames();
   }
   // Every target this CPU has, the best first and the portable one last.
   static std::vector<SimdTarget> targets() {
@@ -145,7 +148,8 @@ bool sameRecord(const detail::SmallTriangle& a, const detail::SmallTriangle& b) 
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
   return bits(a.firstKey) == bits(b.firstKey) && bits(a.keyPerFine) == bits(b.keyPerFine) &&
          bits(a.keyPerPixel) == bits(b.keyPerPixel) && a.firstRowFine == b.firstRowFine &&
-         a.polygon == b.polygon && a.x0 == b.x0 && a.y0 == b.y0 && a.coverage == b.coverage;
+         a.polygon == b.polygon && a.x0 == b.x0 && a.y0 == b.y0 && a.coverage == b.coverage &&
+         bits(a.nearestKey) == bits(b.nearestKey);
 }
 
 // A kept triangle lane's SmallTriangle: made exactly when smallTriangleOf makes one from the
@@ -248,6 +252,63 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
   }
 }
 
+// A two-pass frame's back pass (SetupPass::Back): a batch given the front faces' blocks drops
+// as `hidden` exactly the lanes it would keep that hiddenBehind (RasterTriangle.h, scalar)
+// rejects, on every target, and keeps the others as without the blocks.
+TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
+  const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
+  std::vector<WindowVertex> corners = randomTriangles(20000, 13);
+  std::mt19937 random(17);
+  std::uniform_real_distribution<float> key(0.45f, 0.55f), block(0.4f, 0.7f), unit(0.0f, 1.0f);
+  for (WindowVertex& corner : corners)
+    corner.depth = key(random);
+  detail::FrontDepthBlocks blocks;
+  blocks.resize(grid);
+  for (std::size_t t = 0; t < grid.count(); ++t) {
+    float measured[detail::FrontDepthBlocks::kPerTile];
+    for (float& b : measured)
+      b = unit(random) < 0.1f ? -std::numeric_limits<float>::infinity() : block(random);
+    blocks.store(t, measured);
+  }
+  const std::size_t triangles = corners.size() / 3;
+  for (const SimdTarget& target : targets()) {
+    SCOPED_TRACE(target.name);
+    use(target);
+    std::size_t mismatches = 0, hidden = 0, kept = 0;
+    for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
+      TriangleBatch batch{};
+      for (int lane = 0; lane < kBatchSize; ++lane) {
+        for (int j = 0; j < 3; ++j)
+          batch.v[j][lane] = corners[3 * (first + lane) + j];
+        batch.triangle[lane] = lane % 7 != 3;
+      }
+      detail::BatchVerdicts without, with;
+      detail::classifyBatch(batch, grid, false, true, without);
+      detail::classifyBatch(batch, grid, false, true, with, &blocks);
+      ASSERT_EQ(with.kept() | with.hidden, without.kept());
+      ASSERT_EQ(with.kept() & with.hidden, 0u);
+      for (std::uint32_t rest = without.kept(); rest != 0; rest &= rest - 1) {
+        const int lane = std::countr_zero(rest);
+        const bool clockwise = (without.clockwise >> lane) & 1u;
+        const auto& samples = without.samples;
+        const PixelBounds box{samples.x0[lane], samples.y0[lane], samples.x1[lane],
+                              samples.y1[lane]};
+        const bool expected =
+            detail::hiddenBehind(batch.v[0][lane], batch.v[clockwise ? 2 : 1][lane],
+                                 batch.v[clockwise ? 1 : 2][lane], box, blocks);
+        const bool got = (with.hidden >> lane) & 1u;
+        if (got != expected && ++mismatches <= 5)
+          ADD_FAILURE() << "lane " << lane << " of batch " << first / kBatchSize << ": hidden "
+                        << got << ", hiddenBehind " << expected;
+        hidden += got, kept += !got;
+      }
+    }
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_GT(hidden, triangles / 50);
+    EXPECT_GT(kept, triangles / 50);
+  }
+}
+
 struct SceneCase {
   std::string name;
   Scene scene;
@@ -255,6 +316,19 @@ struct SceneCase {
   int width, height;
   RenderOptions options;
 };
+
+// The same bytes and set-up counts.
+void expectSameRender(const Rendered& before, const Rendered& after) {
+  EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u) << "pixels differ";
+  const RenderStats &s = before.stats, &t = after.stats;
+  EXPECT_EQ(s.polygonsDrawn, t.polygonsDrawn);
+  EXPECT_EQ(s.polygonsCulled, t.polygonsCulled);
+  EXPECT_EQ(s.polygonsOutside, t.polygonsOutside);
+  EXPECT_EQ(s.polygonsDegenerate, t.polygonsDegenerate);
+  EXPECT_EQ(s.trianglesBinned, t.trianglesBinned);
+  EXPECT_EQ(s.trianglesClipped, t.trianglesClipped);
+  EXPECT_EQ(s.fragmentsWritten, t.fragmentsWritten);  // a dropped back face writes none
+}
 
 // Renders every case without batches, then with them on every target, and compares bytes and
 // the set-up's counts.
@@ -270,16 +344,7 @@ void expectSameRenders(const std::vector<SceneCase>& cases,
       SCOPED_TRACE(target.name);
       detail::useSimdTarget(target.bits);
       ASSERT_STREQ(detail::simdTargetInUse(), target.name);
-      const Rendered after = renderScene(c.scene, c.camera, c.width, c.height, c.options);
-      EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u) << "pixels differ";
-      const RenderStats &s = before.stats, &t = after.stats;
-      EXPECT_EQ(s.polygonsDrawn, t.polygonsDrawn);
-      EXPECT_EQ(s.polygonsCulled, t.polygonsCulled);
-      EXPECT_EQ(s.polygonsOutside, t.polygonsOutside);
-      EXPECT_EQ(s.polygonsDegenerate, t.polygonsDegenerate);
-      EXPECT_EQ(s.trianglesBinned, t.trianglesBinned);
-      EXPECT_EQ(s.trianglesClipped, t.trianglesClipped);
-      EXPECT_EQ(s.fragmentsWritten, t.fragmentsWritten);
+      expectSameRender(before, renderScene(c.scene, c.camera, c.width, c.height, c.options));
     }
   }
 }
@@ -386,6 +451,62 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
                      optionsWith(Visibility::ZBuffer, threads)});
   }
   expectSameRenders(cases, targets());
+}
+
+// A sphere with a band of polygons left out and its far half first in polygon order: the
+// back faces show through the band, and most others hide behind the front faces.
+Mesh sphereWithBand(int theta) {
+  const Mesh sphere = makeUvSphere(theta, theta + 2);
+  Mesh banded;
+  banded.points = sphere.points;
+  const std::size_t polygons = sphere.offsets.size() - 1;
+  for (std::size_t p = 0; p < polygons; ++p) {
+    const auto begin = static_cast<std::size_t>(sphere.offsets[p]);
+    const auto end = static_cast<std::size_t>(sphere.offsets[p + 1]);
+    const glm::dvec3 corner = sphere.points[static_cast<std::size_t>(sphere.connectivity[begin])];
+    if (std::abs(corner.y - 0.2) < 0.15) continue;  // the band
+    banded.connectivity.insert(banded.connectivity.end(), sphere.connectivity.begin() + begin,
+                               sphere.connectivity.begin() + end);
+    banded.offsets.push_back(static_cast<std::int64_t>(banded.connectivity.size()));
+  }
+  return banded;
+}
+
+// A two-pass frame (Raster.h: every face drawn, back faces set up after the front faces are
+// painted, the hidden ones dropped) against the same frame in one pass: the same bytes and
+// counts, on every target and thread count, with the clipper and polygons of many corners.
+TEST_F(SetupBatches, TwoPassFramesRenderAsOnePassOnEveryTarget) {
+  const Mesh banded = sphereWithBand(120);
+  const Camera bandCamera = fitCamera(banded, {0.3, -0.2, -1.0});
+  const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
+  Camera bunnyCamera = fitCamera(bunny, {0.2, -0.3, -1.0});
+  bunnyCamera.nearClip *= 1.3;  // the clipper runs too
+  const Mesh strip = mixedStrip(12000, 7);
+  std::vector<SceneCase> cases;
+  for (int threads : {1, 2, 8}) {
+    const RenderOptions options = optionsWith(Visibility::ZBuffer, threads);
+    const std::string suffix = ", " + std::to_string(threads) + " threads";
+    cases.push_back({"sphere with a band cut out" + suffix, oneMeshScene(banded.view()), bandCamera,
+                     320, 240, options});
+    cases.push_back({"bunny" + suffix, oneMeshScene(bunny.view()), bunnyCamera, 640, 480, options});
+    cases.push_back({"triangles and quads" + suffix, oneMeshScene(strip.view()),
+                     pixelCamera(160, 120), 160, 120, options});
+  }
+  for (const SceneCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    detail::enableTwoPassFrames(false);
+    const Rendered before = renderScene(c.scene, c.camera, c.width, c.height, c.options);
+    detail::enableTwoPassFrames(true);
+    EXPECT_GT(before.stats.pixelsCovered, 0u);
+    for (const SimdTarget& target : targets()) {
+      SCOPED_TRACE(target.name);
+      use(target);
+      const Rendered after = renderScene(c.scene, c.camera, c.width, c.height, c.options);
+      expectSameRender(before, after);
+      EXPECT_EQ(before.stats.pixelsCovered, after.stats.pixelsCovered);
+      EXPECT_EQ(before.stats.plan.depthComplexity, after.stats.plan.depthComplexity);
+    }
+  }
 }
 
 // A bin entry's 30 bits of index (Binning.h): at the limit the set-up throws facet::Error

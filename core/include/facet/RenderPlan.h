@@ -150,6 +150,17 @@ struct RenderPlan {
   double depthComplexity = 0.0;
   double meanTriangleBox = 0.0;  ///< pixels in the average triangle's bounding box
 
+  /// Every face drawn (meshes not skipping back faces) in two passes: the front faces painted
+  /// first, then the back faces set up against them, whole blocks of back faces that the front
+  /// faces hide everywhere dropped before set-up (their polygons counted drawn, never
+  /// painted: none could change a pixel). Chosen when those meshes have at least one polygon
+  /// per pixel the previous frame covered (`everyFacePolygonsPerCoveredPixel`; the image's
+  /// pixels before a first frame), where the set-up and painting saved outweigh the depth
+  /// and id planes' second pass.
+  bool twoPassFrame = false;
+  double everyFacePolygonsPerCoveredPixel = 0.0;
+  std::size_t blocksHiddenBehindFront = 0, polygonsHiddenBehindFront = 0;
+
   /// The routines chosen for this render (llvmpipe's habit: pick the routine once, not test
   /// per triangle or pixel): painting a tile, setting up a mesh's polygons and shading them.
   /// "per mesh" when meshes differ; the set-up's is known once the render has transformed.

@@ -1,0 +1,103 @@
+#pragma once
+
+// A two-pass frame's (Raster.h) back pass drops every deferred back face of a back-face block
+// (MeshCache.h, 256 polygons) whose 3D box projects behind the front faces' 8 × 8 pixel
+// blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted drawn and
+// binned, nothing is loaded, classified or painted. On by default in two-pass frames (the plan
+// decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off (measurements).
+//
+// Why no dropped back face could have changed anything (every24; sections 18b–18c and 21 of
+// bench/core-frame-issue11.md say how the earlier attempts fell short). Keys are larger
+// nearer. A back face is painted after every front face of its tile (both passes), and
+// writeFragment writes only a strictly nearer key: a back face whose written key is at most
+// the front key at each of its covered samples writes nothing. Nothing else of the frame is
+// read from its triangles: shading and the shown flags come from the final ids, the
+// covered count from the final ids. So, with W a key any of its triangles writes and F the
+// front key at that sample after the front pass (it only grows nearer afterwards):
+// 1. W ≤ its triangle's nearest vertex key, by construction: the block is dropped only when
+//    all its polygons are triangles (BackBlock::skippable), each painted with its three
+//    edges as polygon-boundary edges, and every paint path clamps the key it writes to the
+//    nearest vertex key then (nearestWrittenKey, RasterTriangle.h: TriangleDepth::keyAt and
+//    refine, SmallTriangle::nearestKey, SetupBatch's keyLanes). No rounding argument: the
+//    clamp is a min of two floats' worth of doubles before the one rounding to float, and
+//    rounding is monotone.
+// 2. No triangle of the block is clipped and every point of it has d > 0: its box is inside
+//    the clip volume with a margin (FrameTransform::boxInsideClipVolume), so every vertex's
+//    outcode is kInside and its window position and key are toWindow's of its own point.
+// 3. Every vertex key is at most nearestVertexKeyBound (HiddenBlocks.cpp): the view distance
+//    d is affine in the point, so its least over the box is at a corner; each computed
+//    distance (the corners' and the vertices', the same operations) is within
+//    η = 1e-14 · (the corners' largest |coordinate − eye|) of the exact one (it rounds at
+//    under 9u of that); the key, n/d in perspective and n − d in parallel projection, is
+//    monotone in d, and its own roundings (below 3u of it) are covered by the bound's
+//    1e-14. The vertex's float key is the rounding of that double: at most any float
+//    at least the bound (monotone rounding).
+// 4. Every covered sample lies within the window box of the corners' images widened by two
+//    grid steps: the projection (w = d > 0 on the box) maps the box into the convex hull of
+//    its corners' images, a vertex is snapped by at most half a grid step and the
+//    corners' and vertices' images round by far less than one, and a covered sample lies
+//    inside the snapped triangle, hence in its vertices' bounding box. Its pixel is in the
+//    pixel box tested, whose 8 × 8 blocks' least front keys (FrontDepthBlocks::over) are
+//    at most every front key there.
+// 5. So when the blocks' least key F_min ≥ the bound: W ≤ nearest vertex float key ≤ F_min ≤
+//    F: an exact tie keeps the front face, no fragment is written.
+// What it changes in the frame's report: the dropped polygons are counted drawn and binned as
+// in one pass, and the fragments written are the same (none), but their boxes' samples are
+// not added to the plan's depth complexity (RenderPlan::depthComplexity is lower than one
+// pass's), and RenderPlan reports the blocks and polygons dropped.
+// The margin test is DepthPrecision.TriangleKeysNeverPassTheirNearestVertexKey (step 1) and
+// HiddenBlocks.ApexThroughTheFrontFaceIsNeverDropped (steps 3–5).
+
+#include "Box.h"
+#include "FrameTransform.h"
+#include "RasterTriangle.h"
+#include "TileGrid.h"
+
+namespace facet::detail {
+
+class HiddenBlockTest {
+ public:
+  HiddenBlockTest(const FrameTransform& transform, const TileGrid& grid,
+                  const FrontDepthBlocks& front)
+      : transform_(transform),
+        viewport_(grid.viewport()),
+        front_(front),
+        eye_(transform.constants().eye),
+        near_(transform.constants().near),
+        parallel_(transform.constants().parallel) {}
+  // Whether every triangle of a triangle polygon with points in `box` loses the depth test
+  // everywhere to the front faces (the header's proof).
+  bool hidden(const Box& box) const;
+
+ private:
+  double nearestVertexKeyBound(double nearestDistance, double farthestDistance,
+                               double largestOffset) const;
+
+  const FrameTransform& transform_;
+  PixelBounds viewport_;
+  const FrontDepthBlocks& front_;
+  glm::dvec3 eye_;
+  double near_;
+  bool parallel_;
+};
+
+// On unless FACET_HIDDEN_BLOCKS=0 in the environment or enableHiddenBlocks(false) (tests);
+// FACET_HIDDEN_BLOCKS=cone restricts it to the blocks BackFaceTest proves back-facing
+// (measured in section 18c).
+void enableHiddenBlocks(bool on);
+bool hiddenBlocksEnabled();
+bool hiddenBlocksConeOnly();
+// The blocks tested and hidden and their deferred polygons, counted only while counting is on
+// (tests; FACET_HIDDEN_BLOCKS_DEBUG=1 prints them at exit).
+// `coneCertain`: of those, the blocks BackFaceTest proves back-facing (the blocks a proven
+// reject could take, section 18c), and how many of them are hidden.
+struct HiddenBlockCounts {
+  std::size_t blocks = 0, hidden = 0, polygons = 0, hiddenPolygons = 0;
+  std::size_t coneCertain = 0, coneCertainHidden = 0, coneCertainHiddenPolygons = 0;
+};
+void countHiddenBlocks(bool on);
+bool countingHiddenBlocks();
+HiddenBlockCounts hiddenBlockCounts();
+void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons);
+
+}  // namespace facet::detail
