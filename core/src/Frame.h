@@ -63,6 +63,8 @@ struct FrameMesh {
   // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
   // shade phase from the points (an unversioned mesh).
   const glm::vec3* faceNormals = nullptr;
+  // Every polygon is a triangle, offsets[p] = 3p (MeshFacts::allTriangles, measured meshes).
+  bool allTriangles = false;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }

@@ -71,7 +71,10 @@ void Renderer::Workspace::prepareMeshes(const Scene& scene) {
   for (const SceneMesh& mesh : scene.meshes) {
     meshes.push_back({&mesh, PreparedMaterial(mesh.material), firstVertex, firstPolygon});
     const detail::MeshFacts& facts = cache[meshes.size() - 1];
-    if (facts.measured) meshes.back().faceNormals = facts.faceNormals.data();
+    if (facts.measured) {
+      meshes.back().faceNormals = facts.faceNormals.data();
+      meshes.back().allTriangles = facts.allTriangles;
+    }
     firstVertex += mesh.mesh.points.count;
     firstPolygon += mesh.mesh.polygons.count;
   }
