@@ -60,31 +60,39 @@ TEST(TriangleMeshes, AllTrianglesIsMeasuredPerVersionAndFalseForAnyOtherPolygon)
   EXPECT_FALSE(measuredAllTriangles(makeBox({0, 0, 0}, {1, 1, 1}).view()));
 }
 
-// Lit at centers (a point light) and by directions, diffuse and specular: a versioned
-// triangle mesh (its corners read without offsets) gives the bytes of the same mesh
-// unversioned (read through its offsets), on 1 and 2 threads.
+// Point lights (lit at centers), directional lights (by directions) and both, diffuse and
+// specular: a versioned triangle mesh gives the bytes of the same mesh unversioned (its
+// corners read through its offsets), on 1 and 2 threads. The diffuse renders under one kind
+// of light shade in batches, the routine that reads a triangle mesh without its offsets.
 TEST(TriangleMeshes, ShadingWithoutOffsetsGivesTheSameBytes) {
   const Mesh sphere = makeUvSphere(120, 122);
   const Camera camera = fitCamera(sphere, {-0.3, -0.2, -1.0});
-  LightSet lights;
-  lights.lights.push_back(PointLight{{1.5, 1.0, 2.0}, Color(0.9f), 1.0});
-  lights.lights.push_back(DirectionalLight{{-1, -0.5, -1}, Color(0.6f), 1.0});
-  for (const bool specular : {false, true}) {
-    Material material;
-    material.specular = specular ? 0.5 : 0.0;
-    for (const int threads : {1, 2}) {
-      RenderOptions options;
-      options.threads = threads;
-      MeshView unversioned = sphere.view();
-      MeshView versioned = unversioned;
-      versioned.version = 1;
-      const Rendered read =
-          renderScene(oneMeshScene(unversioned, material, lights), camera, 320, 240, options);
-      const Rendered known =
-          renderScene(oneMeshScene(versioned, material, lights), camera, 320, 240, options);
-      ASSERT_GT(known.stats.polygonsShaded, 1000u);
-      EXPECT_EQ(differingPixels(known.framebuffer, read.framebuffer), 0u)
-          << "specular " << specular << ", " << threads << " threads";
+  PointLight unattenuated{{1.5, 1.0, 2.0}, Color(0.9f), 1.0};
+  unattenuated.attenuation = NoAttenuation{};  // the point lights ShadeBatch.h takes
+  const Light point = unattenuated;
+  const Light directional = DirectionalLight{{-1, -0.5, -1}, Color(0.6f), 1.0};
+  for (const std::vector<Light>& lightList :
+       {std::vector{point}, std::vector{directional}, std::vector{point, directional}}) {
+    LightSet lights;
+    lights.lights = lightList;
+    for (const bool specular : {false, true}) {
+      Material material;
+      material.specular = specular ? 0.5 : 0.0;
+      for (const int threads : {1, 2}) {
+        RenderOptions options;
+        options.threads = threads;
+        MeshView unversioned = sphere.view();
+        MeshView versioned = unversioned;
+        versioned.version = 1;
+        const Rendered read =
+            renderScene(oneMeshScene(unversioned, material, lights), camera, 320, 240, options);
+        const Rendered known =
+            renderScene(oneMeshScene(versioned, material, lights), camera, 320, 240, options);
+        ASSERT_GT(known.stats.polygonsShaded, 1000u);
+        EXPECT_EQ(differingPixels(known.framebuffer, read.framebuffer), 0u)
+            << lightList.size() << " lights, specular " << specular << ", " << threads
+            << " threads";
+      }
     }
   }
 }
