@@ -68,6 +68,8 @@ struct FrameMesh {
   // Per back-face block, what the mesh version's measurement knows (MeshCache.h); null: an
   // unversioned mesh. A two-pass frame's back pass may drop blocks whole (HiddenBlocks.h).
   const BackBlock* backBlockFacts = nullptr;
+  // Every polygon is a triangle, offsets[p] = 3p (MeshFacts::allTriangles, measured meshes).
+  bool allTriangles = false;
 
   const MeshView& mesh() const { return source->mesh; }
   std::size_t endPolygon() const { return firstPolygon + source->mesh.polygons.count; }

@@ -49,6 +49,16 @@ void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   facts.blockFinite[b] = finite;
 }
 
+// Whether polygons [begin, end) are triangles stored in order: offsets[p] = 3p.
+bool areTriangles(const MeshView& mesh, std::size_t begin, std::size_t end) {
+  return withTypedMesh(mesh, [&](auto, auto polygons) {
+    for (std::size_t p = begin; p <= end; ++p) {
+      if (polygons.begin(p) != 3 * p) return false;
+    }
+    return true;
+  });
+}
+
 void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   const std::size_t blocks = (polygons + kPolygonsPerBlock - 1) / kPolygonsPerBlock;
   facts.blocks.resize(blocks);
@@ -89,7 +99,7 @@ bool MeshCache::update(PhaseRunner& runner, const Scene& scene, bool bounds) {
     const bool versioned = identity.version != 0;
     if (versioned && facts.measured && facts.identity == identity) continue;
     facts.identity = identity;
-    facts.measured = facts.bounded = false;
+    facts.measured = facts.bounded = facts.allTriangles = false;
     checking_[m] = 1;
     measuring_[m] = versioned;
     bounding_[m] = versioned || bounds;
@@ -130,6 +140,7 @@ std::size_t MeshCache::planMeasurement(const Scene& scene) {
   }
   rangeBounds_.assign(pointTasks, Box{});
   rangeFinite_.assign(pointTasks, 1);
+  rangeTriangles_.assign(ranges_.size() - pointTasks, 0);
   return pointTasks;
 }
 
@@ -144,9 +155,24 @@ bool MeshCache::measure(PhaseRunner& runner, const Scene& scene) {
     }
     for (std::size_t b = r.begin; b < r.end; ++b)
       measureBlock(mesh, b, facts_[r.mesh]);
+    rangeTriangles_[i - pointTasks] =
+        areTriangles(mesh, r.begin * kPolygonsPerBlock,
+                     std::min(mesh.polygons.count, r.end * kPolygonsPerBlock));
   });
-  if (completed) collectBounds(pointTasks);
+  if (completed) {
+    collectBounds(pointTasks);
+    collectTriangles(pointTasks);
+  }
   return completed;
+}
+
+// A measured mesh is all triangles when each of its block tasks found only triangles.
+void MeshCache::collectTriangles(std::size_t pointTasks) {
+  for (std::size_t m = 0; m < facts_.size(); ++m) {
+    if (measuring_[m]) facts_[m].allTriangles = true;
+  }
+  for (std::size_t i = pointTasks; i < ranges_.size(); ++i)
+    facts_[ranges_[i].mesh].allTriangles &= rangeTriangles_[i - pointTasks] != 0;
 }
 
 void MeshCache::collectBounds(std::size_t pointTasks) {

@@ -79,6 +79,9 @@ struct MeshFacts {
   std::vector<std::uint8_t> blockFinite;  // per block: every point it uses is finite
   // Per polygon, for a measured mesh: its unit normal rounded to float (FaceNormal.h).
   std::vector<glm::vec3> faceNormals;
+  // A measured mesh whose every polygon is a triangle (offsets[p] = 3p): its corners can be
+  // read without the offsets (MeshAccess.h, Triangles).
+  bool allTriangles = false;
   std::vector<BackBlock> backBlocks;  // per kPolygonsPerBackBlock polygons
 };
 
@@ -101,6 +104,7 @@ class MeshCache {
   bool measure(PhaseRunner& runner, const Scene& scene);
   std::size_t planMeasurement(const Scene& scene);
   void collectBounds(std::size_t pointTasks);
+  void collectTriangles(std::size_t pointTasks);
 
   std::vector<MeshFacts> facts_;
   std::vector<std::uint8_t> checking_, measuring_, bounding_;  // per mesh, this render
@@ -108,6 +112,7 @@ class MeshCache {
   std::vector<std::optional<MeshProblem>> problems_;
   std::vector<Box> rangeBounds_;
   std::vector<std::uint8_t> rangeFinite_;
+  std::vector<std::uint8_t> rangeTriangles_;  // per block task: its polygons are all triangles
 };
 
 }  // namespace facet::detail

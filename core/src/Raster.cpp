@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cstdint>
 #include <cstdlib>
 #include <span>
@@ -12,6 +13,7 @@
 #endif
 
 #include "Resolve.h"
+#include "StreamRows.h"
 #include "facet/Framebuffer.h"
 
 namespace facet::detail {
@@ -68,34 +70,39 @@ struct TilePlanes {
 
   // The tile's rows to the image's planes.
   void writeOut(const RasterContext& context, const PixelBounds& tile) const {
-    const int columns = tile.x1 - tile.x0 + 1;
-    for (int y = 0; y <= tile.y1 - tile.y0; ++y) {
-      const std::size_t row = static_cast<std::size_t>(tile.y0 + y) * context.width + tile.x0;
-      streamRow(depth + y * kSide, context.depth + row, columns);
-      streamRow(polygonId + y * kSide, context.polygonId + row, columns);
-    }
-#if defined(__SSE2__)
-    _mm_sfence();  // streaming stores are weakly ordered: done before the tile is handed back
-#endif
-  }
-
-  // 32-bit values, 16 bytes at a time where the destination is aligned to them.
-  template <class T>
-  static void streamRow(const T* from, T* to, int count) {
-    static_assert(sizeof(T) == 4);
-    int k = 0;
-#if defined(__SSE2__)
-    for (; k < count && reinterpret_cast<std::uintptr_t>(to + k) % 16 != 0; ++k)
-      to[k] = from[k];
-    for (; k + 4 <= count; k += 4) {
-      _mm_stream_si128(reinterpret_cast<__m128i*>(to + k),
-                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(from + k)));
-    }
-#endif
-    for (; k < count; ++k)
-      to[k] = from[k];
+    const std::size_t first = static_cast<std::size_t>(tile.y0) * context.width + tile.x0;
+    const int rows = tile.y1 - tile.y0 + 1, columns = tile.x1 - tile.x0 + 1;
+    streamRows(reinterpret_cast<const std::uint32_t*>(depth), kSide,
+               reinterpret_cast<std::uint32_t*>(context.depth + first),
+               static_cast<std::size_t>(context.width), rows, columns);
+    streamRows(reinterpret_cast<const std::uint32_t*>(polygonId), kSide,
+               reinterpret_cast<std::uint32_t*>(context.polygonId + first),
+               static_cast<std::size_t>(context.width), rows, columns);
   }
 };
+
+// What a tile with nothing binned leaves in the image's planes, written there directly (no
+// tile buffer cleared, painted and copied): the background's id and the depth a painted
+// tile's background pixels get (the window depth, or the cleared key).
+void writeBackground(const RasterContext& context, const PixelBounds& tile) {
+  const std::size_t first = static_cast<std::size_t>(tile.y0) * context.width + tile.x0;
+  const int rows = tile.y1 - tile.y0 + 1, columns = tile.x1 - tile.x0 + 1;
+  const float depth = context.windowDepths ? kBackgroundWindowDepth : kBackgroundDepthKey;
+  streamValueRows(std::bit_cast<std::uint32_t>(depth),
+                  reinterpret_cast<std::uint32_t*>(context.depth + first),
+                  static_cast<std::size_t>(context.width), rows, columns);
+  streamValueRows(std::bit_cast<std::uint32_t>(Framebuffer::kBackgroundId),
+                  reinterpret_cast<std::uint32_t*>(context.polygonId + first),
+                  static_cast<std::size_t>(context.width), rows, columns);
+}
+
+// Whether no chunk binned anything to tile t, front or back.
+bool nothingBinned(const RasterContext& context, std::size_t t) {
+  for (const Chunk& chunk : context.chunks) {
+    if (!chunk.bins[t].empty() || !chunk.backBins[t].empty()) return false;
+  }
+  return true;
+}
 
 // The polygons the tile's final image shows, read from its id plane while it is in cache:
 // only they need a color. Flagging winners as they were painted also shaded every polygon that
@@ -233,6 +240,10 @@ template <DepthMode kMode, bool kCoarse>
 // order each time, so that within either facing the polygon drawn first keeps an exact tie.
 template <DepthMode kMode, bool kCoarse>
 PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
+  if (nothingBinned(context, t)) {  // most tiles around a small object
+    writeBackground(context, tile);
+    return {};
+  }
   TilePlanes local;  // uninitialized: clear() writes what the tile uses
   local.clear(tile);
   const Planes planes = local.planesFor(tile);

@@ -1,7 +1,8 @@
 #pragma once
 
 // Shade.cpp's routines under direct light: by [centers][specular] and color source, each for
-// the four typed meshes (float or double points, 32- or 64-bit ids), 48 instantiations.
+// the four typed meshes (float or double points, 32- or 64-bit ids), 48 instantiations, and
+// the 24 diffuse ones' batches again for meshes of triangles (shadeTrianglesInBatches).
 // Defined here and instantiated in four translation units, one per [centers][specular]
 // (ShadeLit*.cpp): in one file they were the core's longest compile, which a build's other
 // cores waited for.
@@ -143,10 +144,28 @@ FACET_FLATTEN std::size_t shadeLitTyped(const ShadeContext& context, const Frame
   return shaded;
 }
 
+// A triangle mesh's corners read without its offsets (MeshAccess.h, Triangles): 8 bytes fewer
+// a polygon shaded. Only in batches, the routine of the lights most scenes have: the others'
+// per-polygon cost is far larger than the offset's load, and instantiating all of them for
+// triangles too doubled these files' compile time (44 -> 88 s for ShadeLitCentersDiffuse.cpp).
+template <bool kCenters, ColorSource kColors, class PointsT, class IndexT>
+FACET_FLATTEN std::size_t shadeTrianglesInBatches(const ShadeContext& context,
+                                                  const FrameMesh& mesh, PointsT points,
+                                                  Triangles<IndexT> triangles, std::size_t begin,
+                                                  std::size_t end) {
+  return shadeLitInBatches<kCenters, kColors>(context, mesh, points, triangles, begin, end);
+}
+
 template <bool kCenters, bool kSpecular, ColorSource kColors>
 std::size_t shadeLit(const ShadeContext& context, const FrameMesh& mesh, std::size_t begin,
                      std::size_t end) {
   return withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
+    if constexpr (!kSpecular) {
+      if (mesh.allTriangles && shadesInBatches(context.shader)) {
+        return shadeTrianglesInBatches<kCenters, kColors>(context, mesh, points,
+                                                          asTriangles(polygons), begin, end);
+      }
+    }
     return shadeLitTyped<kCenters, kSpecular, kColors>(context, mesh, points, polygons, begin, end);
   });
 }

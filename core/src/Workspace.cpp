@@ -74,6 +74,7 @@ void Renderer::Workspace::prepareMeshes(const Scene& scene) {
     if (facts.measured) {
       meshes.back().faceNormals = facts.faceNormals.data();
       meshes.back().backBlockFacts = facts.backBlocks.data();
+      meshes.back().allTriangles = facts.allTriangles;
     }
     firstVertex += mesh.mesh.points.count;
     firstPolygon += mesh.mesh.polygons.count;

@@ -1,0 +1,88 @@
+// StreamRows.h, in SIMD lanes: compiled once per instruction set by Highway's foreach_target
+// (this file includes itself) and dispatched at run time, as Resolve.cpp. The planes hold
+// floats or ints: single words are copied with memcpy, whatever their type.
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "StreamRows.cpp"
+#include <hwy/cache_control.h>
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "StreamRows.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace facet::detail::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DU = hn::ScalableTag<std::uint32_t>;
+
+// out[0, count): one(i) for the words before the first vector-aligned one and after the
+// last whole vector, group(i) streamed for the vectors between.
+template <class One, class Group>
+HWY_INLINE void streamRow(std::uint32_t* out, std::size_t count, const One& one,
+                          const Group& group) {
+  const DU d;
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t i = 0;
+  for (; i < count && reinterpret_cast<std::uintptr_t>(out + i) % (lanes * sizeof *out) != 0; ++i)
+    one(i);
+  for (; i + lanes <= count; i += lanes)
+    hn::Stream(group(i), d, out + i);
+  for (; i < count; ++i)
+    one(i);
+}
+
+void StreamRows(const std::uint32_t* from, std::size_t fromStride, std::uint32_t* to,
+                std::size_t toStride, int rows, int columns) {
+  const DU d;
+  const auto count = static_cast<std::size_t>(columns);
+  for (int y = 0; y < rows; ++y) {
+    const std::uint32_t* source = from + static_cast<std::size_t>(y) * fromStride;
+    std::uint32_t* target = to + static_cast<std::size_t>(y) * toStride;
+    streamRow(
+        target, count, [&](std::size_t i) { std::memcpy(target + i, source + i, sizeof *target); },
+        [&](std::size_t i) { return hn::LoadU(d, source + i); });
+  }
+  hwy::FlushStream();  // weakly ordered: done before the caller hands the rows on
+}
+
+void StreamValueRows(std::uint32_t value, std::uint32_t* to, std::size_t toStride, int rows,
+                     int columns) {
+  const DU d;
+  const hn::Vec<DU> values = hn::Set(d, value);
+  const auto count = static_cast<std::size_t>(columns);
+  for (int y = 0; y < rows; ++y) {
+    std::uint32_t* target = to + static_cast<std::size_t>(y) * toStride;
+    streamRow(
+        target, count, [&](std::size_t i) { std::memcpy(target + i, &value, sizeof value); },
+        [&](std::size_t) { return values; });
+  }
+  hwy::FlushStream();
+}
+
+}  // namespace facet::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace facet::detail {
+namespace {
+HWY_EXPORT(StreamRows);
+HWY_EXPORT(StreamValueRows);
+}  // namespace
+
+void streamRows(const std::uint32_t* from, std::size_t fromStride, std::uint32_t* to,
+                std::size_t toStride, int rows, int columns) {
+  HWY_DYNAMIC_DISPATCH(StreamRows)(from, fromStride, to, toStride, rows, columns);
+}
+
+void streamValueRows(std::uint32_t value, std::uint32_t* to, std::size_t toStride, int rows,
+                     int columns) {
+  HWY_DYNAMIC_DISPATCH(StreamValueRows)(value, to, toStride, rows, columns);
+}
+
+}  // namespace facet::detail
+#endif  // HWY_ONCE
