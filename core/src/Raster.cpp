@@ -260,8 +260,25 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   return counts;
 }
 
+// Whether no chunk binned a front face to tile t (a two-pass frame's front pass: the back
+// faces are binned after it).
+bool noFrontBinned(const RasterContext& context, std::size_t t) {
+  for (const Chunk& chunk : context.chunks) {
+    if (!chunk.bins[t].empty()) return false;
+  }
+  return true;
+}
+
 // A two-pass frame's front pass over one tile (paintFrontTiles).
 PaintCounts paintFrontOfTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
+  if (noFrontBinned(context, t)) {
+    // Nothing written (counts.written == 0): the back pass starts from cleared planes and
+    // writes them all, so only the blocks are kept, every one the cleared key.
+    float cleared[FrontDepthBlocks::kPerTile];
+    std::fill_n(cleared, FrontDepthBlocks::kPerTile, kBackgroundDepthKey);
+    context.frontBlocks->store(t, cleared);
+    return {};
+  }
   TilePlanes local;
   local.clear(tile);
   const Planes planes = local.planesFor(tile);
@@ -279,6 +296,10 @@ PaintCounts paintFrontOfTile(const RasterContext& context, std::size_t t, const 
 // Its back pass, after the front pass's `counts`.
 void paintBackOfTile(const RasterContext& context, std::size_t t, const PixelBounds& tile,
                      PaintCounts& counts) {
+  if (counts.written == 0 && nothingBinned(context, t)) {
+    writeBackground(context, tile);
+    return;
+  }
   TilePlanes local;
   if (counts.written != 0) {
     local.readIn(context, tile);
