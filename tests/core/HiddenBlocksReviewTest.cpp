@@ -148,5 +148,85 @@ TEST_F(HiddenBlocksReview, CoplanarBackFacesRenderAsOnePassOnEveryTarget) {
   }
 }
 
+// A fan of 256 back-facing triangles around (0, 0, apexZ) with its rim at rimZ, radius 0.3.
+void addReviewBackFan(Mesh& mesh, double apexZ, double rimZ) {
+  const std::int64_t apex = mesh.addPoint({0.0, 0.0, apexZ});
+  const std::int64_t first = static_cast<std::int64_t>(mesh.points.size());
+  constexpr int kSides = 256;
+  for (int i = 0; i < kSides; ++i) {
+    const double angle = 2.0 * 3.14159265358979323846 * i / kSides;
+    mesh.addPoint({0.3 * std::cos(angle), 0.3 * std::sin(angle), rimZ});
+  }
+  for (int i = 0; i < kSides; ++i)
+    mesh.addPolygon({apex, first + (i + 1) % kSides, first + i});
+}
+
+// One view of HiddenBlocks.ApexThroughTheFrontFaceIsNeverDropped's scene, its points scaled by
+// `scale` about the eye and moved with it by `offset`.
+struct ApexView {
+  const char* name;
+  glm::dvec3 offset;
+  double scale;
+  bool parallel;
+  double nearClip;  // in units of `scale`
+  double poke;      // how far the apex pokes through the square at z = −3, in units of `scale`
+  double rimDrop = 2e-5;  // how far behind the square its rim lies, in units of `scale`
+};
+
+// Steps 3–5 of the proof (HiddenBlocks.h) where their roundings are largest: data far from
+// the origin (the eye beside it), tiny and huge scales, parallel projection with a near plane
+// just in front of the geometry (keys near 0) or behind the eye (negative near: keys and
+// distances of both signs). In each, the apex pokes through the front square by a few float
+// steps of its key and wins pixels in one pass: its block must not be dropped, the far fan's
+// must, and the bytes are one pass's.
+TEST_F(HiddenBlocksReview, ApexThroughTheFrontFaceIsNeverDroppedAnywhere) {
+  const ApexView views[] = {
+      {"offset 1e7", {1e7, -3e7, 2e7}, 1.0, false, 0.01, 1.5e-6},
+      {"offset 1e12, scale 1e3", {1e12, 1e12, -1e12}, 1e3, false, 0.01, 1.5e-6},
+      {"scale 1e-9", {0.0, 0.0, 0.0}, 1e-9, false, 0.01, 1.5e-6},
+      {"near 2.99", {0.0, 0.0, 0.0}, 1.0, false, 2.99, 1.5e-6},
+      {"parallel", {0.0, 0.0, 0.0}, 1.0, true, 0.01, 1.5e-6},
+      {"parallel, near 2.9", {0.0, 0.0, 0.0}, 1.0, true, 2.9, 6e-8, 8e-7},
+      {"parallel, near -5", {0.0, 0.0, 0.0}, 1.0, true, -5.0, 4e-6},
+      {"parallel, offset 1e6", {1e6, 1e6, 1e6}, 1.0, true, 0.01, 1.5e-6},
+  };
+  for (const ApexView& v : views) {
+    SCOPED_TRACE(v.name);
+    Mesh mesh;
+    addReviewBackFan(mesh, -3.5, -3.5);  // polygons 0–255: far behind the square
+    addReviewBackFan(mesh, -3.0 + v.poke, -3.0 - v.rimDrop);  // 256–511: the apex through it
+    addFrontSquare(mesh, 16, 0.6, -3.0, 0.0);                 // 512–1023
+    for (glm::dvec3& point : mesh.points)
+      point = v.offset + v.scale * point;
+    MeshView view = mesh.view();
+    view.version = 1;
+    Camera camera;
+    camera.position = v.offset;
+    camera.focalPoint = v.offset + glm::dvec3(0.0, 0.0, -v.scale);
+    camera.parallelProjection = v.parallel;
+    camera.parallelScale = 0.8 * v.scale;
+    camera.nearClip = v.nearClip * v.scale;
+    camera.farClip = 10.0 * v.scale;
+    const RenderOptions options = optionsWith(1);
+    detail::enableTwoPassFrames(false);
+    const Rendered before = renderScene(oneMeshScene(view), camera, 320, 240, options);
+    std::size_t apexPixels = 0;
+    for (std::int32_t id : before.framebuffer.polygonId())
+      apexPixels += id >= 256 && id < 512;
+    ASSERT_GT(apexPixels, 4u);  // the apex wins pixels around it
+    detail::enableTwoPassFrames(true);
+    for (const SimdTarget& target : detail::simdTargets()) {
+      SCOPED_TRACE(target.name);
+      detail::useSimdTarget(target.bits);
+      detail::countHiddenBlocks(true);
+      const Rendered after = renderScene(oneMeshScene(view), camera, 320, 240, options);
+      const detail::HiddenBlockCounts counts = detail::hiddenBlockCounts();
+      EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u);
+      EXPECT_EQ(before.stats.fragmentsWritten, after.stats.fragmentsWritten);
+      EXPECT_EQ(counts.hidden, 1u) << "of " << counts.blocks;  // the far fan alone
+    }
+  }
+}
+
 }  // namespace
 }  // namespace facet::testing
