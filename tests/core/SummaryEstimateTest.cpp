@@ -553,6 +553,13 @@ void expectAtLeastThePerPixelEstimate(const std::string& name, const Both& both)
   EXPECT_LE(both.fast.predictedRmse, both.fast.predictedMaxError) << name;
 }
 
+// The estimate's settings for the summary alone (no ErrorEstimate image).
+QualitySettings summaryOnly() {
+  QualitySettings summary{.estimateError = true};
+  summary.errorEstimateImage = false;
+  return summary;
+}
+
 // A renderer's summary that kept facts from earlier frames (`kept`) is a fresh renderer's, and
 // at least the per-pixel estimate.
 void expectAFreshRenderersNumbers(const std::string& name, const QualityStats& kept,
@@ -653,8 +660,7 @@ TEST(SummaryEstimate, DirectionalBoundsAreKeptUntilTheLightsMaterialOrMeshChange
   lights.lights.push_back(DirectionalLight{{1, 0.5, -1}, Color(0.6f, 0.5f, 0.4f)});
   Scene scene = oneMeshScene(sphere.view(), matte, lights);
   scene.meshes[0].mesh.version = 1;
-  QualitySettings summary{.estimateError = true};
-  summary.errorEstimateImage = false;
+  const QualitySettings summary = summaryOnly();
   Renderer renderer;
   QualityRenderer quality(renderer);
   Framebuffer framebuffer(120, 90);
@@ -694,8 +700,7 @@ TEST(SummaryEstimate, DirectionalBoundsFollowLightsColorsAndPointLightFrames) {
   Scene scene = oneMeshScene(sphere.view(), matte, lights);
   scene.meshes[0].mesh.version = 1;
   const std::vector<Rgba8> colors(sphere.polygonCount(), Rgba8{230, 240, 250, 255});
-  QualitySettings summary{.estimateError = true};
-  summary.errorEstimateImage = false;
+  const QualitySettings summary = summaryOnly();
   Renderer renderer;
   QualityRenderer quality(renderer);
   Framebuffer framebuffer(120, 90);
