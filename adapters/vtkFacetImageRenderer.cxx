@@ -177,7 +177,10 @@ bool vtkFacetImageRenderer::Allocate(const Settings& settings,
     pointData->AddArray(OutputArray(kept, name, 1, pixels));
     return kept != nullptr;
   };
-  const vtkIdTypeArray* lastCellIds = this->CellIds;
+  // The last frame's CellId, if nobody marked it modified since (OutputArray marks it below).
+  const vtkIdTypeArray* lastCellIds =
+    this->CellIds && this->CellIds->GetMTime() == this->CellIdsWrittenTime ? this->CellIds.Get()
+                                                                           : nullptr;
   const bool allocated = add(this->Depth, settings.Depth, "Depth") &&
     add(this->CellIds, settings.CellIds, "CellId") &&
     add(this->ActorIds, settings.ActorIds, "ActorId") &&
@@ -320,6 +323,7 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
     this->CellIdSpans.Forget(this->Width, this->Height); // every id written
     this->ForEachPixelBlock(writeOutput);
   }
+  this->CellIdsWrittenTime = this->CellIds ? this->CellIds->GetMTime() : 0;
   this->OutputSeconds = vtkFacetSecondsSince(outputStart);
   this->AddFieldData(output, stats, conversions);
   this->Algorithm->UpdateProgress(1.0);

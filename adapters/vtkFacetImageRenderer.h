@@ -212,6 +212,9 @@ private:
   // untouched since the last frame, can skip rows' background (vtkFacetBackgroundSpans).
   vtkFacetBackgroundSpans CellIdSpans;
   bool SkipsBackgroundIds = false; // this frame writes CellId within CellIdSpans only
+  // CellId's MTime once the last frame wrote it: a later one means somebody changed the plane
+  // since (and said so, as VTK asks), so its background is no longer known.
+  vtkMTimeType CellIdsWrittenTime = 0;
   vtkAlgorithm* Algorithm = nullptr;
   int Width = 0;
   int Height = 0;

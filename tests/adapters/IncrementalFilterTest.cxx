@@ -10,6 +10,7 @@
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
 #include "vtkLight.h"
 #include "vtkLookupTable.h"
 #include "vtkNew.h"
@@ -424,6 +425,49 @@ TEST_F(Incremental, KeptCellIdsEqualAFreshFiltersAsTheViewMoves)
       EXPECT_TRUE(got == want) << "CellId differs: " << FirstDifference(got, want, 8);
     }
   }
+}
+
+// review25: a kept CellId plane meets what may change between two executions: the image's
+// shape (the same pixel count, so the same plane), a quality mode that renders a sample grid
+// and back, and a user who wrote into the plane and said so (Modified()). Every frame has the
+// bytes of a fresh filter's.
+TEST_F(Incremental, KeptCellIdsEqualAFreshFiltersAfterShapeModeAndUserChanges)
+{
+  Rig kept(this->Input);
+  kept.Filter->FitCameraToInputOff();
+  Settings view;
+  const auto expectFresh = [&](vtkImageData* image, const std::string& step) {
+    SCOPED_TRACE(step);
+    Rig fresh(this->Input);
+    fresh.Filter->FitCameraToInputOff();
+    fresh.Filter->SetSize(kept.Filter->GetSize());
+    fresh.Filter->SetSamplesPerPixel(kept.Filter->GetSamplesPerPixel());
+    const std::string got = Bytes(image, "CellId"), want = Bytes(fresh.Render(view), "CellId");
+    ASSERT_FALSE(want.empty());
+    EXPECT_TRUE(got == want) << "CellId differs: " << FirstDifference(got, want, 8);
+  };
+  view.Distance = 1.5; // the sphere fills most rows
+  expectFresh(kept.Render(view), "first");
+  kept.Filter->SetSize(Height, Width); // the same pixels, rows of another length
+  view.Azimuth = 30.0;
+  view.Distance = 6.0;
+  expectFresh(kept.Render(view), "transposed");
+  kept.Filter->SetSamplesPerPixel(4);
+  view.Azimuth = 40.0;
+  view.Distance = 1.5;
+  expectFresh(kept.Render(view), "4 samples");
+  kept.Filter->SetSamplesPerPixel(1);
+  view.Azimuth = 50.0;
+  view.Distance = 6.0;
+  expectFresh(kept.Render(view), "1 sample again");
+  vtkIdTypeArray* plane =
+    vtkIdTypeArray::SafeDownCast(kept.Filter->GetOutput()->GetPointData()->GetArray("CellId"));
+  ASSERT_NE(plane, nullptr);
+  plane->Fill(7); // every pixel, the background too
+  plane->Modified();
+  plane = nullptr;
+  view.Azimuth = 60.0;
+  expectFresh(kept.Render(view), "after the user's change");
 }
 
 //------------------------------------------------------------------------------

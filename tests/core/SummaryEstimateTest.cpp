@@ -553,6 +553,13 @@ void expectAtLeastThePerPixelEstimate(const std::string& name, const Both& both)
   EXPECT_LE(both.fast.predictedRmse, both.fast.predictedMaxError) << name;
 }
 
+// The estimate's settings for the summary alone (no ErrorEstimate image).
+QualitySettings summaryOnly() {
+  QualitySettings summary{.estimateError = true};
+  summary.errorEstimateImage = false;
+  return summary;
+}
+
 // A renderer's summary that kept facts from earlier frames (`kept`) is a fresh renderer's, and
 // at least the per-pixel estimate.
 void expectAFreshRenderersNumbers(const std::string& name, const QualityStats& kept,
@@ -653,8 +660,7 @@ TEST(SummaryEstimate, DirectionalBoundsAreKeptUntilTheLightsMaterialOrMeshChange
   lights.lights.push_back(DirectionalLight{{1, 0.5, -1}, Color(0.6f, 0.5f, 0.4f)});
   Scene scene = oneMeshScene(sphere.view(), matte, lights);
   scene.meshes[0].mesh.version = 1;
-  QualitySettings summary{.estimateError = true};
-  summary.errorEstimateImage = false;
+  const QualitySettings summary = summaryOnly();
   Renderer renderer;
   QualityRenderer quality(renderer);
   Framebuffer framebuffer(120, 90);
@@ -678,6 +684,41 @@ TEST(SummaryEstimate, DirectionalBoundsAreKeptUntilTheLightsMaterialOrMeshChange
   EXPECT_NE(maxima[3], maxima[2]);
   EXPECT_NE(maxima[4], maxima[3]);
   EXPECT_NE(maxima[5], maxima[4]);
+}
+
+// review25: the kept directional bounds across the other changes that reach them: a light
+// added, per-polygon colors on and off (the surface bound turns 1), a point light in between
+// (the bounds then found each frame) and back to the directional setup kept before it. Each
+// frame has a fresh renderer's numbers.
+TEST(SummaryEstimate, DirectionalBoundsFollowLightsColorsAndPointLightFrames) {
+  Mesh sphere = makeUvSphere(40, 21);
+  Material matte;
+  matte.diffuse = 0.9;
+  matte.color = Color(0.3f, 0.4f, 0.5f);
+  LightSet lights;
+  lights.lights.push_back(DirectionalLight{{-1, -1, -2}, Color(0.8f)});
+  Scene scene = oneMeshScene(sphere.view(), matte, lights);
+  scene.meshes[0].mesh.version = 1;
+  const std::vector<Rgba8> colors(sphere.polygonCount(), Rgba8{230, 240, 250, 255});
+  const QualitySettings summary = summaryOnly();
+  Renderer renderer;
+  QualityRenderer quality(renderer);
+  Framebuffer framebuffer(120, 90);
+  std::vector<double> maxima;
+  for (int k = 0; k < 6; ++k) {
+    if (k == 1) scene.lights.lights.push_back(DirectionalLight{{1, 0.5, -1}, Color(0.9f)});
+    if (k == 2) scene.meshes[0].mesh.polygonColors = colors;
+    if (k == 3) scene.meshes[0].mesh.polygonColors = {};
+    if (k == 4)
+      scene.lights.lights[0] = PointLight{{0.0, 0.0, 9.0}, Color(0.8f), 1.0, NoAttenuation{}};
+    if (k == 5) scene.lights.lights[0] = DirectionalLight{{-1, -1, -2}, Color(0.8f)};
+    const Camera camera = fitCamera(makeUvSphere(8, 5, 1.8), {0.02 * k, -0.2, -1});
+    const QualityStats kept = quality.render(scene, {}, camera, framebuffer, summary);
+    expectAFreshRenderersNumbers("frame " + std::to_string(k), kept, scene, camera);
+    maxima.push_back(kept.predictedMaxError);
+  }
+  EXPECT_NE(maxima[1], maxima[0]);  // a second light
+  EXPECT_NE(maxima[2], maxima[1]);  // the colors
 }
 
 // A polygon without a normal (collinear corners) in view: it is in no block (its bound, 255,
