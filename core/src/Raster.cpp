@@ -183,7 +183,14 @@ template <DepthMode kMode, bool kCoarse>
       continue;
     }
     if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
-      paintSmallTriangle<kMode>(chunk.smallTriangles[index & kBinIndexMask], planes, counts);
+      const std::size_t record = index & kBinIndexMask;
+      if (record < chunk.firstClampedSmall) {
+        paintSmallTriangle<kMode>(chunk.smallTriangles[record], planes, counts);
+      } else {  // a two-pass frame's back pass made it: clamped (Chunk::smallNearestKeys)
+        paintSmallTriangle<kMode>(chunk.smallTriangles[record],
+                                  chunk.smallNearestKeys[record - chunk.firstClampedSmall], planes,
+                                  counts);
+      }
       continue;
     }
     const BinnedTriangle& tri = chunk.triangles[index];
