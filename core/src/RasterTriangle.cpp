@@ -110,8 +110,8 @@ class TriangleDepth {
     inverseFineArea_ = unsnapped_ ? 1.0 / fineArea : 0.0;
   }
   // The key of one covered sample, given its snapped edge values (unbiased); never nearer
-  // than nearestWrittenKey (+∞ unless the triangle is clamped: then a no-op, and only near
-  // boundary edges, where keyAt interpolates anyway).
+  // than nearestWrittenKey (+∞ for a triangle not clamped: the min changes nothing, and it
+  // is only asked near boundary edges and for single samples, beside a division).
   double keyAt(std::int64_t sampleX, std::int64_t sampleY, const std::int64_t (&snapped)[3]) const {
     if (unsnapped_) {
       const FinePoint s = finePoint(sampleX, sampleY);
