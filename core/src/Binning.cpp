@@ -9,9 +9,11 @@
 namespace facet::detail {
 namespace {
 
-// Corners 1 and 2 trade places: so do the edges opposite them (bits 1 and 2).
+// Corners 1 and 2 trade places: so do the edges opposite them (bits 1 and 2); the clamp bit
+// stays.
 EdgeMask swapEdges12(EdgeMask boundary) {
-  return static_cast<EdgeMask>((boundary & 1u) | (boundary & 2u) << 1 | (boundary & 4u) >> 1);
+  return static_cast<EdgeMask>((boundary & (1u | kClampToNearestVertex)) | (boundary & 2u) << 1 |
+                               (boundary & 4u) >> 1);
 }
 
 }  // namespace
@@ -65,6 +67,8 @@ void clearBins(Chunk& chunk, const TileGrid& grid) {
   chunk.boundaryEdges.clear();
   chunk.fragments.clear();
   chunk.smallTriangles.clear();
+  chunk.smallNearestKeys.clear();
+  chunk.firstClampedSmall = Chunk::kNoClampedSmall;
   for (auto* bins : {&chunk.bins, &chunk.backBins}) {
     bins->resize(grid.count());
     for (auto& bin : *bins)

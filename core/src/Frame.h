@@ -141,6 +141,12 @@ struct Chunk {
   HugePageAppendBuffer<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   HugePageAppendBuffer<BinnedFragment> fragments;
   HugePageAppendBuffer<SmallTriangle> smallTriangles;
+  // A two-pass frame's back pass: the records it makes (smallTriangles from
+  // firstClampedSmall on) are painted clamped to these keys (nearestWrittenKey), one a
+  // record; kept apart so that every other record stays 40 bytes.
+  HugePageAppendBuffer<float> smallNearestKeys;
+  std::size_t firstClampedSmall = kNoClampedSmall;
+  static constexpr std::size_t kNoClampedSmall = ~std::size_t{0};
   std::vector<WindowVertex> clippedVertices;
   std::vector<Bin> bins;
   // With the depth test, the back-facing polygons' entries (every face drawn), per tile: a

@@ -15,12 +15,19 @@
 // covered count from the final ids. So, with W a key any of its triangles writes and F the
 // front key at that sample after the front pass (it only grows nearer afterwards):
 // 1. W ≤ its triangle's nearest vertex key, by construction: the block is dropped only when
-//    all its polygons are triangles (BackBlock::skippable), each painted with its three
-//    edges as polygon-boundary edges, and every paint path clamps the key it writes to the
-//    nearest vertex key then (nearestWrittenKey, RasterTriangle.h: TriangleDepth::keyAt and
-//    refine, SmallTriangle::nearestKey, SetupBatch's keyLanes). No rounding argument: the
-//    clamp is a min of two floats' worth of doubles before the one rounding to float, and
-//    rounding is monotone.
+//    all its polygons are triangles (BackBlock::skippable), and the back pass that drops it
+//    (SetupContext::front set) sets up every triangle polygon clamped (kClampedEdges: its
+//    three edges polygon-boundary edges plus the clamp bit; SetupBatch's keyLanes and the
+//    records' Chunk::smallNearestKeys with `front`), so every paint path clamps the key it
+//    writes to the nearest vertex key (nearestWrittenKey, RasterTriangle.h:
+//    TriangleDepth::keyAt and refine<true>, paintSmallTriangle with a nearest key). The frame
+//    with and the frame without the reject paint those triangles alike, so it is the
+//    clamped keys a dropped triangle would have written. No rounding argument: the clamp is
+//    a min of two floats' worth of doubles before the one rounding to float, and rounding
+//    is monotone. (Front faces, closed meshes and one-pass frames are not clamped: nothing
+//    of theirs is dropped. So a one-pass and a two-pass frame could differ where a back
+//    face's rounded key passes its nearest vertex key and wins a pixel; no test or figure
+//    has shown one, every25, bench/core-frame-issue11.md section 23.)
 // 2. No triangle of the block is clipped and every point of it has d > 0: its box is inside
 //    the clip volume with a margin (FrameTransform::boxInsideClipVolume), so every vertex's
 //    outcode is kInside and its window position and key are toWindow's of its own point.

@@ -173,8 +173,9 @@ constexpr std::size_t kPrefetchVertices = 4;
 
 // Paints one bin's entries in order. kCoarse: with the tile's coarse depth
 // (Rule::HiddenGeometry, depth test only). `front`: the tile's front faces are painted (back
-// bins, every face drawn).
-template <DepthMode kMode, bool kCoarse>
+// bins, every face drawn). kBackPass: a two-pass frame's back bins, whose records from
+// Chunk::firstClampedSmall on are clamped (the other painters pay nothing for it).
+template <DepthMode kMode, bool kCoarse, bool kBackPass = false>
 [[gnu::always_inline]] inline void paintBin(const RasterContext& context, const Chunk& chunk,
                                             std::span<const std::uint32_t> bin,
                                             const PixelBounds& tile, const Planes& planes,
@@ -190,7 +191,14 @@ template <DepthMode kMode, bool kCoarse>
       continue;
     }
     if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
-      paintSmallTriangle<kMode>(chunk.smallTriangles[index & kBinIndexMask], planes, counts);
+      const std::size_t record = index & kBinIndexMask;
+      if (!kBackPass || record < chunk.firstClampedSmall) {
+        paintSmallTriangle<kMode>(chunk.smallTriangles[record], planes, counts);
+      } else {  // a two-pass frame's back pass made it: clamped (Chunk::smallNearestKeys)
+        paintSmallTriangle<kMode>(chunk.smallTriangles[record],
+                                  chunk.smallNearestKeys[record - chunk.firstClampedSmall], planes,
+                                  counts);
+      }
       continue;
     }
     const BinnedTriangle& tri = chunk.triangles[index];
@@ -312,8 +320,8 @@ void paintBackOfTile(const RasterContext& context, std::size_t t, const PixelBou
   context.frontBlocks->load(t, measured);
   FarthestBlocks front(tile, planes, measured);
   for (const Chunk& chunk : context.chunks)
-    paintBin<DepthMode::Test, false>(context, chunk, chunk.backBins[t], tile, planes, counts,
-                                     unused, &front);
+    paintBin<DepthMode::Test, false, true>(context, chunk, chunk.backBins[t], tile, planes, counts,
+                                           unused, &front);
   finishTile(context, local, tile, counts);
 }
 

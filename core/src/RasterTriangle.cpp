@@ -110,7 +110,8 @@ class TriangleDepth {
     inverseFineArea_ = unsnapped_ ? 1.0 / fineArea : 0.0;
   }
   // The key of one covered sample, given its snapped edge values (unbiased); never nearer
-  // than nearestWrittenKey.
+  // than nearestWrittenKey (+∞ for a triangle not clamped: the min changes nothing, and it
+  // is only asked near boundary edges and for single samples, beside a division).
   double keyAt(std::int64_t sampleX, std::int64_t sampleY, const std::int64_t (&snapped)[3]) const {
     if (unsnapped_) {
       const FinePoint s = finePoint(sampleX, sampleY);
@@ -168,17 +169,19 @@ class TriangleDepth {
     lowest = std::min({a.depth, b.depth, c.depth}) - slack;
     highest = std::max({a.depth, b.depth, c.depth}) + slack;
   }
-  // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values (the stepped
-  // key clamped as keyAt clamps: painters with boundary edges write only refine()'s keys). A
+  // keyAt(sample), given at(sample) and the sample's unbiased snapped edge values (kClamp: the
+  // stepped key clamped as keyAt clamps, for a clamped triangle, kClampedEdges; painters with
+  // boundary edges write only refine()'s keys). A
   // snapped edge value of at least sureInside_ (grid units²) means the sample is inside the
   // unsnapped edge too: residues below 1/2 change (q − p) × (s − p) by at most
   // ½(|dx| + |dy|) + |s − p|₁ + 1, and s stays in the triangle's bounding box. Far from the
   // edges (the common case) three comparisons decide.
+  template <bool kClamp>
   double refine(double key, std::int64_t sampleX, std::int64_t sampleY,
                 const std::int64_t (&snapped)[3]) const {
     if (snapped[0] >= sureInside_[0] && snapped[1] >= sureInside_[1] &&
         snapped[2] >= sureInside_[2]) {
-      return std::min(key, nearest_);
+      return kClamp ? std::min(key, nearest_) : key;
     }
     return keyAt(sampleX, sampleY, snapped);
   }
@@ -279,13 +282,17 @@ struct BoxRaster {
                                     PaintCounts& counts, EdgeMask boundary) {
     // No polygon-boundary edge (every triangle of a mesh whose back faces are skipped): the
     // stepped key is every sample's (refine() would return it), so no refining per pixel.
+    // A clamped triangle (kClampedEdges, a two-pass frame's back faces) clamps each refined
+    // key; the others pay nothing for it.
     if (boundary == 0) {
-      paintRows<kMode, false>(polygonId, planes, counts);
+      paintRows<kMode, false, false>(polygonId, planes, counts);
+    } else if (boundary == kClampedEdges) {
+      paintRows<kMode, true, true>(polygonId, planes, counts);
     } else {
-      paintRows<kMode, true>(polygonId, planes, counts);
+      paintRows<kMode, true, false>(polygonId, planes, counts);
     }
   }
-  template <DepthMode kMode, bool kRefine>
+  template <DepthMode kMode, bool kRefine, bool kClamp>
   [[gnu::always_inline]] void paintRows(std::int32_t polygonId, const Planes& planes,
                                         PaintCounts& counts) {
     const double keyPerPixel = depth.perPixelX();
@@ -300,7 +307,7 @@ struct BoxRaster {
           if constexpr (kRefine) {
             const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
             const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
-            refined = depth.refine(key, columnX, rowY, snapped);
+            refined = depth.refine<kClamp>(key, columnX, rowY, snapped);
           }
           writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
         }
@@ -410,9 +417,9 @@ struct SmallBox {
     return smallBoxCoverage(value, stepX, stepY, box.x1 - box.x0, box.y1 - box.y0);
   }
 
-  // Paints the samples of `mask` (coverage()) with BoxRaster::paintRows<kMode, kRefine>'s keys
-  // (kRefine: the triangle has polygon-boundary edges).
-  template <DepthMode kMode, bool kRefine>
+  // Paints the samples of `mask` (coverage()) with BoxRaster::paintRows<kMode, kRefine, kClamp>'s
+  // keys (kRefine: the triangle has polygon-boundary edges; kClamp: it is clamped).
+  template <DepthMode kMode, bool kRefine, bool kClamp>
   [[gnu::always_inline]] void paint(const WindowVertex& a, const WindowVertex& b,
                                     const WindowVertex& c, std::int64_t area, EdgeMask boundary,
                                     std::uint32_t mask, std::int32_t polygonId,
@@ -427,8 +434,8 @@ struct SmallBox {
       std::int64_t snapped[3];
       for (int k = 0; k < 3; ++k)
         snapped[k] = value[k] + x * stepX[k] + y * stepY[k] + bias[k];
-      return depth.refine(key, sampleX + std::int64_t{x} * kSubpixelScale,
-                          sampleY + std::int64_t{y} * kSubpixelScale, snapped);
+      return depth.template refine<kClamp>(key, sampleX + std::int64_t{x} * kSubpixelScale,
+                                           sampleY + std::int64_t{y} * kSubpixelScale, snapped);
     };
     paintSmallMask<kMode>(mask, box.x0, box.y0, depth.perPixelX(), rowKey, refine, polygonId,
                           planes, counts);
@@ -577,7 +584,6 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   small.x0 = static_cast<std::uint16_t>(box.x0);
   small.y0 = static_cast<std::uint16_t>(box.y0);
   small.coverage = static_cast<std::uint16_t>(coverage);
-  small.nearestKey = nearestWrittenKey(a, b, c, boundary);
   return small;
 }
 
@@ -649,9 +655,11 @@ template <DepthMode kMode, bool kRejectHidden, bool kSmallBoxes>
     const SmallBox small(a, b, c, box);
     if (const std::uint32_t mask = small.coverage()) {
       if (boundary == 0) {
-        small.paint<kMode, false>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+        small.paint<kMode, false, false>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+      } else if (boundary == kClampedEdges) {
+        small.paint<kMode, true, true>(a, b, c, area, boundary, mask, polygonId, planes, counts);
       } else {
-        small.paint<kMode, true>(a, b, c, area, boundary, mask, polygonId, planes, counts);
+        small.paint<kMode, true, false>(a, b, c, area, boundary, mask, polygonId, planes, counts);
       }
     }
     return;

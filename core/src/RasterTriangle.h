@@ -33,18 +33,26 @@ namespace facet::detail {
 using EdgeMask = std::uint8_t;
 inline constexpr EdgeMask kAllEdges = 0b111;
 
-// The nearest (largest) depth key a triangle may write: its nearest vertex key when all three
-// of its edges are its polygon's boundary edges (a triangle polygon, every face drawn), else
-// none (+∞: a triangle beside a diagonal continues its polygon's plane past the diagonal).
-// Every paint path clamps the key it writes to it (TriangleDepth::keyAt and refine,
-// SmallTriangle::nearestKey, SetupBatch's keyLanes): exactly the keys are convex combinations
-// of the vertex keys there, so only the rounding of the interpolation and of the stepping
-// could pass it, and the clamp makes "no written key is nearer than the nearest vertex key"
-// hold by construction, with no rounding argument (HiddenBlocks.h's proof rests on it).
+// Bit 3 beside the edges: the triangle's written keys are clamped to its nearest vertex key
+// (nearestWrittenKey). Only a two-pass frame's back pass sets it (with all three edges, on a
+// triangle polygon's triangle: kClampedEdges), the one pass whose back faces the whole-block
+// reject drops (HiddenBlocks.h); front faces, closed meshes and one-pass frames pay nothing.
+inline constexpr EdgeMask kClampToNearestVertex = 0b1000;
+inline constexpr EdgeMask kClampedEdges = kAllEdges | kClampToNearestVertex;
+
+// The nearest (largest) depth key a triangle may write: its nearest vertex key when it is
+// clamped (kClampedEdges: a triangle polygon of a two-pass frame's back pass), else none (+∞;
+// without all three boundary edges a triangle beside a diagonal continues its polygon's plane
+// past the diagonal legitimately). The clamping paint paths (TriangleDepth::keyAt and
+// refine<true>, paintSmallTriangle with a nearest key, SetupBatch's keyLanes with `front`)
+// clamp the key they write to it: exactly the keys are convex combinations of the vertex keys
+// there, so only the rounding of the interpolation and of the stepping could pass it, and the
+// clamp makes "no written key is nearer than the nearest vertex key" hold by construction,
+// with no rounding argument (HiddenBlocks.h's proof rests on it).
 inline float nearestWrittenKey(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                                EdgeMask boundary) {
-  return boundary == kAllEdges ? std::max(std::max(a.depth, b.depth), c.depth)
-                               : std::numeric_limits<float>::infinity();
+  return boundary == kClampedEdges ? std::max(std::max(a.depth, b.depth), c.depth)
+                                   : std::numeric_limits<float>::infinity();
 }
 
 // Twice the signed area in fixed-point units²: > 0 counter-clockwise (front-facing).
@@ -322,9 +330,8 @@ struct SmallTriangle {
   // The samples the triangle covers, bit y·kSmallSide + x for the pixel (x0 + x, y0 + y): its
   // box's, by the fill rule (SmallBox::coverage).
   std::uint16_t coverage;
-  // No written key is nearer than this (nearestWrittenKey): the stepped keys are clamped to it.
-  float nearestKey;
 };
+static_assert(sizeof(SmallTriangle) == 40);
 
 // Rounds an interpolated depth key to float once; finite, so that no key ties with the
 // background (−∞) or becomes NaN.
@@ -368,11 +375,24 @@ template <DepthMode kMode>
   const auto rowKey = [&t](int y) {
     return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
   };
-  const auto sameKey = [nearest = static_cast<double>(t.nearestKey)](double key, int, int) {
-    return std::min(key, nearest);
-  };
+  const auto sameKey = [](double key, int, int) { return key; };
   paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
                         counts);
+}
+
+// The same with every key clamped to `nearestKey` (nearestWrittenKey: a two-pass frame's back
+// pass keeps it beside the record, Chunk::smallNearestKeys).
+template <DepthMode kMode>
+[[gnu::always_inline]] inline void paintSmallTriangle(const SmallTriangle& t, float nearestKey,
+                                                      const Planes& planes, PaintCounts& counts) {
+  const auto rowKey = [&t](int y) {
+    return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
+  };
+  const auto clampedKey = [nearest = static_cast<double>(nearestKey)](double key, int, int) {
+    return std::min(key, nearest);
+  };
+  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, clampedKey, t.polygon,
+                        planes, counts);
 }
 
 // The SmallTriangle of a counter-clockwise triangle over its samples in `tile`, as the set-up's

@@ -76,9 +76,6 @@ glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
 template <class PointsT, class PolygonsT, bool kSkipBackFaces>
 class PolygonSetup {
  public:
-  // The polygon-boundary edges keep() gives a triangle polygon's one triangle.
-  static constexpr EdgeMask kBoundaryEdges = kSkipBackFaces ? EdgeMask{0} : kAllEdges;
-
   PolygonSetup(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh, PointsT points,
                PolygonsT polygons)
       : context_(context),
@@ -87,7 +84,11 @@ class PolygonSetup {
         points_(points),
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex),
-        deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front) {}
+        deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front),
+        clamp_(!kSkipBackFaces && context.front != nullptr),
+        triangleEdges_(kSkipBackFaces ? EdgeMask{0}
+                       : clamp_       ? kClampedEdges
+                                      : kAllEdges) {}
 
   // Back faces are put off to the back pass (SetupPass::Front, every face drawn): the batch
   // drops them as it would cull them, and settle() defers them.
@@ -213,8 +214,8 @@ class PolygonSetup {
       return;
     }
     emit(area < 0, [&](Tally& tally) {
-      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area, kAllEdges,
-           tally);
+      keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area,
+           triangleEdges_, tally);
     });
   }
 
@@ -287,6 +288,7 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
+      if (clamp_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
       binSmall(chunk_, tile,
                {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
                smallTriangleOfLane(verdicts, lane, polygonId), last);
@@ -297,7 +299,7 @@ class PolygonSetup {
       };
       binCovering(
           chunk_, context_.grid, reference(0), reference(back ? 2 : 1), reference(back ? 1 : 2),
-          {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, kBoundaryEdges,
+          {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, triangleEdges_,
           polygonId, last, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
   }
@@ -442,6 +444,10 @@ class PolygonSetup {
   PolygonsT polygons_;
   const WindowVertex* meshVertices_;
   bool deferBack_;
+  // A two-pass frame's back pass (context.front): its triangle polygons' keys are clamped
+  // (kClampedEdges, nearestWrittenKey), the only polygons the whole-block reject may drop.
+  bool clamp_;
+  EdgeMask triangleEdges_;  // the boundary edges keep() gives a triangle polygon's triangle
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
   bool last_ = false;  // the polygon's triangles join the back bins (Chunk::binsFor)
@@ -619,6 +625,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
 
 // The back pass of a chunk: its deferred polygons, run by run of one mesh.
 void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
+  chunk.firstClampedSmall = chunk.smallTriangles.size();  // the records made from here on
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
     const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];

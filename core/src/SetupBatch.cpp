@@ -349,7 +349,8 @@ using VD = hn::Vec<DD>;
 // lanes from `lane` on: from the unsnapped plane where the fine area is positive and the
 // sample is not beyond a polygon-boundary edge of the unsnapped triangle, else from the
 // snapped one.
-void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, float* keys) {
+void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, bool clamp,
+              float* keys) {
   const hn::Rebind<std::int32_t, DD> di;
   const hn::Rebind<float, DD> df;
   const auto load = [&](const std::int32_t* p) {
@@ -377,7 +378,7 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
       keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
   const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
   VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
-  if (boundaryEdges) {  // clamped to nearestWrittenKey, as TriangleDepth::keyAt clamps
+  if (clamp) {  // clamped to nearestWrittenKey, as TriangleDepth::keyAt clamps
     const VD keyB = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane));
     const VD keyC = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane));
     key = hn::Min(key, hn::Max(hn::Max(keyA, keyB), keyC));
@@ -390,8 +391,7 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
 // samples do not need) for the lanes from `lane` on: the unsnapped plane where the fine area
 // is positive, else the snapped one. Every difference of positions is an exact integer in
 // double (below 2^23), so only the operations that round follow the scalar order.
-void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges,
-                BatchVerdicts& verdicts) {
+void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool clamp, BatchVerdicts& verdicts) {
   const hn::Rebind<std::int32_t, DD> di;
   const hn::Rebind<float, DD> df;
   const auto load = [&](const std::int32_t* p) {
@@ -420,13 +420,13 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges
   hn::Store(perY, dd, out.keyPerFine + lane);
   hn::Store(perX * hn::Set(dd, kSubpixelScale) * toFine, dd, out.keyPerPixel + lane);
   hn::Store(hn::DemoteTo(di, sy), di, out.firstRowFine + lane);
-  // nearestWrittenKey: the nearest vertex key with boundary edges (all three), else +∞.
-  const hn::Rebind<float, DD> dfl;
-  const auto keyOf = [&](const float* keys) { return hn::Load(dfl, keys + lane); };
-  const auto nearest = boundaryEdges
-                           ? hn::Max(hn::Max(keyOf(in.keyA), keyOf(in.keyB)), keyOf(in.keyC))
-                           : hn::Set(dfl, std::numeric_limits<float>::infinity());
-  hn::Store(nearest, dfl, out.nearestKey + lane);
+  // nearestWrittenKey of a clamped lane: its nearest vertex key.
+  if (clamp) {
+    const hn::Rebind<float, DD> dfl;
+    const auto keyOf = [&](const float* keys) { return hn::Load(dfl, keys + lane); };
+    hn::Store(hn::Max(hn::Max(keyOf(in.keyA), keyOf(in.keyB)), keyOf(in.keyC)), dfl,
+              out.nearestKey + lane);
+  }
 }
 
 // hiddenBehind's inputs (RasterTriangle.cpp) beyond the lanes' KeyInputs: per lane tested in
@@ -525,12 +525,15 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
+  // A two-pass frame's back pass (`front`) clamps its keys (nearestWrittenKey): the pass whose
+  // back faces the whole-block reject may drop (HiddenBlocks.h).
+  const bool clamp = boundaryEdges && front != nullptr;
   const DD dd;
   const std::uint32_t laneMask = (1u << hn::Lanes(dd)) - 1;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
     if ((verdicts.fragment >> lane) & laneMask)
-      keyLanes(dd, keys, lane, boundaryEdges, verdicts.key);
-    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, boundaryEdges, verdicts);
+      keyLanes(dd, keys, lane, boundaryEdges, clamp, verdicts.key);
+    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, clamp, verdicts);
   }
 }
 

@@ -75,6 +75,7 @@ struct BatchVerdicts {
   struct {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
     alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
+    // nearestWrittenKey, with `front` only (the back pass's clamp, Chunk::smallNearestKeys).
     alignas(64) float nearestKey[kBatchSize];
   } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
@@ -95,14 +96,14 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
   t.x0 = static_cast<std::uint16_t>(samples.x0[lane]);
   t.y0 = static_cast<std::uint16_t>(samples.y0[lane]);
   t.coverage = static_cast<std::uint16_t>(plane.coverage[lane]);
-  t.nearestKey = plane.nearestKey[lane];
   return t;
 }
 
 // The verdicts for the tiles' viewport and the mesh's back-face handling (`boundaryEdges`:
 // the depth keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's
 // three edges are its polygon's). With `front` (a two-pass frame's back faces), the kept lanes
-// hiddenBehind its blocks become `hidden` before their keys and records are made.
+// hiddenBehind its blocks become `hidden` before their keys and records are made, and the keys
+// are clamped (nearestWrittenKey: the fragments' keys, smallPlane.nearestKey for the records).
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts,
                    const FrontDepthBlocks* front = nullptr);

@@ -416,7 +416,7 @@ TEST(DepthPrecision, TriangleKeysNeverPassTheirNearestVertexKey) {
     const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
     if (area == 0) continue;
     if (area < 0) std::swap(v[1], v[2]);
-    const float nearest = detail::nearestWrittenKey(v[0], v[1], v[2], detail::kAllEdges);
+    const float nearest = detail::nearestWrittenKey(v[0], v[1], v[2], detail::kClampedEdges);
     ASSERT_EQ(nearest, std::max({v[0].depth, v[1].depth, v[2].depth}));
     ImagePlanes front;
     std::fill(front.depth.begin(), front.depth.end(), nearest);
@@ -429,14 +429,14 @@ TEST(DepthPrecision, TriangleKeysNeverPassTheirNearestVertexKey) {
         static_cast<std::size_t>(v[0].x / 256 / detail::TileGrid::kTileSize);
     const PixelBounds tile = grid.bounds(tileIndex);
     if (which == 0) {
-      detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kAllEdges, 1, image,
-                                                     front.planes(), counts);
+      detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kClampedEdges, 1,
+                                                     image, front.planes(), counts);
     } else if (which == 1) {
-      detail::paintTriangleWalkingBox<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kAllEdges,
-                                                               1, image, front.planes(), counts);
+      detail::paintTriangleWalkingBox<detail::DepthMode::Test>(
+          v[0], v[1], v[2], detail::kClampedEdges, 1, image, front.planes(), counts);
     } else if (const auto record =
-                   detail::smallTriangleOf(v[0], v[1], v[2], detail::kAllEdges, tile, 1)) {
-      detail::paintSmallTriangle<detail::DepthMode::Test>(*record, front.planes(), counts);
+                   detail::smallTriangleOf(v[0], v[1], v[2], detail::kClampedEdges, tile, 1)) {
+      detail::paintSmallTriangle<detail::DepthMode::Test>(*record, nearest, front.planes(), counts);
       ++records;
     }
     ASSERT_EQ(counts.written, 0u) << "triangle " << t << " (path " << which
@@ -445,8 +445,8 @@ TEST(DepthPrecision, TriangleKeysNeverPassTheirNearestVertexKey) {
     // Its pixels over the background: every key written at most the nearest vertex key.
     ImagePlanes alone;
     detail::PaintCounts own;
-    detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kAllEdges, 1, image,
-                                                   alone.planes(), own);
+    detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kClampedEdges, 1,
+                                                   image, alone.planes(), own);
     fragmentsBehind += own.written;
   }
   EXPECT_GT(painted, 15000u);
@@ -514,8 +514,8 @@ TEST(DepthPrecision, TrianglesHiddenBehindFrontBlocksWriteNothing) {
       blocks.store(tile, measured.measuredBlocks());
     }
     detail::PaintCounts after;
-    detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kAllEdges, 1, image,
-                                                   front.planes(), after);
+    detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kClampedEdges, 1,
+                                                   image, front.planes(), after);
     const bool rejected = detail::hiddenBehind(v[0], v[1], v[2], box, blocks);
     if (rejected) {
       ASSERT_EQ(after.written, 0u) << "triangle " << t << " rejected but wins a pixel";
