@@ -110,7 +110,7 @@ struct BinnedFragment {
 inline constexpr std::uint32_t kFragmentBit = 0x80000000u;
 
 // A bin entry with kSmallTriangleBit set (and kFragmentBit clear) indexes its chunk's
-// smallTriangles (SmallTriangle, RasterTriangle.h).
+// smallTriangles (SmallTriangle, RasterTriangle.h), or in a back bin its backSmallTriangles.
 inline constexpr std::uint32_t kSmallTriangleBit = 0x40000000u;
 inline constexpr std::uint32_t kBinIndexMask = kSmallTriangleBit - 1;
 
@@ -119,7 +119,7 @@ struct PolygonCounts {
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
   std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
   // A two-pass frame's back-face blocks dropped whole behind the front faces (HiddenBlocks.h)
-  // and their deferred polygons (also counted drawn and binned).
+  // and their deferred polygons (counted there alone: RenderStats::polygonsHidden).
   std::size_t hiddenBlocks = 0, hiddenBlockPolygons = 0;
 };
 
@@ -141,12 +141,11 @@ struct Chunk {
   HugePageAppendBuffer<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   HugePageAppendBuffer<BinnedFragment> fragments;
   HugePageAppendBuffer<SmallTriangle> smallTriangles;
-  // A two-pass frame's back pass: the records it makes (smallTriangles from
-  // firstClampedSmall on) are painted clamped to these keys (nearestWrittenKey), one a
-  // record; kept apart so that every other record stays 40 bytes.
-  HugePageAppendBuffer<float> smallNearestKeys;
-  std::size_t firstClampedSmall = kNoClampedSmall;
-  static constexpr std::size_t kNoClampedSmall = ~std::size_t{0};
+  // The back bins' records (back faces, every face drawn with the depth test, one pass or
+  // two), painted clamped to their nearest keys (nearestWrittenKey), one a record: kept
+  // apart so that the front faces' records need no key and no test which they are.
+  HugePageAppendBuffer<SmallTriangle> backSmallTriangles;
+  HugePageAppendBuffer<float> backSmallNearestKeys;
   std::vector<WindowVertex> clippedVertices;
   std::vector<Bin> bins;
   // With the depth test, the back-facing polygons' entries (every face drawn), per tile: a

@@ -146,6 +146,7 @@ std::size_t markShownPolygons(const RasterContext& context, const TilePlanes& pl
 constexpr std::size_t kPrefetchTriangle = 8;
 constexpr std::size_t kPrefetchVertices = 4;
 
+template <bool kBackBins>
 [[gnu::always_inline]] inline void prefetchAhead(const WindowVertex* vertices, const Chunk& chunk,
                                                  std::span<const std::uint32_t> bin,
                                                  std::size_t k) {
@@ -155,8 +156,8 @@ constexpr std::size_t kPrefetchVertices = 4;
       __builtin_prefetch(&chunk.fragments[entry & kBinIndexMask]);
     } else if (entry & kSmallTriangleBit) {
       // 40 bytes: sometimes across two cache lines.
-      const auto* record =
-          reinterpret_cast<const char*>(&chunk.smallTriangles[entry & kBinIndexMask]);
+      const auto& records = kBackBins ? chunk.backSmallTriangles : chunk.smallTriangles;
+      const auto* record = reinterpret_cast<const char*>(&records[entry & kBinIndexMask]);
       __builtin_prefetch(record);
       __builtin_prefetch(record + sizeof(SmallTriangle) - 1);
     } else {
@@ -172,17 +173,18 @@ constexpr std::size_t kPrefetchVertices = 4;
 }
 
 // Paints one bin's entries in order. kCoarse: with the tile's coarse depth
-// (Rule::HiddenGeometry, depth test only). `front`: the tile's front faces are painted (back
-// bins, every face drawn). kBackPass: a two-pass frame's back bins, whose records from
-// Chunk::firstClampedSmall on are clamped (the other painters pay nothing for it).
-template <DepthMode kMode, bool kCoarse, bool kBackPass = false>
+// (Rule::HiddenGeometry, depth test only). kBackBins: a back bin (Chunk::backBins, one pass or
+// two), whose records are Chunk::backSmallTriangles, clamped to their nearest keys (its
+// triangles and fragments carry their clamp: kClampedEdges, clamped keys). `front`: the
+// tile's front faces are painted (back bins, every face drawn).
+template <DepthMode kMode, bool kCoarse, bool kBackBins>
 [[gnu::always_inline]] inline void paintBin(const RasterContext& context, const Chunk& chunk,
                                             std::span<const std::uint32_t> bin,
                                             const PixelBounds& tile, const Planes& planes,
                                             PaintCounts& counts, CoarseDepth& coarse,
                                             FarthestBlocks* front) {
   for (std::size_t k = 0; k < bin.size(); ++k) {
-    prefetchAhead(context.vertices, chunk, bin, k);
+    prefetchAhead<kBackBins>(context.vertices, chunk, bin, k);
     const std::uint32_t index = bin[k];
     if (index & kFragmentBit) {
       const BinnedFragment& f = chunk.fragments[index & kBinIndexMask];
@@ -192,12 +194,11 @@ template <DepthMode kMode, bool kCoarse, bool kBackPass = false>
     }
     if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
       const std::size_t record = index & kBinIndexMask;
-      if (!kBackPass || record < chunk.firstClampedSmall) {
+      if constexpr (kBackBins) {
+        paintSmallTriangle<kMode>(chunk.backSmallTriangles[record],
+                                  chunk.backSmallNearestKeys[record], planes, counts);
+      } else {
         paintSmallTriangle<kMode>(chunk.smallTriangles[record], planes, counts);
-      } else {  // a two-pass frame's back pass made it: clamped (Chunk::smallNearestKeys)
-        paintSmallTriangle<kMode>(chunk.smallTriangles[record],
-                                  chunk.smallNearestKeys[record - chunk.firstClampedSmall], planes,
-                                  counts);
       }
       continue;
     }
@@ -257,13 +258,13 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   const Planes planes = local.planesFor(tile);
   PaintCounts counts;
   CoarseDepth coarse(tile);
+  for (const Chunk& chunk : context.chunks)
+    paintBin<kMode, kCoarse, false>(context, chunk, chunk.bins[t], tile, planes, counts, coarse,
+                                    nullptr);
   FarthestBlocks frontPainted(tile, planes);  // read when a back face first asks
-  for (const auto bins : {&Chunk::bins, &Chunk::backBins}) {
-    FarthestBlocks* const front = bins == &Chunk::backBins ? &frontPainted : nullptr;
-    for (const Chunk& chunk : context.chunks)
-      paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse,
-                               front);
-  }
+  for (const Chunk& chunk : context.chunks)
+    paintBin<kMode, kCoarse, true>(context, chunk, chunk.backBins[t], tile, planes, counts, coarse,
+                                   &frontPainted);
   finishTile(context, local, tile, counts);
   return counts;
 }
@@ -293,8 +294,8 @@ PaintCounts paintFrontOfTile(const RasterContext& context, std::size_t t, const 
   PaintCounts counts;
   CoarseDepth unused(tile);
   for (const Chunk& chunk : context.chunks)
-    paintBin<DepthMode::Test, false>(context, chunk, chunk.bins[t], tile, planes, counts, unused,
-                                     nullptr);
+    paintBin<DepthMode::Test, false, false>(context, chunk, chunk.bins[t], tile, planes, counts,
+                                            unused, nullptr);
   FarthestBlocks blocks(tile, planes);
   context.frontBlocks->store(t, blocks.measuredBlocks());
   local.writeOut(context, tile);
