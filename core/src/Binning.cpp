@@ -67,8 +67,8 @@ void clearBins(Chunk& chunk, const TileGrid& grid) {
   chunk.boundaryEdges.clear();
   chunk.fragments.clear();
   chunk.smallTriangles.clear();
-  chunk.backSmallTriangles.clear();
-  chunk.backSmallNearestKeys.clear();
+  chunk.smallNearestKeys.clear();
+  chunk.firstKeyedSmall = 0;
   for (auto* bins : {&chunk.bins, &chunk.backBins}) {
     bins->resize(grid.count());
     for (auto& bin : *bins)

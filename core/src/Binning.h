@@ -64,26 +64,14 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
 }
 
 // Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile: the box of
-// `samples`.
+// `samples`; in the chunk's backBins when `last` (Chunk::binsFor).
 [[gnu::always_inline]] inline void binSmall(Chunk& chunk, std::size_t tile,
                                             const PixelBounds& samples,
-                                            const SmallTriangle& triangle) {
+                                            const SmallTriangle& triangle, bool last) {
   chunk.counts.boxSamples += samples.area();
-  chunk.bins[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
-                             kSmallTriangleBit);
+  chunk.binsFor(last)[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
+                                      kSmallTriangleBit);
   chunk.smallTriangles.push_back(triangle);
-}
-
-// The same for a back bin (Chunk::binsFor(true)): clamped to `nearestKey` (nearestWrittenKey)
-// when painted.
-[[gnu::always_inline]] inline void binBackSmall(Chunk& chunk, std::size_t tile,
-                                                const PixelBounds& samples,
-                                                const SmallTriangle& triangle, float nearestKey) {
-  chunk.counts.boxSamples += samples.area();
-  chunk.backBins[tile].push_back(static_cast<std::uint32_t>(chunk.backSmallTriangles.size()) |
-                                 kSmallTriangleBit);
-  chunk.backSmallTriangles.push_back(triangle);
-  chunk.backSmallNearestKeys.push_back(nearestKey);
 }
 
 // A bin entry is 32 bits with the top two telling a fragment (kFragmentBit), a small

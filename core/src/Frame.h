@@ -110,7 +110,7 @@ struct BinnedFragment {
 inline constexpr std::uint32_t kFragmentBit = 0x80000000u;
 
 // A bin entry with kSmallTriangleBit set (and kFragmentBit clear) indexes its chunk's
-// smallTriangles (SmallTriangle, RasterTriangle.h), or in a back bin its backSmallTriangles.
+// smallTriangles (SmallTriangle, RasterTriangle.h).
 inline constexpr std::uint32_t kSmallTriangleBit = 0x40000000u;
 inline constexpr std::uint32_t kBinIndexMask = kSmallTriangleBit - 1;
 
@@ -141,11 +141,14 @@ struct Chunk {
   HugePageAppendBuffer<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   HugePageAppendBuffer<BinnedFragment> fragments;
   HugePageAppendBuffer<SmallTriangle> smallTriangles;
-  // The back bins' records (back faces, every face drawn with the depth test, one pass or
-  // two), painted clamped to their nearest keys (nearestWrittenKey), one a record: kept
-  // apart so that the front faces' records need no key and no test which they are.
-  HugePageAppendBuffer<SmallTriangle> backSmallTriangles;
-  HugePageAppendBuffer<float> backSmallNearestKeys;
+  // With the depth test and every face drawn, one key per record from firstKeyedSmall on (the
+  // set-up's clampsBackFaces; a two-pass frame's front pass, which keeps no back face, makes
+  // none): a back bin's record (a back face, one pass or two) is painted clamped to it
+  // (nearestWrittenKey), a front bin's reads none. Kept apart so that records stay 40 bytes;
+  // one a record, front faces' too in one pass, because a set-up that chose between two record
+  // arrays spilled its registers (500k one pass: settle +20 % instructions).
+  HugePageAppendBuffer<float> smallNearestKeys;
+  std::size_t firstKeyedSmall = 0;
   std::vector<WindowVertex> clippedVertices;
   std::vector<Bin> bins;
   // With the depth test, the back-facing polygons' entries (every face drawn), per tile: a

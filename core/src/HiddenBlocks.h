@@ -21,7 +21,7 @@
 //    pass or the back pass of two alike) is set up clamped when it is a triangle polygon's
 //    unclipped triangle (kClampedEdges: its three edges polygon-boundary edges plus the clamp
 //    bit; Setup.cpp's triangleEdges; SetupBatch's keyLanes and the records'
-//    Chunk::backSmallNearestKeys with clampBackFaces), so every paint path clamps the key it
+//    Chunk::smallNearestKeys with clampBackFaces), so every paint path clamps the key it
 //    writes to the nearest vertex key (nearestWrittenKey, RasterTriangle.h:
 //    TriangleDepth::keyAt and refine<true>, paintSmallTriangle with a nearest key). The frame
 //    with and the frame without the reject, and the one-pass frame, paint those triangles

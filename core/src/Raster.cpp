@@ -146,7 +146,6 @@ std::size_t markShownPolygons(const RasterContext& context, const TilePlanes& pl
 constexpr std::size_t kPrefetchTriangle = 8;
 constexpr std::size_t kPrefetchVertices = 4;
 
-template <bool kBackBins>
 [[gnu::always_inline]] inline void prefetchAhead(const WindowVertex* vertices, const Chunk& chunk,
                                                  std::span<const std::uint32_t> bin,
                                                  std::size_t k) {
@@ -156,8 +155,8 @@ template <bool kBackBins>
       __builtin_prefetch(&chunk.fragments[entry & kBinIndexMask]);
     } else if (entry & kSmallTriangleBit) {
       // 40 bytes: sometimes across two cache lines.
-      const auto& records = kBackBins ? chunk.backSmallTriangles : chunk.smallTriangles;
-      const auto* record = reinterpret_cast<const char*>(&records[entry & kBinIndexMask]);
+      const auto* record =
+          reinterpret_cast<const char*>(&chunk.smallTriangles[entry & kBinIndexMask]);
       __builtin_prefetch(record);
       __builtin_prefetch(record + sizeof(SmallTriangle) - 1);
     } else {
@@ -174,7 +173,7 @@ template <bool kBackBins>
 
 // Paints one bin's entries in order. kCoarse: with the tile's coarse depth
 // (Rule::HiddenGeometry, depth test only). kBackBins: a back bin (Chunk::backBins, one pass or
-// two), whose records are Chunk::backSmallTriangles, clamped to their nearest keys (its
+// two), whose records are clamped to their nearest keys (Chunk::smallNearestKeys; its
 // triangles and fragments carry their clamp: kClampedEdges, clamped keys). `front`: the
 // tile's front faces are painted (back bins, every face drawn).
 template <DepthMode kMode, bool kCoarse, bool kBackBins>
@@ -184,7 +183,7 @@ template <DepthMode kMode, bool kCoarse, bool kBackBins>
                                             PaintCounts& counts, CoarseDepth& coarse,
                                             FarthestBlocks* front) {
   for (std::size_t k = 0; k < bin.size(); ++k) {
-    prefetchAhead<kBackBins>(context.vertices, chunk, bin, k);
+    prefetchAhead(context.vertices, chunk, bin, k);
     const std::uint32_t index = bin[k];
     if (index & kFragmentBit) {
       const BinnedFragment& f = chunk.fragments[index & kBinIndexMask];
@@ -195,8 +194,9 @@ template <DepthMode kMode, bool kCoarse, bool kBackBins>
     if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
       const std::size_t record = index & kBinIndexMask;
       if constexpr (kBackBins) {
-        paintSmallTriangle<kMode>(chunk.backSmallTriangles[record],
-                                  chunk.backSmallNearestKeys[record], planes, counts);
+        paintSmallTriangle<kMode>(chunk.smallTriangles[record],
+                                  chunk.smallNearestKeys[record - chunk.firstKeyedSmall], planes,
+                                  counts);
       } else {
         paintSmallTriangle<kMode>(chunk.smallTriangles[record], planes, counts);
       }

@@ -383,7 +383,7 @@ template <DepthMode kMode>
 }
 
 // The same with every key clamped to `nearestKey` (nearestWrittenKey: a back bin's record keeps
-// it beside the record, Chunk::backSmallNearestKeys).
+// it beside the record, Chunk::smallNearestKeys).
 template <DepthMode kMode>
 [[gnu::always_inline]] inline void paintSmallTriangle(const SmallTriangle& t, float nearestKey,
                                                       const Planes& planes, PaintCounts& counts) {

@@ -84,14 +84,15 @@ class PolygonSetup {
         points_(points),
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex),
-        deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front) {}
+        deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front),
+        clampBack_(!kSkipBackFaces && context.backFacesLast && !deferBack_) {}
 
   // Back faces are put off to the back pass (SetupPass::Front, every face drawn): the batch
   // drops them as it would cull them, and settle() defers them.
   bool defersBackFaces() const { return deferBack_; }
 
   // Whether the back faces the batch keeps have their keys clamped (triangleEdges).
-  bool clampsBackFaces() const { return !kSkipBackFaces && context_.backFacesLast; }
+  bool clampsBackFaces() const { return clampBack_; }
 
   // Puts polygon `polygon` in lane `lane` of a batch (the back pass's scattered polygons).
   void loadOne(std::size_t polygon, TriangleBatch& batch, int lane) const {
@@ -287,13 +288,10 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
-      const PixelBounds box{samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]};
-      if (last) {
-        binBackSmall(chunk_, tile, box, smallTriangleOfLane(verdicts, lane, polygonId),
-                     verdicts.smallPlane.nearestKey[lane]);
-      } else {
-        binSmall(chunk_, tile, box, smallTriangleOfLane(verdicts, lane, polygonId));
-      }
+      if (clampBack_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
+      binSmall(chunk_, tile,
+               {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
+               smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).
       const auto reference = [&](std::size_t corner) {
@@ -352,7 +350,7 @@ class PolygonSetup {
   // or two alike (HiddenBlocks.h, step 1); none when back faces are skipped.
   EdgeMask triangleEdges(bool back) const {
     if (kSkipBackFaces) return EdgeMask{0};
-    return back && context_.backFacesLast ? kClampedEdges : kAllEdges;
+    return back && clampBack_ ? kClampedEdges : kAllEdges;
   }
 
   // In the polygon's plane, by Triangulate.h's rules.
@@ -456,6 +454,10 @@ class PolygonSetup {
   PolygonsT polygons_;
   const WindowVertex* meshVertices_;
   bool deferBack_;
+  // The back faces are painted after the front faces (the depth test, context.backFacesLast)
+  // and clamped (triangleEdges); the records carry their keys (Chunk::smallNearestKeys). Not
+  // in a two-pass frame's front pass, which keeps no back face.
+  bool clampBack_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
   bool last_ = false;  // the polygon's triangles join the back bins (Chunk::binsFor)
@@ -633,6 +635,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
 
 // The back pass of a chunk: its deferred polygons, run by run of one mesh.
 void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
+  chunk.firstKeyedSmall = chunk.smallTriangles.size();  // the front pass's records have none
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
     const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
@@ -664,8 +667,7 @@ void setUpChunk(const SetupContext& context, Chunk& chunk) {
 
 // Throws when a chunk's bin entries cannot index its records (Binning.h).
 void requireChunkIndexable(const Chunk& chunk) {
-  requireIndexable(chunk.triangles.size(), chunk.fragments.size(),
-                   std::max(chunk.smallTriangles.size(), chunk.backSmallTriangles.size()),
+  requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
                    chunk.clippedVertices.size());
 }
 

@@ -76,7 +76,7 @@ struct BatchVerdicts {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
     alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
     // nearestWrittenKey, with clampBackFaces (the back faces' clamp,
-    // Chunk::backSmallNearestKeys): a clockwise lane's nearest vertex key, else +∞.
+    // Chunk::smallNearestKeys): a clockwise lane's nearest vertex key, else +∞.
     alignas(64) float nearestKey[kBatchSize];
   } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
