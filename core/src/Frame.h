@@ -146,7 +146,9 @@ struct Chunk {
   // none): a back bin's record (a back face, one pass or two) is painted clamped to it
   // (nearestWrittenKey), a front bin's reads none. Kept apart so that records stay 40 bytes;
   // one a record, front faces' too in one pass, because a set-up that chose between two record
-  // arrays spilled its registers (500k one pass: settle +20 % instructions).
+  // arrays spilled its registers (500k one pass: settle +20 % instructions). A chunk whose
+  // meshes skip back faces pushes none: with the depth test (z-buffer order) a chunk holds one
+  // mesh's polygons (planChunks splits per mesh), so a keyed chunk's records all have one.
   HugePageAppendBuffer<float> smallNearestKeys;
   std::size_t firstKeyedSmall = 0;
   std::vector<WindowVertex> clippedVertices;
