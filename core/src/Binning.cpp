@@ -68,7 +68,7 @@ void clearBins(Chunk& chunk, const TileGrid& grid) {
   chunk.fragments.clear();
   chunk.smallTriangles.clear();
   chunk.smallNearestKeys.clear();
-  chunk.firstClampedSmall = Chunk::kNoClampedSmall;
+  chunk.firstKeyedSmall = 0;
   for (auto* bins : {&chunk.bins, &chunk.backBins}) {
     bins->resize(grid.count());
     for (auto& bin : *bins)

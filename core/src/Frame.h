@@ -119,7 +119,7 @@ struct PolygonCounts {
   std::size_t trianglesBinned = 0, trianglesClipped = 0;
   std::size_t boxSamples = 0;  // pixels in the binned triangles' boxes (depth complexity)
   // A two-pass frame's back-face blocks dropped whole behind the front faces (HiddenBlocks.h)
-  // and their deferred polygons (also counted drawn and binned).
+  // and their deferred polygons (counted there alone: RenderStats::polygonsHidden).
   std::size_t hiddenBlocks = 0, hiddenBlockPolygons = 0;
 };
 
@@ -141,12 +141,16 @@ struct Chunk {
   HugePageAppendBuffer<EdgeMask> boundaryEdges;  // per triangle: which edges are its polygon's
   HugePageAppendBuffer<BinnedFragment> fragments;
   HugePageAppendBuffer<SmallTriangle> smallTriangles;
-  // A two-pass frame's back pass: the records it makes (smallTriangles from
-  // firstClampedSmall on) are painted clamped to these keys (nearestWrittenKey), one a
-  // record; kept apart so that every other record stays 40 bytes.
+  // With the depth test and every face drawn, one key per record from firstKeyedSmall on (the
+  // set-up's clampsBackFaces; a two-pass frame's front pass, which keeps no back face, makes
+  // none): a back bin's record (a back face, one pass or two) is painted clamped to it
+  // (nearestWrittenKey), a front bin's reads none. Kept apart so that records stay 40 bytes;
+  // one a record, front faces' too in one pass, because a set-up that chose between two record
+  // arrays spilled its registers (500k one pass: settle +20 % instructions). A chunk whose
+  // meshes skip back faces pushes none: with the depth test (z-buffer order) a chunk holds one
+  // mesh's polygons (planChunks splits per mesh), so a keyed chunk's records all have one.
   HugePageAppendBuffer<float> smallNearestKeys;
-  std::size_t firstClampedSmall = kNoClampedSmall;
-  static constexpr std::size_t kNoClampedSmall = ~std::size_t{0};
+  std::size_t firstKeyedSmall = 0;
   std::vector<WindowVertex> clippedVertices;
   std::vector<Bin> bins;
   // With the depth test, the back-facing polygons' entries (every face drawn), per tile: a

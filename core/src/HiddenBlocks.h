@@ -2,9 +2,10 @@
 
 // A two-pass frame's (Raster.h) back pass drops every deferred back face of a back-face block
 // (MeshCache.h, 256 polygons) whose 3D box projects behind the front faces' 8 × 8 pixel
-// blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted drawn and
-// binned, nothing is loaded, classified or painted. On by default in two-pass frames (the plan
-// decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off (measurements).
+// blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted hidden
+// (RenderStats::polygonsHidden), nothing is loaded, classified or painted. On by default in
+// two-pass frames (the plan decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off
+// (measurements).
 //
 // Why no dropped back face could have changed anything (every24; sections 18b–18c and 21 of
 // bench/core-frame-issue11.md say how the earlier attempts fell short). Keys are larger
@@ -15,19 +16,21 @@
 // covered count from the final ids. So, with W a key any of its triangles writes and F the
 // front key at that sample after the front pass (it only grows nearer afterwards):
 // 1. W ≤ its triangle's nearest vertex key, by construction: the block is dropped only when
-//    all its polygons are triangles (BackBlock::skippable), and the back pass that drops it
-//    (SetupContext::front set) sets up every triangle polygon clamped (kClampedEdges: its
-//    three edges polygon-boundary edges plus the clamp bit; SetupBatch's keyLanes and the
-//    records' Chunk::smallNearestKeys with `front`), so every paint path clamps the key it
+//    all its polygons are triangles (BackBlock::skippable), and every back face of an
+//    every-face mesh that a depth-tested frame paints (its back bins, Chunk::binsFor: one
+//    pass or the back pass of two alike) is set up clamped when it is a triangle polygon's
+//    unclipped triangle (kClampedEdges: its three edges polygon-boundary edges plus the clamp
+//    bit; Setup.cpp's triangleEdges; SetupBatch's keyLanes and the records'
+//    Chunk::smallNearestKeys with clampBackFaces), so every paint path clamps the key it
 //    writes to the nearest vertex key (nearestWrittenKey, RasterTriangle.h:
 //    TriangleDepth::keyAt and refine<true>, paintSmallTriangle with a nearest key). The frame
-//    with and the frame without the reject paint those triangles alike, so it is the
-//    clamped keys a dropped triangle would have written. No rounding argument: the clamp is
-//    a min of two floats' worth of doubles before the one rounding to float, and rounding
-//    is monotone. (Front faces, closed meshes and one-pass frames are not clamped: nothing
-//    of theirs is dropped. So a one-pass and a two-pass frame could differ where a back
-//    face's rounded key passes its nearest vertex key and wins a pixel; no test or figure
-//    has shown one, every25, bench/core-frame-issue11.md section 23.)
+//    with and the frame without the reject, and the one-pass frame, paint those triangles
+//    alike, so it is the clamped keys a dropped triangle would have written, and one pass and
+//    two give the same bytes by construction whatever the last frame made the plan choose.
+//    No rounding argument: the clamp is a min of two floats' worth of doubles before the one
+//    rounding to float, and rounding is monotone. (Front faces and closed meshes are not
+//    clamped: nothing of theirs is dropped, and they are painted alike in both kinds of
+//    frame.)
 // 2. No triangle of the block is clipped and every point of it has d > 0: its box is inside
 //    the clip volume with a margin (FrameTransform::boxInsideClipVolume), so every vertex's
 //    outcode is kInside and its window position and key are toWindow's of its own point.
@@ -48,10 +51,15 @@
 //    at most every front key there.
 // 5. So when the blocks' least key F_min ≥ the bound: W ≤ nearest vertex float key ≤ F_min ≤
 //    F: an exact tie keeps the front face, no fragment is written.
-// What it changes in the frame's report: the dropped polygons are counted drawn and binned as
-// in one pass, and the fragments written are the same (none), but their boxes' samples are
-// not added to the plan's depth complexity (RenderPlan::depthComplexity is lower than one
-// pass's), and RenderPlan reports the blocks and polygons dropped.
+// What it changes in the frame's report: the dropped polygons are counted hidden
+// (RenderStats::polygonsHidden, the filters' PolygonsHidden), neither drawn nor binned: one
+// pass counts some of them drawn and binned, others outside (covering no pixel center) or
+// degenerate, which only setting them up tells apart, so drawn + outside + degenerate +
+// hidden is one pass's drawn + outside + degenerate, and trianglesBinned is lower. The
+// fragments written are the same (none); their boxes' samples are not added to the plan's
+// depth complexity nor their triangles to its mean box (RenderPlan::depthComplexity and
+// meanTriangleBox differ from one pass's), and RenderPlan reports the blocks and polygons
+// dropped.
 // The margin test is DepthPrecision.TriangleKeysNeverPassTheirNearestVertexKey (step 1) and
 // HiddenBlocks.ApexThroughTheFrontFaceIsNeverDropped (steps 3–5).
 

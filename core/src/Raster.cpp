@@ -172,10 +172,11 @@ constexpr std::size_t kPrefetchVertices = 4;
 }
 
 // Paints one bin's entries in order. kCoarse: with the tile's coarse depth
-// (Rule::HiddenGeometry, depth test only). `front`: the tile's front faces are painted (back
-// bins, every face drawn). kBackPass: a two-pass frame's back bins, whose records from
-// Chunk::firstClampedSmall on are clamped (the other painters pay nothing for it).
-template <DepthMode kMode, bool kCoarse, bool kBackPass = false>
+// (Rule::HiddenGeometry, depth test only). kBackBins: a back bin (Chunk::backBins, one pass or
+// two), whose records are clamped to their nearest keys (Chunk::smallNearestKeys; its
+// triangles and fragments carry their clamp: kClampedEdges, clamped keys). `front`: the
+// tile's front faces are painted (back bins, every face drawn).
+template <DepthMode kMode, bool kCoarse, bool kBackBins>
 [[gnu::always_inline]] inline void paintBin(const RasterContext& context, const Chunk& chunk,
                                             std::span<const std::uint32_t> bin,
                                             const PixelBounds& tile, const Planes& planes,
@@ -192,12 +193,12 @@ template <DepthMode kMode, bool kCoarse, bool kBackPass = false>
     }
     if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
       const std::size_t record = index & kBinIndexMask;
-      if (!kBackPass || record < chunk.firstClampedSmall) {
-        paintSmallTriangle<kMode>(chunk.smallTriangles[record], planes, counts);
-      } else {  // a two-pass frame's back pass made it: clamped (Chunk::smallNearestKeys)
+      if constexpr (kBackBins) {
         paintSmallTriangle<kMode>(chunk.smallTriangles[record],
-                                  chunk.smallNearestKeys[record - chunk.firstClampedSmall], planes,
+                                  chunk.smallNearestKeys[record - chunk.firstKeyedSmall], planes,
                                   counts);
+      } else {
+        paintSmallTriangle<kMode>(chunk.smallTriangles[record], planes, counts);
       }
       continue;
     }
@@ -257,13 +258,13 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   const Planes planes = local.planesFor(tile);
   PaintCounts counts;
   CoarseDepth coarse(tile);
+  for (const Chunk& chunk : context.chunks)
+    paintBin<kMode, kCoarse, false>(context, chunk, chunk.bins[t], tile, planes, counts, coarse,
+                                    nullptr);
   FarthestBlocks frontPainted(tile, planes);  // read when a back face first asks
-  for (const auto bins : {&Chunk::bins, &Chunk::backBins}) {
-    FarthestBlocks* const front = bins == &Chunk::backBins ? &frontPainted : nullptr;
-    for (const Chunk& chunk : context.chunks)
-      paintBin<kMode, kCoarse>(context, chunk, (chunk.*bins)[t], tile, planes, counts, coarse,
-                               front);
-  }
+  for (const Chunk& chunk : context.chunks)
+    paintBin<kMode, kCoarse, true>(context, chunk, chunk.backBins[t], tile, planes, counts, coarse,
+                                   &frontPainted);
   finishTile(context, local, tile, counts);
   return counts;
 }
@@ -293,8 +294,8 @@ PaintCounts paintFrontOfTile(const RasterContext& context, std::size_t t, const 
   PaintCounts counts;
   CoarseDepth unused(tile);
   for (const Chunk& chunk : context.chunks)
-    paintBin<DepthMode::Test, false>(context, chunk, chunk.bins[t], tile, planes, counts, unused,
-                                     nullptr);
+    paintBin<DepthMode::Test, false, false>(context, chunk, chunk.bins[t], tile, planes, counts,
+                                            unused, nullptr);
   FarthestBlocks blocks(tile, planes);
   context.frontBlocks->store(t, blocks.measuredBlocks());
   local.writeOut(context, tile);

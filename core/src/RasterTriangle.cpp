@@ -282,7 +282,7 @@ struct BoxRaster {
                                     PaintCounts& counts, EdgeMask boundary) {
     // No polygon-boundary edge (every triangle of a mesh whose back faces are skipped): the
     // stepped key is every sample's (refine() would return it), so no refining per pixel.
-    // A clamped triangle (kClampedEdges, a two-pass frame's back faces) clamps each refined
+    // A clamped triangle (kClampedEdges, a back face with the depth test) clamps each refined
     // key; the others pay nothing for it.
     if (boundary == 0) {
       paintRows<kMode, false, false>(polygonId, planes, counts);

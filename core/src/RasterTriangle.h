@@ -34,14 +34,16 @@ using EdgeMask = std::uint8_t;
 inline constexpr EdgeMask kAllEdges = 0b111;
 
 // Bit 3 beside the edges: the triangle's written keys are clamped to its nearest vertex key
-// (nearestWrittenKey). Only a two-pass frame's back pass sets it (with all three edges, on a
-// triangle polygon's triangle: kClampedEdges), the one pass whose back faces the whole-block
-// reject drops (HiddenBlocks.h); front faces, closed meshes and one-pass frames pay nothing.
+// (nearestWrittenKey). The set-up sets it (with all three edges, on a triangle polygon's
+// triangle: kClampedEdges) on every back face a depth-tested frame paints after its front
+// faces (the back bins, one pass or two alike: the whole-block reject drops back faces,
+// HiddenBlocks.h, and whether a frame takes two passes depends on the last frame); front
+// faces and closed meshes pay nothing.
 inline constexpr EdgeMask kClampToNearestVertex = 0b1000;
 inline constexpr EdgeMask kClampedEdges = kAllEdges | kClampToNearestVertex;
 
 // The nearest (largest) depth key a triangle may write: its nearest vertex key when it is
-// clamped (kClampedEdges: a triangle polygon of a two-pass frame's back pass), else none (+∞;
+// clamped (kClampedEdges: a triangle polygon's back face, depth test on), else none (+∞;
 // without all three boundary edges a triangle beside a diagonal continues its polygon's plane
 // past the diagonal legitimately). The clamping paint paths (TriangleDepth::keyAt and
 // refine<true>, paintSmallTriangle with a nearest key, SetupBatch's keyLanes with `front`)
@@ -380,8 +382,8 @@ template <DepthMode kMode>
                         counts);
 }
 
-// The same with every key clamped to `nearestKey` (nearestWrittenKey: a two-pass frame's back
-// pass keeps it beside the record, Chunk::smallNearestKeys).
+// The same with every key clamped to `nearestKey` (nearestWrittenKey: a back bin's record keeps
+// it beside the record, Chunk::smallNearestKeys).
 template <DepthMode kMode>
 [[gnu::always_inline]] inline void paintSmallTriangle(const SmallTriangle& t, float nearestKey,
                                                       const Planes& planes, PaintCounts& counts) {

@@ -170,10 +170,11 @@ bool RenderRules::allows(Rule rule) const {
   out << plan.describe();
   out << "  counted: " << polygonsDrawn << " polygons drawn, " << polygonsShaded << " shaded, "
       << polygonsCulled << " culled, " << polygonsOutside << " outside, " << polygonsDegenerate
-      << " degenerate, " << polygonsNonFinite << " non-finite; " << trianglesBinned
-      << " triangles binned, " << trianglesClipped << " clipped, " << trianglesHidden << " hidden; "
-      << fragmentsWritten << " fragments, " << pixelsCovered << " pixels covered"
-      << (aborted ? "; stopped early" : "") << "\n";
+      << " degenerate, " << polygonsNonFinite << " non-finite, " << polygonsHidden
+      << " hidden behind the front faces; " << trianglesBinned << " triangles binned, "
+      << trianglesClipped << " clipped, " << trianglesHidden << " hidden; " << fragmentsWritten
+      << " fragments, " << pixelsCovered << " pixels covered" << (aborted ? "; stopped early" : "")
+      << "\n";
   out << "  seconds: validate " << validateSeconds << ", transform " << transformSeconds
       << ", set-up " << setupSeconds << ", raster " << rasterSeconds << ", shade " << shadeSeconds
       << ", total " << totalSeconds << "\n";

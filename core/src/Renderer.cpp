@@ -191,8 +191,9 @@ bool Renderer::Workspace::rasterInTwoPasses(const detail::FrameInputs& in,
   detail::reportHiddenBlocks(setup.chunks, plan);
   const bool completed = detail::paintBackTiles(runner, grid, context, tiles);
   stats.rasterSeconds += runner.lap();
-  // The plan's figures from every face set up (the hidden ones counted as binned: as in one
-  // pass); the routine is the depth test's.
+  // The plan's figures from every face set up (the lanes hidden behind the front blocks
+  // counted as binned, as in one pass; the blocks dropped whole not: RenderStats::
+  // polygonsHidden); the routine is the depth test's.
   detail::chooseRasterRoutine(plan, setup.chunks, HierarchicalZ::Off);
   return completed;
 }

@@ -85,14 +85,14 @@ class PolygonSetup {
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex),
         deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front),
-        clamp_(!kSkipBackFaces && context.front != nullptr),
-        triangleEdges_(kSkipBackFaces ? EdgeMask{0}
-                       : clamp_       ? kClampedEdges
-                                      : kAllEdges) {}
+        clampBack_(!kSkipBackFaces && context.backFacesLast && !deferBack_) {}
 
   // Back faces are put off to the back pass (SetupPass::Front, every face drawn): the batch
   // drops them as it would cull them, and settle() defers them.
   bool defersBackFaces() const { return deferBack_; }
+
+  // Whether the back faces the batch keeps have their keys clamped (triangleEdges).
+  bool clampsBackFaces() const { return clampBack_; }
 
   // Puts polygon `polygon` in lane `lane` of a batch (the back pass's scattered polygons).
   void loadOne(std::size_t polygon, TriangleBatch& batch, int lane) const {
@@ -215,7 +215,7 @@ class PolygonSetup {
     }
     emit(area < 0, [&](Tally& tally) {
       keep(frameIndex(ids[0]), frameIndex(ids[1]), frameIndex(ids[2]), a, b, c, area,
-           triangleEdges_, tally);
+           triangleEdges(area < 0), tally);
     });
   }
 
@@ -288,7 +288,7 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
-      if (clamp_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
+      if (clampBack_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
       binSmall(chunk_, tile,
                {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
                smallTriangleOfLane(verdicts, lane, polygonId), last);
@@ -297,10 +297,11 @@ class PolygonSetup {
       const auto reference = [&](std::size_t corner) {
         return frameIndex(polygons_.pointId(polygon, corner));
       };
-      binCovering(
-          chunk_, context_.grid, reference(0), reference(back ? 2 : 1), reference(back ? 1 : 2),
-          {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}, triangleEdges_,
-          polygonId, last, (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
+      binCovering(chunk_, context_.grid, reference(0), reference(back ? 2 : 1),
+                  reference(back ? 1 : 2),
+                  {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
+                  triangleEdges(back), polygonId, last,
+                  (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
   }
 
@@ -342,6 +343,15 @@ class PolygonSetup {
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
+
+  // The boundary edges keep() gives the triangle of a triangle polygon seen from the back or
+  // not: all three, and the clamp to its nearest vertex key (kClampedEdges) on every back face
+  // a depth-tested frame paints after the front faces (its back bins, Chunk::binsFor), one pass
+  // or two alike (HiddenBlocks.h, step 1); none when back faces are skipped.
+  EdgeMask triangleEdges(bool back) const {
+    if (kSkipBackFaces) return EdgeMask{0};
+    return back && clampBack_ ? kClampedEdges : kAllEdges;
+  }
 
   // In the polygon's plane, by Triangulate.h's rules.
   void triangulate(const glm::dvec3& normal, Tally& tally) {
@@ -444,10 +454,10 @@ class PolygonSetup {
   PolygonsT polygons_;
   const WindowVertex* meshVertices_;
   bool deferBack_;
-  // A two-pass frame's back pass (context.front): its triangle polygons' keys are clamped
-  // (kClampedEdges, nearestWrittenKey), the only polygons the whole-block reject may drop.
-  bool clamp_;
-  EdgeMask triangleEdges_;  // the boundary edges keep() gives a triangle polygon's triangle
+  // The back faces are painted after the front faces (the depth test, context.backFacesLast)
+  // and clamped (triangleEdges); the records carry their keys (Chunk::smallNearestKeys). Not
+  // in a two-pass frame's front pass, which keeps no back face.
+  bool clampBack_;
   std::size_t polygon_ = 0;
   std::int32_t polygonId_ = 0;
   bool last_ = false;  // the polygon's triangles join the back bins (Chunk::binsFor)
@@ -477,7 +487,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   int lanes = 0;
   const auto settleBatch = [&] {
     classifyBatch(batch, context.grid, kSkipBackFaces || setup.defersBackFaces(), !kSkipBackFaces,
-                  verdicts);
+                  verdicts, setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
@@ -557,8 +567,9 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
       ids.begin());
   // The deferred back faces of a block of triangle polygons (BackBlock::skippable) whose box
   // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
-  // before any per-polygon work (counted as drawn). The ids ascend (z-buffer order): a
-  // block's are found by a binary search.
+  // before any per-polygon work (counted hidden, not drawn: one pass would have counted some
+  // of them outside or degenerate). The ids ascend (z-buffer order): a block's are found by a
+  // binary search.
   std::optional<HiddenBlockTest> blocks;
   std::optional<BackFaceTest> cone;
   if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled()) {
@@ -588,11 +599,9 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts[block]);
         hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
       }
-      if (hidden) {
+      if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
         ++chunk.counts.hiddenBlocks;
         chunk.counts.hiddenBlockPolygons += blockEnd - k;
-        chunk.counts.drawn += blockEnd - k;
-        chunk.counts.trianglesBinned += blockEnd - k;
         k = blockEnd;
         continue;
       }
@@ -610,7 +619,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   int lanes = 0;
   const auto settleBatch = [&] {
     std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
-    classifyBatch(batch, context.grid, false, true, verdicts, context.front);
+    classifyBatch(batch, context.grid, false, true, verdicts, setup.clampsBackFaces(),
+                  context.front);
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
@@ -625,7 +635,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
 
 // The back pass of a chunk: its deferred polygons, run by run of one mesh.
 void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
-  chunk.firstClampedSmall = chunk.smallTriangles.size();  // the records made from here on
+  chunk.firstKeyedSmall = chunk.smallTriangles.size();  // the front pass's records have none
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
     const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
@@ -653,6 +663,12 @@ void setUpChunk(const SetupContext& context, Chunk& chunk) {
                      : setUpRun<false>(context, chunk, mesh, points, polygons, position);
     });
   }
+}
+
+// Throws when a chunk's bin entries cannot index its records (Binning.h).
+void requireChunkIndexable(const Chunk& chunk) {
+  requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
+                   chunk.clippedVertices.size());
 }
 
 // The chunks' ranges of draw positions.
@@ -697,8 +713,7 @@ bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads
                                     [&](std::size_t i) { setUpChunk(context, buffers.chunks[i]); });
   // Here, on the caller's thread, before any tile reads a wrapped index.
   for (const Chunk& chunk : buffers.chunks)
-    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
-                     chunk.clippedVertices.size());
+    requireChunkIndexable(chunk);
   return completed;
 }
 
@@ -706,8 +721,7 @@ bool setUpBackFaces(PhaseRunner& runner, const SetupContext& context, SetupBuffe
   runner.runUnreported(buffers.chunks.size(),
                        [&](std::size_t i) { setUpChunkBack(context, buffers.chunks[i]); });
   for (const Chunk& chunk : buffers.chunks)
-    requireIndexable(chunk.triangles.size(), chunk.fragments.size(), chunk.smallTriangles.size(),
-                     chunk.clippedVertices.size());
+    requireChunkIndexable(chunk);
   return true;
 }
 
@@ -726,6 +740,7 @@ void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats) {
     stats.polygonsOutside += chunk.counts.outside;
     stats.polygonsDegenerate += chunk.counts.degenerate;
     stats.polygonsNonFinite += chunk.counts.nonFinite;
+    stats.polygonsHidden += chunk.counts.hiddenBlockPolygons;
     stats.trianglesBinned += chunk.counts.trianglesBinned;
     stats.trianglesClipped += chunk.counts.trianglesClipped;
   }

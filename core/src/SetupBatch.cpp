@@ -207,6 +207,8 @@ struct KeyInputs {
       gridCy[kBatchSize], gridSx[kBatchSize], gridSy[kBatchSize];
   alignas(64) std::int32_t edge1[kBatchSize], edge2[kBatchSize], area[kBatchSize];
   alignas(64) float keyA[kBatchSize], keyB[kBatchSize], keyC[kBatchSize];
+  // With clampBackFaces: nearestWrittenKey, a clockwise lane's nearest vertex key, else +∞.
+  alignas(64) float nearest[kBatchSize];
 };
 
 // In fine units: grid steps · kResidueScale + the residue.
@@ -219,7 +221,7 @@ V toFine(V grid, V residue) {
 // is exact for boxes of at most 4 pixel centers (samplesInBoundingBox, coversAnySample)
 // and assumed true for larger ones; a kept triangle whose box holds one center is a fragment.
 void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const TileGrid& grid,
-                   bool skipBackFaces, bool boundaryEdges, BatchVerdicts& verdicts,
+                   bool skipBackFaces, bool boundaryEdges, bool clamp, BatchVerdicts& verdicts,
                    KeyInputs& keys) {
   const PixelBounds viewport = grid.viewport();
   const V zero = hn::Zero(d);
@@ -340,6 +342,13 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   hn::Store(hn::BitCast(df, a.depth), df, keys.keyA + lane);
   hn::Store(hn::BitCast(df, hn::IfThenElse(clockwise, c0.depth, b0.depth)), df, keys.keyB + lane);
   hn::Store(hn::BitCast(df, hn::IfThenElse(clockwise, b0.depth, c0.depth)), df, keys.keyC + lane);
+  if (clamp) {
+    const auto nearest = hn::Max(hn::Max(hn::BitCast(df, a.depth), hn::BitCast(df, b0.depth)),
+                                 hn::BitCast(df, c0.depth));
+    hn::Store(hn::IfThenElse(hn::RebindMask(df, clockwise), nearest,
+                             hn::Set(df, std::numeric_limits<float>::infinity())),
+              df, keys.nearest + lane);
+  }
 }
 
 using DD = hn::ScalableTag<double>;
@@ -378,10 +387,8 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
       keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
   const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
   VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
-  if (clamp) {  // clamped to nearestWrittenKey, as TriangleDepth::keyAt clamps
-    const VD keyB = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane));
-    const VD keyC = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane));
-    key = hn::Min(key, hn::Max(hn::Max(keyA, keyB), keyC));
+  if (clamp) {  // clamped to nearestWrittenKey (+∞: unchanged), as TriangleDepth::keyAt clamps
+    key = hn::Min(key, hn::PromoteTo(dd, hn::Load(df, in.nearest + lane)));
   }
   hn::Store(hn::DemoteTo(df, hn::Min(hn::Max(key, hn::Neg(largest)), largest)), df, keys + lane);
 }
@@ -420,12 +427,10 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool clamp, BatchV
   hn::Store(perY, dd, out.keyPerFine + lane);
   hn::Store(perX * hn::Set(dd, kSubpixelScale) * toFine, dd, out.keyPerPixel + lane);
   hn::Store(hn::DemoteTo(di, sy), di, out.firstRowFine + lane);
-  // nearestWrittenKey of a clamped lane: its nearest vertex key.
+  // nearestWrittenKey: a clockwise lane's nearest vertex key, else +∞.
   if (clamp) {
     const hn::Rebind<float, DD> dfl;
-    const auto keyOf = [&](const float* keys) { return hn::Load(dfl, keys + lane); };
-    hn::Store(hn::Max(hn::Max(keyOf(in.keyA), keyOf(in.keyB)), keyOf(in.keyC)), dfl,
-              out.nearestKey + lane);
+    hn::Store(hn::Load(dfl, in.nearest + lane), dfl, out.nearestKey + lane);
   }
 }
 
@@ -513,21 +518,21 @@ void hideBehind(const TriangleBatch& batch, const FrontDepthBlocks& front, const
 }
 
 void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts, const FrontDepthBlocks* front) {
+                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces,
+                   const FrontDepthBlocks* front) {
   const D d;
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
   verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
   verdicts.small = verdicts.hidden = 0;
   KeyInputs keys;
+  // The back faces' keys clamped (nearestWrittenKey), one pass or two (Setup.cpp).
+  const bool clamp = boundaryEdges && clampBackFaces;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
-    classifyLanes(d, batch, lane, grid, skipBackFaces, boundaryEdges, verdicts, keys);
+    classifyLanes(d, batch, lane, grid, skipBackFaces, boundaryEdges, clamp, verdicts, keys);
   if (front != nullptr) hideBehind(batch, *front, keys, verdicts);
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
-  // A two-pass frame's back pass (`front`) clamps its keys (nearestWrittenKey): the pass whose
-  // back faces the whole-block reject may drop (HiddenBlocks.h).
-  const bool clamp = boundaryEdges && front != nullptr;
   const DD dd;
   const std::uint32_t laneMask = (1u << hn::Lanes(dd)) - 1;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
@@ -557,8 +562,10 @@ std::atomic<bool> batchesOn{true};
 }
 
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts, const FrontDepthBlocks* front) {
-  HWY_DYNAMIC_DISPATCH(ClassifyBatch)(batch, grid, skipBackFaces, boundaryEdges, verdicts, front);
+                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces,
+                   const FrontDepthBlocks* front) {
+  HWY_DYNAMIC_DISPATCH(ClassifyBatch)
+  (batch, grid, skipBackFaces, boundaryEdges, verdicts, clampBackFaces, front);
 }
 
 std::vector<SimdTarget> simdTargets() {

@@ -75,7 +75,8 @@ struct BatchVerdicts {
   struct {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
     alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
-    // nearestWrittenKey, with `front` only (the back pass's clamp, Chunk::smallNearestKeys).
+    // nearestWrittenKey, with clampBackFaces (the back faces' clamp,
+    // Chunk::smallNearestKeys): a clockwise lane's nearest vertex key, else +∞.
     alignas(64) float nearestKey[kBatchSize];
   } smallPlane;
   std::uint32_t dropped() const { return culled | zeroArea | coversNoSample; }
@@ -101,11 +102,14 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
 
 // The verdicts for the tiles' viewport and the mesh's back-face handling (`boundaryEdges`:
 // the depth keys' polygon-boundary edges, kAllEdges or none, RasterTriangle.h; a triangle's
-// three edges are its polygon's). With `front` (a two-pass frame's back faces), the kept lanes
-// hiddenBehind its blocks become `hidden` before their keys and records are made, and the keys
-// are clamped (nearestWrittenKey: the fragments' keys, smallPlane.nearestKey for the records).
+// three edges are its polygon's). With `clampBackFaces` (and boundary edges) the clockwise
+// lanes' keys are clamped as kClampedEdges clamps them (nearestWrittenKey: the fragments' keys,
+// smallPlane.nearestKey for the records): every back face a depth-tested frame paints after
+// the front faces (Setup.cpp, triangleEdges). With `front` (a two-pass frame's back faces),
+// the kept lanes hiddenBehind its blocks become `hidden` before their keys and records are
+// made.
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts,
+                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces = false,
                    const FrontDepthBlocks* front = nullptr);
 
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render

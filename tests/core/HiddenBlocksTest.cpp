@@ -3,37 +3,25 @@
 // pokes through the front faces by a few float steps of its key.
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "../support/EveryTargetTest.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
+#include "../support/TwoPassScenes.h"
+#include "Binning.h"
 #include "HiddenBlocks.h"
+#include "PhaseRunner.h"
 #include "Raster.h"
+#include "ThreadPool.h"
 
 namespace facet::testing {
 namespace {
 
-class HiddenBlocks : public EveryTargetTest {
- protected:
-  void TearDown() override {
-    detail::planTwoPassFrames();
-    detail::enableHiddenBlocks(true);
-    detail::countHiddenBlocks(false);
-    EveryTargetTest::TearDown();
-  }
-  static std::vector<SimdTarget> targets() { return detail::simdTargets(); }
-  static void use(const SimdTarget& target) { detail::useSimdTarget(target.bits); }
-  static RenderOptions optionsWith(int threads) {
-    RenderOptions options;
-    options.visibility = Visibility::ZBuffer;
-    options.threads = threads;
-    return options;
-  }
-};
+class HiddenBlocks : public TwoPassTest {};
 
 // A sphere with a cap cut out where the camera sees it at an angle (x above `cut`): back faces show
 // through the hole, the others hide behind the front faces.
@@ -87,20 +75,6 @@ TEST_F(HiddenBlocks, VersionedSpheresRenderAsOnePassOnEveryTargetAndThreadCount)
   }
 }
 
-// A fan of 256 triangles around (0, 0, z), radius 0.3, as one back-face block: wound clockwise
-// seen from +Z (the eye's side), so back faces; `rim` is the ring's z.
-void addBackFan(Mesh& mesh, double apexZ, double rimZ) {
-  const std::int64_t apex = mesh.addPoint({0.0, 0.0, apexZ});
-  const std::int64_t first = static_cast<std::int64_t>(mesh.points.size());
-  constexpr int kSides = 256;
-  for (int i = 0; i < kSides; ++i) {
-    const double angle = 2.0 * 3.14159265358979323846 * i / kSides;
-    mesh.addPoint({0.3 * std::cos(angle), 0.3 * std::sin(angle), rimZ});
-  }
-  for (int i = 0; i < kSides; ++i)
-    mesh.addPolygon({apex, first + (i + 1) % kSides, first + i});
-}
-
 // THE MARGIN TEST (HiddenBlocks.h, steps 3–5): behind a front square at distance 3, one fan far
 // behind it (hidden: dropped) and one flat tent whose apex pokes 1.5e-6 (5e-7 of the distance,
 // about 8 float steps of its key) through the square: its back faces show around the apex, so
@@ -110,19 +84,7 @@ TEST_F(HiddenBlocks, ApexThroughTheFrontFaceIsNeverDropped) {
   Mesh mesh;
   addBackFan(mesh, -3.5, -3.5);               // polygons 0–255: far behind the square
   addBackFan(mesh, -3.0 + 1.5e-6, -3.00002);  // 256–511: the apex through it
-  constexpr int kCells = 16;                  // 512–1023: the square, front faces
-  const std::int64_t corner = static_cast<std::int64_t>(mesh.points.size());
-  for (int y = 0; y <= kCells; ++y) {
-    for (int x = 0; x <= kCells; ++x)
-      mesh.addPoint({-0.6 + 1.2 * x / kCells, -0.6 + 1.2 * y / kCells, -3.0});
-  }
-  for (int y = 0; y < kCells; ++y) {
-    for (int x = 0; x < kCells; ++x) {
-      const std::int64_t p = corner + y * (kCells + 1) + x;
-      mesh.addPolygon({p, p + 1, p + kCells + 2});
-      mesh.addPolygon({p, p + kCells + 2, p + kCells + 1});
-    }
-  }
+  addFrontSquare(mesh, 16, 0.6, -3.0, 0.0);   // 512–1023: the square, front faces
   MeshView view = mesh.view();
   view.version = 1;  // measured: its blocks' boxes
   Camera camera;
@@ -148,6 +110,87 @@ TEST_F(HiddenBlocks, ApexThroughTheFrontFaceIsNeverDropped) {
     EXPECT_EQ(counts.hiddenPolygons, 256u);
     EXPECT_TRUE(after.stats.plan.twoPassFrame);
     EXPECT_EQ(after.stats.plan.polygonsHiddenBehindFront, 256u);
+  }
+}
+
+// A chunk's planes after one routine: one pass (`tileRoutine`) or two (null).
+struct PaintedPlanes {
+  std::vector<float> depth;
+  std::vector<std::int32_t> ids;
+};
+PaintedPlanes paintChunk(const detail::Chunk& chunk, const detail::TileGrid& grid, int width,
+                         int height, detail::TileRoutine tileRoutine) {
+  PaintedPlanes planes{std::vector<float>(static_cast<std::size_t>(width) * height),
+                       std::vector<std::int32_t>(static_cast<std::size_t>(width) * height)};
+  std::vector<std::uint8_t> shown(4);
+  detail::FrontDepthBlocks frontBlocks;
+  const detail::RasterContext context{std::span<const detail::Chunk>(&chunk, 1),
+                                      nullptr,
+                                      planes.depth.data(),
+                                      planes.ids.data(),
+                                      width,
+                                      shown,
+                                      nullptr,
+                                      &frontBlocks};
+  detail::ThreadPool pool(1);
+  const detail::PhaseRunner::ProgressCallback noProgress;
+  detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Raster});
+  std::vector<detail::PaintCounts> counts;
+  if (tileRoutine != nullptr) {
+    detail::paintTiles(runner, grid, context, tileRoutine, counts);
+  } else {
+    detail::paintFrontTiles(runner, grid, context, counts);
+    detail::paintBackTiles(runner, grid, context, counts);
+  }
+  return planes;
+}
+
+// HiddenBlocks.h's step 1, one pass and two alike: a back bin's record is painted clamped to
+// its nearest key whichever routine paints it (one pass, one pass behind the coarse depth,
+// two passes), a front bin's is not. The records' key planes are forced to pass their nearest
+// key (0.9 everywhere against 0.5), which no set-up makes (section 21: the clamp never acted
+// on 20,000 slivers), so that the clamp shows.
+TEST(BackFaceClamp, BackRecordsAreClampedInOnePassAndTwo) {
+  constexpr int kWidth = 100, kHeight = 70;
+  const detail::TileGrid grid(kWidth, kHeight);
+  detail::Chunk chunk;
+  detail::clearBins(chunk, grid);
+  const auto record = [](int x0, int y0, std::int32_t polygon) {
+    detail::SmallTriangle t{};
+    t.firstKey = 0.9;  // a flat plane: keyPerFine = keyPerPixel = 0
+    t.polygon = polygon;
+    t.x0 = static_cast<std::uint16_t>(x0);
+    t.y0 = static_cast<std::uint16_t>(y0);
+    t.coverage = 0b0011'0011;  // 2 × 2 samples
+    return t;
+  };
+  const auto binAt = [&](int x0, int y0, std::int32_t polygon, bool back) {
+    const PixelBounds box{x0, y0, x0 + 1, y0 + 1};
+    const std::size_t tile = detail::tileOf(grid, x0, y0);
+    chunk.smallNearestKeys.push_back(back ? 0.5f : 0.0f);  // a front record's is never read
+    detail::binSmall(chunk, tile, box, record(x0, y0, polygon), back);
+  };
+  binAt(10, 10, 0, false);  // a front face alone
+  binAt(20, 12, 1, true);   // a back face alone
+  binAt(70, 40, 2, false);  // a back face over a farther front face (in another tile)
+  chunk.smallTriangles[chunk.smallTriangles.size() - 1].firstKey = 0.3;
+  binAt(70, 40, 3, true);
+  const std::size_t at[] = {10 * kWidth + 10, 12 * kWidth + 20, 40 * kWidth + 70};
+  const PaintedPlanes onePass =
+      paintChunk(chunk, grid, kWidth, kHeight, detail::chooseTileRoutine(true, false).paint);
+  EXPECT_EQ(onePass.depth[at[0]], 0.9f);  // not clamped
+  EXPECT_EQ(onePass.ids[at[0]], 0);
+  EXPECT_EQ(onePass.depth[at[1]], 0.5f);  // clamped
+  EXPECT_EQ(onePass.ids[at[1]], 1);
+  EXPECT_EQ(onePass.depth[at[2]], 0.5f);  // clamped, still nearer than the front face's 0.3
+  EXPECT_EQ(onePass.ids[at[2]], 3);
+  for (const detail::TileRoutine routine :
+       {detail::chooseTileRoutine(true, true).paint, detail::TileRoutine{nullptr}}) {
+    SCOPED_TRACE(routine == nullptr ? "two passes" : "one pass, coarse depth");
+    const PaintedPlanes other = paintChunk(chunk, grid, kWidth, kHeight, routine);
+    EXPECT_EQ(other.ids, onePass.ids);
+    EXPECT_EQ(0, std::memcmp(other.depth.data(), onePass.depth.data(),
+                             onePass.depth.size() * sizeof(float)));
   }
 }
 

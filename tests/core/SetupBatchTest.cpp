@@ -253,7 +253,9 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
 
 // A two-pass frame's back pass (SetupPass::Back): a batch given the front faces' blocks drops
 // as `hidden` exactly the lanes it would keep that hiddenBehind (RasterTriangle.h, scalar)
-// rejects, on every target, and keeps the others as without the blocks.
+// rejects, on every target, and keeps the others as without the blocks. With clampBackFaces
+// (blocks or none: the back pass or one pass) the kept back faces' keys and records are
+// clamped to their nearest vertex key, the front faces' not.
 TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
   const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
   std::vector<WindowVertex> corners = randomTriangles(20000, 13);
@@ -281,9 +283,12 @@ TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
           batch.v[j][lane] = corners[3 * (first + lane) + j];
         batch.triangle[lane] = lane % 7 != 3;
       }
-      detail::BatchVerdicts without, with;
+      detail::BatchVerdicts without, with, onePass;
       detail::classifyBatch(batch, grid, false, true, without);
-      detail::classifyBatch(batch, grid, false, true, with, &blocks);
+      detail::classifyBatch(batch, grid, false, true, with, true, &blocks);
+      // A one-pass frame's batch (clampBackFaces, no blocks): the same keys and records.
+      detail::classifyBatch(batch, grid, false, true, onePass, true);
+      ASSERT_EQ(onePass.kept(), without.kept());
       ASSERT_EQ(with.kept() | with.hidden, without.kept());
       ASSERT_EQ(with.kept() & with.hidden, 0u);
       for (std::uint32_t rest = without.kept(); rest != 0; rest &= rest - 1) {
@@ -301,16 +306,21 @@ TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
                         << got << ", hiddenBehind " << expected;
         hidden += got, kept += !got;
         if (got) continue;
-        // Kept: clamped to the nearest vertex key (nearestWrittenKey) with the blocks alone.
+        // Kept: a back face (clockwise) clamped to its nearest vertex key (nearestWrittenKey)
+        // with clampBackFaces alone, a front face not (+∞).
         const float nearest =
-            std::max({batch.v[0][lane].depth, batch.v[1][lane].depth, batch.v[2][lane].depth});
+            clockwise
+                ? std::max({batch.v[0][lane].depth, batch.v[1][lane].depth, batch.v[2][lane].depth})
+                : std::numeric_limits<float>::infinity();
         if ((with.small >> lane) & 1u) {
-          ++clampedRecords;
+          clampedRecords += clockwise;
           EXPECT_EQ(with.smallPlane.nearestKey[lane], nearest) << "lane " << lane;
+          EXPECT_EQ(onePass.smallPlane.nearestKey[lane], nearest) << "lane " << lane;
         }
         if ((with.fragment >> lane) & 1u) {
-          ++clampedFragments;
+          clampedFragments += clockwise;
           EXPECT_EQ(with.key[lane], std::min(without.key[lane], nearest)) << "lane " << lane;
+          EXPECT_EQ(onePass.key[lane], with.key[lane]) << "lane " << lane;
         }
       }
     }

@@ -201,12 +201,17 @@ struct RenderStats {
   std::size_t polygonsOutside = 0;     ///< outside the view, or covering no pixel center
   std::size_t polygonsDegenerate = 0;  ///< fewer than 3 points, or zero area
   std::size_t polygonsNonFinite = 0;   ///< using a point with a NaN or infinite coordinate
-  std::size_t trianglesBinned = 0;     ///< triangles handed to the tiles
-  std::size_t trianglesClipped = 0;    ///< triangles that went through the clipper
-  std::size_t trianglesHidden = 0;     ///< not painted: behind the tile (Rule::HiddenGeometry)
-  std::size_t fragmentsWritten = 0;    ///< pixel writes, counting overdraw
-  std::size_t pixelsCovered = 0;       ///< pixels showing a polygon at the end (samples of a
-                                       ///< QualityRenderer's grid when it supersamples)
+  /// Back faces a two-pass frame dropped, in whole blocks hidden behind the front faces, before
+  /// any per-polygon work (RenderPlan::polygonsHiddenBehindFront): neither drawn nor binned,
+  /// outside nor degenerate. Drawn + outside + degenerate + hidden is one pass's drawn +
+  /// outside + degenerate for the same frame.
+  std::size_t polygonsHidden = 0;
+  std::size_t trianglesBinned = 0;   ///< triangles handed to the tiles
+  std::size_t trianglesClipped = 0;  ///< triangles that went through the clipper
+  std::size_t trianglesHidden = 0;   ///< not painted: behind the tile (Rule::HiddenGeometry)
+  std::size_t fragmentsWritten = 0;  ///< pixel writes, counting overdraw
+  std::size_t pixelsCovered = 0;     ///< pixels showing a polygon at the end (samples of a
+                                     ///< QualityRenderer's grid when it supersamples)
   std::size_t closedMeshesSkippingBackFaces = 0;  ///< closed meshes wholly in front of near
   bool aborted = false;                           ///< the progress callback asked to stop
 
