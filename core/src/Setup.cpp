@@ -343,8 +343,13 @@ class PolygonSetup {
           static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
   }
 
+  // A polygon run() defers: in a batch's settle() after the culled lanes deferCulled appended,
+  // which may come after it, so put in its place (at most a batch's lanes from the end): the
+  // back pass finds blocks' ids by binary search and sets them up in polygon order.
   [[gnu::noinline]] void defer(std::size_t polygon) {
-    chunk_.deferredBack.push_back(static_cast<std::uint32_t>(mesh_.firstPolygon + polygon));
+    std::vector<std::uint32_t>& list = chunk_.deferredBack;
+    const auto id = static_cast<std::uint32_t>(mesh_.firstPolygon + polygon);
+    list.insert(std::upper_bound(list.begin(), list.end(), id), id);
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -676,6 +681,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
 // The back pass of a chunk: its deferred polygons, run by run of one mesh.
 void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
   chunk.firstKeyedSmall = chunk.smallTriangles.size();  // the front pass's records have none
+  // setUpBackRun finds a mesh's and a block's ids by binary search.
+  FACET_ASSERT(std::is_sorted(chunk.deferredBack.begin(), chunk.deferredBack.end()));
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
     const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
