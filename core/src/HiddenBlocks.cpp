@@ -95,6 +95,7 @@ std::atomic<bool> blocksOn{!hiddenBlocksSetTo("0")};
 struct DebugCounts {
   std::atomic<std::size_t> blocks{0}, hidden{0}, polygons{0}, hiddenPolygons{0};
   std::atomic<std::size_t> coneCertain{0}, coneCertainHidden{0}, coneCertainHiddenPolygons{0};
+  std::atomic<std::size_t> deferredWhole{0}, deferredWholePolygons{0};
   std::atomic<bool> on{std::getenv("FACET_HIDDEN_BLOCKS_DEBUG") != nullptr};
   bool print = on;
   ~DebugCounts() {
@@ -125,6 +126,7 @@ void countHiddenBlocks(bool on) {
   debugCounts.hiddenPolygons = 0;
   debugCounts.coneCertain = debugCounts.coneCertainHidden = 0;
   debugCounts.coneCertainHiddenPolygons = 0;
+  debugCounts.deferredWhole = debugCounts.deferredWholePolygons = 0;
   debugCounts.on = on;
 }
 
@@ -139,7 +141,15 @@ HiddenBlockCounts hiddenBlockCounts() {
           debugCounts.hiddenPolygons,
           debugCounts.coneCertain,
           debugCounts.coneCertainHidden,
-          debugCounts.coneCertainHiddenPolygons};
+          debugCounts.coneCertainHiddenPolygons,
+          debugCounts.deferredWhole,
+          debugCounts.deferredWholePolygons};
+}
+
+void deferredWholeDebug(std::size_t polygons) {
+  if (!debugCounts.on) return;
+  ++debugCounts.deferredWhole;
+  debugCounts.deferredWholePolygons += polygons;
 }
 
 void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons) {

@@ -109,10 +109,14 @@ bool hiddenBlocksConeOnly();
 struct HiddenBlockCounts {
   std::size_t blocks = 0, hidden = 0, polygons = 0, hiddenPolygons = 0;
   std::size_t coneCertain = 0, coneCertainHidden = 0, coneCertainHiddenPolygons = 0;
+  // The blocks (parts of blocks a chunk holds) the front pass deferred whole, unclassified
+  // (SetupContext::deferCertainBackBlocks), and their polygons.
+  std::size_t deferredWhole = 0, deferredWholePolygons = 0;
 };
 void countHiddenBlocks(bool on);
 bool countingHiddenBlocks();
 HiddenBlockCounts hiddenBlockCounts();
 void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons);
+void deferredWholeDebug(std::size_t polygons);
 
 }  // namespace facet::detail

@@ -12,6 +12,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "Assert.h"
 #include "Resolve.h"
 #include "StreamRows.h"
 #include "facet/Framebuffer.h"
@@ -194,6 +195,9 @@ template <DepthMode kMode, bool kCoarse, bool kBackBins>
     if (index & kSmallTriangleBit) {  // at most 15 samples: as paintTriangleBehindCoarseDepth
       const std::size_t record = index & kBinIndexMask;
       if constexpr (kBackBins) {
+        // Every record of the chunk's back pass (or one pass) has its key (Setup.cpp's setUpRun).
+        FACET_ASSERT(record >= chunk.firstKeyedSmall &&
+                     record - chunk.firstKeyedSmall < chunk.smallNearestKeys.size());
         paintSmallTriangle<kMode>(chunk.smallTriangles[record],
                                   chunk.smallNearestKeys[record - chunk.firstKeyedSmall], planes,
                                   counts);

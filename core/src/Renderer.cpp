@@ -22,6 +22,7 @@
 #include <algorithm>
 
 #include "Assert.h"
+#include "BackFacingBlocks.h"
 #include "Raster.h"
 #include "RendererInputs.h"
 #include "Resolve.h"
@@ -123,6 +124,10 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
       meshes, *transform, vertices.data(), order, grid, polygons.backFacing.data(), plan.depthTest};
   if (twoPassesMayPay(in)) {
     setupContext.pass = detail::SetupPass::Front;
+    const detail::ScopedBackBlockSettings::Settings blocks =
+        detail::ScopedBackBlockSettings::current();  // this thread's (tests)
+    setupContext.deferCertainBackBlocks =
+        detail::frontPassConeSkipEnabled() && blocks.skipping && blocks.margin;
     completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
     return completed && rasterInTwoPasses(in, planes, setupContext, runner, stats);
   }

@@ -1,10 +1,15 @@
 #include "Setup.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <cstdlib>
+#include <numeric>
 #include <optional>
 #include <span>
+#include <string_view>
 
+#include "Assert.h"
 #include "BackFacingBlocks.h"
 #include "Binning.h"
 #include "Clipper.h"
@@ -338,8 +343,13 @@ class PolygonSetup {
           static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
   }
 
+  // A polygon run() defers: in a batch's settle() after the culled lanes deferCulled appended,
+  // which may come after it, so put in its place (at most a batch's lanes from the end): the
+  // back pass finds blocks' ids by binary search and sets them up in polygon order.
   [[gnu::noinline]] void defer(std::size_t polygon) {
-    chunk_.deferredBack.push_back(static_cast<std::uint32_t>(mesh_.firstPolygon + polygon));
+    std::vector<std::uint32_t>& list = chunk_.deferredBack;
+    const auto id = static_cast<std::uint32_t>(mesh_.firstPolygon + polygon);
+    list.insert(std::upper_bound(list.begin(), list.end(), id), id);
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -480,6 +490,13 @@ template <bool kSkipBackFaces, class PointsT, class PolygonsT>
 std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
                      PointsT points, PolygonsT polygons, std::size_t position) {
   PolygonSetup<PointsT, PolygonsT, kSkipBackFaces> setup(context, chunk, mesh, points, polygons);
+  // A record's nearest key is read at chunk.smallNearestKeys[record - firstKeyedSmall] (the
+  // tiles' back bins): right only while every record of the chunk from there on pushed one,
+  // i.e. the chunk holds this mesh's polygons alone (planChunks splits per mesh in z-buffer
+  // order, which the depth test that clamps implies).
+  FACET_ASSERT(!setup.clampsBackFaces() ||
+               (context.order.ids.empty() && chunk.begin >= mesh.firstPolygon &&
+                chunk.end <= mesh.endPolygon()));
   const bool batched = setupBatchesEnabled();
   TriangleBatch batch{};
   BatchVerdicts verdicts;
@@ -517,13 +534,41 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   const auto culledWhole = [&](std::size_t polygon) {
     return mesh.backBlocks && mesh.backBlocks[polygon >> kBackBlockBits];
   };
+  // A two-pass frame's front pass defers every polygon of a block BackFaceTest proves all back
+  // faces without loading or classifying them: each would be a triangle inside the clip volume
+  // with a negative snapped area (BackFacingBlocks.h, steps 1-5), which the front pass defers
+  // (the batch's culled lanes, runTriangle) and counts nowhere, so the deferred ids are the
+  // same, in the same order. Their points are transformed as the mesh's others: only meshes
+  // that skip back faces leave blocks' points out (ViewCulling.h).
+  std::optional<BackFaceTest> certainBack;
+  if (context.deferCertainBackBlocks && setup.defersBackFaces() && context.order.ids.empty() &&
+      mesh.backBlockFacts != nullptr)
+    certainBack.emplace(context.transform);
+  // Defers the block's polygons when it is certain to be all back faces; flushes the batch
+  // first, whose lanes' deferred ids come earlier (the back pass's ids ascend).
+  const auto deferredWhole = [&](std::size_t polygon, std::size_t count) {
+    if (!certainBack ||
+        !certainBack->certainlyCulled(mesh.backBlockFacts[polygon >> kBackBlockBits]))
+      return false;
+    if (lanes > 0) {
+      std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
+      settleBatch();
+    }
+    std::vector<std::uint32_t>& ids = chunk.deferredBack;
+    const auto first = static_cast<std::uint32_t>(mesh.firstPolygon + polygon);
+    const std::size_t at = ids.size();
+    ids.resize(at + count);
+    std::iota(ids.begin() + static_cast<std::ptrdiff_t>(at), ids.end(), first);
+    deferredWholeDebug(count);
+    return true;
+  };
   // `count` polygons from `polygon` on, in one back-face block.
   const auto setUpBlock = [&](std::size_t polygon, std::size_t count) {
     if (!inView(polygon))
       chunk.counts.outside += count;  // outside the view (ViewCulling.h)
     else if (culledWhole(polygon))
       chunk.counts.culled += count;
-    else
+    else if (!deferredWhole(polygon, count))
       setUp(polygon, count);
   };
   if (context.order.ids.empty()) {
@@ -636,6 +681,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
 // The back pass of a chunk: its deferred polygons, run by run of one mesh.
 void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
   chunk.firstKeyedSmall = chunk.smallTriangles.size();  // the front pass's records have none
+  // setUpBackRun finds a mesh's and a block's ids by binary search.
+  FACET_ASSERT(std::is_sorted(chunk.deferredBack.begin(), chunk.deferredBack.end()));
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
     const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
@@ -701,6 +748,21 @@ void planChunks(const SetupContext& context, int threads, SetupBuffers& buffers)
 }
 
 }  // namespace
+
+namespace {
+std::atomic<bool> frontPassConeSkip{[] {
+  const char* value = std::getenv("FACET_FRONT_PASS_CONE");
+  return value == nullptr || std::string_view(value) != "0";
+}()};
+}  // namespace
+
+void enableFrontPassConeSkip(bool on) {
+  frontPassConeSkip = on;
+}
+
+bool frontPassConeSkipEnabled() {
+  return frontPassConeSkip;
+}
 
 const char* setupRoutineName(bool skipBackFaces) {
   return skipBackFaces ? "back faces skipped" : "back faces drawn";

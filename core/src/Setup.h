@@ -35,7 +35,18 @@ struct SetupContext {
   // SetupPass::Back: the blocks of the front faces painted, which a batch's kept back faces
   // are tested against (hiddenBehind, RasterTriangle.h); null: none dropped.
   const FrontDepthBlocks* front = nullptr;
+  // SetupPass::Front: a back-face block that BackFaceTest proves all back faces (the
+  // block's polygons would all be deferred) is deferred whole, none of its polygons loaded or
+  // classified (Setup.cpp). Off when the margin or the skipping is off for tests
+  // (ScopedBackBlockSettings) or frontPassConeSkipEnabled() is false.
+  bool deferCertainBackBlocks = false;
 };
+
+// Whether a two-pass frame's front pass defers the back-face blocks that are certainly all
+// back faces whole (SetupContext::deferCertainBackBlocks): on unless FACET_FRONT_PASS_CONE=0
+// in the environment or enableFrontPassConeSkip(false) (tests, measurements).
+void enableFrontPassConeSkip(bool on);
+bool frontPassConeSkipEnabled();
 
 // The set-up's chunks (its output) and their ranges.
 struct SetupBuffers {

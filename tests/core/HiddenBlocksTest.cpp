@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/SameRender.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "../support/TwoPassScenes.h"
@@ -55,24 +56,57 @@ TEST_F(HiddenBlocks, VersionedSpheresRenderAsOnePassOnEveryTargetAndThreadCount)
       ASSERT_GT(before.stats.pixelsCovered, 10000u);
       detail::enableTwoPassFrames(true);
       detail::enableHiddenBlocks(true);
-      for (const SimdTarget& target : targets()) {
-        SCOPED_TRACE(target.name);
-        use(target);
-        detail::countHiddenBlocks(true);
-        const Rendered after = renderScene(oneMeshScene(view), camera, 640, 480, options);
-        const detail::HiddenBlockCounts counts = detail::hiddenBlockCounts();
-        EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u);
-        EXPECT_EQ(before.stats.fragmentsWritten, after.stats.fragmentsWritten);
-        EXPECT_EQ(before.stats.pixelsCovered, after.stats.pixelsCovered);
-        EXPECT_GT(counts.hidden, counts.blocks / 20) << counts.hidden << " of " << counts.blocks;
-        EXPECT_LT(counts.hidden, counts.blocks);
-        // Most hidden blocks are ones the normal cones prove back-facing: the blocks a proven
-        // reject (HiddenBlocks.h, step 4) would be limited to.
-        EXPECT_GT(counts.coneCertainHidden, counts.hidden / 2)
-            << counts.coneCertainHidden << " of " << counts.hidden;
-      }
+      renderOnEveryTarget(oneMeshScene(view), camera, 640, 480, options,
+                          [&](const Rendered& after, const detail::HiddenBlockCounts& counts) {
+                            EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u);
+                            EXPECT_EQ(before.stats.fragmentsWritten, after.stats.fragmentsWritten);
+                            EXPECT_EQ(before.stats.pixelsCovered, after.stats.pixelsCovered);
+                            EXPECT_GT(counts.hidden, counts.blocks / 20)
+                                << counts.hidden << " of " << counts.blocks;
+                            EXPECT_LT(counts.hidden, counts.blocks);
+                            // Most hidden blocks are ones the normal cones prove back-facing: the
+                            // blocks a proven reject (HiddenBlocks.h, step 4) would be limited to.
+                            EXPECT_GT(counts.coneCertainHidden, counts.hidden / 2)
+                                << counts.coneCertainHidden << " of " << counts.hidden;
+                          });
     }
   }
+}
+
+// A two-pass frame's front pass defers the blocks the normal cones prove all back faces whole,
+// without classifying them (SetupContext::deferCertainBackBlocks): what the frame paints and
+// counts must be what it was with every polygon classified, the reject on (blocks dropped) and
+// off (every deferred block set up), on every target and thread count.
+TEST_F(HiddenBlocks, BlocksDeferredWholeCountAndPaintAsClassifiedOnes) {
+  const Mesh sphere = sphereWithHole(400, 0.8);
+  MeshView view = sphere.view();
+  view.version = 1;  // measured: its blocks' boxes and cones
+  const Camera camera = fitCamera(sphere, glm::dvec3(-0.6, -0.2, -1.0));
+  detail::enableTwoPassFrames(true);
+  for (bool reject : {true, false}) {
+    detail::enableHiddenBlocks(reject);
+    for (int threads : {1, 2, 8}) {
+      SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
+                   " threads");
+      const RenderOptions options = optionsWith(threads);
+      detail::enableFrontPassConeSkip(false);
+      detail::countHiddenBlocks(true);
+      const Rendered before = renderScene(oneMeshScene(view), camera, 640, 480, options);
+      ASSERT_EQ(detail::hiddenBlockCounts().deferredWhole, 0u);
+      detail::enableFrontPassConeSkip(true);
+      renderOnEveryTarget(oneMeshScene(view), camera, 640, 480, options,
+                          [&](const Rendered& after, const detail::HiddenBlockCounts& counts) {
+                            ASSERT_TRUE(after.stats.plan.twoPassFrame);
+                            EXPECT_GT(counts.deferredWhole, 10u);  // the skip acted
+                            expectSameRender(before, after);
+                            EXPECT_EQ(before.stats.plan.polygonsHiddenBehindFront,
+                                      after.stats.plan.polygonsHiddenBehindFront);
+                            EXPECT_EQ(before.stats.plan.depthComplexity,
+                                      after.stats.plan.depthComplexity);
+                          });
+    }
+  }
+  detail::enableFrontPassConeSkip(true);
 }
 
 // THE MARGIN TEST (HiddenBlocks.h, steps 3–5): behind a front square at distance 3, one fan far

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/EveryTargetTest.h"
+#include "../support/SameRender.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "Binning.h"
@@ -339,19 +340,6 @@ struct SceneCase {
   int width, height;
   RenderOptions options;
 };
-
-// The same bytes and set-up counts.
-void expectSameRender(const Rendered& before, const Rendered& after) {
-  EXPECT_EQ(differingPixels(before.framebuffer, after.framebuffer), 0u) << "pixels differ";
-  const RenderStats &s = before.stats, &t = after.stats;
-  EXPECT_EQ(s.polygonsDrawn, t.polygonsDrawn);
-  EXPECT_EQ(s.polygonsCulled, t.polygonsCulled);
-  EXPECT_EQ(s.polygonsOutside, t.polygonsOutside);
-  EXPECT_EQ(s.polygonsDegenerate, t.polygonsDegenerate);
-  EXPECT_EQ(s.trianglesBinned, t.trianglesBinned);
-  EXPECT_EQ(s.trianglesClipped, t.trianglesClipped);
-  EXPECT_EQ(s.fragmentsWritten, t.fragmentsWritten);  // a dropped back face writes none
-}
 
 // Renders every case without batches, then with them on every target, and compares bytes and
 // the set-up's counts.

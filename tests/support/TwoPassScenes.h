@@ -11,6 +11,7 @@
 #include "EveryTargetTest.h"
 #include "HiddenBlocks.h"
 #include "Raster.h"
+#include "Setup.h"
 #include "TestRender.h"
 #include "facet/Mesh.h"
 
@@ -22,10 +23,24 @@ class TwoPassTest : public EveryTargetTest {
     detail::planTwoPassFrames();
     detail::enableHiddenBlocks(true);
     detail::countHiddenBlocks(false);
+    detail::enableFrontPassConeSkip(true);
     EveryTargetTest::TearDown();
   }
   static std::vector<SimdTarget> targets() { return detail::simdTargets(); }
   static void use(const SimdTarget& target) { detail::useSimdTarget(target.bits); }
+  // Renders the scene on every SIMD target, the reject's counts cleared before each render:
+  // check(rendered, counts).
+  template <class Check>
+  static void renderOnEveryTarget(const Scene& scene, const Camera& camera, int width, int height,
+                                  const RenderOptions& options, const Check& check) {
+    for (const SimdTarget& target : targets()) {
+      SCOPED_TRACE(target.name);
+      use(target);
+      detail::countHiddenBlocks(true);
+      const Rendered rendered = renderScene(scene, camera, width, height, options);
+      check(rendered, detail::hiddenBlockCounts());
+    }
+  }
   static RenderOptions optionsWith(int threads) {
     RenderOptions options;
     options.visibility = Visibility::ZBuffer;
