@@ -569,7 +569,7 @@ TEST(QualityRenderer, FusedEstimateIsTheSeparatePassesAtEveryBandEdge) {
   const std::pair<int, int> sizes[] = {{37, 1},  {37, 2},  {37, 7},     {37, 9},
                                        {37, 31}, {37, 33}, {37, 41},    {37, 63},
                                        {37, 65}, {37, 70}, {1031, 1030}};
-  for (const auto [width, height] : sizes) {
+  for (const auto& [width, height] : sizes) {
     Renderer renderer;
     QualityRenderer quality(renderer);
     Framebuffer framebuffer(width, height);
