@@ -119,7 +119,7 @@ struct SimdTarget {
   const char* name;   // "EMU128" (portable C++), "SSE4", "AVX2", "AVX3", ...
 };
 // The targets compiled in and supported by this CPU, best first; the last is the portable
-// fallback.
+// fallback. Undoes useSimdTarget's restriction (the best target runs again).
 std::vector<SimdTarget> simdTargets();
 // Restricts the batch to `target`'s instruction set (0: the best this CPU has again).
 void useSimdTarget(std::int64_t target);
