@@ -21,6 +21,7 @@
 
 #include "EstimateHook.h"
 #include "Resolve.h"
+#include "StoreRow-inl.h"
 #include "facet/IdPlane.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -81,29 +82,6 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
   hn::StoreU(
       hn::IfThenElse(hn::RebindMask(df, background), hn::Set(df, kBackgroundWindowDepth), narrowed),
       df, depth);
-}
-
-// out[0, count) a vector at a time: group(i) gives the lanes from i, one(i) a single value (a
-// count that is no multiple of a vector, and with kStream the values before the first aligned
-// vector). kStream: by streaming stores, so that the plane is not read before it is written
-// (the write-allocate read: 8 MB of colors a 1080p frame, 16 MB of 64-bit ids).
-template <bool kStream, class D, class T, class One, class Group>
-HWY_INLINE void storeRow(D d, T* out, std::size_t count, const One& one, const Group& group) {
-  const std::size_t lanes = hn::Lanes(d);
-  std::size_t i = 0;
-  if constexpr (kStream) {
-    for (; i < count && reinterpret_cast<std::uintptr_t>(out + i) % (lanes * sizeof(T)) != 0; ++i)
-      one(i);
-  }
-  for (; i + lanes <= count; i += lanes) {
-    if constexpr (kStream) {
-      hn::Stream(group(i), d, out + i);
-    } else {
-      hn::StoreU(group(i), d, out + i);
-    }
-  }
-  for (; i < count; ++i)
-    one(i);
 }
 
 // One row's colors, `count` pixels from `ids` to `color` (kStream: storeRow's).

@@ -12,6 +12,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "StoreRow-inl.h"
 #include "StreamRows.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -20,22 +21,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 using DU = hn::ScalableTag<std::uint32_t>;
 
-// out[0, count): one(i) for the words before the first vector-aligned one and after the
-// last whole vector, group(i) streamed for the vectors between.
-template <class One, class Group>
-HWY_INLINE void streamRow(std::uint32_t* out, std::size_t count, const One& one,
-                          const Group& group) {
-  const DU d;
-  const std::size_t lanes = hn::Lanes(d);
-  std::size_t i = 0;
-  for (; i < count && reinterpret_cast<std::uintptr_t>(out + i) % (lanes * sizeof *out) != 0; ++i)
-    one(i);
-  for (; i + lanes <= count; i += lanes)
-    hn::Stream(group(i), d, out + i);
-  for (; i < count; ++i)
-    one(i);
-}
-
 void StreamRows(const std::uint32_t* from, std::size_t fromStride, std::uint32_t* to,
                 std::size_t toStride, int rows, int columns) {
   const DU d;
@@ -43,8 +28,9 @@ void StreamRows(const std::uint32_t* from, std::size_t fromStride, std::uint32_t
   for (int y = 0; y < rows; ++y) {
     const std::uint32_t* source = from + static_cast<std::size_t>(y) * fromStride;
     std::uint32_t* target = to + static_cast<std::size_t>(y) * toStride;
-    streamRow(
-        target, count, [&](std::size_t i) { std::memcpy(target + i, source + i, sizeof *target); },
+    storeRow<true>(
+        d, target, count,
+        [&](std::size_t i) { std::memcpy(target + i, source + i, sizeof *target); },
         [&](std::size_t i) { return hn::LoadU(d, source + i); });
   }
   hwy::FlushStream();  // weakly ordered: done before the caller hands the rows on
@@ -57,8 +43,8 @@ void StreamValueRows(std::uint32_t value, std::uint32_t* to, std::size_t toStrid
   const auto count = static_cast<std::size_t>(columns);
   for (int y = 0; y < rows; ++y) {
     std::uint32_t* target = to + static_cast<std::size_t>(y) * toStride;
-    streamRow(
-        target, count, [&](std::size_t i) { std::memcpy(target + i, &value, sizeof value); },
+    storeRow<true>(
+        d, target, count, [&](std::size_t i) { std::memcpy(target + i, &value, sizeof value); },
         [&](std::size_t) { return values; });
   }
   hwy::FlushStream();
