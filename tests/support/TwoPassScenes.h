@@ -33,9 +33,6 @@ class TwoPassTest : public EveryTargetTest {
   template <class Check>
   static void renderOnEveryTarget(const Scene& scene, const Camera& camera, int width, int height,
                                   const RenderOptions& options, const Check& check) {
-    // Every target the CPU has: after use(), Highway lists only the target pinned, so a second
-    // call in one test would run the last target alone without this.
-    detail::useSimdTarget(0);
     for (const detail::SimdTarget& target : targets()) {
       SCOPED_TRACE(target.name);
       use(target);
