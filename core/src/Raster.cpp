@@ -97,10 +97,11 @@ void writeBackground(const RasterContext& context, const PixelBounds& tile) {
                   static_cast<std::size_t>(context.width), rows, columns);
 }
 
-// Whether no chunk binned anything to tile t, front or back.
-bool nothingBinned(const RasterContext& context, std::size_t t) {
+// Whether no chunk binned anything to tile t: front or back, or (`backToo` false: a two-pass
+// frame's front pass, before the back faces are binned) front only.
+bool nothingBinned(const RasterContext& context, std::size_t t, bool backToo = true) {
   for (const Chunk& chunk : context.chunks) {
-    if (!chunk.bins[t].empty() || !chunk.backBins[t].empty()) return false;
+    if (!chunk.bins[t].empty() || (backToo && !chunk.backBins[t].empty())) return false;
   }
   return true;
 }
@@ -273,18 +274,9 @@ PaintCounts paintTile(const RasterContext& context, std::size_t t, const PixelBo
   return counts;
 }
 
-// Whether no chunk binned a front face to tile t (a two-pass frame's front pass: the back
-// faces are binned after it).
-bool noFrontBinned(const RasterContext& context, std::size_t t) {
-  for (const Chunk& chunk : context.chunks) {
-    if (!chunk.bins[t].empty()) return false;
-  }
-  return true;
-}
-
 // A two-pass frame's front pass over one tile (paintFrontTiles).
 PaintCounts paintFrontOfTile(const RasterContext& context, std::size_t t, const PixelBounds& tile) {
-  if (noFrontBinned(context, t)) {
+  if (nothingBinned(context, t, /*backToo=*/false)) {
     // Nothing written (counts.written == 0): the back pass starts from cleared planes and
     // writes them all, so only the blocks are kept, every one the cleared key.
     float cleared[FrontDepthBlocks::kPerTile];
