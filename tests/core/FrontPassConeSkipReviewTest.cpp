@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/SameRender.h"
+#include "../support/Sanitizers.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "../support/TwoPassScenes.h"
@@ -66,7 +67,7 @@ TEST_F(FrontPassConeSkipReview, ManyMeshesClippedInsideAndParallelRenderAsOnePas
   cases.push_back({"one-sided lighting", cases[0].camera, false});
 
   for (const ConeSkipView& c : cases) {
-    for (int threads : {1, 3}) {
+    for (int threads : threadCountsToRun({1, 3})) {
       SCOPED_TRACE(c.name + ", " + std::to_string(threads) + " threads");
       RenderOptions options = optionsWith(threads);
       options.twoSidedLighting = c.twoSided;

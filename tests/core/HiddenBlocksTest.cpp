@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/SameRender.h"
+#include "../support/Sanitizers.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "../support/TwoPassScenes.h"
@@ -47,7 +48,7 @@ TEST_F(HiddenBlocks, VersionedSpheresRenderAsOnePassOnEveryTargetAndThreadCount)
   view.version = 1;  // measured: its blocks' boxes
   for (const glm::dvec3 direction : {glm::dvec3(0.0, 0.0, -1.0), glm::dvec3(-0.6, -0.2, -1.0)}) {
     const Camera camera = fitCamera(sphere, direction);
-    for (int threads : {1, 2, 8}) {
+    for (int threads : threadCountsToRun({1, 2, 8})) {
       SCOPED_TRACE(std::to_string(threads) + " threads");
       const RenderOptions options = optionsWith(threads);
       detail::enableTwoPassFrames(false);
@@ -85,7 +86,7 @@ TEST_F(HiddenBlocks, BlocksDeferredWholeCountAndPaintAsClassifiedOnes) {
   detail::enableTwoPassFrames(true);
   for (bool reject : {true, false}) {
     detail::enableHiddenBlocks(reject);
-    for (int threads : {1, 2, 8}) {
+    for (int threads : threadCountsToRun({1, 2, 8})) {
       SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
                    " threads");
       const RenderOptions options = optionsWith(threads);

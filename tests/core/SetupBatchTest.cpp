@@ -14,6 +14,7 @@
 
 #include "../support/EveryTargetTest.h"
 #include "../support/SameRender.h"
+#include "../support/Sanitizers.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "Binning.h"
@@ -453,7 +454,7 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
   LightSet lights;
   lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
   std::vector<SceneCase> cases;
-  for (int threads : {1, 3}) {
+  for (int threads : threadCountsToRun({1, 3})) {
     cases.push_back({"every face, " + std::to_string(threads) + " threads",
                      oneMeshScene(sphere.view(), {}, lights), camera, 1920, 1080,
                      optionsWith(Visibility::ZBuffer, threads)});
