@@ -1,5 +1,8 @@
 #include "Plan.h"
 
+#include <algorithm>
+#include <cstdint>
+
 #include "LightCulling.h"
 #include "MeshCache.h"
 #include "TileGrid.h"
@@ -156,13 +159,12 @@ void carryGeometryReport(RenderPlan& plan, const RenderPlan& previous) {
 }
 
 bool chooseTwoPassFrame(RenderPlan& plan, std::span<const FrameMesh> meshes,
-                        std::size_t previousCoveredPixels) {
+                        std::size_t coveredPixels) {
   std::size_t everyFace = 0;
   for (const FrameMesh& mesh : meshes)
     everyFace += mesh.skipBackFaces ? 0 : mesh.endPolygon() - mesh.firstPolygon;
-  const std::size_t covered = previousCoveredPixels > 0
-                                  ? previousCoveredPixels
-                                  : static_cast<std::size_t>(plan.width) * plan.height;
+  const std::size_t covered =
+      coveredPixels > 0 ? coveredPixels : static_cast<std::size_t>(plan.width) * plan.height;
   plan.everyFacePolygonsPerCoveredPixel =
       static_cast<double>(everyFace) / static_cast<double>(std::max<std::size_t>(covered, 1));
   switch (twoPassFrames()) {
@@ -178,6 +180,63 @@ bool chooseTwoPassFrame(RenderPlan& plan, std::span<const FrameMesh> meshes,
       break;
   }
   return plan.twoPassFrame;
+}
+
+namespace {
+
+// Marks the cells the window box of `box`'s corners touches; false when the box is not wholly
+// in front of the near plane (its image is then unbounded).
+bool markCellsOf(const Box& box, const FrameTransform& transform, const PixelBounds& viewport,
+                 int cellsX, std::vector<std::uint8_t>& cells) {
+  if (box.empty()) return true;
+  if (!transform.boxInFrontOfNear(box)) return false;
+  std::int64_t x0 = INT64_MAX, y0 = INT64_MAX, x1 = INT64_MIN, y1 = INT64_MIN;
+  for (int i = 0; i < 8; ++i) {
+    const WindowVertex v = transform.toWindow(transform.toClip(box.corner(i)));
+    x0 = std::min<std::int64_t>(x0, v.x), x1 = std::max<std::int64_t>(x1, v.x);
+    y0 = std::min<std::int64_t>(y0, v.y), y1 = std::max<std::int64_t>(y1, v.y);
+  }
+  const auto pixel = [](std::int64_t fixed) { return fixed >> kSubpixelBits; };  // floor
+  const std::int64_t px0 = std::max<std::int64_t>(pixel(x0), viewport.x0);
+  const std::int64_t px1 = std::min<std::int64_t>(pixel(x1), viewport.x1);
+  const std::int64_t py0 = std::max<std::int64_t>(pixel(y0), viewport.y0);
+  const std::int64_t py1 = std::min<std::int64_t>(pixel(y1), viewport.y1);
+  if (px0 > px1 || py0 > py1) return true;  // outside the image
+  // A ring of a UV sphere's blocks spans the sphere's width: rows of cells, not cell by cell.
+  const std::int64_t cx0 = px0 >> kCoveredCellBits, cx1 = px1 >> kCoveredCellBits;
+  for (std::int64_t cy = py0 >> kCoveredCellBits; cy <= py1 >> kCoveredCellBits; ++cy) {
+    const auto row = cells.begin() + cy * cellsX;
+    std::fill(row + cx0, row + cx1 + 1, std::uint8_t{1});
+  }
+  return true;
+}
+
+}  // namespace
+
+std::size_t estimateCoveredPixels(std::span<const FrameMesh> meshes, const MeshCache& cache,
+                                  const FrameTransform& transform, const TileGrid& grid,
+                                  std::vector<std::uint8_t>& cells) {
+  const PixelBounds viewport = grid.viewport();
+  constexpr int kCell = 1 << kCoveredCellBits;
+  const int cellsX = (viewport.x1 + kCell) >> kCoveredCellBits;
+  const int cellsY = (viewport.y1 + kCell) >> kCoveredCellBits;
+  cells.assign(static_cast<std::size_t>(cellsX) * cellsY, 0);
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const MeshFacts& facts = cache[m];
+    if (!facts.measured || facts.blocks.empty()) {
+      if (!facts.bounded || !markCellsOf(facts.bounds, transform, viewport, cellsX, cells))
+        return 0;
+      continue;
+    }
+    const std::uint8_t* visible = meshes[m].visibleBlocks;
+    for (std::size_t b = 0; b < facts.blocks.size(); ++b) {
+      if (visible && !visible[b]) continue;
+      if (!markCellsOf(facts.blocks[b], transform, viewport, cellsX, cells)) return 0;
+    }
+  }
+  const std::size_t pixels = static_cast<std::size_t>(viewport.x1 + 1) * (viewport.y1 + 1);
+  const auto marked = static_cast<std::size_t>(std::count(cells.begin(), cells.end(), 1));
+  return std::min(pixels, marked << (2 * kCoveredCellBits));
 }
 
 }  // namespace facet::detail

@@ -10,8 +10,11 @@
 #include <vector>
 
 #include "Box.h"
+#include "FrameTransform.h"
+#include "MeshCache.h"
 #include "Raster.h"
 #include "Shade.h"
+#include "TileGrid.h"
 #include "facet/Camera.h"
 #include "facet/Lighting.h"
 #include "facet/RenderPlan.h"
@@ -81,9 +84,22 @@ TileRoutine chooseRasterRoutine(RenderPlan& plan, std::span<const Chunk> chunks,
 // planes' round trip outweighs the little set-up saved (bench/core-frame-issue11.md, 18b, 21).
 inline constexpr double kTwoPassMinPolygonsPerCoveredPixel = 1.0;
 // Decides plan.twoPassFrame (and reports its figures in `plan`) for a frame that may take two
-// passes; TwoPassFrames::On or Off (Raster.h) overrides the rule.
+// passes; TwoPassFrames::On or Off (Raster.h) overrides the rule. `coveredPixels`: the
+// previous frame's, or estimateCoveredPixels' before a first frame (0: the image's pixels).
 bool chooseTwoPassFrame(RenderPlan& plan, std::span<const FrameMesh> meshes,
-                        std::size_t previousCoveredPixels);
+                        std::size_t coveredPixels);
+
+// Cells of 8 × 8 pixels (kCoveredCellBits) for estimateCoveredPixels.
+inline constexpr int kCoveredCellBits = 3;
+// Before a first frame (no covered pixels to go by): the pixels of the 8 × 8 cells that the
+// window boxes of the meshes' blocks in view (MeshCache.h; a mesh's bounds when it has no
+// blocks) touch, at most the image's. Never below the pixels the frame covers (each lies in
+// a triangle, inside its block's box's image), above them by the cells along the silhouette
+// and the boxes' corners: 1.52x for a sphere 300 pixels across. 0 (unknown) when a box is not
+// wholly in front of the near plane or a mesh is not bounded. `cells`: scratch.
+std::size_t estimateCoveredPixels(std::span<const FrameMesh> meshes, const MeshCache& cache,
+                                  const FrameTransform& transform, const TileGrid& grid,
+                                  std::vector<std::uint8_t>& cells);
 
 // Records that `rule` left out `skipped` items (fired when some).
 void reportRule(RenderPlan& plan, Rule rule, std::size_t skipped);

@@ -214,10 +214,11 @@ template <DepthMode kMode, bool kCoarse, bool kBackBins>
     const EdgeMask boundary = chunk.boundaryEdges[index];
     if constexpr (kCoarse) {
       paintTriangleBehindCoarseDepth(a, b, c, boundary, tri.polygon, tile, planes, counts, coarse);
-    } else if (kMode == DepthMode::Test && boundary != 0) {
+    } else if (kMode == DepthMode::Test && kBackBins && boundary != 0) {
       // Only a mesh whose back faces are drawn passes boundary edges (Setup.cpp): the
-      // hidden triangles losesEverywhere rejects are its back faces; a closed mesh's
-      // triangles would only pay for the test.
+      // hidden triangles losesEverywhere rejects are its back faces, all in the back bins; a
+      // closed mesh's triangles and the front bins' front faces (painted first, over little
+      // but background) would only pay for the test.
       if (front != nullptr) {
         paintBackTriangle(a, b, c, boundary, tri.polygon, tile, planes, counts, *front);
       } else {

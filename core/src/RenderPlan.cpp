@@ -153,7 +153,8 @@ bool RenderRules::allows(Rule rule) const {
   out << "  every face: "
       << (twoPassFrame ? "two passes (back faces after the front faces)" : "one pass") << "; "
       << everyFacePolygonsPerCoveredPixel
-      << " polygons per covered pixel of the previous frame (two passes from 1)";
+      << " polygons per covered pixel of the previous frame (before a first frame: estimated from "
+         "the blocks' projected boxes; two passes from 1)";
   if (twoPassFrame)
     out << "; " << polygonsHiddenBehindFront << " back faces in " << blocksHiddenBehindFront
         << " blocks hidden behind the front faces, not set up";

@@ -137,14 +137,21 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 }
 
 // Every face drawn with the depth test, in z-buffer order, where the coarse depth is not
-// forced: the back faces may be set up after the front faces are painted (Raster.h).
+// forced: the back faces may be set up after the front faces are painted (Raster.h). The rule
+// goes by the previous frame's covered pixels, or before a first frame (or after one that
+// covered none) by the blocks' projected boxes.
 bool Renderer::Workspace::twoPassesMayPay(const detail::FrameInputs& in) {
   plan.twoPassFrame = false;
   plan.everyFacePolygonsPerCoveredPixel = 0.0;
   plan.blocksHiddenBehindFront = plan.polygonsHiddenBehindFront = 0;
   if (!plan.depthTest || plan.sortByDepth || in.rules.hiddenGeometry == HierarchicalZ::On)
     return false;
-  return detail::chooseTwoPassFrame(plan, meshes, history.stats().pixelsCovered);
+  std::size_t covered = history.stats().pixelsCovered;
+  const bool everyFace = std::any_of(meshes.begin(), meshes.end(),
+                                     [](const detail::FrameMesh& m) { return !m.skipBackFaces; });
+  if (covered == 0 && everyFace)
+    covered = detail::estimateCoveredPixels(meshes, cache, *transform, grid, coveredCells);
+  return detail::chooseTwoPassFrame(plan, meshes, covered);
 }
 
 detail::RasterContext Renderer::Workspace::rasterContext(const detail::FrameInputs& in,

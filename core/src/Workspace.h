@@ -43,7 +43,8 @@ struct Renderer::Workspace {
   detail::SetupBuffers setup;
   detail::PolygonBuffers polygons;
   std::vector<detail::PaintCounts> tiles;
-  detail::FrontDepthBlocks frontBlocks;  // a two-pass frame's (Raster.h)
+  detail::FrontDepthBlocks frontBlocks;    // a two-pass frame's (Raster.h)
+  std::vector<std::uint8_t> coveredCells;  // scratch: detail::estimateCoveredPixels
   detail::ShadeBuffers shadeBuffers;
   HugePageVector<float> ownDepth;  // the depth plane of a caller without one
   detail::FrameHistory history;

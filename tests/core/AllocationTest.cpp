@@ -62,9 +62,10 @@ TEST(Allocation, SecondRenderOfTheSameSceneAllocatesNothing) {
     Framebuffer fb(320, 240);
     Camera camera = fitCamera(bunny);
     camera.nearClip *= 1.2;  // clip too
-    // The first render knows no covered pixels: the plan may take two passes from the second
-    // on (chooseTwoPassFrame, Plan.h), which then allocates their buffers once; the render
-    // after a render of the same plan allocates nothing.
+    // The first render knows no covered pixels (and the near plane cuts the bunny's boxes, so
+    // no estimate: the image's pixels): the plan may take two passes from the second on
+    // (chooseTwoPassFrame, Plan.h), which then allocates their buffers once; the render after
+    // a render of the same plan allocates nothing.
     renderer.render(scene, camera, fb);
     const bool settled = renderer.render(scene, camera, fb).plan.twoPassFrame;
     EXPECT_EQ(settled, visibility == Visibility::ZBuffer);  // 70k polygons, ~20k pixels covered

@@ -2,6 +2,7 @@
 // block): the same bytes as one pass, blocks hidden, and never a block whose nearest point
 // pokes through the front faces by a few float steps of its key.
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -108,6 +109,56 @@ TEST_F(HiddenBlocks, BlocksDeferredWholeCountAndPaintAsClassifiedOnes) {
     }
   }
   detail::enableFrontPassConeSkip(true);
+}
+
+// The sphere's points turned by `degrees` about the y axis, in place (a versioned mesh edited
+// between renders).
+void turnPoints(Mesh& mesh, double degrees) {
+  const double a = degrees * 3.14159265358979323846 / 180.0;
+  for (glm::dvec3& p : mesh.points)
+    p = {std::cos(a) * p.x + std::sin(a) * p.z, p.y, -std::sin(a) * p.x + std::cos(a) * p.z};
+}
+
+// A versioned mesh edited in place and given a new version, re-rendered by the Renderer that
+// drew the old version in two-pass frames (its kept boxes, cones and plan): the frame must be
+// a fresh Renderer's, the cone skip and the reject acting on the new version's blocks (stale
+// cones would defer front faces whole; stale boxes would drop blocks that now show).
+TEST_F(HiddenBlocks, EditedVersionRendersAsAFreshRenderer) {
+  Mesh sphere = sphereWithHole(400, 0.8);
+  const std::vector<glm::dvec3> firstPoints = sphere.points;
+  MeshView view = sphere.view();
+  const Camera camera = fitCamera(sphere, glm::dvec3(-0.6, -0.2, -1.0));
+  detail::enableTwoPassFrames(true);
+  for (int threads : {1, 2, 8}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    for (const detail::SimdTarget& target : targets()) {
+      SCOPED_TRACE(target.name);
+      use(target);
+      std::copy(firstPoints.begin(), firstPoints.end(), sphere.points.begin());  // in place
+      view.version = 1;
+      Renderer renderer;
+      renderer.setThreadCount(threads);
+      renderer.setVisibility(Visibility::ZBuffer);
+      renderer.setTwoSidedLighting(true);
+      Framebuffer framebuffer(640, 480);
+      for (int frame = 0; frame < 2; ++frame)
+        ASSERT_TRUE(renderer.render(oneMeshScene(view), camera, framebuffer).plan.twoPassFrame);
+      // The hole turned to the far side: blocks that were front faces are now back faces.
+      turnPoints(sphere, 150.0);
+      view.version = 2;
+      detail::countHiddenBlocks(true);
+      Rendered edited{Framebuffer(640, 480), {}};
+      edited.stats = renderer.render(oneMeshScene(view), camera, edited.framebuffer);
+      const detail::HiddenBlockCounts counts = detail::hiddenBlockCounts();
+      ASSERT_TRUE(edited.stats.plan.twoPassFrame);
+      EXPECT_GT(counts.deferredWhole, 10u);  // the cone skip acted on the new version
+      EXPECT_GT(counts.hidden, 10u);         // and the reject
+      const Rendered fresh =
+          renderScene(oneMeshScene(view), camera, 640, 480, optionsWith(threads));
+      expectSameRender(fresh, edited);
+      EXPECT_GT(fresh.stats.pixelsCovered, 10000u);
+    }
+  }
 }
 
 // THE MARGIN TEST (HiddenBlocks.h, steps 3–5): behind a front square at distance 3, one fan far
@@ -227,6 +278,51 @@ TEST(BackFaceClamp, BackRecordsAreClampedInOnePassAndTwo) {
     EXPECT_EQ(0, std::memcmp(other.depth.data(), onePass.depth.data(),
                              onePass.depth.size() * sizeof(float)));
   }
+}
+
+// The plan's choice of two-pass frames (Plan.h, chooseTwoPassFrame): before a first frame the
+// covered pixels are estimated from the blocks' projected boxes (estimateCoveredPixels), after
+// it they are the previous frame's.
+class TwoPassPlan : public TwoPassTest {};
+
+// The pixels the plan's ratio was computed from.
+double coveredPixelsOf(const RenderStats& stats) {
+  return static_cast<double>(stats.plan.polygons) / stats.plan.everyFacePolygonsPerCoveredPixel;
+}
+
+TEST_F(TwoPassPlan, FirstFrameEstimatesCoveredPixelsFromTheBlocks) {
+  detail::planTwoPassFrames();
+  const Mesh sphere = makeUvSphere(300, 302);  // 180k triangles
+  const Camera camera = fitCamera(sphere, glm::dvec3(-0.6, -0.2, -1.0));
+  constexpr int kWidth = 640, kHeight = 480;
+  MeshView view = sphere.view();
+  view.version = 1;  // measured: its blocks' boxes
+  Renderer renderer;
+  renderer.setVisibility(Visibility::ZBuffer);
+  Framebuffer framebuffer(kWidth, kHeight);
+  const RenderStats first = renderer.render(oneMeshScene(view), camera, framebuffer);
+  const double covered = static_cast<double>(first.pixelsCovered);
+  ASSERT_GT(covered, 20000.0);
+  // The cells the boxes touch hold every covered pixel, and not many more (1.52x here: the
+  // cells along the silhouette of a sphere ~300 pixels across).
+  EXPECT_GE(coveredPixelsOf(first), covered);
+  EXPECT_LT(coveredPixelsOf(first), 1.6 * covered);
+  // More than a polygon a covered pixel, fewer than a pixel of the image: two passes from the
+  // first frame, where the image's pixels said one pass.
+  ASSERT_GT(static_cast<double>(first.plan.polygons), 1.6 * covered);
+  ASSERT_LT(first.plan.polygons, std::size_t{kWidth} * kHeight);
+  EXPECT_TRUE(first.plan.twoPassFrame);
+  // The next frame (the camera turned a little: not the same frame again) goes by the first's
+  // covered pixels.
+  const Camera turned = fitCamera(sphere, glm::dvec3(-0.62, -0.2, -1.0));
+  const RenderStats second = renderer.render(oneMeshScene(view), turned, framebuffer);
+  EXPECT_DOUBLE_EQ(coveredPixelsOf(second), covered);
+  EXPECT_TRUE(second.plan.twoPassFrame);
+  // An unversioned mesh has no blocks' boxes (nor bounds, without positional lights): the
+  // image's pixels, one pass.
+  const Rendered unversioned = renderScene(oneMeshScene(sphere.view()), camera, kWidth, kHeight);
+  EXPECT_DOUBLE_EQ(coveredPixelsOf(unversioned.stats), double(kWidth) * kHeight);
+  EXPECT_FALSE(unversioned.stats.plan.twoPassFrame);
 }
 
 }  // namespace

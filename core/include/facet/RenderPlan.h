@@ -152,11 +152,12 @@ struct RenderPlan {
 
   /// Every face drawn (meshes not skipping back faces) in two passes: the front faces painted
   /// first, then the back faces set up against them, whole blocks of back faces that the front
-  /// faces hide everywhere dropped before set-up (their polygons counted drawn, never
-  /// painted: none could change a pixel). Chosen when those meshes have at least one polygon
-  /// per pixel the previous frame covered (`everyFacePolygonsPerCoveredPixel`; the image's
-  /// pixels before a first frame), where the set-up and painting saved outweigh the depth
-  /// and id planes' second pass.
+  /// faces hide everywhere dropped before set-up (their polygons counted hidden,
+  /// RenderStats::polygonsHidden, never painted: none could change a pixel). Chosen when
+  /// those meshes have at least one polygon per pixel the previous frame covered
+  /// (`everyFacePolygonsPerCoveredPixel`; before a first frame, the pixels of the 8 × 8 cells
+  /// the meshes' blocks' projected boxes touch, or the image's when a mesh has no bounds),
+  /// where the set-up and painting saved outweigh the depth and id planes' second pass.
   bool twoPassFrame = false;
   double everyFacePolygonsPerCoveredPixel = 0.0;
   std::size_t blocksHiddenBehindFront = 0, polygonsHiddenBehindFront = 0;
