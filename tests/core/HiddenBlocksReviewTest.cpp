@@ -12,6 +12,7 @@
 #include "../support/TwoPassScenes.h"
 #include "HiddenBlocks.h"
 #include "Raster.h"
+#include "SetupBatch.h"
 
 namespace facet::testing {
 namespace {
@@ -110,7 +111,7 @@ TEST_F(HiddenBlocksReview, CoplanarBackFacesRenderAsOnePassOnEveryTarget) {
       const Rendered before = renderScene(oneMeshScene(view), camera, 400, 300, options);
       ASSERT_GT(before.stats.pixelsCovered, 40000u);
       detail::enableTwoPassFrames(true);
-      for (const SimdTarget& target : detail::simdTargets()) {
+      for (const detail::SimdTarget& target : detail::simdTargets()) {
         SCOPED_TRACE(target.name);
         detail::useSimdTarget(target.bits);
         const Rendered after = renderScene(oneMeshScene(view), camera, 400, 300, options);
