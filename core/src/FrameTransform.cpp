@@ -4,9 +4,11 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
+#include "Vector.h"
 #include "facet/Conventions.h"
 
 namespace facet::detail {
@@ -171,7 +173,12 @@ glm::dvec3 FrameTransform::toViewer(const glm::dvec3& world) const {
   if (parallel_) return back_;
   const glm::dvec3 offset = eye_ - world;
   const double length = glm::length(offset);
-  return length > 0.0 && std::isfinite(length) ? offset / length : back_;
+  if (length > 0.0 && std::isfinite(length)) return offset / length;
+  // A distance beyond ~1e154 (or below ~1e-154) is finite although its square is not (or
+  // is 0): the direction from the offset scaled first. Only the eye at the point (or an
+  // offset beyond double's range) has none: the view's back direction.
+  if (const std::optional<UnitAndLength> robust = normalizeRobust(offset)) return robust->unit;
+  return back_;
 }
 
 bool FrameTransform::facesViewer(const glm::dvec3& normal, const glm::dvec3& point) const {

@@ -67,8 +67,10 @@ class PhaseRunner {
   // Runs task(i) for i in [0, tasks) on every thread. False when the callback asked to stop
   // (then no further task starts). The phase's start is always reported: workers may take
   // every task, leaving the caller none to report after.
+  // `first`: tasks that all finish before any of `task`'s starts (FirstStage), in the
+  // same job: no wake-up of the workers of their own.
   template <class Task>
-  bool run(Phase phase, std::size_t tasks, Task&& task) {
+  bool run(Phase phase, std::size_t tasks, Task&& task, FirstStage first = {}) {
     const double begin = fractionBefore(phase);
     const double end = begin + share(phase);
     const std::size_t count = tasks == 0 ? 1 : tasks;
@@ -79,16 +81,16 @@ class PhaseRunner {
     };
     if (!report(0)) return false;
     FunctionRef<void(std::size_t)> taskRef(task);
-    return pool_.run(tasks, taskRef, FunctionRef<bool(std::size_t)>(report));
+    return pool_.run(tasks, taskRef, FunctionRef<bool(std::size_t)>(report), first);
   }
 
   // Runs task(i) for i in [0, tasks) on every thread as part of the phase that follows
   // (no progress of its own, so the fractions never step back; not cancellable: the work
   // is short).
   template <class Task>
-  void runUnreported(std::size_t tasks, Task&& task) {
+  void runUnreported(std::size_t tasks, Task&& task, FirstStage first = {}) {
     FunctionRef<void(std::size_t)> taskRef(task);
-    pool_.run(tasks, taskRef);
+    pool_.run(tasks, taskRef, {}, first);
   }
 
   // Seconds since the previous lap (or since the runner was made), for the phase timings.

@@ -38,12 +38,21 @@ struct ShadeBatch {
   alignas(64) float color[3][kShadeBatchSize] = {};
   std::size_t count = 0;
 
-  // `gathered.position` is the sum of `cornerCount` corners.
+  // Every lane's color, for samples added without theirs (polygons of one color: the store
+  // per sample was a tenth of the gathering's instructions outside the lanes).
+  void setEveryColor(const Color& surface) {
+    for (int c = 0; c < 3; ++c)
+      std::fill(std::begin(color[c]), std::end(color[c]), surface[c]);
+  }
+
+  // `gathered.position` is the sum of `cornerCount` corners. kColor false: its color is the
+  // one setEveryColor set.
+  template <bool kColor = true>
   void add(const SurfaceSample& gathered, double cornerCount) {
     for (int c = 0; c < 3; ++c) {
       cornerSum[c][count] = gathered.position[c];
       normal[c][count] = gathered.normal[c];
-      color[c][count] = gathered.color[c];
+      if constexpr (kColor) color[c][count] = gathered.color[c];
     }
     corners[count] = cornerCount;
     ++count;

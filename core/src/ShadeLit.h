@@ -89,6 +89,8 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   std::size_t ids[kShadeBatchSize];
   std::size_t shaded = 0;
   ShadeBoundCollector bounds(context.estimate, mesh.source, mesh.firstPolygon, kCenters);
+  constexpr bool kOneColor = kColors == ColorSource::Material;
+  if constexpr (kOneColor) batch.setEveryColor(mesh.source->material.color);
   const auto flush = [&] {
     shadeBatch(context.shader, mesh.material, batch, colors,
                bounds.active() ? bounds.centers() : nullptr);
@@ -104,7 +106,7 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
     const GatheredSample gathered = gatherSample<kCenters, kColors>(
         context, mesh, points, polygons, polygon, context.backFacing[id]);
     if (bounds.active()) bounds.note(batch.count, polygon);
-    batch.add(gathered.sample, gathered.corners);
+    batch.add<!kOneColor>(gathered.sample, gathered.corners);
     if (batch.full()) flush();
   });
   flush();

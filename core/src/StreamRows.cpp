@@ -14,6 +14,7 @@
 
 #include "StoreRow-inl.h"
 #include "StreamRows.h"
+#include "TileGrid.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace facet::detail::HWY_NAMESPACE {
@@ -36,10 +37,33 @@ void StreamRows(const std::uint32_t* from, std::size_t fromStride, std::uint32_t
   hwy::FlushStream();  // weakly ordered: done before the caller hands the rows on
 }
 
+// Whether every row of `columns` words from `to`, `toStride` apart, starts at a vector's
+// alignment and holds whole vectors.
+bool wholeAlignedVectors(DU d, const std::uint32_t* to, std::size_t toStride, int columns) {
+  const std::size_t lanes = hn::Lanes(d);
+  return reinterpret_cast<std::uintptr_t>(to) % (lanes * sizeof *to) == 0 &&
+         toStride % lanes == 0 && static_cast<std::size_t>(columns) % lanes == 0;
+}
+
 void StreamValueRows(std::uint32_t value, std::uint32_t* to, std::size_t toStride, int rows,
                      int columns) {
   const DU d;
   const hn::Vec<DU> values = hn::Set(d, value);
+  // A whole tile's rows at aligned addresses (every empty tile of an image whose width is a
+  // multiple of a vector's words): the count a constant, unrolled, and no alignment test a
+  // row. storeRow's general loop cost 57 instructions a row of 64 words on AVX2 (3.0 M a
+  // frame for the 416 empty tiles of the 500k closed sphere).
+  constexpr int kTileColumns = TileGrid::kTileSize;
+  if (columns == kTileColumns && wholeAlignedVectors(d, to, toStride, columns)) {
+    for (int y = 0; y < rows; ++y) {
+      std::uint32_t* target = to + static_cast<std::size_t>(y) * toStride;
+      HWY_UNROLL(16)
+      for (std::size_t i = 0; i < kTileColumns; i += hn::Lanes(d))
+        hn::Stream(values, d, target + i);
+    }
+    hwy::FlushStream();
+    return;
+  }
   const auto count = static_cast<std::size_t>(columns);
   for (int y = 0; y < rows; ++y) {
     std::uint32_t* target = to + static_cast<std::size_t>(y) * toStride;

@@ -37,11 +37,33 @@ bool ThreadPool::succeeds(FunctionRef<void()> work) {
   }
 }
 
+// The first stage's task i; false if it threw (the job is cancelled).
+bool ThreadPool::runFirstStageTask(std::size_t i) {
+  auto runTask = [&] { first_.task(i); };
+  if (!succeeds(runTask)) return false;
+  firstDone_.fetch_add(1, std::memory_order_release);
+  return true;
+}
+
+// Waits until every task of the first stage has finished (all were taken: a thread asks only
+// after taking a later index), yielding the core to them; false if the job was cancelled.
+bool ThreadPool::awaitFirstStage() {
+  while (firstDone_.load(std::memory_order_acquire) < first_.count) {
+    if (cancelled_.load(std::memory_order_relaxed)) return false;
+    std::this_thread::yield();
+  }
+  return true;
+}
+
 void ThreadPool::runTasks() {
   while (!cancelled_.load(std::memory_order_relaxed)) {
     const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
-    if (i >= count_) return;
-    auto runTask = [&] { task_(i); };
+    if (i < first_.count) {
+      if (!runFirstStageTask(i)) return;
+      continue;
+    }
+    if (i - first_.count >= count_ || !awaitFirstStage()) return;
+    auto runTask = [&] { task_(i - first_.count); };
     if (!succeeds(runTask)) return;
     done_.fetch_add(1, std::memory_order_relaxed);
   }
@@ -67,12 +89,14 @@ void ThreadPool::workerLoop() {
 }
 
 bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
-                     FunctionRef<bool(std::size_t)> afterCallerTask) {
-  if (count == 0) return true;
+                     FunctionRef<bool(std::size_t)> afterCallerTask, FirstStage first) {
+  if (count == 0 && first.count == 0) return true;
   {
     std::lock_guard lock(mutex_);
     count_ = count;
     task_ = task;
+    first_ = first;
+    firstDone_.store(0);
     next_.store(0);
     done_.store(0);
     cancelled_.store(false);
@@ -82,12 +106,16 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
   }
   // One task is the caller's: no worker to wake (a wake-up costs a system call, and a worker
   // that another program's threads keep waiting would hold up the return).
-  if (count > 1) wake_.notify_all();
+  if (first.count + count > 1) wake_.notify_all();
 
   while (!cancelled_.load(std::memory_order_relaxed)) {
     const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
-    if (i >= count_) break;
-    auto runTask = [&] { task(i); };
+    if (i < first.count) {
+      if (!runFirstStageTask(i)) break;
+      continue;
+    }
+    if (i - first.count >= count || !awaitFirstStage()) break;
+    auto runTask = [&] { task(i - first.count); };
     if (!succeeds(runTask)) break;
     const std::size_t finished = done_.fetch_add(1, std::memory_order_relaxed) + 1;
     bool goOn = true;

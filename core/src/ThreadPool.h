@@ -16,6 +16,13 @@
 
 namespace facet::detail {
 
+// Work a job's tasks need done first (ThreadPool::run), without a wake-up of the workers of its
+// own: a thread that finds only the later tasks left waits for the first stage's running ones.
+struct FirstStage {
+  std::size_t count = 0;
+  FunctionRef<void(std::size_t)> task;
+};
+
 class ThreadPool {
  public:
   /// `threads` counts the calling thread too: ThreadPool(1) starts no worker.
@@ -35,13 +42,18 @@ class ThreadPool {
   /// (or an afterCallerTask that throws) the same way, and run() rethrows its exception once every
   /// thread has left the job (a worker's would otherwise end the program, and the caller's would
   /// leave workers running a task whose captures are gone). Allocates nothing unless a task throws.
+  ///
+  /// `first`: tasks that all finish before any of `task`'s starts, on whichever thread, in
+  /// the same job (FirstStage). afterCallerTask counts only `task`'s.
   bool run(std::size_t count, FunctionRef<void(std::size_t)> task,
-           FunctionRef<bool(std::size_t)> afterCallerTask = {});
+           FunctionRef<bool(std::size_t)> afterCallerTask = {}, FirstStage first = {});
 
  private:
   void workerLoop();
   void runTasks();
   bool succeeds(FunctionRef<void()> work);
+  bool runFirstStageTask(std::size_t i);
+  bool awaitFirstStage();
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -56,6 +68,8 @@ class ThreadPool {
   // The current job; written by run() before the generation is published under mutex_.
   std::size_t count_ = 0;
   FunctionRef<void(std::size_t)> task_;
+  FirstStage first_;                       // task indices [0, first_.count) are its
+  std::atomic<std::size_t> firstDone_{0};  // its tasks finished (release: their writes seen)
   std::atomic<std::size_t> next_{0};
   std::atomic<std::size_t> done_{0};
   std::atomic<bool> cancelled_{false};
