@@ -349,9 +349,10 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
 {
   vtkFieldData* fieldData = output->GetFieldData();
   fieldData->Initialize();
-  AddNamedComponents<vtkDoubleArray>(
+  FieldArrays& fields = this->Fields;
+  fields.RenderSeconds.AddTo(
     fieldData, "FacetRenderSeconds", { { "Total", vtkFacetSecondsSince(this->StartTime) } });
-  AddNamedComponents<vtkDoubleArray>(fieldData,
+  fields.PhaseSeconds.AddTo(fieldData,
     "FacetPhaseSeconds",
     { { "Conversion", this->ConversionSeconds },
       { "Validate", stats.validateSeconds },
@@ -361,7 +362,7 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "Shade", stats.shadeSeconds },
       { "Output", this->OutputSeconds } });
   const auto count = [](std::size_t n) { return static_cast<vtkIdType>(n); };
-  AddNamedComponents<vtkIdTypeArray>(fieldData,
+  fields.Counts.AddTo(fieldData,
     "FacetCounts",
     { { "Polygons", count(stats.plan.polygons) },
       { "PolygonsDrawn", count(stats.polygonsDrawn) },
@@ -375,52 +376,37 @@ void vtkFacetImageRenderer::AddFieldData(vtkImageData* output,
       { "TrianglesClipped", count(stats.trianglesClipped) },
       { "FragmentsWritten", count(stats.fragmentsWritten) },
       { "PixelsCovered", count(stats.pixelsCovered) } });
-  AddNamedComponents<vtkIdTypeArray>(
-    fieldData, "FacetMeshConverted", { { "Converted", conversions } });
+  fields.MeshConverted.AddTo(fieldData, "FacetMeshConverted", { { "Converted", conversions } });
   this->Plan = stats.describe();
-  vtkNew<vtkStringArray> plan;
-  plan->SetName("FacetRenderPlan");
-  plan->InsertNextValue(this->Plan);
-  fieldData->AddArray(plan);
-  AddPlanNumbers(fieldData, stats.plan);
+  fields.Plan.AddTo(fieldData, "FacetRenderPlan", this->Plan);
+  this->AddPlanNumbers(fieldData, stats.plan);
 }
 
 //------------------------------------------------------------------------------
 void vtkFacetImageRenderer::AddPlanNumbers(vtkFieldData* fieldData, const facet::RenderPlan& plan)
 {
-  AddNamedComponents<vtkIntArray>(
-    fieldData, "FacetRenderPath", { { "Path", static_cast<int>(plan.path) } });
+  FieldArrays& fields = this->Fields;
+  fields.Path.AddTo(fieldData, "FacetRenderPath", { { "Path", static_cast<int>(plan.path) } });
   // One component per rule, named as facet::Rule names it.
   static_assert(facet::kRuleCount == 6, "name the new rule here");
-  const char* names[facet::kRuleCount] = { "LightsThatReachNothing",
+  static constexpr const char* names[facet::kRuleCount] = { "LightsThatReachNothing",
     "GeometryOutsideView",
     "HiddenGeometry",
     "AmbientOnly",
     "OneColor",
     "ClosedSurfaces" };
-  const auto perRule = [&](auto array, const char* name, auto value) {
-    array->SetName(name);
-    array->SetNumberOfComponents(facet::kRuleCount);
-    array->SetNumberOfTuples(1);
-    for (int r = 0; r < facet::kRuleCount; ++r)
-    {
-      array->SetComponentName(r, names[r]);
-      array->SetTypedComponent(0, r, value(plan.rules[r]));
-    }
-    fieldData->AddArray(array);
-  };
-  using Outcome = facet::RuleOutcome;
-  perRule(vtkNew<vtkIntArray>(), "FacetRenderPlanRulesAllowed", [](const Outcome& o) {
-    return static_cast<int>(o.allowed);
+  const auto rule = [&](std::size_t r) -> const facet::RuleOutcome& { return plan.rules[r]; };
+  fields.RulesAllowed.AddTo(fieldData, "FacetRenderPlanRulesAllowed", names, [&](std::size_t r) {
+    return static_cast<int>(rule(r).allowed);
   });
-  perRule(vtkNew<vtkIntArray>(), "FacetRenderPlanRulesFired", [](const Outcome& o) {
-    return static_cast<int>(o.fired);
+  fields.RulesFired.AddTo(fieldData, "FacetRenderPlanRulesFired", names, [&](std::size_t r) {
+    return static_cast<int>(rule(r).fired);
   });
-  perRule(vtkNew<vtkIdTypeArray>(), "FacetRenderPlanRulesSkipped", [](const Outcome& o) {
-    return static_cast<vtkIdType>(o.skipped);
+  fields.RulesSkipped.AddTo(fieldData, "FacetRenderPlanRulesSkipped", names, [&](std::size_t r) {
+    return static_cast<vtkIdType>(rule(r).skipped);
   });
   const facet::RenderPlan::LightCulling& lights = plan.lightCulling;
-  AddNamedComponents<vtkDoubleArray>(fieldData,
+  fields.LightCulling.AddTo(fieldData,
     "FacetRenderPlanLightCulling",
     { { "Lights", static_cast<double>(lights.lights) },
       { "Dark", static_cast<double>(lights.dark) },

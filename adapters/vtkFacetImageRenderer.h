@@ -22,7 +22,9 @@
  * `FacetRenderPlanRulesAllowed`, `FacetRenderPlanRulesFired` (0 or 1) and
  * `FacetRenderPlanRulesSkipped` (the work each left out: lights, polygons, triangles, shades
  * or back faces, RenderPlan.h), one named component per rule, and `FacetRenderPlanLightCulling`
- * (Lights, Dark, OutsideCone, BelowTolerance, Tolerance, ErrorBound, ErrorBound8Bit).
+ * (Lights, Dark, OutsideCone, BelowTolerance, Tolerance, ErrorBound, ErrorBound8Bit). Those
+ * arrays too are the last execution's, refilled in place, when nobody else holds them
+ * (vtkFacetFieldArray).
  *
  * Incremental rendering (facet/Renderer.h): the renderer's depth and polygon-id planes are
  * the same and untouched from one execution to the next, so an execution whose meshes carry
@@ -37,9 +39,10 @@
 #ifndef vtkFacetImageRenderer_h
 #define vtkFacetImageRenderer_h
 
+#include "vtkDoubleArray.h" // the members below: complete for the implicit destructor
 #include "vtkFacetBackgroundSpans.h"
-#include "vtkFieldData.h"
-#include "vtkIdTypeArray.h" // the members below: complete for the implicit destructor
+#include "vtkFacetFieldArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
@@ -53,7 +56,6 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
-#include <initializer_list>
 #include <string>
 #include <utility>
 
@@ -149,25 +151,6 @@ public:
     int conversions,
     vtkFacetMessages& messages);
 
-  /// Adds a one-tuple array of named components (`FacetCounts` and the like) to field data.
-  template<class ArrayType>
-  static void AddNamedComponents(vtkFieldData* fieldData,
-    const char* name,
-    std::initializer_list<std::pair<const char*, typename ArrayType::ValueType>> values)
-  {
-    vtkNew<ArrayType> array;
-    array->SetName(name);
-    array->SetNumberOfComponents(static_cast<int>(values.size()));
-    array->SetNumberOfTuples(1);
-    int component = 0;
-    for (const auto& [componentName, value] : values)
-    {
-      array->SetComponentName(component, componentName);
-      array->SetTypedComponent(0, component++, value);
-    }
-    fieldData->AddArray(array);
-  }
-
   /// Runs work(begin, end) over the pixels on the renderer's threads.
   void ForEachPixelBlock(const std::function<void(vtkIdType begin, vtkIdType end)>& work);
 
@@ -197,7 +180,7 @@ private:
   using Clock = std::chrono::steady_clock;
   bool Allocate(const Settings& settings, vtkImageData* output, vtkFacetMessages& messages);
   void AddFieldData(vtkImageData* output, const facet::RenderStats& stats, int conversions);
-  static void AddPlanNumbers(vtkFieldData* fieldData, const facet::RenderPlan& plan);
+  void AddPlanNumbers(vtkFieldData* fieldData, const facet::RenderPlan& plan);
 
   facet::Renderer Renderer;
   facet::HugePageVector<std::int32_t> PolygonIds; // the renderer's id plane, before mapping
@@ -222,6 +205,14 @@ private:
   double ConversionSeconds = 0.0;
   double OutputSeconds = 0.0;
   std::string Plan;
+  // The field data, refilled in place while nobody else holds it (vtkFacetFieldArray).
+  struct FieldArrays
+  {
+    vtkFacetFieldArray<vtkDoubleArray> RenderSeconds, PhaseSeconds, LightCulling;
+    vtkFacetFieldArray<vtkIdTypeArray> Counts, MeshConverted, RulesSkipped;
+    vtkFacetFieldArray<vtkIntArray> Path, RulesAllowed, RulesFired;
+    vtkFacetFieldString Plan;
+  } Fields;
 };
 
 #endif

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 namespace {
 constexpr vtkIdType MaxFacetIds = std::numeric_limits<std::int32_t>::max();
@@ -303,8 +304,13 @@ void vtkFacetPolyDataConverter::CellIdsOf(const std::int32_t* polygonIds,
 {
   if (this->StripOf.empty())
   {
-    // Polygons only: an offset, in the core's SIMD lanes (the same bytes as CellIdOf).
-    static_assert(sizeof(vtkIdType) == sizeof(std::int64_t), "CellId is 64-bit");
+    // Polygons only: an offset, in the core's SIMD lanes (the same bytes as CellIdOf). Only
+    // the address is cast: vtkIdType is long long, std::int64_t long, and widenPolygonIds
+    // stores by SIMD stores and memcpy alone, never through a long lvalue (facet/IdPlane.h),
+    // so the plane read back as vtkIdType aliases nothing the compiler may assume apart.
+    static_assert(sizeof(vtkIdType) == sizeof(std::int64_t) && std::is_signed_v<vtkIdType> &&
+        alignof(vtkIdType) == alignof(std::int64_t),
+      "CellId is a signed 64-bit integer");
     facet::widenPolygonIds(polygonIds + begin,
       reinterpret_cast<std::int64_t*>(cellIds + begin),
       static_cast<std::size_t>(end - begin),

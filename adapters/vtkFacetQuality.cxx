@@ -173,14 +173,14 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
 {
   if (!this->Shading.empty())
   {
-    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
+    this->ShadingMeshesField.AddTo(output->GetFieldData(),
       "FacetShadingMeshes",
       { { "Built", static_cast<double>(this->Built) },
         { "Kept", static_cast<double>(this->Shading.size() - this->Built) } });
   }
   if (this->Current.EstimateError || this->Current.ErrorEstimateArray)
   {
-    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
+    this->EstimateField.AddTo(output->GetFieldData(),
       "FacetErrorEstimate",
       { { "PredictedRMSE", this->Stats.predictedRmse },
         { "PredictedMax", this->Stats.predictedMaxError },
@@ -225,7 +225,7 @@ void vtkFacetQuality::AddOutputs(const facet::Scene& scene,
         width,
         height);
     const facet::ImageError error = facet::compareImages(reference.image, image);
-    vtkFacetImageRenderer::AddNamedComponents<vtkDoubleArray>(output->GetFieldData(),
+    this->ErrorField.AddTo(output->GetFieldData(),
       "FacetError",
       { { "RMSE", error.rmse },
         { "Max", error.maxError },

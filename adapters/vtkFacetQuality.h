@@ -25,6 +25,8 @@
 #ifndef vtkFacetQuality_h
 #define vtkFacetQuality_h
 
+#include "vtkDoubleArray.h"
+#include "vtkFacetFieldArray.h"
 #include "vtkType.h"
 
 #include "facet/QualityRenderer.h"
@@ -115,6 +117,9 @@ private:
   std::size_t Built = 0;                           // by the last render
   facet::QualityStats Stats;
   double RenderSeconds = 0.0;
+  // FacetShadingMeshes, FacetErrorEstimate and FacetError, refilled in place while nobody else
+  // holds them (vtkFacetFieldArray).
+  vtkFacetFieldArray<vtkDoubleArray> ShadingMeshesField, EstimateField, ErrorField;
 };
 
 #endif

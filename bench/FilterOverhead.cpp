@@ -17,7 +17,7 @@
 //
 //   build/bin/facet_filter_overhead THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT]
 //                                   [--no-estimate] [--turn=DEGREES] [--per-frame]
-//                                   [--bench-lit-as-filter]
+//                                   [--bench-lit-as-filter] [--no-cell-ids]
 //   build/bin/facet_filter_overhead 500 0 2 20      # 500k triangles, every face
 //   build/bin/facet_filter_overhead 1000 1 1 20     # 2M triangles, closed, one thread
 //   build/bin/facet_filter_overhead 500 1 2 10 3840 2160   # at 4K
@@ -29,7 +29,9 @@
 // the camera turns before each frame (default 0.5; bench-peers' Update() turns 360 / frames,
 // facet_bench's BM_Sphere 1 from the fitted view). --per-frame: each frame's times.
 // --bench-lit-as-filter: the bench mesh lit as the filter lights (VTK's attenuation 1, 0, 0),
-// so that "core / bench mesh" is the two meshes' order alone.
+// so that "core / bench mesh" is the two meshes' order alone. --no-cell-ids: the filter's
+// OutputCellIds off (RGBA and Depth, as the core side writes), so that "Update/core" is the
+// filter less its 64-bit CellId plane.
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -242,7 +244,7 @@ double medianRatio(const std::vector<Sample>& a, const std::vector<Sample>& b,
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool estimate = true, perFrame = false, benchLitAsFilter = false;
+  bool estimate = true, perFrame = false, benchLitAsFilter = false, cellIds = true;
   double turnDegrees = 0.5;
   std::vector<char*> positional{argv[0]};
   for (int i = 1; i < argc; ++i) {
@@ -253,6 +255,8 @@ int main(int argc, char** argv) {
       perFrame = true;
     else if (arg == "--bench-lit-as-filter")
       benchLitAsFilter = true;
+    else if (arg == "--no-cell-ids")
+      cellIds = false;
     else if (arg.substr(0, 7) == "--turn=")
       turnDegrees = std::atof(argv[i] + 7);
     else
@@ -263,7 +267,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: %s THETA CLOSED [THREADS] [FRAMES] [WIDTH HEIGHT] [--no-estimate] "
-                 "[--turn=DEGREES] [--per-frame] [--bench-lit-as-filter]\n",
+                 "[--turn=DEGREES] [--per-frame] [--bench-lit-as-filter] [--no-cell-ids]\n",
                  argv[0]);
     return 2;
   }
@@ -300,6 +304,7 @@ int main(int argc, char** argv) {
   filter->SetNumberOfThreads(threads);
   filter->SetDetectClosedSurfaces(closed);
   filter->SetEstimateError(estimate);
+  filter->SetOutputCellIds(cellIds);
 
   // The same arrays, straight into the core: a versioned mesh, as the filter's.
   facet::MeshView mesh;
@@ -355,7 +360,8 @@ int main(int argc, char** argv) {
       "Update/core wall %.3f, CPU %.3f; first Update() %.3f s%s\n",
       2 * theta * theta, width, height, closed ? "closed" : "every face", threads, frames,
       1e3 * u.wall, 1e3 * u.cpu, u.faults, 1e3 * c.wall, 1e3 * c.cpu, c.faults, u.wall / c.wall,
-      u.cpu / c.cpu, firstUpdate.wall, estimate ? "" : "; estimate off");
+      u.cpu / c.cpu, firstUpdate.wall,
+      (std::string(estimate ? "" : "; estimate off") + (cellIds ? "" : "; no CellId")).c_str());
   std::printf(
       "  turn %.1f degrees per frame; bench mesh (BM_Sphere's) %.1f ms (CPU %.1f ms); "
       "median of the per-frame ratios, wall / CPU: Update/core %.3f / %.3f, "

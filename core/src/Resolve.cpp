@@ -186,7 +186,12 @@ HWY_INLINE void widenIds(const std::int32_t* ids, std::int64_t* out, std::size_t
   const DWI di;
   const hn::Vec<DW> shift = hn::Set(dw, first);
   storeRow<kStream>(
-      dw, out, count, [&](std::size_t i) { out[i] = ids[i] < 0 ? -1 : first + ids[i]; },
+      dw, out, count,
+      [&](std::size_t i) {
+        // By memcpy, as the vectors store: never as an int64_t lvalue (IdPlane.h says why).
+        const std::int64_t id = ids[i] < 0 ? -1 : first + ids[i];
+        std::memcpy(out + i, &id, sizeof id);
+      },
       [&](std::size_t i) {
         // Bitwise, from the 32-bit sign: -1 lanes where negative, else 0 (Highway 1.0's
         // 64-bit IfNegativeThenElse took INT32_MIN's widened lane for not negative on SSSE3).

@@ -19,6 +19,7 @@
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
+#include "vtkWeakPointer.h"
 
 #include <gtest/gtest.h>
 
@@ -377,6 +378,87 @@ TEST_F(Incremental, OutputArraysNobodyHoldsAreReused)
   EXPECT_EQ(third[1], first[1]);
   EXPECT_EQ(third[2], first[2]);
   EXPECT_TRUE(std::memcmp(heldRgba->GetVoidPointer(0), heldBytes.data(), heldBytes.size()) == 0);
+}
+
+// The field data arrays too are refilled in place when nobody else holds them (the executive
+// empties the output's field data before every execution; the filter keeps its own
+// references), with new values, a later MTime and their component names; an array somebody
+// holds keeps the values it had, and the execution adds a new one.
+TEST_F(Incremental, FieldArraysNobodyHoldsAreRefilledAndHeldOnesKept)
+{
+  Rig kept(this->Input);
+  kept.Filter->FitCameraToInputOff();
+  kept.Filter->EstimateErrorOn(); // FacetErrorEstimate, vtkFacetQuality's
+  const char* names[] = { "FacetRenderSeconds",
+    "FacetPhaseSeconds",
+    "FacetCounts",
+    "FacetMeshConverted",
+    "FacetRenderPlan",
+    "FacetRenderPath",
+    "FacetRenderPlanRulesAllowed",
+    "FacetRenderPlanRulesFired",
+    "FacetRenderPlanRulesSkipped",
+    "FacetRenderPlanLightCulling",
+    "FacetErrorEstimate" };
+  // Weak: an array the executive released is gone, not mistaken for a new one at its address.
+  using Arrays = std::vector<vtkWeakPointer<vtkAbstractArray>>;
+  const auto arrays = [&](vtkImageData* image) {
+    Arrays found;
+    for (const char* name : names)
+    {
+      found.push_back(image->GetFieldData()->GetAbstractArray(name));
+      EXPECT_NE(found.back(), nullptr) << name;
+    }
+    return found;
+  };
+  Settings view;
+  vtkImageData* image = kept.Render(view);
+  const Arrays first = arrays(image);
+  const double firstCovered = FieldValue(image, "FacetCounts", "PixelsCovered");
+  const vtkMTimeType firstTime = first[2]->GetMTime();
+  EXPECT_EQ(FieldValue(image, "FacetMeshConverted", "Converted"), 1.0);
+
+  view.Distance = 1.5; // nearer: more pixels covered
+  image = kept.Render(view);
+  EXPECT_EQ(arrays(image), first) << "every field array refilled in place";
+  Rig fresh(this->Input);
+  fresh.Filter->FitCameraToInputOff();
+  fresh.Filter->EstimateErrorOn();
+  vtkImageData* expected = fresh.Render(view);
+  for (const char* component : { "Polygons", "PolygonsDrawn", "PixelsCovered" })
+  {
+    EXPECT_EQ(
+      FieldValue(image, "FacetCounts", component), FieldValue(expected, "FacetCounts", component))
+      << component;
+  }
+  EXPECT_GT(FieldValue(image, "FacetCounts", "PixelsCovered"), firstCovered);
+  EXPECT_EQ(FieldValue(image, "FacetMeshConverted", "Converted"), 0.0);
+  EXPECT_EQ(FieldValue(image, "FacetErrorEstimate", "PredictedRMSE"),
+    FieldValue(expected, "FacetErrorEstimate", "PredictedRMSE"));
+  ASSERT_NE(first[2], nullptr);
+  EXPECT_GT(first[2]->GetMTime(), firstTime) << "refilled arrays are Modified()";
+  EXPECT_EQ(vtkStringArray::SafeDownCast(first[4])->GetValue(0), kept.Filter->GetRenderPlan());
+
+  // Held (as a ShallowCopy of the output holds them): kept as they are.
+  vtkNew<vtkImageData> held;
+  held->ShallowCopy(image);
+  const double heldCovered = FieldValue(held, "FacetCounts", "PixelsCovered");
+  const std::string heldPlan = kept.Filter->GetRenderPlan();
+  view.Distance = 6.0;
+  image = kept.Render(view);
+  const Arrays third = arrays(image);
+  for (std::size_t i = 0; i < third.size(); ++i)
+  {
+    EXPECT_NE(third[i], first[i]) << names[i] << ": a held array is not written again";
+  }
+  EXPECT_EQ(FieldValue(held, "FacetCounts", "PixelsCovered"), heldCovered);
+  EXPECT_LT(FieldValue(image, "FacetCounts", "PixelsCovered"), heldCovered);
+  EXPECT_EQ(vtkStringArray::SafeDownCast(held->GetFieldData()->GetAbstractArray("FacetRenderPlan"))
+              ->GetValue(0),
+    heldPlan);
+  auto* counts = vtkDataArray::SafeDownCast(third[2]);
+  ASSERT_NE(counts, nullptr);
+  EXPECT_STREQ(counts->GetComponentName(11), "PixelsCovered") << "a new array is named again";
 }
 
 // A kept CellId plane is written only where this frame's or the last frame's ids are not

@@ -19,7 +19,10 @@ inline constexpr std::size_t kStreamedPlaneBytes = std::size_t{4} << 20;
 /// (id < 0). In SIMD lanes on the best instruction set of this CPU (the same bytes on every
 /// one); `stream`: by streaming stores (no write-allocate read), fenced before it returns,
 /// for a plane of kStreamedPlaneBytes or more. Defined in Resolve.cpp, beside the resolve's
-/// colors: both write rows through one Highway store loop.
+/// colors: both write rows through one Highway store loop. `out` is written by SIMD stores and
+/// std::memcpy only, never through an std::int64_t lvalue, so it may be the address of another
+/// signed 64-bit integer type's plane (VTK's vtkIdType is long long where std::int64_t is long:
+/// stores of one type read back as the other would break strict aliasing).
 void widenPolygonIds(const std::int32_t* ids, std::int64_t* out, std::size_t count,
                      std::int64_t first, bool stream);
 
