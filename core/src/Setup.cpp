@@ -22,8 +22,8 @@
 namespace facet::detail {
 namespace {
 
-// Polygons per set-up chunk: about four chunks per thread for load balance, at least 2^10
-// (a chunk's bins cost a vector per tile) and at most 2^20.
+// Polygons per set-up chunk (planChunks: about four chunks per thread of equal work, for
+// load balance): at least 2^10 (a chunk's bins cost a vector per tile) and at most 2^20.
 constexpr std::size_t kMinPolygonsPerChunk = 1 << 10;
 constexpr std::size_t kMaxPolygonsPerChunk = 1 << 20;
 
@@ -113,6 +113,10 @@ class PolygonSetup {
   // set up there when it is a triangle with every vertex inside (SetupBatch.h); each offset
   // is read once.
   void load(std::size_t first, int count, TriangleBatch& batch, int lane) const {
+    if (mesh_.allTriangles) {
+      loadTriangles(first, count, batch, lane);
+      return;
+    }
     const auto* offsets = polygons_.offsets + first;
     auto begin = static_cast<std::size_t>(offsets[0]);
     for (int k = 0; k < count; ++k) {
@@ -127,6 +131,17 @@ class PolygonSetup {
     }
   }
 
+  // load() for a mesh measured to be all triangles (FrameMesh::allTriangles: offsets[p] =
+  // 3p): the connectivity alone, no offset read or size test per polygon.
+  void loadTriangles(std::size_t first, int count, TriangleBatch& batch, int lane) const {
+    const auto* ids = polygons_.connectivity + 3 * first;
+    for (int k = 0; k < count; ++k) {
+      batch.triangle[lane + k] = 1;
+      for (int j = 0; j < 3; ++j)
+        batch.v[j][lane + k] = meshVertices_[ids[3 * k + j]];
+    }
+  }
+
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
   // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
@@ -137,6 +152,7 @@ class PolygonSetup {
     }
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
+    chunk_.counts.boxSamples += static_cast<std::size_t>(verdicts.keptSamples);  // hidden too
     const std::uint32_t used = (1u << lanes) - 1;
     const std::uint32_t kept = verdicts.kept() & used;
     std::size_t binned = 0;
@@ -151,11 +167,12 @@ class PolygonSetup {
       }
     }
     // The kept polygons' facing, after every append: a byte store may alias anything, and
-    // between appends it made the compiler reload the chunk's vectors.
+    // between appends it made the compiler reload the chunk's vectors (and, in this loop, the
+    // base pointer: taken once). A mesh that skips back faces keeps no clockwise lane.
+    std::uint8_t* const facing = context_.backFacing + mesh_.firstPolygon;
     for (std::uint32_t rest = kept; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
-      context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
-          (verdicts.clockwise >> lane) & 1u;
+      facing[lanePolygon[lane]] = kSkipBackFaces ? 0 : (verdicts.clockwise >> lane) & 1u;
     }
     chunk_.counts.trianglesBinned += binned;
     chunk_.counts.drawn += binned;
@@ -285,7 +302,8 @@ class PolygonSetup {
   // counts it drawn.
   [[gnu::always_inline]] void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
-    const bool back = (verdicts.clockwise >> lane) & 1u;
+    // A mesh that skips back faces keeps no clockwise lane (the batch culled them).
+    const bool back = !kSkipBackFaces && ((verdicts.clockwise >> lane) & 1u);
     const bool last = back && context_.backFacesLast;
     const auto& samples = verdicts.samples;
     const std::size_t tile = static_cast<std::size_t>(verdicts.tile[lane]);
@@ -294,9 +312,7 @@ class PolygonSetup {
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
       if (clampBack_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
-      binSmall(chunk_, tile,
-               {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
-               smallTriangleOfLane(verdicts, lane, polygonId), last);
+      binSmall(chunk_, tile, smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).
       const auto reference = [&](std::size_t corner) {
@@ -311,17 +327,13 @@ class PolygonSetup {
   }
 
   // The lanes the back pass found hidden (BatchVerdicts::hidden): counted as bin() would bin
-  // them (the frame's counts, and so the plan's depth complexity, as with one pass), their
-  // facing noted. Out of line, as deferCulled: inlined, settle()'s appends went out of line
-  // (the closed 500k frame +2 % instructions).
+  // them (the frame's counts, and so the plan's depth complexity, as with one pass: their box
+  // samples are in BatchVerdicts::keptSamples), their facing noted. Out of line, as deferCulled:
+  // inlined, settle()'s appends went out of line (the closed 500k frame +2 % instructions).
   [[gnu::noinline]] void countHidden(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
                                      std::uint32_t used) {
-    const auto& samples = verdicts.samples;
     for (std::uint32_t rest = verdicts.hidden & used; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
-      chunk_.counts.boxSamples +=
-          PixelBounds{samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}
-              .area();
       ++chunk_.counts.trianglesBinned;
       ++chunk_.counts.drawn;
       context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
@@ -718,25 +730,71 @@ void requireChunkIndexable(const Chunk& chunk) {
                    chunk.clippedVertices.size());
 }
 
-// The chunks' ranges of draw positions.
+// Whether back-face block `block` of `mesh` is set up polygon by polygon: in view and not
+// culled whole (setUpRun skips the others with one test each).
+bool backBlockSetUp(const FrameMesh& mesh, std::size_t block) {
+  const bool inView =
+      !mesh.visibleBlocks || mesh.visibleBlocks[block >> (kBlockBits - kBackBlockBits)];
+  return inView && !(mesh.backBlocks && mesh.backBlocks[block]);
+}
+
+// Polygons of `mesh` set up polygon by polygon (backBlockSetUp).
+std::size_t polygonsSetUp(const FrameMesh& mesh) {
+  const std::size_t count = mesh.mesh().polygons.count;
+  if (!mesh.visibleBlocks && !mesh.backBlocks) return count;
+  std::size_t work = 0;
+  for (std::size_t begin = 0; begin < count; begin += kPolygonsPerBackBlock) {
+    if (backBlockSetUp(mesh, begin >> kBackBlockBits))
+      work += std::min(kPolygonsPerBackBlock, count - begin);
+  }
+  return work;
+}
+
+// Splits each mesh into chunks of about `workPerChunk` polygons set up (polygonsSetUp: the
+// blocks skipped whole cost next to nothing, so a chunk of a closed mesh's far side would
+// otherwise finish at once while one of its near side holds up the phase), cut at back-face
+// block boundaries, each of at least kMinPolygonsPerChunk polygons (but a mesh's last) and at
+// most kMaxPolygonsPerChunk; in global polygon ids (the draw positions of z-buffer order).
+void splitByWork(std::span<const FrameMesh> meshes, std::size_t workPerChunk,
+                 std::vector<MeshRange>& ranges) {
+  static_assert(kMinPolygonsPerChunk % kPolygonsPerBackBlock == 0 &&
+                kMaxPolygonsPerChunk % kPolygonsPerBackBlock == 0);
+  ranges.clear();
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const FrameMesh& mesh = meshes[m];
+    const std::size_t count = mesh.mesh().polygons.count;
+    std::size_t begin = 0, work = 0;
+    for (std::size_t end = 0; end < count;) {
+      const std::size_t blockEnd = std::min(count, end + kPolygonsPerBackBlock);
+      if (backBlockSetUp(mesh, end >> kBackBlockBits)) work += blockEnd - end;
+      end = blockEnd;
+      const std::size_t polygons = end - begin;
+      if (end == count || polygons == kMaxPolygonsPerChunk ||
+          (work >= workPerChunk && polygons >= kMinPolygonsPerChunk)) {
+        ranges.push_back({m, mesh.firstPolygon + begin, mesh.firstPolygon + end});
+        begin = end;
+        work = 0;
+      }
+    }
+  }
+}
+
+// The chunks' ranges of draw positions: about four chunks per thread of equal work.
 void planChunks(const SetupContext& context, int threads, SetupBuffers& buffers) {
-  const std::size_t polygons = context.meshes.empty() ? 0 : context.meshes.back().endPolygon();
-  const std::size_t perChunk =
-      std::clamp<std::size_t>(polygons / (4 * static_cast<std::size_t>(threads)) + 1,
-                              kMinPolygonsPerChunk, kMaxPolygonsPerChunk);
+  const std::size_t chunksWanted = 4 * static_cast<std::size_t>(threads);
   std::vector<MeshRange>& ranges = buffers.ranges;
   ranges.clear();
   if (!context.order.ids.empty()) {
+    const std::size_t polygons = context.meshes.empty() ? 0 : context.meshes.back().endPolygon();
+    const std::size_t perChunk = std::clamp<std::size_t>(
+        polygons / chunksWanted + 1, kMinPolygonsPerChunk, kMaxPolygonsPerChunk);
     for (std::size_t begin = 0; begin < polygons; begin += perChunk)
       ranges.push_back({0, begin, std::min(polygons, begin + perChunk)});
   } else {
-    splitPerMesh(
-        context.meshes.size(), perChunk,
-        [&](std::size_t m) { return context.meshes[m].mesh().polygons.count; }, ranges);
-    for (MeshRange& r : ranges) {  // to draw positions (= global polygon ids)
-      r.begin += context.meshes[r.mesh].firstPolygon;
-      r.end += context.meshes[r.mesh].firstPolygon;
-    }
+    std::size_t work = 0;
+    for (const FrameMesh& mesh : context.meshes)
+      work += polygonsSetUp(mesh);
+    splitByWork(context.meshes, work / chunksWanted + 1, ranges);
   }
   std::vector<Chunk>& chunks = buffers.chunks;
   chunks.resize(ranges.size());
