@@ -114,10 +114,6 @@ class PolygonSetup {
   // set up there when it is a triangle with every vertex inside (SetupBatch.h); each offset
   // is read once.
   void load(std::size_t first, int count, TriangleBatch& batch, int lane) const {
-    if (mesh_.allTriangles) {
-      loadTriangles(first, count, batch, lane);
-      return;
-    }
     const auto* offsets = polygons_.offsets + first;
     auto begin = static_cast<std::size_t>(offsets[0]);
     for (int k = 0; k < count; ++k) {
@@ -129,17 +125,6 @@ class PolygonSetup {
           batch.v[j][lane + k] = meshVertices_[polygons_.connectivity[begin + j]];
       }
       begin = end;
-    }
-  }
-
-  // load() for a mesh measured to be all triangles (FrameMesh::allTriangles: offsets[p] =
-  // 3p): the connectivity alone, no offset read or size test per polygon.
-  void loadTriangles(std::size_t first, int count, TriangleBatch& batch, int lane) const {
-    const auto* ids = polygons_.connectivity + 3 * first;
-    for (int k = 0; k < count; ++k) {
-      batch.triangle[lane + k] = 1;
-      for (int j = 0; j < 3; ++j)
-        batch.v[j][lane + k] = meshVertices_[ids[3 * k + j]];
     }
   }
 
