@@ -35,6 +35,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
     const std::optional<float> key = keyOfOnlySample(a, *second, *third, area < 0 ? -area : area,
                                                      boundary, bounds.x0, bounds.y0);
     if (!key) return BinOutcome::CoversNoSample;
+    ++chunk.counts.boxSamples;
     binFragment(chunk, tileOf(grid, bounds.x0, bounds.y0), bounds.x0, bounds.y0, *key, polygon,
                 last);
     return BinOutcome::Binned;
@@ -42,6 +43,7 @@ BinOutcome binTriangle(Chunk& chunk, const TileGrid& grid, std::uint32_t r0, std
   if (bounds.empty() || !coversAnySample(a, *second, *third, bounds)) {
     return BinOutcome::CoversNoSample;
   }
+  chunk.counts.boxSamples += bounds.area();
   binCovering(chunk, grid, r0, r1, r2, bounds, boundary, polygon, last);
   return BinOutcome::Binned;
 }

@@ -30,13 +30,15 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
          static_cast<std::size_t>(x / TileGrid::kTileSize);
 }
 
+// The three appends below leave PolygonCounts::boxSamples to their callers: the set-up's
+// batches count a batch's kept boxes at once, in lanes (BatchVerdicts::keptSamples).
+
 // Bins a triangle whose box holds one pixel center, (x, y) in `tile`, as its fragment there: it
 // covers it with depth key `key` (keyOfOnlySample, RasterTriangle.h). Inlined, as
 // binCovering: the set-up's batches bin most triangles, and out of line their eight
 // arguments and the call cost as much as the appends.
 [[gnu::always_inline]] inline void binFragment(Chunk& chunk, std::size_t tile, int x, int y,
                                                float key, std::int32_t polygon, bool last) {
-  ++chunk.counts.boxSamples;
   chunk.binsFor(last)[tile].push_back(static_cast<std::uint32_t>(chunk.fragments.size()) |
                                       kFragmentBit);
   chunk.fragments.push_back(
@@ -51,7 +53,6 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
                                                const PixelBounds& samples, EdgeMask boundary,
                                                std::int32_t polygon, bool last,
                                                std::int64_t onlyTile = -1) {
-  chunk.counts.boxSamples += samples.area();
   const auto index = static_cast<std::uint32_t>(chunk.triangles.size());
   auto& bins = chunk.binsFor(last);
   if (onlyTile >= 0) {
@@ -63,12 +64,10 @@ inline std::size_t tileOf(const TileGrid& grid, int x, int y) {
   chunk.boundaryEdges.push_back(boundary);
 }
 
-// Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile: the box of
-// `samples`; in the chunk's backBins when `last` (Chunk::binsFor).
+// Bins a SmallTriangle (RasterTriangle.h) the set-up's lanes made, in its one tile; in the
+// chunk's backBins when `last` (Chunk::binsFor).
 [[gnu::always_inline]] inline void binSmall(Chunk& chunk, std::size_t tile,
-                                            const PixelBounds& samples,
                                             const SmallTriangle& triangle, bool last) {
-  chunk.counts.boxSamples += samples.area();
   chunk.binsFor(last)[tile].push_back(static_cast<std::uint32_t>(chunk.smallTriangles.size()) |
                                       kSmallTriangleBit);
   chunk.smallTriangles.push_back(triangle);

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <bit>
 #include <cstdlib>
+#include <cstring>
 #include <numeric>
 #include <optional>
 #include <span>
@@ -22,8 +23,8 @@
 namespace facet::detail {
 namespace {
 
-// Polygons per set-up chunk: about four chunks per thread for load balance, at least 2^10
-// (a chunk's bins cost a vector per tile) and at most 2^20.
+// Polygons per set-up chunk (planChunks: about four chunks per thread of equal work, for
+// load balance): at least 2^10 (a chunk's bins cost a vector per tile) and at most 2^20.
 constexpr std::size_t kMinPolygonsPerChunk = 1 << 10;
 constexpr std::size_t kMaxPolygonsPerChunk = 1 << 20;
 
@@ -137,6 +138,7 @@ class PolygonSetup {
     }
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
+    chunk_.counts.boxSamples += static_cast<std::size_t>(verdicts.keptSamples);  // hidden too
     const std::uint32_t used = (1u << lanes) - 1;
     const std::uint32_t kept = verdicts.kept() & used;
     std::size_t binned = 0;
@@ -151,11 +153,12 @@ class PolygonSetup {
       }
     }
     // The kept polygons' facing, after every append: a byte store may alias anything, and
-    // between appends it made the compiler reload the chunk's vectors.
+    // between appends it made the compiler reload the chunk's vectors (and, in this loop, the
+    // base pointer: taken once). A mesh that skips back faces keeps no clockwise lane.
+    std::uint8_t* const facing = context_.backFacing + mesh_.firstPolygon;
     for (std::uint32_t rest = kept; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
-      context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
-          (verdicts.clockwise >> lane) & 1u;
+      facing[lanePolygon[lane]] = kSkipBackFaces ? 0 : (verdicts.clockwise >> lane) & 1u;
     }
     chunk_.counts.trianglesBinned += binned;
     chunk_.counts.drawn += binned;
@@ -285,7 +288,8 @@ class PolygonSetup {
   // counts it drawn.
   [[gnu::always_inline]] void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
-    const bool back = (verdicts.clockwise >> lane) & 1u;
+    // A mesh that skips back faces keeps no clockwise lane (the batch culled them).
+    const bool back = !kSkipBackFaces && ((verdicts.clockwise >> lane) & 1u);
     const bool last = back && context_.backFacesLast;
     const auto& samples = verdicts.samples;
     const std::size_t tile = static_cast<std::size_t>(verdicts.tile[lane]);
@@ -294,9 +298,7 @@ class PolygonSetup {
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
       if (clampBack_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
-      binSmall(chunk_, tile,
-               {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
-               smallTriangleOfLane(verdicts, lane, polygonId), last);
+      binSmall(chunk_, tile, smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).
       const auto reference = [&](std::size_t corner) {
@@ -311,17 +313,13 @@ class PolygonSetup {
   }
 
   // The lanes the back pass found hidden (BatchVerdicts::hidden): counted as bin() would bin
-  // them (the frame's counts, and so the plan's depth complexity, as with one pass), their
-  // facing noted. Out of line, as deferCulled: inlined, settle()'s appends went out of line
-  // (the closed 500k frame +2 % instructions).
+  // them (the frame's counts, and so the plan's depth complexity, as with one pass: their box
+  // samples are in BatchVerdicts::keptSamples), their facing noted. Out of line, as deferCulled:
+  // inlined, settle()'s appends went out of line (the closed 500k frame +2 % instructions).
   [[gnu::noinline]] void countHidden(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
                                      std::uint32_t used) {
-    const auto& samples = verdicts.samples;
     for (std::uint32_t rest = verdicts.hidden & used; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
-      chunk_.counts.boxSamples +=
-          PixelBounds{samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]}
-              .area();
       ++chunk_.counts.trianglesBinned;
       ++chunk_.counts.drawn;
       context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
@@ -718,25 +716,82 @@ void requireChunkIndexable(const Chunk& chunk) {
                    chunk.clippedVertices.size());
 }
 
-// The chunks' ranges of draw positions.
+// Polygons [begin, end) of `mesh`, within one view-culling block (kPolygonsPerBlock), that are
+// set up polygon by polygon: in view and in no back-face block culled whole (setUpRun skips
+// the others with one test each).
+std::size_t polygonsSetUp(const FrameMesh& mesh, std::size_t begin, std::size_t end) {
+  if (mesh.visibleBlocks && !mesh.visibleBlocks[begin >> kBlockBits]) return 0;
+  if (!mesh.backBlocks) return end - begin;
+  static_assert(kPolygonsPerBlock == 4 * kPolygonsPerBackBlock);
+  if (end - begin == kPolygonsPerBlock) {
+    // Four whole back-face blocks: their flags (0 or 1, ViewCulling.cpp) summed in one word.
+    std::uint32_t flags;
+    std::memcpy(&flags, mesh.backBlocks + (begin >> kBackBlockBits), sizeof flags);
+    return kPolygonsPerBlock - kPolygonsPerBackBlock * ((flags * 0x01010101u) >> 24);
+  }
+  std::size_t work = 0;
+  for (std::size_t b = begin; b < end; b += kPolygonsPerBackBlock) {
+    if (!mesh.backBlocks[b >> kBackBlockBits]) work += std::min(kPolygonsPerBackBlock, end - b);
+  }
+  return work;
+}
+
+// All of `mesh`'s polygons set up polygon by polygon.
+std::size_t polygonsSetUp(const FrameMesh& mesh) {
+  const std::size_t count = mesh.mesh().polygons.count;
+  if (!mesh.visibleBlocks && !mesh.backBlocks) return count;
+  std::size_t work = 0;
+  for (std::size_t begin = 0; begin < count; begin += kPolygonsPerBlock)
+    work += polygonsSetUp(mesh, begin, std::min(count, begin + kPolygonsPerBlock));
+  return work;
+}
+
+// Splits each mesh into chunks of about `workPerChunk` polygons set up (polygonsSetUp: the
+// blocks skipped whole cost next to nothing, so a chunk of a closed mesh's far side would
+// otherwise finish at once while one of its near side holds up the phase), cut at view-culling
+// block boundaries (a serial loop: ~2,000 steps at 2M polygons), each of at least
+// kMinPolygonsPerChunk polygons (but a mesh's last) and at most kMaxPolygonsPerChunk; in global
+// polygon ids (the draw positions of z-buffer order).
+void splitByWork(std::span<const FrameMesh> meshes, std::size_t workPerChunk,
+                 std::vector<MeshRange>& ranges) {
+  static_assert(kMinPolygonsPerChunk % kPolygonsPerBlock == 0 &&
+                kMaxPolygonsPerChunk % kPolygonsPerBlock == 0);
+  ranges.clear();
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const FrameMesh& mesh = meshes[m];
+    const std::size_t count = mesh.mesh().polygons.count;
+    std::size_t begin = 0, work = 0;
+    for (std::size_t end = 0; end < count;) {
+      const std::size_t blockEnd = std::min(count, end + kPolygonsPerBlock);
+      work += polygonsSetUp(mesh, end, blockEnd);
+      end = blockEnd;
+      const std::size_t polygons = end - begin;
+      if (end == count || polygons == kMaxPolygonsPerChunk ||
+          (work >= workPerChunk && polygons >= kMinPolygonsPerChunk)) {
+        ranges.push_back({m, mesh.firstPolygon + begin, mesh.firstPolygon + end});
+        begin = end;
+        work = 0;
+      }
+    }
+  }
+}
+
+// The chunks' ranges of draw positions: about four chunks per thread of equal work.
 void planChunks(const SetupContext& context, int threads, SetupBuffers& buffers) {
-  const std::size_t polygons = context.meshes.empty() ? 0 : context.meshes.back().endPolygon();
-  const std::size_t perChunk =
-      std::clamp<std::size_t>(polygons / (4 * static_cast<std::size_t>(threads)) + 1,
-                              kMinPolygonsPerChunk, kMaxPolygonsPerChunk);
+  const std::size_t chunksWanted = 4 * static_cast<std::size_t>(threads);
   std::vector<MeshRange>& ranges = buffers.ranges;
   ranges.clear();
   if (!context.order.ids.empty()) {
+    const std::size_t polygons = context.meshes.empty() ? 0 : context.meshes.back().endPolygon();
+    const std::size_t perChunk = std::clamp<std::size_t>(
+        polygons / chunksWanted + 1, kMinPolygonsPerChunk, kMaxPolygonsPerChunk);
     for (std::size_t begin = 0; begin < polygons; begin += perChunk)
       ranges.push_back({0, begin, std::min(polygons, begin + perChunk)});
   } else {
-    splitPerMesh(
-        context.meshes.size(), perChunk,
-        [&](std::size_t m) { return context.meshes[m].mesh().polygons.count; }, ranges);
-    for (MeshRange& r : ranges) {  // to draw positions (= global polygon ids)
-      r.begin += context.meshes[r.mesh].firstPolygon;
-      r.end += context.meshes[r.mesh].firstPolygon;
-    }
+    std::size_t work = 0;
+    for (const FrameMesh& mesh : context.meshes)
+      work += polygonsSetUp(mesh);
+    splitByWork(context.meshes, work / chunksWanted + 1, ranges);
   }
   std::vector<Chunk>& chunks = buffers.chunks;
   chunks.resize(ranges.size());

@@ -171,10 +171,10 @@ HWY_NOINLINE M smallLanes(D d, M small, V ux, V uy, V vx, V vy, V firstX, V firs
 }
 
 // ceil(v / 256) and floor(v / 256): arithmetic shifts (RasterTriangle.cpp, floorToPixel).
-V ceilToPixel(D d, V v) {
+HWY_INLINE V ceilToPixel(D d, V v) {
   return hn::Zero(d) - hn::ShiftRight<kSubpixelBits>(hn::Zero(d) - v);
 }
-V floorToPixel(V v) {
+HWY_INLINE V floorToPixel(V v) {
   return hn::ShiftRight<kSubpixelBits>(v);
 }
 
@@ -212,7 +212,7 @@ struct KeyInputs {
 };
 
 // In fine units: grid steps · kResidueScale + the residue.
-V toFine(V grid, V residue) {
+HWY_INLINE V toFine(V grid, V residue) {
   return hn::ShiftLeft<kResidueBits>(grid) + residue;
 }
 
@@ -278,6 +278,8 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   verdicts.coversNoSample |= laneBits(d, noSample) << lane;
   const M kept = hn::AndNot(noSample, live);
   if (hn::AllFalse(d, kept)) return;
+  verdicts.keptSamples +=
+      hn::GetLane(hn::SumOfLanes(d, hn::IfThenElseZero(kept, (width + one) * (height + one))));
   const M single = hn::And(kept, hn::And(width == zero, height == zero));
   const std::uint32_t fragments = laneBits(d, single) << lane;
   verdicts.fragment |= fragments;
@@ -524,6 +526,7 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
   verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
   verdicts.small = verdicts.hidden = 0;
+  verdicts.keptSamples = 0;
   KeyInputs keys;
   // The back faces' keys clamped (nearestWrittenKey), one pass or two (Setup.cpp).
   const bool clamp = boundaryEdges && clampBackFaces;

@@ -65,6 +65,10 @@ struct BatchVerdicts {
   // not binned; none of fragment, triangle or small.
   std::uint32_t hidden = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
+  // The pixel centers in the boxes of the lanes kept (fragment or triangle) or hidden: the
+  // chunk's PolygonCounts::boxSamples, summed in lanes (below 2^16 a lane: a tested box is
+  // under 2^14 grid steps, 64 pixels, on a side).
+  int keptSamples = 0;
   // Per kept lane: the pixel centers of its box, clipped to the viewport (inclusive).
   struct {
     alignas(64) std::int32_t x0[kBatchSize], y0[kBatchSize], x1[kBatchSize], y1[kBatchSize];

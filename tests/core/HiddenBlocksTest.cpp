@@ -251,10 +251,9 @@ TEST(BackFaceClamp, BackRecordsAreClampedInOnePassAndTwo) {
     return t;
   };
   const auto binAt = [&](int x0, int y0, std::int32_t polygon, bool back) {
-    const PixelBounds box{x0, y0, x0 + 1, y0 + 1};
     const std::size_t tile = detail::tileOf(grid, x0, y0);
     chunk.smallNearestKeys.push_back(back ? 0.5f : 0.0f);  // a front record's is never read
-    detail::binSmall(chunk, tile, box, record(x0, y0, polygon), back);
+    detail::binSmall(chunk, tile, record(x0, y0, polygon), back);
   };
   binAt(10, 10, 0, false);  // a front face alone
   binAt(20, 12, 1, true);   // a back face alone
