@@ -15,9 +15,12 @@
 // points, 64-bit cells, the set-up instantiation the figures are for), d64, f32 or d32 (d:
 // double points, as VTK's vtkPoints default; 32: 32-bit offsets and connectivity). The
 // points are the same values in float or double, so the types change the code, not the mesh.
+// ORDER picks the order the sphere lists its points and triangles in (testing::UvSphereOrder):
+// ring (the default: ring by ring, facet_bench's) or vtk (exactly vtkSphereSource's, meridian
+// by meridian: the VTK filter's users' sphere). The same surface is drawn either way.
 //
 //   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
-//                               [ARRAYS]
+//                               [ARRAYS] [ORDER]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -92,11 +95,11 @@ struct SphereArrays {
 };
 
 int run(int triangles, bool closed, int frames, int threads, double turn, std::uint64_t version,
-        double start, std::string_view arrays) {
+        double start, std::string_view arrays, testing::UvSphereOrder order) {
   // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles, as
   // CoreBench's sphereWithTriangles picks it (the same spheres as facet_bench's).
   const int theta = static_cast<int>(std::lround(std::sqrt(triangles / 2.0)));
-  const Mesh sphere = testing::makeUvSphere(theta, theta + 2);
+  const Mesh sphere = testing::makeUvSphere(theta, theta + 2, 1.0, glm::dvec3(0.0), order);
   SphereArrays storage;
   MeshView view = storage.view(sphere, arrays, closed);
   Camera camera = testing::fitCamera(sphere);
@@ -122,16 +125,18 @@ int run(int triangles, bool closed, int frames, int threads, double turn, std::u
   }
   const double* s = best.seconds;
   std::printf(
-      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, arrays %s, best of %d "
+      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, arrays %s, order %s, "
+      "best of %d "
       "frames, ms: "
       "validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
       "frame: %zu fragments written, %zu back-facing blocks skipped, planes %016llx; first frame: "
       "validate %.3f total %.3f\n",
       triangles, int(closed), threads, turn, start, static_cast<unsigned long long>(version),
-      std::string(arrays).c_str(), frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
-      s[4] * 1e3, s[5] * 1e3, last.fragmentsWritten, last.plan.blocksBackFacing,
-      static_cast<unsigned long long>(fingerprint(framebuffer)), first.validateSeconds * 1e3,
-      first.totalSeconds * 1e3);
+      std::string(arrays).c_str(),
+      order == testing::UvSphereOrder::vtkSphereSource ? "vtk" : "ring", frames, s[0] * 1e3,
+      s[1] * 1e3, s[2] * 1e3, s[3] * 1e3, s[4] * 1e3, s[5] * 1e3, last.fragmentsWritten,
+      last.plan.blocksBackFacing, static_cast<unsigned long long>(fingerprint(framebuffer)),
+      first.validateSeconds * 1e3, first.totalSeconds * 1e3);
   return 0;
 }
 
@@ -144,7 +149,8 @@ int main(int argc, char** argv) {
         stderr,
         "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
         "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned] "
-        "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32]\n",
+        "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32] "
+        "[ORDER ring|vtk]\n",
         argv[0], bench::kTurnDegreesPerFrame);
     return 2;
   }
@@ -153,9 +159,16 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ARRAYS is f64, d64, f32 or d32, not %s\n", argv[8]);
     return 2;
   }
+  const std::string_view order = argc > 9 ? argv[9] : "ring";
+  if (order != "ring" && order != "vtk") {
+    std::fprintf(stderr, "ORDER is ring or vtk, not %s\n", argv[9]);
+    return 2;
+  }
   return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
              argc > 4 ? std::atoi(argv[4]) : 2,
              argc > 5 ? std::atof(argv[5]) : bench::kTurnDegreesPerFrame,
              argc > 6 ? std::strtoull(argv[6], nullptr, 10) : 1,
-             argc > 7 ? std::atof(argv[7]) : 0.0, arrays);
+             argc > 7 ? std::atof(argv[7]) : 0.0, arrays,
+             order == "vtk" ? testing::UvSphereOrder::vtkSphereSource
+                            : testing::UvSphereOrder::ringByRing);
 }
