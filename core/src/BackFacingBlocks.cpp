@@ -148,10 +148,8 @@ std::size_t pointsIn(const PointSpan& span) {
 // than the flags its spans cover.
 void listScatteredPointFlags(const MeshView& mesh, std::size_t begin, std::size_t end,
                              BackBlock& block) {
-  std::size_t corners = 0;
-  withTypedMesh(mesh, [&](auto, auto polygons) {
-    for (std::size_t p = begin; p < end; ++p)
-      corners += polygons.size(p);
+  const std::size_t corners = withTypedMesh(mesh, [&](auto, auto polygons) -> std::size_t {
+    return polygons.begin(end) - polygons.begin(begin);
   });
   const std::size_t spanned = pointsIn(block.lowPoints) + pointsIn(block.highPoints);
   const std::size_t flagCount = (mesh.points.count + kPointsPerNeededFlag - 1) >> kNeededPointBits;
