@@ -15,9 +15,14 @@
 // points, 64-bit cells, the set-up instantiation the figures are for), d64, f32 or d32 (d:
 // double points, as VTK's vtkPoints default; 32: 32-bit offsets and connectivity). The
 // points are the same values in float or double, so the types change the code, not the mesh.
+// ORDER picks the order the sphere lists its points and triangles in (testing::UvSphereOrder):
+// ring (the default: ring by ring, facet_bench's) or vtk (exactly vtkSphereSource's, meridian
+// by meridian: the VTK filter's users' sphere). The same surface is drawn either way. ORDER
+// both renders the two in one process, frame by frame in turn at the same views, and prints
+// each one's process CPU time a frame and their ratio (the measure that holds under load).
 //
 //   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
-//                               [ARRAYS]
+//                               [ARRAYS] [ORDER]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -29,6 +34,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <span>
 #include <string>
 #include <string_view>
@@ -91,47 +97,120 @@ struct SphereArrays {
   }
 };
 
-int run(int triangles, bool closed, int frames, int threads, double turn, std::uint64_t version,
-        double start, std::string_view arrays) {
-  // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles, as
-  // CoreBench's sphereWithTriangles picks it (the same spheres as facet_bench's).
-  const int theta = static_cast<int>(std::lround(std::sqrt(triangles / 2.0)));
-  const Mesh sphere = testing::makeUvSphere(theta, theta + 2);
-  SphereArrays storage;
-  MeshView view = storage.view(sphere, arrays, closed);
-  Camera camera = testing::fitCamera(sphere);
-  view.version = version;
-  Scene scene;
-  scene.meshes.push_back({view, Material{}});
-  scene.lights.ambient.intensity = 0.0;
-  scene.lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
+// The options that pick the frames (see the top).
+struct Options {
+  int triangles = 0;
+  bool closed = false;
+  int frames = 20, threads = 2;
+  double turn = bench::kTurnDegreesPerFrame;
+  std::uint64_t version = 1;
+  double start = 0.0;
+  std::string_view arrays = "f64";
+};
 
-  if (start != 0.0) bench::turnView(camera, scene, start);
+const char* nameOf(testing::UvSphereOrder order) {
+  return order == testing::UvSphereOrder::vtkSphereSource ? "vtk" : "ring";
+}
+
+// facet_bench's sphere in one order, its light at the eye, its renderer and framebuffer.
+struct SphereScene {
+  Mesh sphere;
+  SphereArrays storage;
+  Scene scene;
+  Camera camera;
   Renderer renderer;
-  renderer.setThreadCount(threads);
-  Framebuffer framebuffer(1920, 1080);
+  Framebuffer framebuffer{1920, 1080};
+
+  SphereScene(const Options& o, testing::UvSphereOrder order) {
+    // vtkSphereSource's resolution for a triangle count: 2·theta·(phi − 2) triangles, as
+    // CoreBench's sphereWithTriangles picks it (the same spheres as facet_bench's).
+    const int theta = static_cast<int>(std::lround(std::sqrt(o.triangles / 2.0)));
+    sphere = testing::makeUvSphere(theta, theta + 2, 1.0, glm::dvec3(0.0), order);
+    MeshView view = storage.view(sphere, o.arrays, o.closed);
+    camera = testing::fitCamera(sphere);
+    view.version = o.version;
+    scene.meshes.push_back({view, Material{}});
+    scene.lights.ambient.intensity = 0.0;
+    scene.lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
+    if (o.start != 0.0) bench::turnView(camera, scene, o.start);
+    renderer.setThreadCount(o.threads);
+  }
+
+  RenderStats render() { return renderer.render(scene, camera, framebuffer); }
+  void turn(double degrees) {
+    if (degrees != 0.0) bench::turnView(camera, scene, degrees);
+  }
+};
+
+int run(const Options& o, testing::UvSphereOrder order) {
+  SphereScene s(o, order);
   // The first frame: buffers grow, the versioned mesh is measured (the filter's first
   // Update()); not among the best.
-  const RenderStats first = renderer.render(scene, camera, framebuffer);
+  const RenderStats first = s.render();
   Phases best;
   RenderStats last;
-  for (int i = 0; i < frames; ++i) {
-    if (turn != 0.0) bench::turnView(camera, scene, turn);
-    last = renderer.render(scene, camera, framebuffer);
+  for (int i = 0; i < o.frames; ++i) {
+    s.turn(o.turn);
+    last = s.render();
     best.keepBest(last);
   }
-  const double* s = best.seconds;
+  const double* t = best.seconds;
   std::printf(
-      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, arrays %s, best of %d "
-      "frames, ms: "
-      "validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
-      "frame: %zu fragments written, %zu back-facing blocks skipped, planes %016llx; first frame: "
-      "validate %.3f total %.3f\n",
-      triangles, int(closed), threads, turn, start, static_cast<unsigned long long>(version),
-      std::string(arrays).c_str(), frames, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, s[3] * 1e3,
-      s[4] * 1e3, s[5] * 1e3, last.fragmentsWritten, last.plan.blocksBackFacing,
-      static_cast<unsigned long long>(fingerprint(framebuffer)), first.validateSeconds * 1e3,
+      "%d triangles, closed %d, %d threads, turn %g from %g, version %llu, arrays %s, order %s, "
+      "best of %d frames, ms: validate %.3f transform %.3f setup %.3f raster %.3f shade+resolve "
+      "%.3f total %.3f; last frame: %zu fragments written, %zu back-facing blocks skipped, planes "
+      "%016llx; first frame: validate %.3f total %.3f\n",
+      o.triangles, int(o.closed), o.threads, o.turn, o.start,
+      static_cast<unsigned long long>(o.version), std::string(o.arrays).c_str(), nameOf(order),
+      o.frames, t[0] * 1e3, t[1] * 1e3, t[2] * 1e3, t[3] * 1e3, t[4] * 1e3, t[5] * 1e3,
+      last.fragmentsWritten, last.plan.blocksBackFacing,
+      static_cast<unsigned long long>(fingerprint(s.framebuffer)), first.validateSeconds * 1e3,
       first.totalSeconds * 1e3);
+  return 0;
+}
+
+// The process's CPU time, every thread's: it stops while the threads are descheduled, so the
+// ratio of two orders' sums holds under a shared machine's load where wall time does not.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// ORDER both: the two orders' spheres rendered in one process, frame by frame in turn (which
+// goes first alternates), at the same views; each frame's process CPU time summed per order.
+int runBothOrders(const Options& o) {
+  constexpr testing::UvSphereOrder kOrders[2] = {testing::UvSphereOrder::ringByRing,
+                                                 testing::UvSphereOrder::vtkSphereSource};
+  SphereScene ring(o, kOrders[0]), vtk(o, kOrders[1]);
+  SphereScene* scenes[2] = {&ring, &vtk};
+  for (SphereScene* s : scenes)
+    s->render();  // the first frame: buffers grow, the mesh is measured
+  double cpu[2] = {0.0, 0.0};
+  Phases best[2];
+  RenderStats last[2];
+  for (int i = 0; i < o.frames; ++i) {
+    for (int k = 0; k < 2; ++k) {
+      const int side = (i + k) % 2;
+      scenes[side]->turn(o.turn);
+      const double before = processCpuSeconds();
+      last[side] = scenes[side]->render();
+      cpu[side] += processCpuSeconds() - before;
+      best[side].keepBest(last[side]);
+    }
+  }
+  for (int side = 0; side < 2; ++side) {
+    const double* t = best[side].seconds;
+    std::printf(
+        "%d triangles, closed %d, %d threads, turn %g, order %s, %d frames: CPU %.3f ms a frame; "
+        "best wall ms: transform %.3f setup %.3f raster %.3f shade+resolve %.3f total %.3f; last "
+        "frame: %zu back-facing blocks skipped, planes %016llx\n",
+        o.triangles, int(o.closed), o.threads, o.turn, nameOf(kOrders[side]), o.frames,
+        cpu[side] / o.frames * 1e3, t[1] * 1e3, t[2] * 1e3, t[3] * 1e3, t[4] * 1e3, t[5] * 1e3,
+        last[side].plan.blocksBackFacing,
+        static_cast<unsigned long long>(fingerprint(scenes[side]->framebuffer)));
+  }
+  std::printf("CPU vtk / ring %.4f\n", cpu[1] / cpu[0]);
   return 0;
 }
 
@@ -144,7 +223,8 @@ int main(int argc, char** argv) {
         stderr,
         "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
         "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned] "
-        "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32]\n",
+        "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32] "
+        "[ORDER ring|vtk|both]\n",
         argv[0], bench::kTurnDegreesPerFrame);
     return 2;
   }
@@ -153,9 +233,21 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ARRAYS is f64, d64, f32 or d32, not %s\n", argv[8]);
     return 2;
   }
-  return run(triangles, std::atoi(argv[2]) != 0, argc > 3 ? std::atoi(argv[3]) : 20,
-             argc > 4 ? std::atoi(argv[4]) : 2,
-             argc > 5 ? std::atof(argv[5]) : bench::kTurnDegreesPerFrame,
-             argc > 6 ? std::strtoull(argv[6], nullptr, 10) : 1,
-             argc > 7 ? std::atof(argv[7]) : 0.0, arrays);
+  const std::string_view order = argc > 9 ? argv[9] : "ring";
+  if (order != "ring" && order != "vtk" && order != "both") {
+    std::fprintf(stderr, "ORDER is ring, vtk or both, not %s\n", argv[9]);
+    return 2;
+  }
+  Options options;
+  options.triangles = triangles;
+  options.closed = std::atoi(argv[2]) != 0;
+  if (argc > 3) options.frames = std::atoi(argv[3]);
+  if (argc > 4) options.threads = std::atoi(argv[4]);
+  if (argc > 5) options.turn = std::atof(argv[5]);
+  if (argc > 6) options.version = std::strtoull(argv[6], nullptr, 10);
+  if (argc > 7) options.start = std::atof(argv[7]);
+  options.arrays = arrays;
+  if (order == "both") return runBothOrders(options);
+  return run(options, order == "vtk" ? testing::UvSphereOrder::vtkSphereSource
+                                     : testing::UvSphereOrder::ringByRing);
 }

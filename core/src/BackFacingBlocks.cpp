@@ -9,6 +9,7 @@
 
 #include "Assert.h"
 #include "FaceNormal.h"
+#include "Transform.h"
 #include "facet/Conventions.h"
 #include "facet/PolygonNormal.h"
 
@@ -134,6 +135,41 @@ void splitPointSpan(const MeshView& mesh, std::size_t begin, std::size_t end, co
   if (highFirst <= all.last) block.highPoints = {highFirst, all.last};
 }
 
+// A block's spans are scattered when they hold more than this many points per point its
+// polygons' corners name: a block of a strip's two rings holds about 1, a sphere's cap listed
+// meridian by meridian one per meridian, hundreds.
+constexpr std::size_t kScatteredPointsPerCorner = 8;
+
+std::size_t pointsIn(const PointSpan& span) {
+  return span.first > span.last ? 0 : span.last - span.first + 1;
+}
+
+// The needed-point flags of a scattered block's points (MeshCache.h), when they are fewer
+// than the flags its spans cover.
+void listScatteredPointFlags(const MeshView& mesh, std::size_t begin, std::size_t end,
+                             BackBlock& block) {
+  const std::size_t corners = withTypedMesh(mesh, [&](auto, auto polygons) -> std::size_t {
+    return polygons.begin(end) - polygons.begin(begin);
+  });
+  const std::size_t spanned = pointsIn(block.lowPoints) + pointsIn(block.highPoints);
+  const std::size_t flagCount = (mesh.points.count + kPointsPerNeededFlag - 1) >> kNeededPointBits;
+  if (spanned <= kScatteredPointsPerCorner * corners ||
+      flagCount > std::numeric_limits<std::uint32_t>::max()) {
+    return;
+  }
+  std::vector<std::uint32_t>& flags = block.scatteredPointFlags;
+  flags.reserve(corners);
+  withTypedMesh(mesh, [&](auto, auto polygons) {
+    for (std::size_t p = begin; p < end; ++p) {
+      for (std::size_t k = 0, n = polygons.size(p); k < n; ++k)
+        flags.push_back(static_cast<std::uint32_t>(polygons.pointId(p, k) >> kNeededPointBits));
+    }
+  });
+  std::sort(flags.begin(), flags.end());
+  flags.erase(std::unique(flags.begin(), flags.end()), flags.end());
+  flags.shrink_to_fit();
+}
+
 }  // namespace
 
 BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
@@ -168,6 +204,7 @@ BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t 
   });
   BackBlock block = measure.finish();
   splitPointSpan(mesh, begin, end, measure.points(), block);
+  listScatteredPointFlags(mesh, begin, end, block);
   return block;
 }
 

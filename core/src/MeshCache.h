@@ -47,6 +47,11 @@ struct BackBlock {
   // runs far apart, and the points between them may be used only by blocks that are skipped
   // (ViewCulling.cpp).
   PointSpan lowPoints, highPoints;
+  // When those spans cover far more points than the block's polygons use (a cap of a sphere
+  // listed meridian by meridian, vtkSphereSource's: one point per meridian, the whole mesh
+  // apart), the needed-point flags (Transform.h) its points fall in, ascending, each once:
+  // marking them frees the points between (ViewCulling.cpp). Empty otherwise.
+  std::vector<std::uint32_t> scatteredPointFlags;
   glm::dvec3 axis{0.0};
   double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding
   double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down

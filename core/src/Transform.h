@@ -17,8 +17,11 @@ namespace facet::detail {
 inline constexpr std::size_t kPointsPerTransformTask = 1 << 14;
 // Points per flag of FrameMesh::neededPoints: a task transforms only its runs of needed
 // points. Fine enough that the part of each ring of a 2M-polygon UV sphere (1,000 points)
-// that only back-facing blocks use frees a flag or two.
-inline constexpr int kNeededPointBits = 7;
+// that only back-facing blocks use frees a flag or two, and that a sphere listed meridian by
+// meridian (vtkSphereSource's; 500 points a meridian at 500k) frees its meridians' far ends
+// though its caps' blocks use a point near each meridian's other end (32 points: at 128 the
+// cap's flags held the previous meridian's far end too; bench/core-frame-issue11.md, 27).
+inline constexpr int kNeededPointBits = 5;
 inline constexpr std::size_t kPointsPerNeededFlag = std::size_t{1} << kNeededPointBits;
 static_assert(kPointsPerTransformTask % kPointsPerNeededFlag == 0);
 

@@ -50,13 +50,19 @@ bool backBlockInView(const std::uint8_t* visible, std::size_t b) {
 }
 
 // The points that the back-face blocks in view and not skipped (`back` null: none is) use,
-// each block's as its two spans.
+// each block's as its two spans or, when those are scattered, its list of flags.
 void markNeededPoints(const MeshFacts& facts, const std::uint8_t* visible, const std::uint8_t* back,
                       std::uint8_t* flags) {
   for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
     if (!backBlockInView(visible, b) || (back && back[b])) continue;
-    markPointsOf(facts.backBlocks[b].lowPoints, flags);
-    markPointsOf(facts.backBlocks[b].highPoints, flags);
+    const BackBlock& block = facts.backBlocks[b];
+    if (!block.scatteredPointFlags.empty()) {
+      for (const std::uint32_t f : block.scatteredPointFlags)
+        flags[f] = 1;
+      continue;
+    }
+    markPointsOf(block.lowPoints, flags);
+    markPointsOf(block.highPoints, flags);
   }
 }
 

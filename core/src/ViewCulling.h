@@ -17,7 +17,9 @@
 // are transformed only when a block that is set up uses them too. Which points are needed is
 // marked per kPointsPerNeededFlag points from each back-face block's two point spans
 // (MeshCache.h), so that the points between a strip's two rings that only skipped blocks use
-// are freed even where every transform task holds some drawn block's points.
+// are freed even where every transform task holds some drawn block's points, or, for a block
+// whose spans are scattered (a cap of a sphere listed meridian by meridian), from its list of
+// flags, so that its spans do not mark the whole mesh needed.
 
 #include <cstdint>
 #include <span>

@@ -19,6 +19,7 @@
 #include "BackFacingBlocks.h"
 #include "MeshCache.h"
 #include "SetupBatch.h"
+#include "Transform.h"
 
 namespace facet::testing {
 namespace {
@@ -415,17 +416,46 @@ Mesh shuffledPoints(const Mesh& mesh, unsigned seed) {
   return shuffled;
 }
 
+// A block whose two spans hold far more points than its corners name lists the needed-point
+// flags of its points instead (MeshCache.h, BackBlock::scatteredPointFlags): a cap of the
+// sphere vtkSphereSource lists meridian by meridian (one point per meridian) does, exactly
+// its points' flags; the blocks of a ring-ordered sphere's bands do not.
+TEST_F(BackFacingBlocks, ScatteredBlocksListTheFlagsOfTheirPoints) {
+  const Mesh meridians =
+      makeUvSphere(600, 300, 1.0, glm::dvec3(0.0), UvSphereOrder::vtkSphereSource);
+  const MeshView view = closedView(meridians);
+  const detail::BackBlock cap = detail::measureBackBlock(view, 0, detail::kPolygonsPerBackBlock);
+  std::vector<std::uint32_t> expected;
+  for (std::size_t c = 0; c < 3 * detail::kPolygonsPerBackBlock; ++c)
+    expected.push_back(
+        static_cast<std::uint32_t>(meridians.connectivity[c] >> detail::kNeededPointBits));
+  std::sort(expected.begin(), expected.end());
+  expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+  EXPECT_EQ(cap.scatteredPointFlags, expected);
+  EXPECT_LT(expected.size(), detail::kPolygonsPerBackBlock + 2);
+  const Mesh rings = makeUvSphere(600, 300);
+  const MeshView ringView = closedView(rings);
+  for (std::size_t b = 0; b < 8; ++b) {
+    const std::size_t begin = 5000 + b * detail::kPolygonsPerBackBlock;
+    EXPECT_TRUE(detail::measureBackBlock(ringView, begin, begin + detail::kPolygonsPerBackBlock)
+                    .scatteredPointFlags.empty());
+  }
+}
+
 // The points a drawn block needs are transformed whatever the layout of their ids and
-// whichever of two meshes they belong to (FrameMesh::neededPoints, per 128 points, from each
-// back-face block's two spans): renders with back-face blocks skipped and blocks outside the
-// view left out, from views that leave part of each sphere out, are the same bytes as with
-// neither.
+// whichever of three meshes they belong to (FrameMesh::neededPoints, per kPointsPerNeededFlag
+// points, from each back-face block's two spans or its list of flags): renders with back-face
+// blocks skipped and blocks outside the view left out, from views that leave part of each
+// sphere out, are the same bytes as with neither.
 TEST_F(BackFacingBlocks, NeededPointsOfEveryLayoutAndMeshAreTransformed) {
   const Mesh ordered = makeUvSphere(160, 120, 1.0, glm::dvec3(-0.6, 0.0, 0.0));
   const Mesh shuffled = shuffledPoints(makeUvSphere(150, 110, 0.8, glm::dvec3(0.9, 0.2, 0.0)), 7);
+  const Mesh meridians =
+      makeUvSphere(170, 90, 0.6, glm::dvec3(0.1, -0.9, 0.3), UvSphereOrder::vtkSphereSource);
   Scene scene;
   scene.meshes.push_back({closedView(ordered), {}});
   scene.meshes.push_back({closedView(shuffled), {}});
+  scene.meshes.push_back({closedView(meridians), {}});
   scene.lights.lights.push_back(PointLight{glm::dvec3(0, 0, 9), Color(1.0f), 1.0, NoAttenuation{}});
   std::mt19937 random(5);
   std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);

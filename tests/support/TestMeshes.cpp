@@ -45,7 +45,52 @@ Mesh readObj(const std::filesystem::path& path) {
   return mesh;
 }
 
-Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius, const glm::dvec3& center) {
+namespace {
+
+// vtkSphereSource::RequestData for a whole sphere in one piece, step by step in its order and
+// arithmetic (radians from degrees, theta = i·Δθ, φ = j·Δφ), so its float points match.
+Mesh makeSphereAsVtkSphereSource(int thetaResolution, int phiResolution, double radius,
+                                 const glm::dvec3& center) {
+  Mesh mesh;
+  const std::int64_t north = mesh.addPoint(center + glm::dvec3(0, 0, radius));
+  const std::int64_t south = mesh.addPoint(center - glm::dvec3(0, 0, radius));
+  constexpr double kRadiansPerDegree = M_PI / 180.0;
+  const double deltaTheta = 360.0 * kRadiansPerDegree / thetaResolution;
+  const double deltaPhi = 180.0 * kRadiansPerDegree / (phiResolution - 1);
+  const int pointsPerMeridian = phiResolution - 2;  // without the poles
+  for (int i = 0; i < thetaResolution; ++i) {
+    const double theta = i * deltaTheta;
+    for (int j = 1; j <= pointsPerMeridian; ++j) {
+      const double phi = j * deltaPhi;
+      const double ringRadius = radius * std::sin(phi);
+      mesh.addPoint(center + glm::dvec3(ringRadius * std::cos(theta), ringRadius * std::sin(theta),
+                                        radius * std::cos(phi)));
+    }
+  }
+  const std::int64_t base = std::int64_t{pointsPerMeridian} * thetaResolution;
+  // Point j (0 = nearest the north pole) of meridian i, meridians wrapping around.
+  const auto at = [&](std::int64_t i, std::int64_t j) -> std::int64_t {
+    return (pointsPerMeridian * i % base) + j + 2;
+  };
+  for (int i = 0; i < thetaResolution; ++i)
+    mesh.addPolygon({at(i, 0), at(i + 1, 0), north});
+  for (int i = 0; i < thetaResolution; ++i)
+    mesh.addPolygon({at(i, pointsPerMeridian - 1), south, at(i + 1, pointsPerMeridian - 1)});
+  for (int i = 0; i < thetaResolution; ++i) {
+    for (int j = 0; j + 1 < pointsPerMeridian; ++j) {
+      mesh.addPolygon({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+      mesh.addPolygon({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
+
+Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius, const glm::dvec3& center,
+                  UvSphereOrder order) {
+  if (order == UvSphereOrder::vtkSphereSource)
+    return makeSphereAsVtkSphereSource(thetaResolution, phiResolution, radius, center);
   Mesh mesh;
   const std::int64_t north = mesh.addPoint(center + glm::dvec3(0, 0, radius));
   const std::int64_t south = mesh.addPoint(center - glm::dvec3(0, 0, radius));

@@ -20,10 +20,22 @@ std::filesystem::path sharedMeshPath(const std::string& fileName);
 // file or a malformed line.
 Mesh readObj(const std::filesystem::path& path);
 
+// The order a UV sphere lists its points and triangles in (the same surface either way).
+enum class UvSphereOrder {
+  // Points ring-major (north pole, south pole, then ring by ring from the north); triangles
+  // ring by ring: the north cap, the bands between rings, the south cap.
+  ringByRing,
+  // Exactly vtkSphereSource's output (VTK 9, LatLongTessellation off): points theta-major
+  // (the poles, then meridian by meridian from the north), triangles the north cap, the
+  // south cap, then meridian by meridian pole to pole; the point values as it computes them.
+  vtkSphereSource,
+};
+
 // A UV sphere with vtkSphereSource's topology: two poles, phiResolution − 2 rings of
 // thetaResolution points, 2·theta·(phi − 2) counter-clockwise (outward) triangles.
 Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius = 1.0,
-                  const glm::dvec3& center = glm::dvec3(0.0));
+                  const glm::dvec3& center = glm::dvec3(0.0),
+                  UvSphereOrder order = UvSphereOrder::ringByRing);
 
 // An axis-aligned box as 6 outward quads.
 Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high);
