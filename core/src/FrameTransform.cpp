@@ -173,10 +173,13 @@ glm::dvec3 FrameTransform::toViewer(const glm::dvec3& world) const {
   if (parallel_) return back_;
   const glm::dvec3 offset = eye_ - world;
   const double length = glm::length(offset);
-  if (length > 0.0 && std::isfinite(length)) return offset / length;
+  // Below 2^-510 the squared length is under DBL_MIN: subnormal (a length off by up to a
+  // percent at 1e-161, not 0) or 0.
+  constexpr double kShortestFromSquares = 0x1p-510;
+  if (length >= kShortestFromSquares && std::isfinite(length)) return offset / length;
   // A distance beyond ~1e154 (or below ~1e-154) is finite although its square is not (or
-  // is 0): the direction from the offset scaled first. Only the eye at the point (or an
-  // offset beyond double's range) has none: the view's back direction.
+  // is subnormal or 0): the direction from the offset scaled first. Only the eye at the point
+  // (or an offset beyond double's range) has none: the view's back direction.
   if (const std::optional<UnitAndLength> robust = normalizeRobust(offset)) return robust->unit;
   return back_;
 }
