@@ -96,6 +96,7 @@ struct DebugCounts {
   std::atomic<std::size_t> blocks{0}, hidden{0}, polygons{0}, hiddenPolygons{0};
   std::atomic<std::size_t> coneCertain{0}, coneCertainHidden{0}, coneCertainHiddenPolygons{0};
   std::atomic<std::size_t> deferredWhole{0}, deferredWholePolygons{0};
+  std::atomic<std::size_t> runs{0}, hiddenRuns{0}, runPolygons{0}, hiddenRunPolygons{0};
   std::atomic<bool> on{std::getenv("FACET_HIDDEN_BLOCKS_DEBUG") != nullptr};
   bool print = on;
   ~DebugCounts() {
@@ -105,6 +106,9 @@ struct DebugCounts {
                    "hidden %zu (polygons %zu)\n",
                    hidden.load(), blocks.load(), hiddenPolygons.load(), polygons.load(),
                    coneCertain.load(), coneCertainHidden.load(), coneCertainHiddenPolygons.load());
+    if (print)
+      std::fprintf(stderr, "hidden runs %zu of %zu, polygons %zu of %zu\n", hiddenRuns.load(),
+                   runs.load(), hiddenRunPolygons.load(), runPolygons.load());
   }
 } debugCounts;
 }  // namespace
@@ -127,6 +131,8 @@ void countHiddenBlocks(bool on) {
   debugCounts.coneCertain = debugCounts.coneCertainHidden = 0;
   debugCounts.coneCertainHiddenPolygons = 0;
   debugCounts.deferredWhole = debugCounts.deferredWholePolygons = 0;
+  debugCounts.runs = debugCounts.hiddenRuns = debugCounts.runPolygons = 0;
+  debugCounts.hiddenRunPolygons = 0;
   debugCounts.on = on;
 }
 
@@ -143,7 +149,21 @@ HiddenBlockCounts hiddenBlockCounts() {
           debugCounts.coneCertainHidden,
           debugCounts.coneCertainHiddenPolygons,
           debugCounts.deferredWhole,
-          debugCounts.deferredWholePolygons};
+          debugCounts.deferredWholePolygons,
+          debugCounts.runs,
+          debugCounts.hiddenRuns,
+          debugCounts.runPolygons,
+          debugCounts.hiddenRunPolygons};
+}
+
+void hiddenRunDebug(bool hidden, std::size_t polygons) {
+  if (!debugCounts.on) return;
+  ++debugCounts.runs;
+  debugCounts.runPolygons += polygons;
+  if (hidden) {
+    ++debugCounts.hiddenRuns;
+    debugCounts.hiddenRunPolygons += polygons;
+  }
 }
 
 void deferredWholeDebug(std::size_t polygons) {

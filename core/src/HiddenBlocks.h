@@ -62,11 +62,45 @@
 // dropped.
 // The margin test is DepthPrecision.TriangleKeysNeverPassTheirNearestVertexKey (step 1) and
 // HiddenBlocks.ApexThroughTheFrontFaceIsNeverDropped (steps 3–5).
+//
+// Runs (silhouette25). A block that straddles the silhouette reaches the background (its
+// 8 × 8 blocks' least front key is the background's), so the block test cannot hold there,
+// though most of its back faces lie behind front faces. The back pass then splits the
+// block's deferred ids into runs, the deferred ids of one aligned window of kHiddenRunIds
+// polygon ids, and drops a run whole before any of its polygons is loaded or classified when
+// HiddenRunTest::hidden holds for the window bounds of its own vertices (RunBounds: the
+// transform's WindowVertex of each corner, no box and no distance bound):
+// R1. Every polygon of the run is a triangle and every vertex's outcode is kInside
+//     (RunBounds::outcodes): no triangle is clipped, each vertex's window position and key are
+//     the ones the set-up paints with. Such a deferred triangle has a negative snapped area
+//     (the front pass defers only those: runTriangle's area < 0, the batch's clockwise culled
+//     lanes, and the cone-certain blocks, BackFacingBlocks.h), computed again from the same
+//     vertices in the back pass, so it is painted as a back face of a triangle polygon:
+//     clamped (step 1): W ≤ its nearest vertex key ≤ RunBounds::nearest, the largest float
+//     key of the run's vertices. No rounding here: the floats are compared as they are.
+// R2. A covered sample (pixel center p·scale + half, in the grid's fixed point) lies inside
+//     the snapped triangle, hence within the closed box of its snapped vertices, hence of
+//     the run's [x0, x1] × [y0, y1]; its pixel is in the pixel box of the centers there,
+//     clipped to the viewport (nothing outside is written), found exactly in integers.
+// R3. FrontDepthBlocks::over(that box) F_min is at most every front key there (step 4):
+//     F_min ≥ nearest gives W ≤ nearest ≤ F_min ≤ F; a tie keeps the front face.
+// Counted as a dropped block's polygons (hidden alone: drawn + outside + degenerate + hidden
+// is one pass's). The windows are aligned in mesh polygon ids and kHiddenRunIds divides the
+// block (and so every chunk: planChunks cuts at 1,024-polygon blocks), so a run is the same
+// set of ids whatever the threads, and so are the counts. The margin test is
+// HiddenBlocks.RunPokingThroughTheFrontFaceIsNeverDropped (R1–R3: fails with the comparison
+// loosened by 1e-6 of the key).
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
 
 #include "Box.h"
 #include "FrameTransform.h"
 #include "RasterTriangle.h"
 #include "TileGrid.h"
+#include "facet/Conventions.h"
 
 namespace facet::detail {
 
@@ -96,6 +130,53 @@ class HiddenBlockTest {
   bool parallel_;
 };
 
+// Polygon ids per run (the header's runs): 8 measured best at 500k (section 30 of
+// bench/core-frame-issue11.md: 4 the same, 16 and up fewer dropped).
+inline constexpr std::size_t kHiddenRunIds = 8;
+static_assert((kHiddenRunIds & (kHiddenRunIds - 1)) == 0);
+
+// The window bounds of a run of deferred back faces, from their vertices as the transform
+// left them (HiddenRunTest).
+struct RunBounds {
+  std::int32_t x0 = std::numeric_limits<std::int32_t>::max(), y0 = x0;
+  std::int32_t x1 = std::numeric_limits<std::int32_t>::min(), y1 = x1;
+  float nearest = -std::numeric_limits<float>::infinity();
+  // The vertices' outcodes, and kNotTriangle when a polygon of the run is not a triangle.
+  std::uint32_t outcodes = kInside;
+  static constexpr std::uint32_t kNotTriangle = 1u << 16;  // beyond WindowVertex::outcode
+
+  [[gnu::always_inline]] void add(const WindowVertex& v) {
+    x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+    y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+    nearest = std::max(nearest, v.depth);
+    outcodes |= v.outcode;
+  }
+};
+
+class HiddenRunTest {
+ public:
+  HiddenRunTest(const TileGrid& grid, const FrontDepthBlocks& front)
+      : viewport_(grid.viewport()), front_(front) {}
+  // Whether every triangle of a run of triangle polygons with these bounds loses the depth
+  // test everywhere to the front faces (the header's runs, steps R1-R3).
+  bool hidden(const RunBounds& run) const {
+    if (run.outcodes != kInside) return false;  // step R1
+    // Step R2: pixel centers p·scale + half inside [x0, x1] (an arithmetic shift floors).
+    constexpr std::int32_t kHalf = kSubpixelScale / 2;
+    const int px0 = std::max((run.x0 - kHalf + kSubpixelScale - 1) >> kSubpixelBits, viewport_.x0);
+    const int px1 = std::min((run.x1 - kHalf) >> kSubpixelBits, viewport_.x1);
+    const int py0 = std::max((run.y0 - kHalf + kSubpixelScale - 1) >> kSubpixelBits, viewport_.y0);
+    const int py1 = std::min((run.y1 - kHalf) >> kSubpixelBits, viewport_.y1);
+    if (px0 > px1 || py0 > py1) return false;
+    // Step R3: a tie keeps the front face.
+    return front_.over({px0, py0, px1, py1}) >= run.nearest;
+  }
+
+ private:
+  PixelBounds viewport_;
+  const FrontDepthBlocks& front_;
+};
+
 // On unless FACET_HIDDEN_BLOCKS=0 in the environment or enableHiddenBlocks(false) (tests);
 // FACET_HIDDEN_BLOCKS=cone restricts it to the blocks BackFaceTest proves back-facing
 // (measured in section 18c).
@@ -112,11 +193,15 @@ struct HiddenBlockCounts {
   // The blocks (parts of blocks a chunk holds) the front pass deferred whole, unclassified
   // (SetupContext::deferCertainBackBlocks), and their polygons.
   std::size_t deferredWhole = 0, deferredWholePolygons = 0;
+  // The runs (HiddenRunTest) of the blocks not dropped whole, the runs dropped, and their
+  // deferred polygons.
+  std::size_t runs = 0, hiddenRuns = 0, runPolygons = 0, hiddenRunPolygons = 0;
 };
 void countHiddenBlocks(bool on);
 bool countingHiddenBlocks();
 HiddenBlockCounts hiddenBlockCounts();
 void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons);
 void deferredWholeDebug(std::size_t polygons);
+void hiddenRunDebug(bool hidden, std::size_t polygons);
 
 }  // namespace facet::detail

@@ -156,8 +156,8 @@ bool RenderRules::allows(Rule rule) const {
       << " polygons per covered pixel of the previous frame (before a first frame: estimated from "
          "the blocks' projected boxes; two passes from 1)";
   if (twoPassFrame)
-    out << "; " << polygonsHiddenBehindFront << " back faces in " << blocksHiddenBehindFront
-        << " blocks hidden behind the front faces, not set up";
+    out << "; " << polygonsHiddenBehindFront << " back faces hidden behind the front faces, not "
+        << "set up (" << blocksHiddenBehindFront << " whole blocks, the rest in runs of a few ids)";
   out << "\n";
   out << "  rules (off / idle / fired: what each left out):\n";
   for (int r = 0; r < kRuleCount; ++r)

@@ -632,6 +632,42 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
                                                      next) -
                                     ids.begin());
   };
+  // The deferred back faces of a block not dropped whole, dropped run by run (HiddenBlocks.h,
+  // steps R1-R3) before they are loaded: a run is the deferred ids of one aligned window of
+  // kHiddenRunIds polygon ids. Chunks and blocks hold whole windows, so the runs, and what is
+  // counted hidden, do not depend on the threads.
+  static_assert(kPolygonsPerBackBlock % kHiddenRunIds == 0);
+  std::optional<HiddenRunTest> runs;
+  if (blocks) runs.emplace(context.grid, *context.front);
+  const WindowVertex* const vertices = context.vertices + mesh.firstVertex;
+  const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
+  // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
+  // hidden run; kTriangles: every polygon of the block is a triangle (BackBlock::skippable).
+  const auto runsOf = [&]<bool kTriangles>(std::size_t k, std::size_t stop, const auto& each) {
+    while (k < stop) {
+      const std::uint32_t windowEnd = ((ids[k] - firstId) | (kHiddenRunIds - 1)) + 1 + firstId;
+      RunBounds bounds;
+      std::size_t i = k;
+      do {
+        const std::size_t polygon = ids[i] - firstId;
+        if (!kTriangles && polygons.size(polygon) != 3) {
+          bounds.outcodes |= RunBounds::kNotTriangle;
+          continue;
+        }
+        for (std::size_t j = 0; j < 3; ++j)
+          bounds.add(vertices[polygons.pointId(polygon, j)]);
+      } while (++i < stop && ids[i] < windowEnd);
+      const bool hidden = runs->hidden(bounds);
+      hiddenRunDebug(hidden, i - k);
+      if (hidden) {  // counted hidden alone, as a block's
+        chunk.counts.hiddenBlockPolygons += i - k;
+        k = i;
+        continue;
+      }
+      for (; k < i; ++k)
+        each(ids[k] - firstId);
+    }
+  };
   // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
   const auto forEachShown = [&](const auto& each) {
     for (std::size_t k = first; k < end;) {
@@ -645,6 +681,14 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
       if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
         ++chunk.counts.hiddenBlocks;
         chunk.counts.hiddenBlockPolygons += blockEnd - k;
+        k = blockEnd;
+        continue;
+      }
+      if (runs) {
+        if (mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable)
+          runsOf.template operator()<true>(k, blockEnd, each);
+        else
+          runsOf.template operator()<false>(k, blockEnd, each);
         k = blockEnd;
         continue;
       }

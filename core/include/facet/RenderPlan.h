@@ -151,9 +151,9 @@ struct RenderPlan {
   double meanTriangleBox = 0.0;  ///< pixels in the average triangle's bounding box
 
   /// Every face drawn (meshes not skipping back faces) in two passes: the front faces painted
-  /// first, then the back faces set up against them, whole blocks of back faces that the front
-  /// faces hide everywhere dropped before set-up (their polygons counted hidden,
-  /// RenderStats::polygonsHidden, never painted: none could change a pixel). Chosen when
+  /// first, then the back faces set up against them, whole blocks (and runs of a few ids) of
+  /// back faces that the front faces hide everywhere dropped before set-up (their polygons counted
+  /// hidden, RenderStats::polygonsHidden, never painted: none could change a pixel). Chosen when
   /// those meshes have at least one polygon per pixel the previous frame covered
   /// (`everyFacePolygonsPerCoveredPixel`; before a first frame, the pixels of the 8 × 8 cells
   /// the meshes' blocks' projected boxes touch, or the image's when a mesh has no bounds),
@@ -202,10 +202,10 @@ struct RenderStats {
   std::size_t polygonsOutside = 0;     ///< outside the view, or covering no pixel center
   std::size_t polygonsDegenerate = 0;  ///< fewer than 3 points, or zero area
   std::size_t polygonsNonFinite = 0;   ///< using a point with a NaN or infinite coordinate
-  /// Back faces a two-pass frame dropped, in whole blocks hidden behind the front faces, before
-  /// any per-polygon work (RenderPlan::polygonsHiddenBehindFront): neither drawn nor binned,
-  /// outside nor degenerate. Drawn + outside + degenerate + hidden is one pass's drawn +
-  /// outside + degenerate for the same frame.
+  /// Back faces a two-pass frame dropped, in whole blocks or runs of a few ids hidden behind the
+  /// front faces, before any per-polygon work (RenderPlan::polygonsHiddenBehindFront): neither
+  /// drawn nor binned, outside nor degenerate. Drawn + outside + degenerate + hidden is one pass's
+  /// drawn + outside + degenerate for the same frame.
   std::size_t polygonsHidden = 0;
   std::size_t trianglesBinned = 0;   ///< triangles handed to the tiles
   std::size_t trianglesClipped = 0;  ///< triangles that went through the clipper
