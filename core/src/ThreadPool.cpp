@@ -55,17 +55,22 @@ bool ThreadPool::awaitFirstStage() {
   return true;
 }
 
+// Takes the job's next index and runs its task: a first-stage one, or one of task_ once the
+// whole first stage has finished. Stop: the job is over for this thread (no task left, the job
+// cancelled, or the task threw).
+ThreadPool::Took ThreadPool::runNextTask() {
+  const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
+  if (i < first_.count) return runFirstStageTask(i) ? Took::FirstStageTask : Took::Stop;
+  if (i - first_.count >= count_ || !awaitFirstStage()) return Took::Stop;
+  auto runTask = [&] { task_(i - first_.count); };
+  return succeeds(runTask) ? Took::Task : Took::Stop;
+}
+
 void ThreadPool::runTasks() {
   while (!cancelled_.load(std::memory_order_relaxed)) {
-    const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
-    if (i < first_.count) {
-      if (!runFirstStageTask(i)) return;
-      continue;
-    }
-    if (i - first_.count >= count_ || !awaitFirstStage()) return;
-    auto runTask = [&] { task_(i - first_.count); };
-    if (!succeeds(runTask)) return;
-    done_.fetch_add(1, std::memory_order_relaxed);
+    const Took took = runNextTask();
+    if (took == Took::Stop) return;
+    if (took == Took::Task) done_.fetch_add(1, std::memory_order_relaxed);
   }
 }
 
@@ -109,14 +114,9 @@ bool ThreadPool::run(std::size_t count, FunctionRef<void(std::size_t)> task,
   if (first.count + count > 1) wake_.notify_all();
 
   while (!cancelled_.load(std::memory_order_relaxed)) {
-    const std::size_t i = next_.fetch_add(1, std::memory_order_relaxed);
-    if (i < first.count) {
-      if (!runFirstStageTask(i)) break;
-      continue;
-    }
-    if (i - first.count >= count || !awaitFirstStage()) break;
-    auto runTask = [&] { task(i - first.count); };
-    if (!succeeds(runTask)) break;
+    const Took took = runNextTask();
+    if (took == Took::Stop) break;
+    if (took == Took::FirstStageTask) continue;
     const std::size_t finished = done_.fetch_add(1, std::memory_order_relaxed) + 1;
     bool goOn = true;
     auto askCaller = [&] { goOn = afterCallerTask(finished); };

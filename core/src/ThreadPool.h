@@ -52,6 +52,8 @@ class ThreadPool {
   void workerLoop();
   void runTasks();
   bool succeeds(FunctionRef<void()> work);
+  enum class Took { FirstStageTask, Task, Stop };
+  Took runNextTask();
   bool runFirstStageTask(std::size_t i);
   bool awaitFirstStage();
 
