@@ -156,13 +156,27 @@ class PolygonSetup {
     // between appends it made the compiler reload the chunk's vectors (and, in this loop, the
     // base pointer: taken once). A mesh that skips back faces keeps no clockwise lane.
     std::uint8_t* const facing = context_.backFacing + mesh_.firstPolygon;
-    for (std::uint32_t rest = kept; rest != 0; rest &= rest - 1) {
-      const int lane = std::countr_zero(rest);
-      facing[lanePolygon[lane]] = kSkipBackFaces ? 0 : (verdicts.clockwise >> lane) & 1u;
+    if (kSkipBackFaces && kept != 0 && wholeRun(lanePolygon, lanes)) {
+      // Every lane's byte at once: 0 is also right for the lanes not kept, which are dropped
+      // (never shown, so never read) or were drawn front-facing by run() (back faces culled).
+      static constexpr std::uint8_t kFront[kBatchSize] = {};
+      std::memcpy(facing + lanePolygon[0], kFront, kBatchSize);
+    } else {
+      for (std::uint32_t rest = kept; rest != 0; rest &= rest - 1) {
+        const int lane = std::countr_zero(rest);
+        facing[lanePolygon[lane]] = kSkipBackFaces ? 0 : (verdicts.clockwise >> lane) & 1u;
+      }
     }
     chunk_.counts.trianglesBinned += binned;
     chunk_.counts.drawn += binned;
     if (!kSkipBackFaces && verdicts.hidden != 0) countHidden(verdicts, lanePolygon, used);
+  }
+
+  // Whether a batch's lanes hold kBatchSize consecutive polygons: in z-buffer order a batch's
+  // polygons ascend, so they do unless it spans a block the set-up skipped whole.
+  bool wholeRun(const std::size_t* lanePolygon, int lanes) const {
+    return lanes == kBatchSize && context_.order.ids.empty() &&
+           lanePolygon[kBatchSize - 1] - lanePolygon[0] == kBatchSize - 1;
   }
 
   void run(std::size_t polygon) {
@@ -297,7 +311,8 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
-      if (clampBack_) chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
+      if (!kSkipBackFaces && clampBack_)
+        chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
       binSmall(chunk_, tile, smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else {
       // Its vertex references, read again here (most kept triangles are fragments).

@@ -468,6 +468,37 @@ TEST_F(SetupBatches, SphereOf500kTrianglesRendersTheSameBytesOnEveryTarget) {
   expectSameRenders(cases, targets());
 }
 
+// A frame that culls back faces writes the facing (Setup.h: backFacing, which the shade reads)
+// of every polygon it draws, also where the renderer's previous frame drew that polygon as a
+// back face: the same bytes as a fresh renderer's, on every target.
+TEST_F(SetupBatches, CulledFramesWriteTheFacingOfEveryPolygonTheyDraw) {
+  const Mesh sphere = makeUvSphere(120, 122);
+  const Camera front = fitCamera(sphere, {0.0, 0.0, -1.0});
+  const Camera behind = fitCamera(sphere, {0.1, 0.0, 1.0});
+  const auto litFrom = [](const Camera& camera) {
+    LightSet lights;
+    lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
+    return lights;
+  };
+  Material culled;
+  culled.backfaceCulling = true;
+  const Scene everyFace = oneMeshScene(sphere.view(), {}, litFrom(front));
+  const Scene closed = oneMeshScene(sphere.view(), culled, litFrom(behind));
+  const Rendered fresh = renderScene(closed, behind, 320, 240);
+  EXPECT_GT(fresh.stats.pixelsCovered, 0u);
+  for (const SimdTarget& target : targets()) {
+    SCOPED_TRACE(target.name);
+    use(target);
+    Renderer renderer;
+    Rendered first{Framebuffer(320, 240), {}};
+    renderer.render(everyFace, front, first.framebuffer);
+    Rendered second{Framebuffer(320, 240), {}};
+    second.stats = renderer.render(closed, behind, second.framebuffer);
+    EXPECT_GT(second.stats.polygonsCulled, 0u);
+    expectSameRender(fresh, second);
+  }
+}
+
 // A sphere with a band of polygons left out and its far half first in polygon order: the
 // back faces show through the band, and most others hide behind the front faces.
 Mesh sphereWithBand(int theta) {
