@@ -70,17 +70,18 @@ void transformKeptBackBlocks(PhaseRunner& runner, std::span<FrameMesh> meshes,
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     FrameMesh& mesh = meshes[m];
     if (!mesh.deferredBackBlocks) continue;
-    mesh.backBlockVerdicts = verdictsOf(culling, m);
+    const std::uint8_t* verdicts = verdictsOf(culling, m);
+    // Without the reject the back pass tests nothing: no verdict for it to take.
+    if (reject) mesh.backBlockVerdicts = verdicts;
     if (countingHiddenBlocks()) {
-      const std::uint8_t* v = mesh.backBlockVerdicts;
       const std::size_t n = cache[m].backBlocks.size();
-      waitingBlocksDebug(n - std::size_t(std::count(v, v + n, std::uint8_t{0})),
-                         std::size_t(std::count(v, v + n, kBlockKept)));
+      waitingBlocksDebug(n - std::size_t(std::count(verdicts, verdicts + n, std::uint8_t{0})),
+                         std::size_t(std::count(verdicts, verdicts + n, kBlockKept)));
     }
     std::uint8_t* late = latePointsOf(culling, m);
     const std::size_t flagCount =
         (mesh.mesh().points.count + kPointsPerNeededFlag - 1) >> kNeededPointBits;
-    markLatePoints(mesh, cache[m], mesh.backBlockVerdicts, late, flagCount);
+    markLatePoints(mesh, cache[m], verdicts, late, flagCount);
     mesh.latePoints = late;
     mesh.deferredBackBlocks = nullptr;  // no point waits any more
   }

@@ -171,44 +171,52 @@ TEST_F(HiddenBlocks, EditedVersionRendersAsAFreshRenderer) {
 
 // A Renderer's later two-pass frames leave the points of the blocks the normal cones prove all
 // back faces untransformed until the back pass's reject, then transform those the kept blocks
-// use (DeferredBackPoints.h). The back faces seen through the hole are such blocks: each frame
-// must be a fresh Renderer's (whose first frame transforms every point), the camera turning
-// between frames so that a point left as the previous frame projected it would show.
+// use (DeferredBackPoints.h); with the reject off, every such block's. The back faces seen
+// through the hole are such blocks: each frame must be a fresh Renderer's (whose first frame
+// transforms every point), the camera turning between frames so that a point left as the
+// previous frame projected it would show.
 TEST_F(HiddenBlocks, PointsWaitingForTheRejectPaintAsAFreshRenderersFirstFrame) {
   const Mesh sphere = sphereWithHole(400, 0.8);
   MeshView view = sphere.view();
   view.version = 1;
   detail::enableTwoPassFrames(true);
-  for (int threads : threadCountsToRun({1, 2, 8})) {
-    SCOPED_TRACE(std::to_string(threads) + " threads");
-    for (const detail::SimdTarget& target : targets()) {
-      SCOPED_TRACE(target.name);
-      use(target);
-      Renderer renderer;
-      renderer.setThreadCount(threads);
-      renderer.setVisibility(Visibility::ZBuffer);
-      renderer.setTwoSidedLighting(true);
-      for (int frame = 0; frame < 4; ++frame) {
-        SCOPED_TRACE("frame " + std::to_string(frame));
-        const double turn = 0.1 * frame;
-        const Camera camera = fitCamera(sphere, glm::dvec3(-0.6 + turn, -0.2, -1.0));
-        detail::countHiddenBlocks(true);
-        Rendered later{Framebuffer(640, 480), {}};
-        later.stats = renderer.render(oneMeshScene(view), camera, later.framebuffer);
-        const detail::HiddenBlockCounts counts = detail::hiddenBlockCounts();
-        ASSERT_TRUE(later.stats.plan.twoPassFrame);
-        if (frame > 0) {  // a first frame transforms every point (no covered pixels to go by)
-          EXPECT_GT(counts.waitingBlocks, 10u);
-          EXPECT_GT(counts.waitingBlocksKept, 0u);  // the hole's: their points late
-          EXPECT_LT(counts.waitingBlocksKept, counts.waitingBlocks);
+  for (bool reject : {true, false}) {
+    detail::enableHiddenBlocks(reject);
+    for (int threads : threadCountsToRun({1, 2, 8})) {
+      SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
+                   " threads");
+      for (const detail::SimdTarget& target : targets()) {
+        SCOPED_TRACE(target.name);
+        use(target);
+        Renderer renderer;
+        renderer.setThreadCount(threads);
+        renderer.setVisibility(Visibility::ZBuffer);
+        renderer.setTwoSidedLighting(true);
+        for (int frame = 0; frame < 4; ++frame) {
+          SCOPED_TRACE("frame " + std::to_string(frame));
+          const Camera camera = fitCamera(sphere, glm::dvec3(-0.6 + 0.1 * frame, -0.2, -1.0));
+          detail::countHiddenBlocks(true);
+          Rendered later{Framebuffer(640, 480), {}};
+          later.stats = renderer.render(oneMeshScene(view), camera, later.framebuffer);
+          const detail::HiddenBlockCounts counts = detail::hiddenBlockCounts();
+          ASSERT_TRUE(later.stats.plan.twoPassFrame);
+          if (frame > 0) {  // a first frame transforms every point (no covered pixels yet)
+            EXPECT_GT(counts.waitingBlocks, 10u);
+            EXPECT_GT(counts.waitingBlocksKept, 0u);  // the hole's: their points late
+            if (reject)
+              EXPECT_LT(counts.waitingBlocksKept, counts.waitingBlocks);
+            else
+              EXPECT_EQ(counts.waitingBlocksKept, counts.waitingBlocks);
+          }
+          const Rendered fresh =
+              renderScene(oneMeshScene(view), camera, 640, 480, optionsWith(threads));
+          EXPECT_GT(fresh.stats.pixelsCovered, 10000u);
+          expectSameRender(fresh, later);
         }
-        const Rendered fresh =
-            renderScene(oneMeshScene(view), camera, 640, 480, optionsWith(threads));
-        EXPECT_GT(fresh.stats.pixelsCovered, 10000u);
-        expectSameRender(fresh, later);
       }
     }
   }
+  detail::enableHiddenBlocks(true);
 }
 
 // The squares' scenes' camera: at the origin, looking down −Z.
