@@ -53,12 +53,12 @@ bool HiddenBlockTest::hidden(const Box& box) const {
   const std::int64_t py0 = std::max<std::int64_t>(firstCenter(y0), viewport_.y0);
   const std::int64_t py1 = std::min<std::int64_t>(lastCenter(y1), viewport_.y1);
   if (px0 > px1 || py0 > py1) return false;
-  const float farthest = front_.over(
-      {static_cast<int>(px0), static_cast<int>(py0), static_cast<int>(px1), static_cast<int>(py1)});
   const double bound = nearestVertexKeyBound(nearestDistance, farthestDistance, largestOffset);
-  // Step 5: the float the vertex key rounds to is at most `farthest` (rounding is monotone);
-  // a tie keeps the front face.
-  return static_cast<double>(farthest) >= bound;
+  // Step 5: the float the vertex key rounds to is at most the blocks' least key F_min
+  // (rounding is monotone) when F_min >= bound; a tie keeps the front face.
+  return front_.noneNearerThan(
+      {static_cast<int>(px0), static_cast<int>(py0), static_cast<int>(px1), static_cast<int>(py1)},
+      bound);
 }
 
 // Step 3: a bound on the key FrameTransform::toWindow gives any point of the box, from its

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -20,7 +22,9 @@
 #include "HiddenBlocks.h"
 #include "PhaseRunner.h"
 #include "Raster.h"
+#include "RasterTriangle.h"
 #include "ThreadPool.h"
+#include "TileGrid.h"
 
 namespace facet::testing {
 namespace {
@@ -217,6 +221,42 @@ TEST_F(HiddenBlocks, PointsWaitingForTheRejectPaintAsAFreshRenderersFirstFrame) 
     }
   }
   detail::enableHiddenBlocks(true);
+}
+
+// The block test's early stop (FrontDepthBlocks::noneNearerThan, row of blocks by row) decides
+// as the whole box's least key does: over(box) >= bound, for bounds at, just above and just
+// below that key, boxes of every shape, and blocks where the background shows.
+TEST(FrontDepthBlocks, EarlyStopDecidesAsTheBoxsLeastKey) {
+  const detail::TileGrid grid(300, 200);
+  std::mt19937 random(29);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f), unit(0.0f, 1.0f);
+  constexpr std::size_t kPerTile = detail::FrontDepthBlocks::kPerTile;
+  std::vector<float> keys(grid.count() * kPerTile);
+  std::generate(keys.begin(), keys.end(), [&] {
+    return unit(random) < 0.02f ? -std::numeric_limits<float>::infinity() : key(random);
+  });
+  detail::FrontDepthBlocks blocks;
+  blocks.resize(grid);
+  for (std::size_t t = 0; t < grid.count(); ++t)
+    blocks.store(t, keys.data() + t * kPerTile);
+  std::uniform_int_distribution<int> x(0, 299), y(0, 199);
+  std::size_t held = 0, failed = 0;
+  for (int k = 0; k < 5000; ++k) {
+    PixelBounds box{x(random), y(random), x(random), y(random)};
+    if (box.x0 > box.x1) std::swap(box.x0, box.x1);
+    if (box.y0 > box.y1) std::swap(box.y0, box.y1);
+    const float least = blocks.over(box);
+    for (const double bound :
+         {static_cast<double>(least), static_cast<double>(std::nextafter(least, 1.0f)),
+          static_cast<double>(std::nextafter(least, -1.0f)), static_cast<double>(key(random))}) {
+      const bool expected = static_cast<double>(least) >= bound;
+      ASSERT_EQ(blocks.noneNearerThan(box, bound), expected)
+          << "box " << box.x0 << ", " << box.y0 << " to " << box.x1 << ", " << box.y1;
+      (expected ? held : failed) += 1;
+    }
+  }
+  EXPECT_GT(held, 1000u);
+  EXPECT_GT(failed, 1000u);
 }
 
 // The squares' scenes' camera: at the origin, looking down −Z.
