@@ -44,6 +44,9 @@ void splitPerMesh(std::size_t meshCount, std::size_t perRange, const CountOf& co
   }
 }
 
+// FrameMesh::backBlockVerdicts: the back pass's block reject (DeferredBackPoints.h).
+inline constexpr std::uint8_t kBlockKept = 1, kBlockHidden = 2;
+
 // Per-frame facts about one scene mesh.
 struct FrameMesh {
   const SceneMesh* source = nullptr;
@@ -68,6 +71,15 @@ struct FrameMesh {
   // Per back-face block, what the mesh version's measurement knows (MeshCache.h); null: an
   // unversioned mesh. A two-pass frame's back pass may drop blocks whole (HiddenBlocks.h).
   const BackBlock* backBlockFacts = nullptr;
+  // A two-pass frame's every-face mesh (DeferredBackPoints.h): per back-face block, whether
+  // BackFaceTest proves it all back faces, so that the front pass defers it whole and its
+  // points wait for the back pass's block reject (not in neededPoints); then per
+  // kPointsPerNeededFlag points, those the kept blocks use that neededPoints did not hold
+  // (transformed after the front pass); and per back-face block the reject's verdict
+  // (kBlockKept, kBlockHidden; 0: not tested). Null: none.
+  const std::uint8_t* deferredBackBlocks = nullptr;
+  const std::uint8_t* latePoints = nullptr;
+  const std::uint8_t* backBlockVerdicts = nullptr;
   // Every polygon is a triangle, offsets[p] = 3p (MeshFacts::allTriangles, measured meshes).
   bool allTriangles = false;
 

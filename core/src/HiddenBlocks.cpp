@@ -53,12 +53,12 @@ bool HiddenBlockTest::hidden(const Box& box) const {
   const std::int64_t py0 = std::max<std::int64_t>(firstCenter(y0), viewport_.y0);
   const std::int64_t py1 = std::min<std::int64_t>(lastCenter(y1), viewport_.y1);
   if (px0 > px1 || py0 > py1) return false;
-  const float farthest = front_.over(
-      {static_cast<int>(px0), static_cast<int>(py0), static_cast<int>(px1), static_cast<int>(py1)});
   const double bound = nearestVertexKeyBound(nearestDistance, farthestDistance, largestOffset);
-  // Step 5: the float the vertex key rounds to is at most `farthest` (rounding is monotone);
-  // a tie keeps the front face.
-  return static_cast<double>(farthest) >= bound;
+  // Step 5: the float the vertex key rounds to is at most the blocks' least key F_min
+  // (rounding is monotone) when F_min >= bound; a tie keeps the front face.
+  return front_.noneNearerThan(
+      {static_cast<int>(px0), static_cast<int>(py0), static_cast<int>(px1), static_cast<int>(py1)},
+      bound);
 }
 
 // Step 3: a bound on the key FrameTransform::toWindow gives any point of the box, from its
@@ -97,6 +97,7 @@ struct DebugCounts {
   std::atomic<std::size_t> coneCertain{0}, coneCertainHidden{0}, coneCertainHiddenPolygons{0};
   std::atomic<std::size_t> deferredWhole{0}, deferredWholePolygons{0};
   std::atomic<std::size_t> runs{0}, hiddenRuns{0}, runPolygons{0}, hiddenRunPolygons{0};
+  std::atomic<std::size_t> waitingBlocks{0}, waitingBlocksKept{0};
   std::atomic<bool> on{std::getenv("FACET_HIDDEN_BLOCKS_DEBUG") != nullptr};
   bool print = on;
   ~DebugCounts() {
@@ -107,8 +108,11 @@ struct DebugCounts {
                    hidden.load(), blocks.load(), hiddenPolygons.load(), polygons.load(),
                    coneCertain.load(), coneCertainHidden.load(), coneCertainHiddenPolygons.load());
     if (print)
-      std::fprintf(stderr, "hidden runs %zu of %zu, polygons %zu of %zu\n", hiddenRuns.load(),
-                   runs.load(), hiddenRunPolygons.load(), runPolygons.load());
+      std::fprintf(stderr,
+                   "hidden runs %zu of %zu, polygons %zu of %zu; blocks whose points waited %zu, "
+                   "kept %zu\n",
+                   hiddenRuns.load(), runs.load(), hiddenRunPolygons.load(), runPolygons.load(),
+                   waitingBlocks.load(), waitingBlocksKept.load());
   }
 } debugCounts;
 }  // namespace
@@ -133,6 +137,7 @@ void countHiddenBlocks(bool on) {
   debugCounts.deferredWhole = debugCounts.deferredWholePolygons = 0;
   debugCounts.runs = debugCounts.hiddenRuns = debugCounts.runPolygons = 0;
   debugCounts.hiddenRunPolygons = 0;
+  debugCounts.waitingBlocks = debugCounts.waitingBlocksKept = 0;
   debugCounts.on = on;
 }
 
@@ -153,7 +158,9 @@ HiddenBlockCounts hiddenBlockCounts() {
           debugCounts.runs,
           debugCounts.hiddenRuns,
           debugCounts.runPolygons,
-          debugCounts.hiddenRunPolygons};
+          debugCounts.hiddenRunPolygons,
+          debugCounts.waitingBlocks,
+          debugCounts.waitingBlocksKept};
 }
 
 void hiddenRunDebug(bool hidden, std::size_t polygons) {
@@ -164,6 +171,12 @@ void hiddenRunDebug(bool hidden, std::size_t polygons) {
     ++debugCounts.hiddenRuns;
     debugCounts.hiddenRunPolygons += polygons;
   }
+}
+
+void waitingBlocksDebug(std::size_t waiting, std::size_t kept) {
+  if (!debugCounts.on) return;
+  debugCounts.waitingBlocks += waiting;
+  debugCounts.waitingBlocksKept += kept;
 }
 
 void deferredWholeDebug(std::size_t polygons) {

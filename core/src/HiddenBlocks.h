@@ -196,6 +196,8 @@ struct HiddenBlockCounts {
   // The runs (HiddenRunTest) of the blocks not dropped whole, the runs dropped, and their
   // deferred polygons.
   std::size_t runs = 0, hiddenRuns = 0, runPolygons = 0, hiddenRunPolygons = 0;
+  // The blocks whose points waited for the reject (DeferredBackPoints.h), and those kept.
+  std::size_t waitingBlocks = 0, waitingBlocksKept = 0;
 };
 void countHiddenBlocks(bool on);
 bool countingHiddenBlocks();
@@ -203,5 +205,6 @@ HiddenBlockCounts hiddenBlockCounts();
 void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons);
 void deferredWholeDebug(std::size_t polygons);
 void hiddenRunDebug(bool hidden, std::size_t polygons);
+void waitingBlocksDebug(std::size_t waiting, std::size_t kept);
 
 }  // namespace facet::detail

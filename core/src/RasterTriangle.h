@@ -275,6 +275,21 @@ class FrontDepthBlocks {
       if (row == last) return farthest;
     }
   }
+  // Whether over(box) >= bound, row of blocks by row: false at the first row nearer than the
+  // bound (a box reaching the background stops there).
+  bool noneNearerThan(const PixelBounds& box, double bound) const {
+    constexpr int kBits = std::countr_zero(unsigned{kBlockSize});
+    const int bx0 = box.x0 >> kBits, bx1 = box.x1 >> kBits;
+    const float* row = blocks_.data() + static_cast<std::size_t>(box.y0 >> kBits) * stride_;
+    const float* const last = blocks_.data() + static_cast<std::size_t>(box.y1 >> kBits) * stride_;
+    for (;; row += stride_) {
+      float farthest = std::numeric_limits<float>::infinity();
+      for (int bx = bx0; bx <= bx1; ++bx)
+        farthest = std::min(farthest, row[bx]);
+      if (static_cast<double>(farthest) < bound) return false;
+      if (row == last) return true;
+    }
+  }
 
  private:
   std::size_t stride_ = 0, tilesX_ = 1;

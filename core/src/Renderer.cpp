@@ -23,6 +23,7 @@
 
 #include "Assert.h"
 #include "BackFacingBlocks.h"
+#include "DeferredBackPoints.h"
 #include "Raster.h"
 #include "RendererInputs.h"
 #include "Resolve.h"
@@ -103,15 +104,17 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
                                          RenderStats& stats) {
   if (in.rules.geometryOutsideView) {
     detail::cullBlocksOutsideView(runner, meshes, cache, *transform, in.rules.closedSurfaces,
-                                  viewCulling);
+                                  backPointsMayWait(in), viewCulling);
     reportViewCulling();
   }
   bool completed = detail::transformPoints(runner, meshes, *transform, pointRanges, vertices);
   stats.closedMeshesSkippingBackFaces =
       detail::decideBackFaces(meshes, pointRanges, in.rules.closedSurfaces);
   detail::reportRule(plan, Rule::ClosedSurfaces, stats.closedMeshesSkippingBackFaces);
-  for ([[maybe_unused]] const detail::FrameMesh& mesh : meshes)
+  for ([[maybe_unused]] const detail::FrameMesh& mesh : meshes) {
     FACET_ASSERT(!mesh.backBlocks || mesh.skipBackFaces);  // willSkipBackFaces, ViewCulling
+    FACET_ASSERT(!mesh.deferredBackBlocks || !mesh.skipBackFaces);
+  }
   plan.setupRoutine =
       commonName(meshes, [](const auto& m) { return detail::setupRoutineName(m.skipBackFaces); });
   order.ids.clear();
@@ -122,18 +125,49 @@ bool Renderer::Workspace::renderGeometry(const detail::FrameInputs& in,
 
   detail::SetupContext setupContext{
       meshes, *transform, vertices.data(), order, grid, polygons.backFacing.data(), plan.depthTest};
-  if (twoPassesMayPay(in)) {
+  const bool twoPasses = twoPassesMayPay(in);
+  setupContext.deferCertainBackBlocks = twoPasses && frontPassDefersCertainBlocks();
+  // The cone-certain blocks' points left out for a front pass that would defer them (the
+  // guess before the transform was wrong): every face may read them now.
+  if (!setupContext.deferCertainBackBlocks) transformWaitingPoints(runner, nullptr);
+  if (twoPasses) {
     setupContext.pass = detail::SetupPass::Front;
-    const detail::ScopedBackBlockSettings::Settings blocks =
-        detail::ScopedBackBlockSettings::current();  // this thread's (tests)
-    setupContext.deferCertainBackBlocks =
-        detail::frontPassConeSkipEnabled() && blocks.skipping && blocks.margin;
     completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
     return completed && rasterInTwoPasses(in, planes, setupContext, runner, stats);
   }
   completed = completed && detail::setUpPolygons(runner, setupContext, plan.threads, setup);
   stats.setupSeconds = runner.lap();
   return completed && rasterInOnePass(in, planes, runner, stats);
+}
+
+// Whether the front pass of a two-pass frame defers whole the back-face blocks BackFaceTest
+// proves all back faces (SetupContext::deferCertainBackBlocks).
+bool Renderer::Workspace::frontPassDefersCertainBlocks() const {
+  const detail::ScopedBackBlockSettings::Settings blocks =
+      detail::ScopedBackBlockSettings::current();  // this thread's (tests)
+  return detail::frontPassConeSkipEnabled() && blocks.skipping && blocks.margin;
+}
+
+// Before the transform: whether the frame will likely take two passes whose front pass
+// defers cone-certain blocks, so that those blocks' points may wait for the back pass's
+// reject (DeferredBackPoints.h). By the previous frame's covered pixels and every mesh
+// counted as drawing its back faces (decideBackFaces has not run); a first frame (no covered
+// pixels yet) transforms every point. A wrong guess costs a second transform run
+// (transformWaitingPoints before the set-up), not a byte.
+bool Renderer::Workspace::backPointsMayWait(const detail::FrameInputs& in) {
+  if (!plan.depthTest || plan.sortByDepth || in.rules.hiddenGeometry == HierarchicalZ::On ||
+      !frontPassDefersCertainBlocks())
+    return false;
+  const std::size_t covered = history.stats().pixelsCovered;
+  // Sets the plan's two-pass figures, which twoPassesMayPay sets again after the transform.
+  return covered > 0 && detail::chooseTwoPassFrame(plan, meshes, covered);
+}
+
+// The points of the deferred blocks that `front` keeps (null: all of them), transformed.
+void Renderer::Workspace::transformWaitingPoints(detail::PhaseRunner& runner,
+                                                 const detail::FrontDepthBlocks* front) {
+  detail::transformKeptBackBlocks(runner, meshes, cache, *transform, grid, front, viewCulling,
+                                  deferredBlockRanges, latePointRanges, vertices);
 }
 
 // Every face drawn with the depth test, in z-buffer order, where the coarse depth is not
@@ -188,6 +222,7 @@ bool Renderer::Workspace::rasterInTwoPasses(const detail::FrameInputs& in,
   detail::chooseRasterRoutine(plan, setup.chunks, in.rules.hiddenGeometry);
   setupContext.pass = detail::SetupPass::Back;
   if (detail::useCoarseDepth(plan, in.rules.hiddenGeometry)) {
+    transformWaitingPoints(runner, nullptr);
     detail::setUpBackFaces(runner, setupContext, setup);
     stats.setupSeconds = runner.lap();
     plan.twoPassFrame = false;
@@ -198,6 +233,7 @@ bool Renderer::Workspace::rasterInTwoPasses(const detail::FrameInputs& in,
   detail::paintFrontTiles(runner, grid, context, tiles);
   stats.rasterSeconds = runner.lap();
   setupContext.front = &frontBlocks;
+  transformWaitingPoints(runner, &frontBlocks);
   detail::setUpBackFaces(runner, setupContext, setup);
   stats.setupSeconds += runner.lap();
   detail::reportHiddenBlocks(setup.chunks, plan);

@@ -560,8 +560,11 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   // Defers the block's polygons when it is certain to be all back faces; flushes the batch
   // first, whose lanes' deferred ids come earlier (the back pass's ids ascend).
   const auto deferredWhole = [&](std::size_t polygon, std::size_t count) {
-    if (!certainBack ||
-        !certainBack->certainlyCulled(mesh.backBlockFacts[polygon >> kBackBlockBits]))
+    if (!certainBack) return false;
+    // The transform phase's verdict when it left the block's points out (ViewCulling.h).
+    const std::size_t block = polygon >> kBackBlockBits;
+    if (mesh.deferredBackBlocks ? !mesh.deferredBackBlocks[block]
+                                : !certainBack->certainlyCulled(mesh.backBlockFacts[block]))
       return false;
     if (lanes > 0) {
       std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
@@ -640,8 +643,12 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     const auto next =
         static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
     const BackBlock& facts = mesh.backBlockFacts[block];
-    hidden = facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
-             blocks->hidden(facts.box);
+    // A deferred block's verdict, from the same test (DeferredBackPoints.h).
+    const std::uint8_t verdict = mesh.backBlockVerdicts ? mesh.backBlockVerdicts[block] : 0;
+    hidden = verdict != 0
+                 ? verdict == kBlockHidden
+                 : facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
+                       blocks->hidden(facts.box);
     return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
                                                      ids.begin() + static_cast<std::ptrdiff_t>(end),
                                                      next) -

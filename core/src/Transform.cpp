@@ -21,27 +21,26 @@ std::size_t endFlag(const MeshRange& r) {
   return (r.end + kPointsPerNeededFlag - 1) >> kNeededPointBits;
 }
 
-// Whether a block that is set up uses some of a task's points (ViewCulling.h).
-bool needed(const FrameMesh& mesh, const MeshRange& r) {
-  if (!mesh.neededPoints) return true;
-  const std::uint8_t* flags = mesh.neededPoints;
+// Whether some of a task's points are flagged (null: all are).
+bool needed(const std::uint8_t* flags, const MeshRange& r) {
+  if (!flags) return true;
   return std::find(flags + firstFlag(r), flags + endFlag(r), std::uint8_t{1}) != flags + endFlag(r);
 }
 
-// Projects the task's points, or only its runs of needed points.
-void transformRange(const FrameMesh& mesh, const FrameTransform& transform, const MeshRange& r,
-                    WindowVertex* vertices, std::uint32_t& outcodes) {
+// Projects the task's points, or only its runs of flagged points (`flags` null: all).
+void transformRange(const FrameMesh& mesh, const std::uint8_t* flags,
+                    const FrameTransform& transform, const MeshRange& r, WindowVertex* vertices,
+                    std::uint32_t& outcodes) {
   withTypedMesh(mesh.mesh(), [&](auto points, auto) {
     const auto project = [&](std::size_t begin, std::size_t end) {
       return projectPoints(transform, points.xyz + 3 * begin, end - begin,
                            vertices + mesh.firstVertex + begin);
     };
-    if (!mesh.neededPoints) {
+    if (!flags) {
       outcodes = project(r.begin, r.end);
       return;
     }
     outcodes = 0;
-    const std::uint8_t* flags = mesh.neededPoints;
     for (std::size_t f = firstFlag(r), end = endFlag(r); f < end;) {
       if (!flags[f]) {
         ++f;
@@ -83,11 +82,29 @@ bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
   splitPerMesh(
       meshes.size(), kPointsPerTransformTask,
       [&](std::size_t m) { return meshes[m].mesh().points.count; }, ranges.ranges);
-  std::erase_if(ranges.ranges, [&](const MeshRange& r) { return !needed(meshes[r.mesh], r); });
+  std::erase_if(ranges.ranges,
+                [&](const MeshRange& r) { return !needed(meshes[r.mesh].neededPoints, r); });
   ranges.outcodes.assign(ranges.ranges.size(), 0);
   return runner.run(Phase::Transform, ranges.ranges.size(), [&](std::size_t i) {
     const MeshRange& r = ranges.ranges[i];
-    transformRange(meshes[r.mesh], transform, r, vertices.data(), ranges.outcodes[i]);
+    const FrameMesh& mesh = meshes[r.mesh];
+    transformRange(mesh, mesh.neededPoints, transform, r, vertices.data(), ranges.outcodes[i]);
+  });
+}
+
+void transformLatePoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
+                         const FrameTransform& transform, std::vector<MeshRange>& ranges,
+                         HugePageVector<WindowVertex>& vertices) {
+  splitPerMesh(
+      meshes.size(), kPointsPerTransformTask,
+      [&](std::size_t m) { return meshes[m].latePoints ? meshes[m].mesh().points.count : 0; },
+      ranges);
+  std::erase_if(ranges, [&](const MeshRange& r) { return !needed(meshes[r.mesh].latePoints, r); });
+  runner.runUnreported(ranges.size(), [&](std::size_t i) {
+    const MeshRange& r = ranges[i];
+    const FrameMesh& mesh = meshes[r.mesh];
+    std::uint32_t outcodes = 0;  // decideBackFaces has run: meshes with late points draw them
+    transformRange(mesh, mesh.latePoints, transform, r, vertices.data(), outcodes);
   });
 }
 

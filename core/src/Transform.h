@@ -35,6 +35,13 @@ bool transformPoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
                      const FrameTransform& transform, PointRanges& ranges,
                      HugePageVector<WindowVertex>& vertices);
 
+// A two-pass frame's points that only the back pass's kept blocks need (FrameMesh::
+// latePoints, DeferredBackPoints.h), projected by the same per-point code, on the runner's
+// threads as part of the set-up (no progress of its own). `ranges`: scratch.
+void transformLatePoints(PhaseRunner& runner, std::span<const FrameMesh> meshes,
+                         const FrameTransform& transform, std::vector<MeshRange>& ranges,
+                         HugePageVector<WindowVertex>& vertices);
+
 // Sets FrameMesh::skipBackFaces from the material and, for closed surfaces (when
 // Rule::ClosedSurfaces may fire), from the points' outcodes. Returns how many closed meshes
 // skip their back faces only for being closed.

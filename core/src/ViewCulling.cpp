@@ -42,6 +42,11 @@ bool willSkipBackFaces(const FrameMesh& mesh, const MeshFacts& facts,
          transform.boxInFrontOfNear(facts.bounds);
 }
 
+// Whether decideBackFaces will surely draw the mesh's back faces, whatever its points.
+bool surelyDrawsBackFaces(const FrameMesh& mesh, bool closedSurfaces) {
+  return !mesh.source->material.backfaceCulling && !(closedSurfaces && mesh.mesh().closedSurface);
+}
+
 // Back-face blocks per task of the parallel test: about 100k instructions at most.
 constexpr std::size_t kBackBlocksPerTask = 64;
 
@@ -49,20 +54,12 @@ bool backBlockInView(const std::uint8_t* visible, std::size_t b) {
   return !visible || visible[b >> (kBlockBits - kBackBlockBits)];
 }
 
-// The points that the back-face blocks in view and not skipped (`back` null: none is) use,
-// each block's as its two spans or, when those are scattered, its list of flags.
+// The points that the back-face blocks in view and not skipped (`back` null: none is) use.
 void markNeededPoints(const MeshFacts& facts, const std::uint8_t* visible, const std::uint8_t* back,
                       std::uint8_t* flags) {
   for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
-    if (!backBlockInView(visible, b) || (back && back[b])) continue;
-    const BackBlock& block = facts.backBlocks[b];
-    if (!block.scatteredPointFlags.empty()) {
-      for (const std::uint32_t f : block.scatteredPointFlags)
-        flags[f] = 1;
-      continue;
-    }
-    markPointsOf(block.lowPoints, flags);
-    markPointsOf(block.highPoints, flags);
+    if (backBlockInView(visible, b) && !(back && back[b]))
+      markPointsOfBlock(facts.backBlocks[b], flags);
   }
 }
 
@@ -84,10 +81,12 @@ std::size_t flagCount(const MeshView& mesh) {
 // Points the mesh at its flags and counts what its tests found.
 void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling, std::size_t m) {
   const ViewCulling::MeshFlags& flags = culling.meshes[m];
-  const std::size_t skipped =
-      flags.testsBackBlocks
+  // The blocks it skips (testsBackBlocks) or the front pass will defer (defersBackBlocks).
+  const std::size_t flagged =
+      flags.testsBackBlocks || flags.defersBackBlocks
           ? std::size_t(std::count(flags.back, flags.back + facts.backBlocks.size(), 1))
           : 0;
+  const std::size_t skipped = flags.testsBackBlocks ? flagged : 0;
   const std::uint8_t* visibleOrAll = flags.outside > 0 ? flags.visible : nullptr;
   if (flags.outside > 0) {
     culling.blocksOutside += flags.outside;
@@ -104,17 +103,28 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
                                    flags.back[lastBlock] * lastBlockPolygons;
     mesh.backBlocks = flags.back;
   }
-  if (skipped > 0 || flags.outside > 0) {
-    markNeededPoints(facts, visibleOrAll, skipped > 0 ? flags.back : nullptr, flags.needed);
+  if (flags.defersBackBlocks && flagged > 0) mesh.deferredBackBlocks = flags.back;
+  if (flagged > 0 || flags.outside > 0) {
+    markNeededPoints(facts, visibleOrAll, flagged > 0 ? flags.back : nullptr, flags.needed);
     mesh.neededPoints = flags.needed;
   }
 }
 
 }  // namespace
 
+void markPointsOfBlock(const BackBlock& block, std::uint8_t* flags) {
+  if (!block.scatteredPointFlags.empty()) {
+    for (const std::uint32_t f : block.scatteredPointFlags)
+      flags[f] = 1;
+    return;
+  }
+  markPointsOf(block.lowPoints, flags);
+  markPointsOf(block.highPoints, flags);
+}
+
 void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, const MeshCache& cache,
                            const FrameTransform& transform, bool closedSurfaces,
-                           ViewCulling& culling) {
+                           bool deferBackBlockPoints, ViewCulling& culling) {
   culling.blocksTested = culling.blocksOutside = culling.polygonsOutside = 0;
   culling.backBlocksSkipped = culling.backPolygonsSkipped = 0;
   std::size_t blocks = 0, pointFlags = 0, backBlocks = 0;
@@ -143,8 +153,11 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     if (!cullable(mesh, facts, transform)) continue;
     culling.blocksTested += facts.blocks.size();
     flags.outside = testBlocks(facts, transform, flags.visible);
-    if (!skipping || !willSkipBackFaces(mesh, facts, transform, closedSurfaces)) continue;
-    flags.testsBackBlocks = true;
+    if (!skipping) continue;
+    flags.testsBackBlocks = willSkipBackFaces(mesh, facts, transform, closedSurfaces);
+    flags.defersBackBlocks = !flags.testsBackBlocks && deferBackBlockPoints &&
+                             surelyDrawsBackFaces(mesh, closedSurfaces);
+    if (!flags.testsBackBlocks && !flags.defersBackBlocks) continue;
     for (std::size_t b = 0; b < facts.backBlocks.size(); b += kBackBlocksPerTask)
       culling.backRanges.push_back(
           {m, b, std::min(facts.backBlocks.size(), b + kBackBlocksPerTask)});

@@ -20,6 +20,12 @@
 // are freed even where every transform task holds some drawn block's points, or, for a block
 // whose spans are scattered (a cap of a sphere listed meridian by meridian), from its list of
 // flags, so that its spans do not mark the whole mesh needed.
+//
+// In a frame expected to take two passes (Raster.h) whose front pass defers cone-certain
+// blocks whole (SetupContext::deferCertainBackBlocks), the same test finds, for each mesh
+// that surely draws its back faces, the blocks the front pass will defer whole: their points
+// are left out of the needed ones too, and wait for the back pass's block reject
+// (DeferredBackPoints.h), which transforms those of the blocks it keeps.
 
 #include <cstdint>
 #include <span>
@@ -37,25 +43,35 @@ struct ViewCulling {
     std::uint8_t* visible = nullptr;
     std::uint8_t* back = nullptr;
     std::uint8_t* needed = nullptr;
-    std::size_t outside = 0;       // blocks outside the view
-    bool testsBackBlocks = false;  // the set-up will skip its back faces
+    std::size_t outside = 0;        // blocks outside the view
+    bool testsBackBlocks = false;   // the set-up will skip its back faces
+    bool defersBackBlocks = false;  // it draws them, its cone-certain blocks' points wait
   };
   std::vector<std::uint8_t> visibleBlocks;  // per block of every culled mesh, in turn
   std::vector<std::uint8_t> neededPoints;   // per kPointsPerNeededFlag points of every mesh
   std::vector<std::uint8_t> backBlocks;     // per back-face block of every mesh, in turn
+  std::vector<std::uint8_t> latePoints;     // as neededPoints (DeferredBackPoints.h)
+  std::vector<std::uint8_t> verdicts;       // as backBlocks (DeferredBackPoints.h)
   std::size_t blocksTested = 0, blocksOutside = 0, polygonsOutside = 0;
   std::size_t backBlocksSkipped = 0, backPolygonsSkipped = 0;
   std::vector<MeshFlags> meshes;      // scratch, per mesh
   std::vector<MeshRange> backRanges;  // scratch: the back-face blocks' test tasks
 };
 
+// Marks the needed-point flags (Transform.h) of the points a back-face block uses: its two
+// spans or, when those are scattered, its list of flags.
+void markPointsOfBlock(const BackBlock& block, std::uint8_t* flags);
+
 // Tests the blocks of every measured mesh against the view and points the meshes with
 // blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededPoints), and
 // those with back-face blocks to skip at theirs (FrameMesh::backBlocks). `closedSurfaces`:
 // Rule::ClosedSurfaces may fire (decideBackFaces). The back-face blocks are tested on the
 // runner's threads, as part of the transform phase (no progress of their own).
+// `deferBackBlockPoints`: the frame is expected to take two passes with the front pass's
+// whole-block deferral; the meshes that surely draw their back faces get
+// FrameMesh::deferredBackBlocks.
 void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, const MeshCache& cache,
                            const FrameTransform& transform, bool closedSurfaces,
-                           ViewCulling& culling);
+                           bool deferBackBlockPoints, ViewCulling& culling);
 
 }  // namespace facet::detail

@@ -45,12 +45,16 @@ struct Renderer::Workspace {
   std::vector<detail::PaintCounts> tiles;
   detail::FrontDepthBlocks frontBlocks;    // a two-pass frame's (Raster.h)
   std::vector<std::uint8_t> coveredCells;  // scratch: detail::estimateCoveredPixels
+  std::vector<detail::MeshRange> deferredBlockRanges, latePointRanges;  // scratch
   detail::ShadeBuffers shadeBuffers;
   HugePageVector<float> ownDepth;  // the depth plane of a caller without one
   detail::FrameHistory history;
 
   // The phases (Renderer.cpp). Each returns false when the progress callback asked to stop.
   bool twoPassesMayPay(const detail::FrameInputs& in);
+  bool backPointsMayWait(const detail::FrameInputs& in);
+  bool frontPassDefersCertainBlocks() const;
+  void transformWaitingPoints(detail::PhaseRunner& runner, const detail::FrontDepthBlocks* front);
   detail::RasterContext rasterContext(const detail::FrameInputs& in, const FramebufferView& planes);
   bool rasterInOnePass(const detail::FrameInputs& in, const FramebufferView& planes,
                        detail::PhaseRunner& runner, RenderStats& stats);

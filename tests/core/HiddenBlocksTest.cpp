@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -20,7 +22,9 @@
 #include "HiddenBlocks.h"
 #include "PhaseRunner.h"
 #include "Raster.h"
+#include "RasterTriangle.h"
 #include "ThreadPool.h"
+#include "TileGrid.h"
 
 namespace facet::testing {
 namespace {
@@ -167,6 +171,92 @@ TEST_F(HiddenBlocks, EditedVersionRendersAsAFreshRenderer) {
       EXPECT_GT(fresh.stats.pixelsCovered, 10000u);
     }
   }
+}
+
+// A Renderer's later two-pass frames leave the points of the blocks the normal cones prove all
+// back faces untransformed until the back pass's reject, then transform those the kept blocks
+// use (DeferredBackPoints.h); with the reject off, every such block's. The back faces seen
+// through the hole are such blocks: each frame must be a fresh Renderer's (whose first frame
+// transforms every point), the camera turning between frames so that a point left as the
+// previous frame projected it would show.
+TEST_F(HiddenBlocks, PointsWaitingForTheRejectPaintAsAFreshRenderersFirstFrame) {
+  const Mesh sphere = sphereWithHole(400, 0.8);
+  MeshView view = sphere.view();
+  view.version = 1;
+  detail::enableTwoPassFrames(true);
+  for (bool reject : {true, false}) {
+    detail::enableHiddenBlocks(reject);
+    for (int threads : threadCountsToRun({1, 2, 8})) {
+      SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
+                   " threads");
+      for (const detail::SimdTarget& target : targets()) {
+        SCOPED_TRACE(target.name);
+        use(target);
+        Renderer renderer;
+        renderer.setThreadCount(threads);
+        renderer.setVisibility(Visibility::ZBuffer);
+        renderer.setTwoSidedLighting(true);
+        for (int frame = 0; frame < 4; ++frame) {
+          SCOPED_TRACE("frame " + std::to_string(frame));
+          const Camera camera = fitCamera(sphere, glm::dvec3(-0.6 + 0.1 * frame, -0.2, -1.0));
+          detail::countHiddenBlocks(true);
+          Rendered later{Framebuffer(640, 480), {}};
+          later.stats = renderer.render(oneMeshScene(view), camera, later.framebuffer);
+          const detail::HiddenBlockCounts counts = detail::hiddenBlockCounts();
+          ASSERT_TRUE(later.stats.plan.twoPassFrame);
+          if (frame > 0) {  // a first frame transforms every point (no covered pixels yet)
+            EXPECT_GT(counts.waitingBlocks, 10u);
+            EXPECT_GT(counts.waitingBlocksKept, 0u);  // the hole's: their points late
+            if (reject)
+              EXPECT_LT(counts.waitingBlocksKept, counts.waitingBlocks);
+            else
+              EXPECT_EQ(counts.waitingBlocksKept, counts.waitingBlocks);
+          }
+          const Rendered fresh =
+              renderScene(oneMeshScene(view), camera, 640, 480, optionsWith(threads));
+          EXPECT_GT(fresh.stats.pixelsCovered, 10000u);
+          expectSameRender(fresh, later);
+        }
+      }
+    }
+  }
+  detail::enableHiddenBlocks(true);
+}
+
+// The block test's early stop (FrontDepthBlocks::noneNearerThan, row of blocks by row) decides
+// as the whole box's least key does: over(box) >= bound, for bounds at, just above and just
+// below that key, boxes of every shape, and blocks where the background shows.
+TEST(FrontDepthBlocks, EarlyStopDecidesAsTheBoxsLeastKey) {
+  const detail::TileGrid grid(300, 200);
+  std::mt19937 random(29);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f), unit(0.0f, 1.0f);
+  constexpr std::size_t kPerTile = detail::FrontDepthBlocks::kPerTile;
+  std::vector<float> keys(grid.count() * kPerTile);
+  std::generate(keys.begin(), keys.end(), [&] {
+    return unit(random) < 0.02f ? -std::numeric_limits<float>::infinity() : key(random);
+  });
+  detail::FrontDepthBlocks blocks;
+  blocks.resize(grid);
+  for (std::size_t t = 0; t < grid.count(); ++t)
+    blocks.store(t, keys.data() + t * kPerTile);
+  std::uniform_int_distribution<int> x(0, 299), y(0, 199);
+  std::size_t held = 0, failed = 0;
+  for (int k = 0; k < 5000; ++k) {
+    PixelBounds box{x(random), y(random), x(random), y(random)};
+    if (box.x0 > box.x1) std::swap(box.x0, box.x1);
+    if (box.y0 > box.y1) std::swap(box.y0, box.y1);
+    const float least = blocks.over(box);
+    for (const double bound :
+         {static_cast<double>(least), static_cast<double>(std::nextafter(least, 1.0f)),
+          static_cast<double>(std::nextafter(least, -1.0f)), static_cast<double>(key(random))}) {
+      const bool expected = static_cast<double>(least) >= bound;
+      ASSERT_EQ(blocks.noneNearerThan(box, bound), expected)
+          << "box " << box.x0 << ", " << box.y0 << " to " << box.x1 << ", " << box.y1;
+      (expected ? held : failed) += 1;
+    }
+  }
+  EXPECT_GT(held, 1000u);
+  EXPECT_GT(failed, 1000u);
 }
 
 // The squares' scenes' camera: at the origin, looking down −Z.
