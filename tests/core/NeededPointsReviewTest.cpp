@@ -114,6 +114,49 @@ TEST(NeededPointsReview, ScatteredQuadsAndTrianglesRenderAsWithoutCulling) {
   EXPECT_GT(backFacing, 0u);
 }
 
+// A field of 9,216 separate quads in 9 patches of 32 × 32, listed patch by patch (a
+// view-culling block of 1,024 polygons is one patch). Each quad's first three corners have
+// consecutive ids; its fourth corner an id of its own, 40 apart from the next quad's (the
+// points between unused), so that no other corner shares its needed-point flag and its
+// block's two spans are scattered. Fails when a scattered block lists only its polygons'
+// first three corners (the closed sphere above cannot tell: every corner is shared).
+TEST(NeededPointsReview, SeparateQuadsKeepTheirFourthCorners) {
+  constexpr int kPatches = 3, kPatchSide = 32;
+  constexpr std::size_t kQuads = kPatches * kPatches * kPatchSide * kPatchSide;
+  constexpr std::size_t kFourthSpacing = 40;
+  Mesh mesh;
+  mesh.points.assign(3 * kQuads + kFourthSpacing * kQuads, glm::dvec3(0.0));
+  std::size_t quad = 0;
+  for (int patch = 0; patch < kPatches * kPatches; ++patch) {
+    for (int row = 0; row < kPatchSide; ++row) {
+      for (int column = 0; column < kPatchSide; ++column, ++quad) {
+        const double x = -4.8 + 0.1 * ((patch % kPatches) * kPatchSide + column);
+        const double y = -4.8 + 0.1 * ((patch / kPatches) * kPatchSide + row);
+        const auto first = static_cast<std::int64_t>(3 * quad);
+        const auto fourth = static_cast<std::int64_t>(3 * kQuads + kFourthSpacing * quad);
+        mesh.points[3 * quad] = {x, y, 0.0};
+        mesh.points[3 * quad + 1] = {x + 0.08, y, 0.0};
+        mesh.points[3 * quad + 2] = {x + 0.08, y + 0.08, 0.0};
+        mesh.points[static_cast<std::size_t>(fourth)] = {x, y + 0.08, 0.0};
+        mesh.addPolygon({first, first + 1, first + 2, fourth});
+      }
+    }
+  }
+  MeshView view = mesh.view();
+  view.version = 1;
+  Camera camera;
+  camera.position = {0.3, 0.2, 8.0};
+  camera.focalPoint = {0.3, 0.2, 0.0};
+  camera.viewAngleDegrees = 15.0;  // about 2.1 of the field's 9.6 units across
+  const Rendered on = renderCulled(oneMeshScene(view), camera, true);
+  const Rendered off = renderCulled(oneMeshScene(view), camera, false);
+  EXPECT_GT(on.stats.plan.blocksOutside, 2u);
+  EXPECT_GT(on.stats.pixelsCovered, 20000u);
+  EXPECT_EQ(differingPixels(off.framebuffer, on.framebuffer), 0u);
+  EXPECT_EQ(off.stats.polygonsDrawn, on.stats.polygonsDrawn);
+  EXPECT_EQ(off.stats.fragmentsWritten, on.stats.fragmentsWritten);
+}
+
 // The same arrays edited in place (another scrambling of the points, the connectivity
 // rewritten) under a new version: the Renderer that drew the old version must transform the
 // new version's needed points, not the old one's.
