@@ -203,6 +203,10 @@ BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t 
     }
   });
   BackBlock block = measure.finish();
+  if (!block.box.empty()) {
+    block.ballCenter = 0.5 * block.box.low + 0.5 * block.box.high;
+    block.ballRadius = 0.5 * glm::length(block.box.high - block.box.low);
+  }
   splitPointSpan(mesh, begin, end, measure.points(), block);
   listScatteredPointFlags(mesh, begin, end, block);
   return block;
@@ -239,71 +243,125 @@ BackFaceTest::BackFaceTest(const FrameTransform& transform)
 // so the corners' D is at most what this tests. It rejects the blocks that face the viewer
 // (half of them) at an eighth of the cost; any block it passes, the corners decide.
 bool BackFaceTest::mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const {
-  const glm::dvec3 center = 0.5 * block.box.low + 0.5 * block.box.high;
-  const double radius = 0.5 * glm::length(block.box.high - block.box.low);
+  const double radius = block.ballRadius;
   double along = 0.0, across = 0.0;
-  split(c_.parallel ? awayFromViewer_ : center - c_.eye, axis, along, across);
+  split(c_.parallel ? awayFromViewer_ : block.ballCenter - c_.eye, axis, along, across);
   if (c_.parallel) return block.cosAngle * along - block.sinAngle * across > 0.0;
   return block.cosAngle * (along + radius) - block.sinAngle * (across - radius) > 0.0;
 }
 
-bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
-  if (!usable_ || !block.skippable || block.box.empty()) return false;
-  // Step 3 first, on the box's world corners: most blocks that are not skipped face the
-  // viewer, and this rejects them before any corner is projected.
+// Step 3 on the box's world corners (after the ball's pre-test): D, or a value ≤ 0 when the
+// block's cone does not face away from every corner.
+double BackFaceTest::facingMargin(const BackBlock& block) const {
+  // Most blocks that are not skipped face the viewer: the ball rejects them before any corner.
   const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
-  if (!mayFaceAway(block, axis)) return false;
+  if (!mayFaceAway(block, axis)) return 0.0;
   // The largest squares, rooted once: the same values as the largest roots (a correctly
-  // rounded square root is monotonic).
+  // rounded square root is monotonic). A corner's u = corner − E takes each coordinate from
+  // low − E or high − E, so the products of the dot products are formed once per coordinate
+  // and side (the same products, summed in glm's order: the same values as per corner).
+  const glm::dvec3 low = block.box.low - c_.eye, high = block.box.high - c_.eye;
+  const glm::dvec3 side[2] = {low, high};
+  double squares[3][2], alongs[3][2];
+  for (int k = 0; k < 3; ++k) {
+    for (int h = 0; h < 2; ++h) {
+      squares[k][h] = side[h][k] * side[h][k];
+      alongs[k][h] = axis[k] * side[h][k];
+    }
+  }
   double reachSquared = 0.0, minAlong = std::numeric_limits<double>::infinity(),
          maxAcrossSquared = 0.0;
+  const double parallelAlong = glm::dot(axis, awayFromViewer_);
+  const glm::dvec3 parallelAcross = awayFromViewer_ - parallelAlong * axis;
   for (int i = 0; i < 8; ++i) {
-    const glm::dvec3 u = block.box.corner(i) - c_.eye;
-    reachSquared = std::max(reachSquared, glm::dot(u, u));
-    const glm::dvec3& direction = c_.parallel ? awayFromViewer_ : u;
-    const double along = glm::dot(axis, direction);
-    const glm::dvec3 across = direction - along * axis;
+    const int x = i & 1, y = (i >> 1) & 1, z = i >> 2;
+    reachSquared = std::max(reachSquared, squares[0][x] + squares[1][y] + squares[2][z]);
+    if (c_.parallel) continue;
+    const double along = alongs[0][x] + alongs[1][y] + alongs[2][z];
+    const glm::dvec3 across = glm::dvec3(side[x].x, side[y].y, side[z].z) - along * axis;
     minAlong = std::min(minAlong, along);
     maxAcrossSquared = std::max(maxAcrossSquared, glm::dot(across, across));
   }
-  const double reach = std::sqrt(reachSquared), maxAcross = std::sqrt(maxAcrossSquared);
+  if (c_.parallel) {
+    minAlong = parallelAlong;
+    maxAcrossSquared = glm::dot(parallelAcross, parallelAcross);
+  }
   // Less this test's rounding of u and its parts.
-  const double facing =
-      block.cosAngle * minAlong - block.sinAngle * maxAcross - 1e-12 * (c_.parallel ? 1.0 : reach);
-  if (!(facing > 0.0)) return false;
+  return block.cosAngle * minAlong - block.sinAngle * std::sqrt(maxAcrossSquared) -
+         1e-12 * (c_.parallel ? 1.0 : std::sqrt(reachSquared));
+}
+
+ClipBounds BackFaceTest::clipBounds(const Box& box) const {
+  ClipBounds bounds;
   ClipPoint corners[8];
-  if (!transform_.boxInsideClipVolume(block.box, corners)) return false;  // step 1
-  if (!margin_) return true;
+  if (!transform_.boxInsideClipVolume(box, corners)) return bounds;  // step 1
+  if (!margin_) {
+    bounds.inside = true;
+    return bounds;
+  }
   // Nx and Ny bounded by the largest |clip x| and |clip y| over the smallest w (w > 0 at
   // every corner, step 1): two divisions rather than sixteen, a bound a little wider.
   double minW = std::numeric_limits<double>::infinity(), maxW = 0.0, maxX = 0.0, maxY = 0.0;
-  for (const ClipPoint& corner : corners) {
+  double reachSquared = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    const ClipPoint& corner = corners[i];
     const double w = c_.parallel ? corner.h : corner.d;
     minW = std::min(minW, w);
     maxW = std::max(maxW, w);
     maxX = std::max(maxX, std::abs(corner.x));
     maxY = std::max(maxY, std::abs(corner.y));
+    const glm::dvec3 u = box.corner(i) - c_.eye;
+    reachSquared = std::max(reachSquared, glm::dot(u, u));
   }
   const double ndcX = maxX / minW * (1.0 + 1e-15), ndcY = maxY / minW * (1.0 + 1e-15);
   if (c_.parallel) minW = maxW = 1.0;
+  const double reach = std::sqrt(reachSquared);
   // Step 1's outcode margin, 1e-9·(w + |x|), must cover the transform's rounding of clip x
   // and y (~u·|row|·reach): a tenth of it at most.
-  if (!(kUnitRoundoff * std::max(rowX_, rowY_) * reach <= 1e-10 * minW)) return false;
+  if (!(kUnitRoundoff * std::max(rowX_, rowY_) * reach <= 1e-10 * minW)) return bounds;
   // Step 4: the transform's rounding of a window coordinate, generously bounded: window x is
   // clip x / d, so the rounding of d (~u·reach) enters multiplied by |x/d| too (review20c).
   const double roundingX = 32.0 * kUnitRoundoff * scaleX_ *
                            ((rowX_ + ndcX) * reach / minW + std::abs(c_.clipX.w) + ndcX + 1.0);
   const double roundingY = 32.0 * kUnitRoundoff * scaleY_ *
                            ((rowY_ + ndcY) * reach / minW + std::abs(c_.clipY.w) + ndcY + 1.0);
-  if (!(std::max(roundingX, roundingY) <= kLargestRounding)) return false;
+  if (!(std::max(roundingX, roundingY) <= kLargestRounding)) return bounds;
   const double edgeScale = c_.parallel ? scaleX_ * rowX_ + scaleY_ * rowY_
                                        : scaleX_ * (rowX_ + ndcX) + scaleY_ * (rowY_ + ndcY);
-  const double x = areaScale_ * facing / (maxW * maxW * maxW);  // X
-  const double y = edgeScale / minW;                            // Y
-  const double perArea =
-      x * (1.0 - kSlack) - kSnapDelta * block.maxPerimeterPerDoubleArea * y * (1.0 + kSlack);
+  bounds.areaPerFacing = areaScale_ / (maxW * maxW * maxW);  // X = D · this
+  bounds.edgePerLength = edgeScale / minW;                   // Y
+  bounds.inside = true;
+  return bounds;
+}
+
+// Step 5.
+bool BackFaceTest::culledWithin(const BackBlock& block, double facing,
+                                const ClipBounds& bounds) const {
+  if (!(facing > 0.0) || !bounds.inside) return false;
+  if (!margin_) return true;
+  const double x = facing * bounds.areaPerFacing;
+  const double perArea = x * (1.0 - kSlack) - kSnapDelta * block.maxPerimeterPerDoubleArea *
+                                                  bounds.edgePerLength * (1.0 + kSlack);
   return perArea > 0.0 &&
          block.minDoubleArea * perArea > 2.0 * kSnapDelta * kSnapDelta * (1.0 + kSlack);
+}
+
+bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
+  if (!usable_ || !block.skippable || block.box.empty()) return false;
+  const double facing = facingMargin(block);
+  if (!(facing > 0.0)) return false;
+  return culledWithin(block, facing, clipBounds(block.box));
+}
+
+bool BackFaceTest::certainlyCulled(const BackBlock& block, ParentClipBounds& parent) const {
+  if (!usable_ || !block.skippable || block.box.empty()) return false;
+  const double facing = facingMargin(block);
+  if (!(facing > 0.0)) return false;
+  if (!parent.measured) {
+    parent.bounds = clipBounds(*parent.box);
+    parent.measured = true;
+  }
+  return culledWithin(block, facing, parent.bounds);
 }
 
 ScopedBackBlockSettings::ScopedBackBlockSettings(Settings settings)

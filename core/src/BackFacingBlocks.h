@@ -47,6 +47,11 @@
 //    for every triangle when X > ΔρY and minDoubleArea·(X − ΔρY) > 2Δ², each side given a
 //    1e-6 relative slack for this test's own rounding.
 //
+// Steps 1 and 4, and the factors of X and Y, hold for every box inside the box they were
+// checked on (convexity; d_max, the |clip/w| bounds and the rounding bounds only grow and
+// d_min only shrinks over a wider box): the frame's cull checks them once per view-culling
+// block (ParentClipBounds), steps 3 and 5 per back-face block.
+//
 // A polygon that is not a triangle (facing by its normal in double), a degenerate triangle or
 // one with a non-finite point makes its block not skippable at measurement.
 
@@ -64,15 +69,41 @@ namespace facet::detail {
 BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
                            glm::vec3* faceNormals = nullptr);
 
+// What steps 1 and 4 find for a box, which hold for every box inside it too: every point of
+// it is inside the clip volume, the transform's rounding is small enough, and the factors
+// of X and Y in step 5 (their bounds over the box are bounds over any box inside it: d_max
+// and the |clip/w| bounds only grow, d_min only shrinks).
+struct ClipBounds {
+  bool inside = false;
+  double areaPerFacing = 0.0;  // X / D: |k|/d_max³ (parallel |q|)
+  double edgePerLength = 0.0;  // Y: G/d_min (parallel G)
+};
+
+// A view-culling block's ClipBounds (MeshCache.h: its box holds its back-face blocks'),
+// measured for the first of its back-face blocks that faces away and shared by the others:
+// the clip-space corners and their checks are most of a block's test, and a back-face block
+// is small against the view, so its parent's bounds are nearly as tight.
+struct ParentClipBounds {
+  const Box* box = nullptr;
+  bool measured = false;
+  ClipBounds bounds;
+};
+
 // One frame's test of back-face blocks.
 class BackFaceTest {
  public:
   explicit BackFaceTest(const FrameTransform& transform);
   // Whether every triangle of the block is culled by a mesh that skips back faces (above).
   bool certainlyCulled(const BackBlock& block) const;
+  // The same, steps 1 and 4 on `parent`'s box, which holds the block's (measured on first
+  // use): skips fewer blocks only where the parent's box is much wider than the block's.
+  bool certainlyCulled(const BackBlock& block, ParentClipBounds& parent) const;
 
  private:
   bool mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const;
+  double facingMargin(const BackBlock& block) const;
+  ClipBounds clipBounds(const Box& box) const;
+  bool culledWithin(const BackBlock& block, double facing, const ClipBounds& bounds) const;
   const FrameTransform& transform_;
   ProjectionConstants c_;
   bool usable_ = false;

@@ -1,10 +1,10 @@
 #pragma once
 
 // A two-pass frame's (Raster.h) back pass drops every deferred back face of a back-face block
-// (MeshCache.h, 256 polygons) whose 3D box projects behind the front faces' 8 × 8 pixel
-// blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted hidden
-// (RenderStats::polygonsHidden), nothing is loaded, classified or painted. On by default in
-// two-pass frames (the plan decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off
+// (MeshCache.h, kPolygonsPerBackBlock polygons) whose 3D box projects behind the front faces'
+// 8 × 8 pixel blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted
+// hidden (RenderStats::polygonsHidden), nothing is loaded, classified or painted. On by default
+// in two-pass frames (the plan decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off
 // (measurements).
 //
 // Why no dropped back face could have changed anything (every24; sections 18b–18c and 21 of

@@ -28,10 +28,14 @@ struct PointSpan {
   std::size_t first = SIZE_MAX, last = 0;
 };
 
-// Polygons per back-face block (BackFacingBlocks.h): a quarter of a view-culling block, so
-// that the normals of a block of a ring-ordered sphere's triangles (a quarter ring at 500k)
-// span a cone narrow enough to lie wholly behind the eye's side of the sphere.
-inline constexpr int kBackBlockBits = 8;
+// Polygons per back-face block (BackFacingBlocks.h): a sixteenth of a view-culling block, so
+// that the normals of a block of a sphere's triangles span a cone narrow enough to lie wholly
+// behind the eye's side of the sphere: in vtkSphereSource's order (meridian by meridian) a
+// block of 64 at 500k is an 11° sliver of a meridian, where 256 was 45° and skipped a third
+// as many back faces (bench/core-frame-issue11.md, section 37). The test per block shares its
+// view-culling block's clip-space bounds (ParentClipBounds), so 31k blocks at 2M cost less
+// than the back faces they save.
+inline constexpr int kBackBlockBits = 6;
 inline constexpr std::size_t kPolygonsPerBackBlock = std::size_t{1} << kBackBlockBits;
 static_assert(kBackBlockBits <= kBlockBits);
 
@@ -52,6 +56,10 @@ struct BackBlock {
   // apart), the needed-point flags (Transform.h) its points fall in, ascending, each once:
   // marking them frees the points between (ViewCulling.cpp). Empty otherwise.
   std::vector<std::uint32_t> scatteredPointFlags;
+  // The box's bounding ball, for the test's pre-test (BackFaceTest::mayFaceAway): a square
+  // root per block and frame saved.
+  glm::dvec3 ballCenter{0.0};
+  double ballRadius = 0.0;
   glm::dvec3 axis{0.0};
   double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding
   double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down

@@ -788,12 +788,17 @@ void requireChunkIndexable(const Chunk& chunk) {
 std::size_t polygonsSetUp(const FrameMesh& mesh, std::size_t begin, std::size_t end) {
   if (mesh.visibleBlocks && !mesh.visibleBlocks[begin >> kBlockBits]) return 0;
   if (!mesh.backBlocks) return end - begin;
-  static_assert(kPolygonsPerBlock == 4 * kPolygonsPerBackBlock);
   if (end - begin == kPolygonsPerBlock) {
-    // Four whole back-face blocks: their flags (0 or 1, ViewCulling.cpp) summed in one word.
-    std::uint32_t flags;
-    std::memcpy(&flags, mesh.backBlocks + (begin >> kBackBlockBits), sizeof flags);
-    return kPolygonsPerBlock - kPolygonsPerBackBlock * ((flags * 0x01010101u) >> 24);
+    // Whole back-face blocks: their flags (0 or 1, ViewCulling.cpp) counted by words.
+    constexpr std::size_t kBackBlocksPerBlock = kPolygonsPerBlock / kPolygonsPerBackBlock;
+    static_assert(kBackBlocksPerBlock % sizeof(std::uint32_t) == 0);
+    std::size_t skipped = 0;
+    for (std::size_t i = 0; i < kBackBlocksPerBlock; i += sizeof(std::uint32_t)) {
+      std::uint32_t flags;
+      std::memcpy(&flags, mesh.backBlocks + (begin >> kBackBlockBits) + i, sizeof flags);
+      skipped += (flags * 0x01010101u) >> 24;
+    }
+    return kPolygonsPerBlock - kPolygonsPerBackBlock * skipped;
   }
   std::size_t work = 0;
   for (std::size_t b = begin; b < end; b += kPolygonsPerBackBlock) {

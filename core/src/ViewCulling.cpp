@@ -169,9 +169,16 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     const MeshRange& r = culling.backRanges[i];
     const ViewCulling::MeshFlags& flags = culling.meshes[r.mesh];
     const std::uint8_t* visible = flags.outside > 0 ? flags.visible : nullptr;
+    const MeshFacts& facts = cache[r.mesh];
+    ParentClipBounds parent;
     for (std::size_t b = r.begin; b < r.end; ++b) {
+      const std::size_t viewBlock = b >> (kBlockBits - kBackBlockBits);
+      if (parent.box != &facts.blocks[viewBlock]) {
+        parent = ParentClipBounds{};
+        parent.box = &facts.blocks[viewBlock];
+      }
       flags.back[b] =
-          backBlockInView(visible, b) && backFaceTest.certainlyCulled(cache[r.mesh].backBlocks[b]);
+          backBlockInView(visible, b) && backFaceTest.certainlyCulled(facts.backBlocks[b], parent);
     }
   });
   for (std::size_t m = 0; m < meshes.size(); ++m)

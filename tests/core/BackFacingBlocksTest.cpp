@@ -400,6 +400,21 @@ TEST_F(BackFacingBlocks, ThePlanReportsSkippedBlocksOnALineOfTheirOwn) {
   EXPECT_NE(ruleOff.stats.describe().find("off   back-facing blocks"), std::string::npos);
 }
 
+// vtkSphereSource's order lists a sphere meridian by meridian, so a back-face block is a
+// sliver of a meridian: kPolygonsPerBackBlock small enough (64: 12° of latitude here, where
+// 256 was 46° and skipped under half) and the test per block on its view-culling block's clip
+// bounds (ParentClipBounds) skip most back faces whole, the same render as without skipping.
+TEST_F(BackFacingBlocks, MostBackFacesOfAMeridianOrderedSphereAreSkippedWhole) {
+  const Mesh sphere = makeUvSphere(100, 500, 1.0, glm::dvec3(0.0), UvSphereOrder::vtkSphereSource);
+  const Scene scene = oneMeshScene(closedView(sphere));
+  const Camera camera = fitCamera(sphere);
+  const Rendered on = renderWith(scene, camera, true);
+  const Rendered off = renderWith(scene, camera, false);
+  EXPECT_TRUE(sameRender(on, off));
+  EXPECT_EQ(on.stats.polygonsCulled, off.stats.polygonsCulled);
+  EXPECT_GT(on.stats.plan.polygonsBackFacing, on.stats.polygonsCulled * 3 / 4);
+}
+
 // `mesh` with its point ids permuted at random: each back-face block then uses ids all over
 // the mesh (its two spans cover nearly all of them), not two runs of a ring.
 Mesh shuffledPoints(const Mesh& mesh, unsigned seed) {
