@@ -15,6 +15,7 @@
 #include "Binning.h"
 #include "Clipper.h"
 #include "HiddenBlocks.h"
+#include "HiddenRuns.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
 #include "SetupBatch.h"
@@ -664,31 +665,19 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const WindowVertex* const vertices = context.vertices + mesh.firstVertex;
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
   // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
-  // hidden run; kTriangles: every polygon of the block is a triangle (BackBlock::skippable).
-  const auto runsOf = [&]<bool kTriangles>(std::size_t k, std::size_t stop, const auto& each) {
-    while (k < stop) {
-      const std::uint32_t windowEnd = ((ids[k] - firstId) | (kHiddenRunIds - 1)) + 1 + firstId;
-      RunBounds bounds;
-      std::size_t i = k;
-      do {
-        const std::size_t polygon = ids[i] - firstId;
-        if (!kTriangles && polygons.size(polygon) != 3) {
-          bounds.outcodes |= RunBounds::kNotTriangle;
-          continue;
-        }
-        for (std::size_t j = 0; j < 3; ++j)
-          bounds.add(vertices[polygons.pointId(polygon, j)]);
-      } while (++i < stop && ids[i] < windowEnd);
-      const bool hidden = runs->hidden(bounds);
-      hiddenRunDebug(hidden, i - k);
-      if (hidden) {  // counted hidden alone, as a block's
-        chunk.counts.hiddenBlockPolygons += i - k;
-        k = i;
-        continue;
-      }
-      for (; k < i; ++k)
-        each(ids[k] - firstId);
-    }
+  // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
+  // block is a triangle (BackBlock::skippable).
+  std::uint32_t shown[kPolygonsPerBackBlock];
+  const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
+    const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
+                                                          allTriangles};
+    RunTally tally;
+    const std::size_t count =
+        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, tally);
+    chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
+    hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
+    for (std::size_t i = 0; i < count; ++i)
+      each(shown[i] - firstId);
   };
   // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
   const auto forEachShown = [&](const auto& each) {
@@ -707,10 +696,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         continue;
       }
       if (runs) {
-        if (mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable)
-          runsOf.template operator()<true>(k, blockEnd, each);
-        else
-          runsOf.template operator()<false>(k, blockEnd, each);
+        runsOf(k, blockEnd, mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable,
+               each);
         k = blockEnd;
         continue;
       }
