@@ -163,14 +163,13 @@ HiddenBlockCounts hiddenBlockCounts() {
           debugCounts.waitingBlocksKept};
 }
 
-void hiddenRunDebug(bool hidden, std::size_t polygons) {
+void hiddenRunDebug(std::size_t runs, std::size_t hiddenRuns, std::size_t polygons,
+                    std::size_t hiddenPolygons) {
   if (!debugCounts.on) return;
-  ++debugCounts.runs;
+  debugCounts.runs += runs;
+  debugCounts.hiddenRuns += hiddenRuns;
   debugCounts.runPolygons += polygons;
-  if (hidden) {
-    ++debugCounts.hiddenRuns;
-    debugCounts.hiddenRunPolygons += polygons;
-  }
+  debugCounts.hiddenRunPolygons += hiddenPolygons;
 }
 
 void waitingBlocksDebug(std::size_t waiting, std::size_t kept) {

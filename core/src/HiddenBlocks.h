@@ -69,7 +69,8 @@
 // block's deferred ids into runs, the deferred ids of one aligned window of kHiddenRunIds
 // polygon ids, and drops a run whole before any of its polygons is loaded or classified when
 // HiddenRunTest::hidden holds for the window bounds of its own vertices (RunBounds: the
-// transform's WindowVertex of each corner, no box and no distance bound):
+// transform's WindowVertex of each corner, no box and no distance bound; taken in SIMD lanes,
+// HiddenRuns.h):
 // R1. Every polygon of the run is a triangle and every vertex's outcode is kInside
 //     (RunBounds::outcodes): no triangle is clipped, each vertex's window position and key are
 //     the ones the set-up paints with. Such a deferred triangle has a negative snapped area
@@ -136,7 +137,8 @@ inline constexpr std::size_t kHiddenRunIds = 8;
 static_assert((kHiddenRunIds & (kHiddenRunIds - 1)) == 0);
 
 // The window bounds of a run of deferred back faces, from their vertices as the transform
-// left them (HiddenRunTest).
+// left them (HiddenRunTest). add() is the one-lane target's and the tests' reference for
+// HiddenRuns.h's lanes.
 struct RunBounds {
   std::int32_t x0 = std::numeric_limits<std::int32_t>::max(), y0 = x0;
   std::int32_t x1 = std::numeric_limits<std::int32_t>::min(), y1 = x1;
@@ -204,7 +206,8 @@ bool countingHiddenBlocks();
 HiddenBlockCounts hiddenBlockCounts();
 void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons);
 void deferredWholeDebug(std::size_t polygons);
-void hiddenRunDebug(bool hidden, std::size_t polygons);
+void hiddenRunDebug(std::size_t runs, std::size_t hiddenRuns, std::size_t polygons,
+                    std::size_t hiddenPolygons);
 void waitingBlocksDebug(std::size_t waiting, std::size_t kept);
 
 }  // namespace facet::detail

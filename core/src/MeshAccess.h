@@ -25,6 +25,7 @@ struct Points {
 
 template <class Index>
 struct Polygons {
+  using IndexType = Index;
   const Index* offsets;
   const Index* connectivity;
   std::size_t begin(std::size_t polygon) const {

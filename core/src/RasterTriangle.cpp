@@ -587,17 +587,6 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   return small;
 }
 
-bool hiddenBehind(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                  const PixelBounds& box, const FrontDepthBlocks& front) {
-  const float nearest = std::max(std::max(a.depth, b.depth), c.depth);
-  const float farthest = front.over(box);
-  if (!(farthest >= nearest)) return false;  // the background (−∞) anywhere: never
-  const RejectMargin bound = rejectMarginOf(a, b, c, box);
-  return bound.fineArea > 0.0 &&
-         (static_cast<double>(farthest) - static_cast<double>(nearest)) * bound.fineArea >=
-             bound.margin;
-}
-
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
                      const PixelBounds& box, const Planes& planes) {
   return losesEverywhereInline(a, b, c, box, planes);

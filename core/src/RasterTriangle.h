@@ -234,8 +234,9 @@ class FarthestBlocks {
 
 // A two-pass frame's (every face drawn, Raster.h) least depth key of each 8 × 8 pixel block of
 // the image once the front faces are painted: FarthestBlocks kept per tile between the raster's
-// two passes, so that the back faces' set-up can drop, before it finishes them, the ones that
-// lose everywhere (hiddenBehind). 4 bytes per 64 pixels: 130 KB at 1080p, 520 KB at 4K.
+// two passes, so that the back faces' set-up can drop, before it loads them, the blocks and
+// runs of them that lose everywhere (HiddenBlocks.h). 4 bytes per 64 pixels: 130 KB at 1080p,
+// 520 KB at 4K.
 class FrontDepthBlocks {
  public:
   static constexpr int kBlockSize = FarthestBlocks::kBlockSize;
@@ -295,13 +296,6 @@ class FrontDepthBlocks {
   std::size_t stride_ = 0, tilesX_ = 1;
   std::vector<float> blocks_;
 };
-
-// Whether a counter-clockwise triangle over the samples of `box` (inside the image, possibly
-// across tiles) loses the depth test at every one of them to the front faces of `front`:
-// losesEverywhere's test against the blocks' bound (so the same margin for the keys' rounding).
-// Conservative: painted after them, it would write no pixel.
-bool hiddenBehind(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
-                  const PixelBounds& box, const FrontDepthBlocks& front);
 
 // Paints a counter-clockwise triangle (doubleSignedArea > 0) into the depth and polygon-id
 // planes of `tile` (colors come later, from the ids); the depth plane holds depth keys

@@ -15,6 +15,7 @@
 #include "Binning.h"
 #include "Clipper.h"
 #include "HiddenBlocks.h"
+#include "HiddenRuns.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
 #include "SetupBatch.h"
@@ -138,12 +139,11 @@ class PolygonSetup {
     }
     chunk_.counts.degenerate += static_cast<std::size_t>(verdicts.zeroAreaCount);
     chunk_.counts.outside += static_cast<std::size_t>(verdicts.coversNoSampleCount);
-    chunk_.counts.boxSamples += static_cast<std::size_t>(verdicts.keptSamples);  // hidden too
+    chunk_.counts.boxSamples += static_cast<std::size_t>(verdicts.keptSamples);
     const std::uint32_t used = (1u << lanes) - 1;
     const std::uint32_t kept = verdicts.kept() & used;
     std::size_t binned = 0;
-    for (std::uint32_t rest = ~(verdicts.dropped() | verdicts.hidden) & used; rest != 0;
-         rest &= rest - 1) {
+    for (std::uint32_t rest = ~verdicts.dropped() & used; rest != 0; rest &= rest - 1) {
       const int lane = std::countr_zero(rest);
       if ((kept >> lane) & 1u) {
         bin(verdicts, lane, lanePolygon[lane]);
@@ -169,7 +169,6 @@ class PolygonSetup {
     }
     chunk_.counts.trianglesBinned += binned;
     chunk_.counts.drawn += binned;
-    if (!kSkipBackFaces && verdicts.hidden != 0) countHidden(verdicts, lanePolygon, used);
   }
 
   // Whether a batch's lanes hold kBatchSize consecutive polygons: in z-buffer order a batch's
@@ -324,21 +323,6 @@ class PolygonSetup {
                   {samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]},
                   triangleEdges(back), polygonId, last,
                   (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
-    }
-  }
-
-  // The lanes the back pass found hidden (BatchVerdicts::hidden): counted as bin() would bin
-  // them (the frame's counts, and so the plan's depth complexity, as with one pass: their box
-  // samples are in BatchVerdicts::keptSamples), their facing noted. Out of line, as deferCulled:
-  // inlined, settle()'s appends went out of line (the closed 500k frame +2 % instructions).
-  [[gnu::noinline]] void countHidden(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
-                                     std::uint32_t used) {
-    for (std::uint32_t rest = verdicts.hidden & used; rest != 0; rest &= rest - 1) {
-      const int lane = std::countr_zero(rest);
-      ++chunk_.counts.trianglesBinned;
-      ++chunk_.counts.drawn;
-      context_.backFacing[mesh_.firstPolygon + lanePolygon[lane]] =
-          (verdicts.clockwise >> lane) & 1u;
     }
   }
 
@@ -615,8 +599,10 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
 }
 
 // Sets up the chunk's deferred back faces from index `first` on while they belong to `mesh`,
-// in batches unless they are off, the kept lanes tested against the front faces' blocks;
-// returns where it stopped.
+// in batches unless they are off, after the blocks and runs hidden behind the front faces'
+// blocks are dropped (HiddenBlocks.h); returns where it stopped. What those leave is set up as
+// one pass sets it up: a triangle they keep that loses everywhere all the same is rejected by
+// the back bins' paint (paintTriangle's kRejectHidden), as in one pass.
 template <class PointsT, class PolygonsT>
 std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
                          PointsT points, PolygonsT polygons, std::size_t first) {
@@ -664,31 +650,19 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const WindowVertex* const vertices = context.vertices + mesh.firstVertex;
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
   // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
-  // hidden run; kTriangles: every polygon of the block is a triangle (BackBlock::skippable).
-  const auto runsOf = [&]<bool kTriangles>(std::size_t k, std::size_t stop, const auto& each) {
-    while (k < stop) {
-      const std::uint32_t windowEnd = ((ids[k] - firstId) | (kHiddenRunIds - 1)) + 1 + firstId;
-      RunBounds bounds;
-      std::size_t i = k;
-      do {
-        const std::size_t polygon = ids[i] - firstId;
-        if (!kTriangles && polygons.size(polygon) != 3) {
-          bounds.outcodes |= RunBounds::kNotTriangle;
-          continue;
-        }
-        for (std::size_t j = 0; j < 3; ++j)
-          bounds.add(vertices[polygons.pointId(polygon, j)]);
-      } while (++i < stop && ids[i] < windowEnd);
-      const bool hidden = runs->hidden(bounds);
-      hiddenRunDebug(hidden, i - k);
-      if (hidden) {  // counted hidden alone, as a block's
-        chunk.counts.hiddenBlockPolygons += i - k;
-        k = i;
-        continue;
-      }
-      for (; k < i; ++k)
-        each(ids[k] - firstId);
-    }
+  // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
+  // block is a triangle (BackBlock::skippable).
+  std::uint32_t shown[kPolygonsPerBackBlock];
+  const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
+    const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
+                                                          allTriangles};
+    RunTally tally;
+    const std::size_t count =
+        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, tally);
+    chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
+    hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
+    for (std::size_t i = 0; i < count; ++i)
+      each(shown[i] - firstId);
   };
   // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
   const auto forEachShown = [&](const auto& each) {
@@ -707,10 +681,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         continue;
       }
       if (runs) {
-        if (mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable)
-          runsOf.template operator()<true>(k, blockEnd, each);
-        else
-          runsOf.template operator()<false>(k, blockEnd, each);
+        runsOf(k, blockEnd, mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable,
+               each);
         k = blockEnd;
         continue;
       }
@@ -728,8 +700,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   int lanes = 0;
   const auto settleBatch = [&] {
     std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
-    classifyBatch(batch, context.grid, false, true, verdicts, setup.clampsBackFaces(),
-                  context.front);
+    classifyBatch(batch, context.grid, false, true, verdicts, setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };

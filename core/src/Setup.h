@@ -18,7 +18,7 @@ namespace facet::detail {
 // Which polygons a set-up pass takes. A two-pass frame (every face drawn with the depth test,
 // Raster.h) sets up the front faces first and puts the back-facing polygons of the meshes that
 // draw them off (Chunk::deferredBack); once the tiles' front faces are painted, it sets those
-// up, dropping (counted as drawn) every one that loses everywhere behind them.
+// up, dropping those whose blocks or runs lose everywhere behind them (HiddenBlocks.h).
 enum class SetupPass { All, Front, Back };
 
 struct SetupContext {
@@ -32,8 +32,8 @@ struct SetupContext {
   // tiles paint after the front faces (Chunk::backBins); painter's order keeps one order.
   bool backFacesLast;
   SetupPass pass = SetupPass::All;
-  // SetupPass::Back: the blocks of the front faces painted, which a batch's kept back faces
-  // are tested against (hiddenBehind, RasterTriangle.h); null: none dropped.
+  // SetupPass::Back: the blocks of the front faces painted, which the deferred back faces'
+  // blocks and runs are tested against (HiddenBlocks.h); null: none dropped.
   const FrontDepthBlocks* front = nullptr;
   // SetupPass::Front: a back-face block that BackFaceTest proves all back faces (the
   // block's polygons would all be deferred) is deferred whole, none of its polygons loaded or

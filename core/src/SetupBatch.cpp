@@ -436,103 +436,18 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool clamp, BatchV
   }
 }
 
-// hiddenBehind's inputs (RasterTriangle.cpp) beyond the lanes' KeyInputs: per lane tested in
-// double lanes, its box's extent and its blocks' bound.
-struct HiddenInputs {
-  alignas(64) float farthest[kBatchSize];
-  alignas(64) std::int32_t extent[kBatchSize];
-};
-
-// The scalar part: each kept lane's blocks (a few loads), and whether they can reject it at all.
-// Fragment and small lanes, whose KeyInputs hold their fine positions relative to a, are left
-// to hiddenLanes (returned); the other kept lanes are decided here by hiddenBehind itself.
-std::uint32_t gatherHidden(const TriangleBatch& batch, const FrontDepthBlocks& front,
-                           const KeyInputs& keys, BatchVerdicts& verdicts, HiddenInputs& in) {
-  const auto& samples = verdicts.samples;
-  const std::uint32_t inLanes = verdicts.fragment | verdicts.small;
-  std::uint32_t candidates = 0;
-  for (std::uint32_t rest = verdicts.kept(); rest != 0; rest &= rest - 1) {
-    const int lane = std::countr_zero(rest);
-    const PixelBounds box{samples.x0[lane], samples.y0[lane], samples.x1[lane], samples.y1[lane]};
-    if (!((inLanes >> lane) & 1u)) {
-      const bool clockwise = (verdicts.clockwise >> lane) & 1u;
-      if (hiddenBehind(batch.v[0][lane], batch.v[clockwise ? 2 : 1][lane],
-                       batch.v[clockwise ? 1 : 2][lane], box, front)) {
-        verdicts.hidden |= 1u << lane;
-      }
-      continue;
-    }
-    const float farthest = front.over(box);
-    if (!(farthest >= std::max(std::max(keys.keyA[lane], keys.keyB[lane]), keys.keyC[lane])))
-      continue;
-    in.farthest[lane] = farthest;
-    in.extent[lane] = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
-    candidates |= 1u << lane;
-  }
-  return candidates;
-}
-
-// hiddenBehind's test (RasterTriangle.cpp, rejectMarginOf) in double lanes from `lane` on:
-// positions relative to a (exact integers, so every difference the scalar test takes is the same
-// double), then the same operations in the same order: the same decision on every target.
-std::uint32_t hiddenLanes(DD dd, const KeyInputs& keys, const HiddenInputs& in, std::size_t lane) {
-  const hn::Rebind<float, DD> df;
-  const hn::Rebind<std::int32_t, DD> di;
-  const auto fine = [&](const std::int32_t* p) {
-    return hn::PromoteTo(dd, hn::Load(di, p + lane));
-  };
-  const auto key = [&](const float* p) { return hn::PromoteTo(dd, hn::Load(df, p + lane)); };
-  const VD bx = fine(keys.bx), by = fine(keys.by), cx = fine(keys.cx), cy = fine(keys.cy);
-  const VD fineArea = bx * cy - by * cx;
-  const VD a = key(keys.keyA), b = key(keys.keyB), c = key(keys.keyC);
-  const VD dk1 = b - a, dk2 = c - a;
-  const VD slopeTimesArea = hn::Abs(dk1 * cy - dk2 * by) + hn::Abs(dk2 * bx - dk1 * cx);
-  const VD largest = hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Abs(c));
-  const VD extent = fine(in.extent);
-  const VD rounding =
-      hn::Set(dd, 2e-9) *
-      (largest * fineArea + slopeTimesArea * extent * hn::Set(dd, double{kSubpixelScale}) *
-                                hn::Set(dd, double{kResidueScale}));
-  const VD margin = slopeTimesArea * hn::Set(dd, double{kResidueScale}) + rounding;
-  const VD nearest = hn::Max(hn::Max(a, b), c);
-  const auto hidden =
-      hn::And(fineArea > hn::Zero(dd), (key(in.farthest) - nearest) * fineArea >= margin);
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(dd, hidden, bytes);
-  return std::uint32_t{bytes[0]} << lane;  // at most 8 double lanes
-}
-
-// The kept lanes hiddenBehind `front`, made `hidden`.
-void hideBehind(const TriangleBatch& batch, const FrontDepthBlocks& front, const KeyInputs& keys,
-                BatchVerdicts& verdicts) {
-  HiddenInputs in;
-  const std::uint32_t candidates = gatherHidden(batch, front, keys, verdicts, in);
-  const DD dd;
-  const std::uint32_t laneMask = (1u << hn::Lanes(dd)) - 1;
-  std::uint32_t hidden = 0;
-  for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
-    if ((candidates >> lane) & laneMask) hidden |= hiddenLanes(dd, keys, in, lane);
-  }
-  verdicts.hidden |= hidden & candidates;
-  verdicts.fragment &= ~verdicts.hidden;
-  verdicts.triangle &= ~verdicts.hidden;
-  verdicts.small &= ~verdicts.hidden;
-}
-
 void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces,
-                   const FrontDepthBlocks* front) {
+                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces) {
   const D d;
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
   verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
-  verdicts.small = verdicts.hidden = 0;
+  verdicts.small = 0;
   verdicts.keptSamples = 0;
   KeyInputs keys;
   // The back faces' keys clamped (nearestWrittenKey), one pass or two (Setup.cpp).
   const bool clamp = boundaryEdges && clampBackFaces;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(d))
     classifyLanes(d, batch, lane, grid, skipBackFaces, boundaryEdges, clamp, verdicts, keys);
-  if (front != nullptr) hideBehind(batch, *front, keys, verdicts);
   verdicts.culledCount = static_cast<int>(hwy::PopCount(verdicts.culled));
   verdicts.zeroAreaCount = static_cast<int>(hwy::PopCount(verdicts.zeroArea));
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
@@ -565,10 +480,9 @@ std::atomic<bool> batchesOn{true};
 }
 
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces,
-                   const FrontDepthBlocks* front) {
+                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces) {
   HWY_DYNAMIC_DISPATCH(ClassifyBatch)
-  (batch, grid, skipBackFaces, boundaryEdges, verdicts, clampBackFaces, front);
+  (batch, grid, skipBackFaces, boundaryEdges, verdicts, clampBackFaces);
 }
 
 std::vector<SimdTarget> simdTargets() {

@@ -60,12 +60,8 @@ struct BatchVerdicts {
   // 2 to kSmallSide² − 1 centers in a box at most kSmallSide on each side, and with
   // polygon-boundary edges every covered center surely inside them (smallTriangleOf).
   std::uint32_t small = 0;
-  // Would have been kept, but loses the depth test everywhere to the front faces already
-  // painted (a two-pass frame's back faces, hiddenBehind, RasterTriangle.h): counted as drawn,
-  // not binned; none of fragment, triangle or small.
-  std::uint32_t hidden = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
-  // The pixel centers in the boxes of the lanes kept (fragment or triangle) or hidden: the
+  // The pixel centers in the boxes of the lanes kept (fragment or triangle): the
   // chunk's PolygonCounts::boxSamples, summed in lanes (below 2^16 a lane: a tested box is
   // under 2^14 grid steps, 64 pixels, on a side).
   int keptSamples = 0;
@@ -109,12 +105,9 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
 // three edges are its polygon's). With `clampBackFaces` (and boundary edges) the clockwise
 // lanes' keys are clamped as kClampedEdges clamps them (nearestWrittenKey: the fragments' keys,
 // smallPlane.nearestKey for the records): every back face a depth-tested frame paints after
-// the front faces (Setup.cpp, triangleEdges). With `front` (a two-pass frame's back faces),
-// the kept lanes hiddenBehind its blocks become `hidden` before their keys and records are
-// made.
+// the front faces (Setup.cpp, triangleEdges).
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
-                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces = false,
-                   const FrontDepthBlocks* front = nullptr);
+                   bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces = false);
 
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render
 // runs.

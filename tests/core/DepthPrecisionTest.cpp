@@ -456,89 +456,6 @@ TEST(DepthPrecision, TriangleKeysNeverPassTheirNearestVertexKey) {
   EXPECT_GT(fragmentsBehind, static_cast<std::size_t>(trials) * 5);
 }
 
-// A two-pass frame's back-face reject (hiddenBehind against FrontDepthBlocks, the set-up's
-// lanes): random triangles of 1 to ~4000 samples, across the tiles of a 128 × 128 image, behind
-// front keys just nearer than theirs, or with one covered pixel a float farther (which the
-// triangle must win), or well nearer: every triangle rejected writes nothing when painted
-// after them, none that wins a pixel is rejected, and most of those well behind are.
-TEST(DepthPrecision, TrianglesHiddenBehindFrontBlocksWriteNothing) {
-  using ImagePlanes = SquarePlanes<128>;
-  const detail::TileGrid grid(ImagePlanes::kSide, ImagePlanes::kSide);
-  const PixelBounds image = grid.viewport();
-  std::mt19937 random(37);
-  std::uniform_int_distribution<int> center(4 * 256, 124 * 256), size(0, 2);
-  std::uniform_real_distribution<float> key(0.25f, 0.75f), steep(-0.01f, 0.01f);
-  std::size_t compared = 0, wellBehindCount = 0, hidden = 0, justBehindRejected = 0;
-  std::size_t fragments = 0, crossing = 0;
-  for (int t = 0; t < 3000; ++t) {
-    const int reach = 128 << (3 * size(random));  // half a pixel, 4 or 32 pixels
-    std::uniform_int_distribution<int> offset(-reach, reach);
-    const int cx = center(random), cy = center(random);
-    std::uniform_int_distribution<int> at(0, 0);
-    WindowVertex v[3];
-    const float base = key(random);
-    for (WindowVertex& c : v) {
-      c = randomPosition(random, at);  // its residues
-      c.x = std::clamp(cx + offset(random), 0, 127 * 256);
-      c.y = std::clamp(cy + offset(random), 0, 127 * 256);
-      c.depth = base + ((t / 3) % 2 ? steep(random) : steep(random) * 1e-4f);  // or near flat
-    }
-    const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
-    if (area == 0) continue;
-    if (area < 0) std::swap(v[1], v[2]);
-    const PixelBounds box = detail::samplesInBoundingBox(v[0], v[1], v[2], image);
-    if (box.empty()) continue;
-    ImagePlanes written;
-    detail::PaintCounts own;
-    detail::paintTriangle<detail::DepthMode::Overwrite>(v[0], v[1], v[2], detail::kAllEdges, 0,
-                                                        image, written.planes(), own);
-    if (own.written == 0) continue;
-    // Every pixel nearer than the triangle's key there (a front face's): just, or well.
-    const bool wellBehind = t % 3 == 2;
-    const float nearest = std::max(std::max(v[0].depth, v[1].depth), v[2].depth);
-    ImagePlanes front;
-    for (std::size_t i = 0; i < front.depth.size(); ++i) {
-      const float just = std::nextafter(written.depth[i], 2.0f) + 1e-4f;
-      front.depth[i] = written.ids[i] != 0 ? 1.0f : wellBehind ? nearest + 0.02f : just;
-    }
-    const bool winsOne = t % 3 == 1;
-    if (winsOne) {  // one covered pixel a float farther: the triangle must win it
-      for (std::size_t i = 0; i < front.depth.size(); ++i) {
-        if (written.ids[i] != 0) continue;
-        front.depth[i] = std::nextafter(written.depth[i], -1.0f);
-        break;
-      }
-    }
-    detail::FrontDepthBlocks blocks;
-    blocks.resize(grid);
-    for (std::size_t tile = 0; tile < grid.count(); ++tile) {
-      detail::FarthestBlocks measured(grid.bounds(tile), front.planes());
-      blocks.store(tile, measured.measuredBlocks());
-    }
-    detail::PaintCounts after;
-    detail::paintTriangle<detail::DepthMode::Test>(v[0], v[1], v[2], detail::kClampedEdges, 1,
-                                                   image, front.planes(), after);
-    const bool rejected = detail::hiddenBehind(v[0], v[1], v[2], box, blocks);
-    if (rejected) {
-      ASSERT_EQ(after.written, 0u) << "triangle " << t << " rejected but wins a pixel";
-    }
-    if (winsOne) {
-      EXPECT_GT(after.written, 0u) << "triangle " << t;
-    }
-    ++compared;
-    wellBehindCount += wellBehind ? 1 : 0;
-    hidden += rejected && wellBehind ? 1 : 0;
-    justBehindRejected += rejected && !wellBehind ? 1 : 0;
-    fragments += box.area() == 1 ? 1 : 0;
-    crossing += box.x0 / 64 != box.x1 / 64 || box.y0 / 64 != box.y1 / 64 ? 1 : 0;
-  }
-  EXPECT_GT(compared, 1000u);
-  EXPECT_GT(fragments, 50u);
-  EXPECT_GT(crossing, 50u);
-  EXPECT_GT(hidden, wellBehindCount * 3 / 4) << "a triangle well behind should be rejected";
-  EXPECT_GT(justBehindRejected, 20u) << "near-flat triangles just behind: the margin decides";
-}
-
 // Each block's key is no nearer than any of its pixels', and stays so as pixels grow nearer.
 TEST(DepthPrecision, FarthestBlocksBoundTheirPixelsKeys) {
   std::mt19937 random(31);
@@ -642,14 +559,6 @@ TEST(DepthPrecision, RejectMarginKeepsAKeyNearerThanEveryVertex) {
       EXPECT_FALSE(detail::losesEverywhere(a, b, c, box, tied.planes()))
           << "rejected, but wins pixel (4, 7) with key " << written.depth[atA] << " over "
           << farther;
-      // The same for a two-pass frame's reject in the set-up (FrontDepthBlocks).
-      const detail::TileGrid grid(TilePlanes::kSide, TilePlanes::kSide);
-      detail::FrontDepthBlocks blocks;
-      blocks.resize(grid);
-      detail::FarthestBlocks measured(tile, tied.planes());
-      blocks.store(0, measured.measuredBlocks());
-      EXPECT_FALSE(detail::hiddenBehind(a, b, c, box, blocks))
-          << "dropped by the set-up, but wins pixel (4, 7)";
       TilePlanes unrejected = tied;
       detail::PaintCounts tiedCounts, unrejectedCounts;
       detail::paintTriangle<detail::DepthMode::Test, true>(a, b, c, diagonalAB, 1, tile,

@@ -253,31 +253,20 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
   }
 }
 
-// A two-pass frame's back pass (SetupPass::Back): a batch given the front faces' blocks drops
-// as `hidden` exactly the lanes it would keep that hiddenBehind (RasterTriangle.h, scalar)
-// rejects, on every target, and keeps the others as without the blocks. With clampBackFaces
-// (blocks or none: the back pass or one pass) the kept back faces' keys and records are
-// clamped to their nearest vertex key, the front faces' not.
-TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
+// With clampBackFaces (one pass or a two-pass frame's back pass) the kept back faces' keys
+// and records are clamped to their nearest vertex key, the front faces' not, on every target.
+TEST_F(SetupBatches, BackFaceKeysAreClampedToTheirNearestVertexKeyOnEveryTarget) {
   const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
   std::vector<WindowVertex> corners = randomTriangles(20000, 13);
   std::mt19937 random(17);
-  std::uniform_real_distribution<float> key(0.45f, 0.55f), block(0.4f, 0.7f), unit(0.0f, 1.0f);
+  std::uniform_real_distribution<float> key(0.45f, 0.55f);
   for (WindowVertex& corner : corners)
     corner.depth = key(random);
-  detail::FrontDepthBlocks blocks;
-  blocks.resize(grid);
-  for (std::size_t t = 0; t < grid.count(); ++t) {
-    float measured[detail::FrontDepthBlocks::kPerTile];
-    for (float& b : measured)
-      b = unit(random) < 0.1f ? -std::numeric_limits<float>::infinity() : block(random);
-    blocks.store(t, measured);
-  }
   const std::size_t triangles = corners.size() / 3;
   for (const SimdTarget& target : targets()) {
     SCOPED_TRACE(target.name);
     use(target);
-    std::size_t mismatches = 0, hidden = 0, kept = 0, clampedRecords = 0, clampedFragments = 0;
+    std::size_t clampedRecords = 0, clampedFragments = 0, frontRecords = 0, frontFragments = 0;
     for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
       TriangleBatch batch{};
       for (int lane = 0; lane < kBatchSize; ++lane) {
@@ -285,52 +274,34 @@ TEST_F(SetupBatches, HiddenLanesAreThoseHiddenBehindTheBlocksOnEveryTarget) {
           batch.v[j][lane] = corners[3 * (first + lane) + j];
         batch.triangle[lane] = lane % 7 != 3;
       }
-      detail::BatchVerdicts without, with, onePass;
-      detail::classifyBatch(batch, grid, false, true, without);
-      detail::classifyBatch(batch, grid, false, true, with, true, &blocks);
-      // A one-pass frame's batch (clampBackFaces, no blocks): the same keys and records.
-      detail::classifyBatch(batch, grid, false, true, onePass, true);
-      ASSERT_EQ(onePass.kept(), without.kept());
-      ASSERT_EQ(with.kept() | with.hidden, without.kept());
-      ASSERT_EQ(with.kept() & with.hidden, 0u);
-      for (std::uint32_t rest = without.kept(); rest != 0; rest &= rest - 1) {
+      detail::BatchVerdicts unclamped, clamped;
+      detail::classifyBatch(batch, grid, false, true, unclamped);
+      detail::classifyBatch(batch, grid, false, true, clamped, true);
+      ASSERT_EQ(clamped.kept(), unclamped.kept());
+      ASSERT_EQ(clamped.small, unclamped.small);
+      for (std::uint32_t rest = clamped.kept(); rest != 0; rest &= rest - 1) {
         const int lane = std::countr_zero(rest);
-        const bool clockwise = (without.clockwise >> lane) & 1u;
-        const auto& samples = without.samples;
-        const PixelBounds box{samples.x0[lane], samples.y0[lane], samples.x1[lane],
-                              samples.y1[lane]};
-        const bool expected =
-            detail::hiddenBehind(batch.v[0][lane], batch.v[clockwise ? 2 : 1][lane],
-                                 batch.v[clockwise ? 1 : 2][lane], box, blocks);
-        const bool got = (with.hidden >> lane) & 1u;
-        if (got != expected && ++mismatches <= 5)
-          ADD_FAILURE() << "lane " << lane << " of batch " << first / kBatchSize << ": hidden "
-                        << got << ", hiddenBehind " << expected;
-        hidden += got, kept += !got;
-        if (got) continue;
-        // Kept: a back face (clockwise) clamped to its nearest vertex key (nearestWrittenKey)
-        // with clampBackFaces alone, a front face not (+∞).
+        const bool clockwise = (clamped.clockwise >> lane) & 1u;
+        // A back face (clockwise) clamped to its nearest vertex key (nearestWrittenKey), a
+        // front face not (+∞).
         const float nearest =
             clockwise
                 ? std::max({batch.v[0][lane].depth, batch.v[1][lane].depth, batch.v[2][lane].depth})
                 : std::numeric_limits<float>::infinity();
-        if ((with.small >> lane) & 1u) {
-          clampedRecords += clockwise;
-          EXPECT_EQ(with.smallPlane.nearestKey[lane], nearest) << "lane " << lane;
-          EXPECT_EQ(onePass.smallPlane.nearestKey[lane], nearest) << "lane " << lane;
+        if ((clamped.small >> lane) & 1u) {
+          (clockwise ? clampedRecords : frontRecords) += 1;
+          EXPECT_EQ(clamped.smallPlane.nearestKey[lane], nearest) << "lane " << lane;
         }
-        if ((with.fragment >> lane) & 1u) {
-          clampedFragments += clockwise;
-          EXPECT_EQ(with.key[lane], std::min(without.key[lane], nearest)) << "lane " << lane;
-          EXPECT_EQ(onePass.key[lane], with.key[lane]) << "lane " << lane;
+        if ((clamped.fragment >> lane) & 1u) {
+          (clockwise ? clampedFragments : frontFragments) += 1;
+          EXPECT_EQ(clamped.key[lane], std::min(unclamped.key[lane], nearest)) << "lane " << lane;
         }
       }
     }
     EXPECT_GT(clampedRecords, 0u);
     EXPECT_GT(clampedFragments, 0u);
-    EXPECT_EQ(mismatches, 0u);
-    EXPECT_GT(hidden, triangles / 50);
-    EXPECT_GT(kept, triangles / 50);
+    EXPECT_GT(frontRecords, 0u);
+    EXPECT_GT(frontFragments, 0u);
   }
 }
 
