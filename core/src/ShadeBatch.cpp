@@ -11,6 +11,7 @@
 // saturate(Color(base)) (adding +0 only turns a −0 into +0, which saturates to 0 alike).
 
 #include <algorithm>
+#include <cstdint>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "ShadeBatch.cpp"
@@ -78,6 +79,34 @@ HWY_INLINE void addLight(const PreparedLight& light, bool directional, const Pre
     sum[c] = sum[c] + hn::Set(d, light.radiance[c]) * factor;
 }
 
+// The terms of shade()'s base color: base = constant + perSum · (the lights' diffuse sum), with
+// constant = m.ambient · (ambient color or Cd) + Cd · ambient light and perSum = m.diffuse · Cd,
+// the same operations in the same order as base's expression.
+HWY_INLINE void baseTerms(const PreparedMaterial& m, const glm::dvec3& ambient,
+                          const V (&surface)[3], V (&constant)[3], V (&perSum)[3]) {
+  const D d;
+  for (int c = 0; c < 3; ++c) {
+    const V ambientTerm = m.ambientColor ? hn::Set(d, m.ambient * (*m.ambientColor)[c])
+                                         : hn::Set(d, m.ambient) * surface[c];
+    constant[c] = ambientTerm + surface[c] * hn::Set(d, ambient[c]);
+    perSum[c] = hn::Set(d, m.diffuse) * surface[c];
+  }
+}
+
+// The lanes' colors as words (alpha toByte(1)) from the base terms and the diffuse sums.
+HWY_INLINE hn::Vec<DU> colorWords(const V (&constant)[3], const V (&perSum)[3], const V (&sum)[3]) {
+  hn::Vec<DU> word = hn::Set(DU(), 0xFF000000u);
+  for (int c = 0; c < 3; ++c)
+    word = hn::Or(word, hn::ShiftLeftSame(toBytes(constant[c] + perSum[c] * sum[c]), 8 * c));
+  return word;
+}
+
+// Whether a lane among the first `valid` left `ordinary` (shade()'s rare branch).
+HWY_INLINE bool anyRare(M ordinary, std::size_t valid) {
+  const D d;
+  return !hn::AllTrue(d, hn::Or(ordinary, hn::Not(hn::FirstN(d, valid))));
+}
+
 void ShadeLanes(const Shader& shader, const PreparedMaterial& m, const ShadeBatch& batch,
                 ShadeBatchColors& out, ShadeBatchCenters* centers) {
   Rgba8* colors = out.data();
@@ -99,23 +128,84 @@ void ShadeLanes(const Shader& shader, const PreparedMaterial& m, const ShadeBatc
     M ordinary = hn::FirstN(d, batch.count - i);
     for (const PreparedLight& light : lights)
       addLight(light, directional, m, position, normal, sum, ordinary);
-    // base = m.ambient · (ambient color or Cd) + Cd · ambient light + (m.diffuse · Cd) · sum.
-    hn::Vec<DU> word = hn::Set(DU(), 0xFF000000u);  // alpha: toByte(1)
-    for (int c = 0; c < 3; ++c) {
-      const V ambientTerm = m.ambientColor ? hn::Set(d, m.ambient * (*m.ambientColor)[c])
-                                           : hn::Set(d, m.ambient) * surface[c];
-      const V base = (ambientTerm + surface[c] * hn::Set(d, ambient[c])) +
-                     (hn::Set(d, m.diffuse) * surface[c]) * sum[c];
-      word = hn::Or(word, hn::ShiftLeftSame(toBytes(base), 8 * c));
-    }
-    hn::StoreU(word, DU(), reinterpret_cast<std::uint32_t*>(colors + i));
+    V constant[3], perSum[3];
+    baseTerms(m, ambient, surface, constant, perSum);
+    hn::StoreU(colorWords(constant, perSum, sum), DU(),
+               reinterpret_cast<std::uint32_t*>(colors + i));
     const std::size_t end = std::min(i + lanes, batch.count);
-    if (!hn::AllTrue(d, hn::Or(ordinary, hn::Not(hn::FirstN(d, end - i))))) {
+    if (anyRare(ordinary, end - i)) {
       const ShaderAccess::Routine shade = ShaderAccess::routine(shader, false);
       for (std::size_t j = i; j < end; ++j)  // a rare branch: shade() itself
         colors[j] = toRgba8(shade(shader, batch.sample(j), m));
     }
   }
+}
+
+using DU64 = hn::RebindToUnsigned<D>;
+
+std::uint64_t ShadeTriangleLanes(const Shader& shader, const PreparedMaterial& m,
+                                 const ShownTriangleBatch& batch, const Color& color, bool centers,
+                                 ShadeBatchColors& out) {
+  Rgba8* colors = out.data();
+  const D d;
+  const DU64 du;
+  const std::size_t lanes = hn::Lanes(d);
+  const std::vector<PreparedLight>& lights = ShaderAccess::lights(shader);
+  const bool directional = ShaderAccess::loop(shader) == LightLoop::Directional;
+  V surface[3], constant[3], perSum[3];
+  for (int c = 0; c < 3; ++c)
+    surface[c] = capped(d, hn::Set(d, static_cast<double>(color[c])));
+  baseTerms(m, ShaderAccess::ambient(shader), surface, constant, perSum);
+  const V origin = hn::Zero(d);
+  std::uint64_t zeroNormals = 0;
+  for (std::size_t i = 0; i < batch.count; i += lanes) {  // the columns hold whole groups
+    const hn::Vec<DU64> flip = hn::Load(du, batch.flip + i);
+    V position[3], normal[3], sum[3];
+    for (int c = 0; c < 3; ++c) {
+      normal[c] = hn::PromoteTo(d, hn::LoadU(DF(), batch.normal[c] + i));
+      sum[c] = origin;
+    }
+    const M zero = hn::And(hn::And(normal[0] == origin, normal[1] == origin), normal[2] == origin);
+    for (int c = 0; c < 3; ++c) {
+      normal[c] = hn::BitCast(d, hn::Xor(hn::BitCast(du, normal[c]), flip));
+      position[c] = origin;  // without centers: the origin over 1
+    }
+    if (centers) {
+      for (int c = 0; c < 3; ++c) {
+        for (int k = 0; k < 3; ++k)
+          position[c] = position[c] + hn::Load(d, batch.corner[k][c] + i);
+        position[c] = position[c] / hn::Set(d, 3.0);
+      }
+    }
+    const std::size_t valid = std::min(lanes, batch.count - i);
+    M ordinary = hn::FirstN(d, valid);
+    for (const PreparedLight& light : lights)
+      addLight(light, directional, m, position, normal, sum, ordinary);
+    hn::StoreU(colorWords(constant, perSum, sum), DU(),
+               reinterpret_cast<std::uint32_t*>(colors + i));
+    const M zeroShown = hn::And(zero, hn::FirstN(d, valid));
+    if (!hn::AllFalse(d, zeroShown)) {
+      std::uint8_t bits[8] = {};
+      hn::StoreMaskBits(d, zeroShown, bits);
+      zeroNormals |= std::uint64_t{bits[0]} << i;
+    }
+    if (anyRare(ordinary, valid)) {  // a rare branch: shade() itself
+      alignas(64) double xyz[2][3][HWY_MAX_BYTES / sizeof(double)];
+      for (int c = 0; c < 3; ++c) {
+        hn::Store(position[c], d, xyz[0][c]);
+        hn::Store(normal[c], d, xyz[1][c]);
+      }
+      const ShaderAccess::Routine shade = ShaderAccess::routine(shader, false);
+      for (std::size_t j = 0; j < valid; ++j) {
+        SurfaceSample sample;
+        sample.position = {xyz[0][0][j], xyz[0][1][j], xyz[0][2][j]};
+        sample.normal = {xyz[1][0][j], xyz[1][1][j], xyz[1][2][j]};
+        sample.color = color;
+        colors[i + j] = toRgba8(shade(shader, sample, m));
+      }
+    }
+  }
+  return zeroNormals;
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -125,6 +215,7 @@ HWY_AFTER_NAMESPACE();
 namespace facet::detail {
 
 HWY_EXPORT(ShadeLanes);
+HWY_EXPORT(ShadeTriangleLanes);
 
 SurfaceSample ShadeBatch::sample(std::size_t i) const {
   SurfaceSample s;
@@ -142,6 +233,13 @@ bool shadesInBatches(const Shader& shader) {
 void shadeBatch(const Shader& shader, const PreparedMaterial& material, const ShadeBatch& batch,
                 ShadeBatchColors& colors, ShadeBatchCenters* centers) {
   HWY_DYNAMIC_DISPATCH(ShadeLanes)(shader, material, batch, colors, centers);
+}
+
+std::uint64_t shadeTriangleBatch(const Shader& shader, const PreparedMaterial& material,
+                                 const ShownTriangleBatch& batch, const Color& surface,
+                                 bool centers, ShadeBatchColors& colors) {
+  return HWY_DYNAMIC_DISPATCH(ShadeTriangleLanes)(shader, material, batch, surface, centers,
+                                                  colors);
 }
 
 }  // namespace facet::detail

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <iterator>
 
 #include "facet/Color.h"
@@ -81,5 +82,28 @@ struct ShadeBatchCenters {
 
 void shadeBatch(const Shader& shader, const PreparedMaterial& material, const ShadeBatch& batch,
                 ShadeBatchColors& colors, ShadeBatchCenters* centers = nullptr);
+
+// Up to kShadeBatchSize shown triangles of one color in columns, as the scan of the shown flags
+// copies them: each one's corners (as double, with centers), its face normal (as the mesh
+// version keeps it), the sign bit that turns that normal to the side seen (two-sided lighting
+// of a back face) or 0, and its polygon index. Plain copies: the conversions, sums and tests
+// that gatherSample made per polygon (~110 instructions) are the lanes' (shadeTriangleBatch).
+struct ShownTriangleBatch {
+  // The lanes past `count` compute on what the columns hold: zeros, or an earlier batch's.
+  alignas(64) double corner[3][3][kShadeBatchSize] = {};  // [corner][axis]
+  alignas(64) float normal[3][kShadeBatchSize] = {};
+  alignas(64) std::uint64_t flip[kShadeBatchSize] = {};
+  std::int32_t polygon[kShadeBatchSize] = {};
+  std::size_t count = 0;
+};
+
+// shadeBatch's colors of the batch's triangles from the columns: the center (with `centers`:
+// the corners' sum, from 0, over 3; else the origin), the face normal flipped by its sign bit,
+// the one `surface` color; the same operations as gatherSample's and shadeBatch's. Returns the
+// lanes whose face normal is zero (bit i: triangle i), whose colors the caller takes from
+// gatherSample's fallback normal instead.
+std::uint64_t shadeTriangleBatch(const Shader& shader, const PreparedMaterial& material,
+                                 const ShownTriangleBatch& batch, const Color& surface,
+                                 bool centers, ShadeBatchColors& colors);
 
 }  // namespace facet::detail

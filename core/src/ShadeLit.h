@@ -7,6 +7,11 @@
 // (ShadeLit*.cpp): in one file they were the core's longest compile, which a build's other
 // cores waited for.
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
+
 #include "FaceNormal.h"
 #include "FlatErrorBoundBatch.h"
 #include "MeshAccess.h"
@@ -113,6 +118,65 @@ std::size_t shadeLitInBatches(const ShadeContext& context, const FrameMesh& mesh
   return shaded;
 }
 
+// A versioned triangle mesh of one color without the error estimate: the scan of the shown
+// flags copies each shown triangle's corners and face normal into columns, and the lanes do
+// the rest of gatherSample's work (ShadeBatch.h, shadeTriangleBatch): the per-polygon gathering
+// was ~110 instructions, most of the phase. A zero face normal (no area in 3D) takes
+// gatherSample's fallback here, as the lanes cannot.
+template <bool kCenters, class PointsT, class IndexT>
+std::size_t shadeTrianglesCopied(const ShadeContext& context, const FrameMesh& mesh, PointsT points,
+                                 Triangles<IndexT> triangles, std::size_t begin, std::size_t end) {
+  const Color surface = mesh.source->material.color;
+  const std::uint64_t flipBit = context.twoSidedLighting ? std::uint64_t{1} << 63 : 0;
+  const std::uint8_t* backFacing = context.backFacing + mesh.firstPolygon;
+  Rgba8* out = context.colors + mesh.firstPolygon;
+  ShownTriangleBatch batch;
+  ShadeBatchColors colors;
+  std::size_t shaded = 0;
+  // The face normals and corner ids of the polygons kPrefetchPolygons ahead, asked for early:
+  // at 2M the shown polygons' runs (half a meridian each in vtkSphereSource's order) are too
+  // short for the hardware prefetcher, and the copies waited on these loads (section 36).
+  constexpr std::size_t kPrefetchPolygons = 256;
+  const std::size_t lastPolygon = mesh.mesh().polygons.count - 1;
+  const auto flush = [&] {
+    std::uint64_t zeroNormals =
+        shadeTriangleBatch(context.shader, mesh.material, batch, surface, kCenters, colors);
+    for (; zeroNormals != 0; zeroNormals &= zeroNormals - 1) {
+      const auto lane = static_cast<std::size_t>(std::countr_zero(zeroNormals));
+      const auto polygon = static_cast<std::size_t>(batch.polygon[lane]);
+      const SurfaceSample sample = litSample<kCenters, false, ColorSource::Material>(
+          context, mesh, points, triangles, polygon, backFacing[polygon] != 0);
+      colors[lane] = toRgba8(
+          ShaderAccess::routine(context.shader, false)(context.shader, sample, mesh.material));
+    }
+    for (std::size_t i = 0; i < batch.count; ++i)
+      out[batch.polygon[i]] = colors[i];
+    shaded += batch.count;
+    batch.count = 0;
+  };
+  forEachShownPolygon(context.shown + mesh.firstPolygon, begin, end, [&](std::size_t polygon) {
+    const std::size_t lane = batch.count;
+    const std::size_t ahead = std::min(polygon + kPrefetchPolygons, lastPolygon);
+    __builtin_prefetch(mesh.faceNormals + ahead);
+    __builtin_prefetch(triangles.connectivity + 3 * ahead);
+    batch.polygon[lane] = static_cast<std::int32_t>(polygon);
+    batch.flip[lane] = -static_cast<std::uint64_t>(backFacing[polygon] != 0) & flipBit;
+    const glm::vec3& normal = mesh.faceNormals[polygon];
+    for (int c = 0; c < 3; ++c)
+      batch.normal[c][lane] = normal[c];
+    if constexpr (kCenters) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        const glm::dvec3 corner = points[triangles.pointId(polygon, k)];
+        for (int c = 0; c < 3; ++c)
+          batch.corner[k][c][lane] = corner[c];
+      }
+    }
+    if (++batch.count == kShadeBatchSize) flush();
+  });
+  if (batch.count != 0) flush();
+  return shaded;
+}
+
 // Flattened: with these many instantiations, GCC's unit-growth limit would otherwise
 // leave the per-polygon helpers (normal, corners, toRgba8) as calls, ~25 % of the phase.
 // Not under AddressSanitizer: flattening 48 instrumented instantiations takes GCC 12 more
@@ -155,6 +219,12 @@ FACET_FLATTEN std::size_t shadeTrianglesInBatches(const ShadeContext& context,
                                                   const FrameMesh& mesh, PointsT points,
                                                   Triangles<IndexT> triangles, std::size_t begin,
                                                   std::size_t end) {
+  if constexpr (kColors == ColorSource::Material) {
+    constexpr std::size_t kInt32Max = std::numeric_limits<std::int32_t>::max();
+    if (mesh.faceNormals && !context.estimate && mesh.mesh().polygons.count <= kInt32Max) {
+      return shadeTrianglesCopied<kCenters>(context, mesh, points, triangles, begin, end);
+    }
+  }
   return shadeLitInBatches<kCenters, kColors>(context, mesh, points, triangles, begin, end);
 }
 

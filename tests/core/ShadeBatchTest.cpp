@@ -6,6 +6,7 @@
 // branches), and batches that do not fill their last group of lanes.
 
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <limits>
 #include <random>
@@ -128,6 +129,90 @@ TEST_F(ShadeBatches, LanesGiveShadesBytesOnEveryTarget) {
         }
       }
     }
+  }
+}
+
+// Shown triangles in columns (ShownTriangleBatch) against gatherSample's sample lit by
+// Shader::shade, byte for byte on every target: random corners and face normals, some normals
+// flipped (two-sided back faces), some zero (reported, not lit), one triangle's center at the
+// headlight (shade()'s rare branch); with centers and without (the origin).
+TEST_F(ShadeBatches, ShownTrianglesGiveShadesBytesOnEveryTarget) {
+  const std::vector<detail::SimdTarget> targets = detail::simdTargets();
+  ASSERT_GE(targets.size(), 1u);
+  const glm::dvec3 headlight{0.5, -1.0, 8.0};
+  for (const detail::SimdTarget& target : targets) {
+    SCOPED_TRACE(target.name);
+    detail::useSimdTarget(target.bits);
+    unsigned seed = 1;
+    int zeroNormalsSeen = 0, flippedSeen = 0;
+    for (const BatchLightCase& lights : batchLightCases()) {
+      SCOPED_TRACE(lights.name);
+      const Shader shader(lights.lights);
+      const detail::ShaderAccess::Routine shade = detail::ShaderAccess::routine(shader, false);
+      for (const Material& material : batchMaterials()) {
+        const PreparedMaterial prepared(material);
+        for (const bool centers : {true, false}) {
+          for (std::size_t count :
+               {kShadeBatchSize, std::size_t{61}, std::size_t{1}, std::size_t{0}}) {
+            std::mt19937 random(seed++);
+            std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+            const Color surface(0.2f + 0.8f * std::abs(unit(random)), std::abs(unit(random)),
+                                random() % 4 == 0 ? 1.5f : std::abs(unit(random)));
+            detail::ShownTriangleBatch batch;
+            std::vector<SurfaceSample> expected(count);
+            std::vector<bool> zeroNormal(count);
+            for (std::size_t i = 0; i < count; ++i) {
+              batch.polygon[i] = static_cast<std::int32_t>(1000 + i);
+              glm::dvec3 sum(0.0);
+              for (int k = 0; k < 3; ++k) {
+                glm::dvec3 corner(4.0f * unit(random), 4.0f * unit(random), 4.0f * unit(random));
+                if (i == 7) corner = headlight;  // the center at the light
+                for (int c = 0; c < 3; ++c)
+                  batch.corner[k][c][i] = corner[c];
+                sum += corner;
+              }
+              glm::vec3 normal(unit(random), unit(random), unit(random));
+              zeroNormal[i] = random() % 16 == 0;
+              if (zeroNormal[i]) normal = glm::vec3(i % 2 == 0 ? 0.0f : -0.0f);
+              const bool flipped = random() % 3 == 0;
+              flippedSeen += flipped;
+              batch.flip[i] = flipped ? std::uint64_t{1} << 63 : 0;
+              for (int c = 0; c < 3; ++c)
+                batch.normal[c][i] = normal[c];
+              SurfaceSample& sample = expected[i];
+              sample.position = centers ? sum / 3.0 : glm::dvec3(0.0);
+              sample.normal = flipped ? -glm::dvec3(normal) : glm::dvec3(normal);
+              sample.color = surface;
+            }
+            batch.count = count;
+            detail::ShadeBatchColors colors;
+            const std::uint64_t zeros =
+                detail::shadeTriangleBatch(shader, prepared, batch, surface, centers, colors);
+            int differing = 0;
+            for (std::size_t i = 0; i < count; ++i) {
+              EXPECT_EQ((zeros >> i) & 1, zeroNormal[i] ? 1u : 0u) << "lane " << i;
+              if (zeroNormal[i]) {
+                ++zeroNormalsSeen;
+                continue;
+              }
+              const Rgba8 want = toRgba8(shade(shader, expected[i], prepared));
+              const Rgba8 got = colors[i];
+              if ((got.r != want.r || got.g != want.g || got.b != want.b || got.a != want.a) &&
+                  ++differing <= 5) {
+                ADD_FAILURE() << "triangle " << i << " of " << count << ", centers " << centers
+                              << ": lanes (" << int(got.r) << ", " << int(got.g) << ", "
+                              << int(got.b) << "), shade (" << int(want.r) << ", " << int(want.g)
+                              << ", " << int(want.b) << ")";
+              }
+            }
+            EXPECT_EQ(differing, 0) << count << " triangles";
+            if (count < 64) EXPECT_EQ(zeros >> count, 0u) << "no lane past the batch's count";
+          }
+        }
+      }
+    }
+    EXPECT_GT(zeroNormalsSeen, 0);
+    EXPECT_GT(flippedSeen, 0);
   }
 }
 
