@@ -206,7 +206,9 @@ TEST_F(ShadeBatches, ShownTrianglesGiveShadesBytesOnEveryTarget) {
               }
             }
             EXPECT_EQ(differing, 0) << count << " triangles";
-            if (count < 64) EXPECT_EQ(zeros >> count, 0u) << "no lane past the batch's count";
+            if (count < 64) {
+              EXPECT_EQ(zeros >> count, 0u) << "no lane past the batch's count";
+            }
           }
         }
       }
