@@ -108,6 +108,7 @@ BackBlock BackBlockMeasure::finish() {
   block_.axis = axis;
   block_.cosAngle = std::cos(angle);
   block_.sinAngle = std::sin(angle);
+  FACET_ASSERT(block_.cosAngle > 0.0);  // mayFaceAway's mark of a skippable block (testOf)
   block_.minDoubleArea = std::sqrt(minAreaSquared_) * (1.0 - 1e-8);
   block_.maxPerimeterPerDoubleArea = std::sqrt(maxRatioSquared_) * (1.0 + 1e-8);
   block_.skippable = true;
@@ -212,6 +213,36 @@ BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t 
   return block;
 }
 
+BackBlockTest testOf(const BackBlock& block) {
+  BackBlockTest test;
+  test.ballCenter = block.ballCenter;
+  test.ballRadius = block.ballRadius;
+  test.axis = block.axis;
+  test.cosAngle = block.skippable ? block.cosAngle : 0.0;
+  test.sinAngle = block.sinAngle;
+  test.box = block.box;
+  test.minDoubleArea = block.minDoubleArea;
+  test.maxPerimeterPerDoubleArea = block.maxPerimeterPerDoubleArea;
+  return test;
+}
+
+BackPointFlags pointFlagsOf(const BackBlock& block, std::size_t pointCount) {
+  BackPointFlags flags;
+  const std::size_t flagCount = (pointCount + kPointsPerNeededFlag - 1) >> kNeededPointBits;
+  if (!block.scatteredPointFlags.empty() || flagCount >= kReadWholeBackBlock) {
+    flags.lowFirst = kReadWholeBackBlock;
+    return flags;
+  }
+  const auto range = [](const PointSpan& span, std::uint32_t& first, std::uint32_t& end) {
+    if (span.first > span.last) return;  // no point: first == end == 0
+    first = static_cast<std::uint32_t>(span.first >> kNeededPointBits);
+    end = static_cast<std::uint32_t>((span.last >> kNeededPointBits) + 1);
+  };
+  range(block.lowPoints, flags.lowFirst, flags.lowEnd);
+  range(block.highPoints, flags.highFirst, flags.highEnd);
+  return flags;
+}
+
 BackFaceTest::BackFaceTest(const FrameTransform& transform)
     : transform_(transform),
       c_(transform.constants()),
@@ -242,20 +273,20 @@ BackFaceTest::BackFaceTest(const FrameTransform& transform)
 // place of its eight corners: every corner u has c·u ≤ c·(m − E) + r and |u⊥| ≥ |(m − E)⊥| − r,
 // so the corners' D is at most what this tests. It rejects the blocks that face the viewer
 // (half of them) at an eighth of the cost; any block it passes, the corners decide.
-bool BackFaceTest::mayFaceAway(const BackBlock& block, const glm::dvec3& axis) const {
+bool BackFaceTest::mayFaceAway(const BackBlockTest& block) const {
+  if (!usable_ || !(block.cosAngle > 0.0)) return false;  // cosAngle 0: not skippable
   const double radius = block.ballRadius;
   double along = 0.0, across = 0.0;
-  split(c_.parallel ? awayFromViewer_ : block.ballCenter - c_.eye, axis, along, across);
+  split(c_.parallel ? awayFromViewer_ : block.ballCenter - c_.eye, facingAxis(block), along,
+        across);
   if (c_.parallel) return block.cosAngle * along - block.sinAngle * across > 0.0;
   return block.cosAngle * (along + radius) - block.sinAngle * (across - radius) > 0.0;
 }
 
-// Step 3 on the box's world corners (after the ball's pre-test): D, or a value ≤ 0 when the
-// block's cone does not face away from every corner.
-double BackFaceTest::facingMargin(const BackBlock& block) const {
-  // Most blocks that are not skipped face the viewer: the ball rejects them before any corner.
-  const glm::dvec3 axis = c_.parallel ? block.axis : facingSign_ * block.axis;
-  if (!mayFaceAway(block, axis)) return 0.0;
+// Step 3 on the box's world corners of a block that passed the ball's pre-test: D, or a
+// value ≤ 0 when the block's cone does not face away from every corner.
+double BackFaceTest::facingMargin(const BackBlockTest& block) const {
+  const glm::dvec3 axis = facingAxis(block);
   // The largest squares, rooted once: the same values as the largest roots (a correctly
   // rounded square root is monotonic). A corner's u = corner − E takes each coordinate from
   // low − E or high − E, so the products of the dot products are formed once per coordinate
@@ -335,7 +366,7 @@ ClipBounds BackFaceTest::clipBounds(const Box& box) const {
 }
 
 // Step 5.
-bool BackFaceTest::culledWithin(const BackBlock& block, double facing,
+bool BackFaceTest::culledWithin(const BackBlockTest& block, double facing,
                                 const ClipBounds& bounds) const {
   if (!(facing > 0.0) || !bounds.inside) return false;
   if (!margin_) return true;
@@ -347,14 +378,17 @@ bool BackFaceTest::culledWithin(const BackBlock& block, double facing,
 }
 
 bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
-  if (!usable_ || !block.skippable || block.box.empty()) return false;
-  const double facing = facingMargin(block);
+  const BackBlockTest test = testOf(block);
+  // Most blocks that are not skipped face the viewer: the ball rejects them before any corner.
+  if (!mayFaceAway(test)) return false;
+  FACET_ASSERT(block.skippable && !block.box.empty());  // cosAngle > 0
+  const double facing = facingMargin(test);
   if (!(facing > 0.0)) return false;
-  return culledWithin(block, facing, clipBounds(block.box));
+  return culledWithin(test, facing, clipBounds(test.box));
 }
 
-bool BackFaceTest::certainlyCulled(const BackBlock& block, ParentClipBounds& parent) const {
-  if (!usable_ || !block.skippable || block.box.empty()) return false;
+bool BackFaceTest::culledPastPreTest(const BackBlockTest& block, ParentClipBounds& parent) const {
+  FACET_ASSERT(!block.box.empty());  // mayFaceAway passed: cosAngle > 0, skippable
   const double facing = facingMargin(block);
   if (!(facing > 0.0)) return false;
   if (!parent.measured) {

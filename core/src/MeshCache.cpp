@@ -40,8 +40,11 @@ void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
   Box box;
   bool finite = true;
   for (std::size_t first = begin; first < end; first += kPolygonsPerBackBlock) {
-    const BackBlock& back = facts.backBlocks[first >> kBackBlockBits] = measureBackBlock(
+    const std::size_t index = first >> kBackBlockBits;
+    const BackBlock& back = facts.backBlocks[index] = measureBackBlock(
         mesh, first, std::min(end, first + kPolygonsPerBackBlock), facts.faceNormals.data());
+    facts.backTests[index] = testOf(back);
+    facts.backPointFlags[index] = pointFlagsOf(back, mesh.points.count);
     box.add(back.box);
     finite = finite && back.allFinite;
   }
@@ -64,7 +67,10 @@ void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
   facts.blocks.resize(blocks);
   facts.blockFinite.resize(blocks);
   facts.faceNormals.resize(polygons);
-  facts.backBlocks.resize((polygons + kPolygonsPerBackBlock - 1) / kPolygonsPerBackBlock);
+  const std::size_t backBlocks = (polygons + kPolygonsPerBackBlock - 1) / kPolygonsPerBackBlock;
+  facts.backBlocks.resize(backBlocks);
+  facts.backTests.resize(backBlocks);
+  facts.backPointFlags.resize(backBlocks);
 }
 
 }  // namespace

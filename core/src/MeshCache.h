@@ -39,6 +39,15 @@ inline constexpr int kBackBlockBits = 6;
 inline constexpr std::size_t kPolygonsPerBackBlock = std::size_t{1} << kBackBlockBits;
 static_assert(kBackBlockBits <= kBlockBits);
 
+// The needed-point flags (Transform.h) a back-face block's two point spans fall in, what the
+// frame's markNeededPoints reads for every block in view and not skipped: [first, end) flag
+// ranges, empty when first == end. A block with scattered flags (BackBlock) has lowFirst
+// kReadWholeBackBlock, and so has every block of a mesh with more flags than 32 bits count.
+struct BackPointFlags {
+  std::uint32_t lowFirst = 0, lowEnd = 0, highFirst = 0, highEnd = 0;
+};
+inline constexpr std::uint32_t kReadWholeBackBlock = UINT32_MAX;
+
 // What a back-face block's polygons share, per mesh version: the cone their normals lie in
 // and the smallest size and worst shape among them (BackFacingBlocks.h says how a frame uses
 // them). `skippable` is false unless every polygon is a triangle of finite points with an
@@ -66,6 +75,20 @@ struct BackBlock {
   double maxPerimeterPerDoubleArea = 0.0;  // the largest perimeter / doubled area, rounded up
   bool skippable = false;
   bool allFinite = true;  // every point its polygons use is finite
+};
+
+// What every frame's cull reads of a back-face block (BackFaceTest), copied from it in the
+// order the test reads it: 136 bytes, where the whole BackBlock is ~200 and its spans and
+// flags are read by markNeededPoints from BackPointFlags. At 2M polygons 31k blocks are tested
+// a frame (bench/core-frame-issue11.md, section 39). cosAngle is 0 unless the block is
+// skippable (a skippable block's is at least cos 1.5): the pre-test rejects it then.
+struct BackBlockTest {
+  glm::dvec3 ballCenter{0.0};
+  double ballRadius = 0.0;
+  glm::dvec3 axis{0.0};
+  double cosAngle = 0.0, sinAngle = 1.0;
+  Box box;
+  double minDoubleArea = 0.0, maxPerimeterPerDoubleArea = 0.0;
 };
 
 // What makes two MeshViews the same arrays (MeshView::version's promise).
@@ -96,6 +119,9 @@ struct MeshFacts {
   // read without the offsets (MeshAccess.h, Triangles).
   bool allTriangles = false;
   std::vector<BackBlock> backBlocks;  // per kPolygonsPerBackBlock polygons
+  // The same blocks' cones and point flags, compact: what the frame's cull reads of each.
+  std::vector<BackBlockTest> backTests;
+  std::vector<BackPointFlags> backPointFlags;
 };
 
 // The box of a mesh's finite points (for a plan made ahead of a render).

@@ -54,12 +54,24 @@ bool backBlockInView(const std::uint8_t* visible, std::size_t b) {
   return !visible || visible[b >> (kBlockBits - kBackBlockBits)];
 }
 
-// The points that the back-face blocks in view and not skipped (`back` null: none is) use.
+void fillFlags(std::uint32_t first, std::uint32_t end, std::uint8_t* flags) {
+  std::fill(flags + first, flags + end, std::uint8_t{1});
+}
+
+// The points that the back-face blocks in view and not skipped (`back` null: none is) use,
+// from their compact flag ranges (MeshFacts::backPointFlags): the whole record only for a
+// block with scattered flags.
 void markNeededPoints(const MeshFacts& facts, const std::uint8_t* visible, const std::uint8_t* back,
                       std::uint8_t* flags) {
-  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
-    if (backBlockInView(visible, b) && !(back && back[b]))
+  for (std::size_t b = 0; b < facts.backPointFlags.size(); ++b) {
+    if (!backBlockInView(visible, b) || (back && back[b])) continue;
+    const BackPointFlags& ranges = facts.backPointFlags[b];
+    if (ranges.lowFirst == kReadWholeBackBlock) {
       markPointsOfBlock(facts.backBlocks[b], flags);
+      continue;
+    }
+    fillFlags(ranges.lowFirst, ranges.lowEnd, flags);
+    fillFlags(ranges.highFirst, ranges.highEnd, flags);
   }
 }
 
@@ -163,7 +175,8 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
           {m, b, std::min(facts.backBlocks.size(), b + kBackBlocksPerTask)});
   }
   // The back-face blocks, independent of each other, on every thread: at 2M polygons about
-  // 8,000 of them, most of the culling's work.
+  // 31,000 of them, most of the culling's work. The pre-test reads the compact cones
+  // and the rest of the test (MeshFacts::backTests), not the whole records.
   const BackFaceTest backFaceTest(transform);
   runner.runUnreported(culling.backRanges.size(), [&](std::size_t i) {
     const MeshRange& r = culling.backRanges[i];
@@ -172,13 +185,14 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     const MeshFacts& facts = cache[r.mesh];
     ParentClipBounds parent;
     for (std::size_t b = r.begin; b < r.end; ++b) {
-      const std::size_t viewBlock = b >> (kBlockBits - kBackBlockBits);
-      if (parent.box != &facts.blocks[viewBlock]) {
+      flags.back[b] = 0;
+      if (!backBlockInView(visible, b) || !backFaceTest.mayFaceAway(facts.backTests[b])) continue;
+      const Box* viewBlock = &facts.blocks[b >> (kBlockBits - kBackBlockBits)];
+      if (parent.box != viewBlock) {
         parent = ParentClipBounds{};
-        parent.box = &facts.blocks[viewBlock];
+        parent.box = viewBlock;
       }
-      flags.back[b] =
-          backBlockInView(visible, b) && backFaceTest.certainlyCulled(facts.backBlocks[b], parent);
+      flags.back[b] = backFaceTest.culledPastPreTest(facts.backTests[b], parent);
     }
   });
   for (std::size_t m = 0; m < meshes.size(); ++m)

@@ -20,6 +20,7 @@
 #include "MeshCache.h"
 #include "SetupBatch.h"
 #include "Transform.h"
+#include "ViewCulling.h"
 
 namespace facet::testing {
 namespace {
@@ -455,6 +456,47 @@ TEST_F(BackFacingBlocks, ScatteredBlocksListTheFlagsOfTheirPoints) {
     EXPECT_TRUE(detail::measureBackBlock(ringView, begin, begin + detail::kPolygonsPerBackBlock)
                     .scatteredPointFlags.empty());
   }
+}
+
+// The compact records the frame's cull reads (MeshCache.h) say what the whole blocks say: the
+// flag ranges mark exactly the flags markPointsOfBlock marks, a scattered block sends the
+// reader to its whole record, and a block that is not skippable fails the pre-test.
+TEST_F(BackFacingBlocks, CompactRecordsAgreeWithTheWholeBlocks) {
+  const Mesh rings = makeUvSphere(600, 300);
+  const MeshView view = closedView(rings);
+  const std::size_t flagCount =
+      (view.points.count + detail::kPointsPerNeededFlag - 1) >> detail::kNeededPointBits;
+  for (std::size_t b = 0; b < 40; ++b) {
+    const std::size_t begin = 3000 + b * detail::kPolygonsPerBackBlock;
+    const detail::BackBlock block =
+        detail::measureBackBlock(view, begin, begin + detail::kPolygonsPerBackBlock);
+    const detail::BackPointFlags ranges = detail::pointFlagsOf(block, view.points.count);
+    ASSERT_NE(ranges.lowFirst, detail::kReadWholeBackBlock);
+    std::vector<std::uint8_t> whole(flagCount, 0), compact(flagCount, 0);
+    detail::markPointsOfBlock(block, whole.data());
+    std::fill(compact.begin() + ranges.lowFirst, compact.begin() + ranges.lowEnd, 1);
+    std::fill(compact.begin() + ranges.highFirst, compact.begin() + ranges.highEnd, 1);
+    EXPECT_EQ(compact, whole) << "block " << b;
+    const detail::BackBlockTest test = detail::testOf(block);
+    EXPECT_EQ(test.box.low, block.box.low);
+    EXPECT_EQ(test.cosAngle, block.skippable ? block.cosAngle : 0.0);
+  }
+  const Mesh meridians =
+      makeUvSphere(600, 300, 1.0, glm::dvec3(0.0), UvSphereOrder::vtkSphereSource);
+  const MeshView capView = closedView(meridians);
+  const detail::BackBlock cap = detail::measureBackBlock(capView, 0, detail::kPolygonsPerBackBlock);
+  ASSERT_FALSE(cap.scatteredPointFlags.empty());
+  EXPECT_EQ(detail::pointFlagsOf(cap, capView.points.count).lowFirst, detail::kReadWholeBackBlock);
+
+  Mesh quads;  // not skippable: cosAngle 0, whatever the view
+  quads.addPoint({0, 0, 0});
+  quads.addPoint({1, 0, 0});
+  quads.addPoint({1, 1, 0});
+  quads.addPoint({0, 1, 0});
+  quads.addPolygon({0, 1, 2, 3});
+  const detail::BackBlock quad = detail::measureBackBlock(quads.view(), 0, 1);
+  ASSERT_FALSE(quad.skippable);
+  EXPECT_EQ(detail::testOf(quad).cosAngle, 0.0);
 }
 
 // The points a drawn block needs are transformed whatever the layout of their ids and
