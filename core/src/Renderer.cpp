@@ -269,14 +269,10 @@ bool Renderer::Workspace::shadeAndResolve(const detail::FrameInputs& in,
 bool Renderer::Workspace::resolve(const detail::FrameInputs& in, const FramebufferView& planes,
                                   detail::PhaseRunner& runner) {
   const detail::ResolveContext context{
-      polygons.colors.data(),
-      in.background,
-      planes.color,
-      planes.polygonId,
-      planes.width,
-      in.estimate,
-      in.resolvedRows && *in.resolvedRows ? in.resolvedRows : nullptr,
-      &in.target};
+      polygons.colors.data(), in.background, planes.color, planes.polygonId, planes.width,
+      in.estimate, in.resolvedRows && *in.resolvedRows ? in.resolvedRows : nullptr, &in.target,
+      // The frame's (or, resolving again, the previous frame's: the same id plane) tiles.
+      tiles.size() == grid.count() ? tiles.data() : nullptr};
   return detail::resolveTiles(runner, grid, context);
 }
 

@@ -17,6 +17,7 @@
 #include "../support/EveryTargetTest.h"
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
+#include "RasterTriangle.h"
 #include "Resolve.h"
 #include "SetupBatch.h"
 #include "ThreadPool.h"
@@ -106,6 +107,62 @@ TEST_F(Resolve, EveryPixelIsItsDefinitionOnEveryTarget) {
           }
         }
         EXPECT_EQ(differing, 0u) << width << " x " << height;
+      }
+    }
+  }
+}
+
+// The raster's per-tile fact handed to the resolve (ResolveContext::tiles): a tile it counted
+// no covered pixel in takes the background's color everywhere, its ids unread (here they
+// hold polygons, which a resolve reading them would show), and every other tile its
+// polygons' colors, pixel by pixel; on every instruction set, 1, 2 and 8 threads, colors
+// stored plainly and streamed, tiles cut by the image's edge, runs of either kind of tile.
+TEST_F(Resolve, BackgroundOnlyTilesTakeTheBackgroundAndNoOtherTileDoes) {
+  std::vector<Rgba8> colors(500);
+  for (std::size_t i = 0; i < colors.size(); ++i)
+    colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
+  const Rgba8 background{9, 8, 7, 0};
+  const detail::PhaseRunner::ProgressCallback noProgress;
+  for (const auto& [width, height] : {std::pair{200, 70}, std::pair{1031, 1030}}) {
+    const detail::TileGrid grid(width, height);
+    const Planes planes = randomPlanes(width, height, 500, 5);
+    std::vector<detail::PaintCounts> tiles(grid.count());
+    for (std::size_t t = 0; t < grid.count(); ++t) {
+      const detail::PixelBounds bounds = grid.bounds(t);
+      for (int y = bounds.y0; y <= bounds.y1; ++y) {
+        for (int x = bounds.x0; x <= bounds.x1; ++x)
+          tiles[t].covered += planes.ids[static_cast<std::size_t>(y) * width + x] >= 0;
+      }
+      if (t % 3 != 1) tiles[t].covered = 0;  // said to show the background: ids not read
+    }
+    for (const detail::SimdTarget& target : detail::simdTargets()) {
+      SCOPED_TRACE(target.name);
+      detail::useSimdTarget(target.bits);
+      for (const int threads : {1, 2, 8}) {
+        detail::ThreadPool pool(threads);
+        std::vector<Rgba8> color(planes.ids.size(), Rgba8{1, 2, 3, 4});
+        detail::ResolveContext context{colors.data(), background, color.data(), planes.ids.data(),
+                                       width};
+        context.tiles = tiles.data();
+        detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
+        ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
+        std::size_t differing = 0, backgroundPixels = 0;
+        for (std::size_t t = 0; t < grid.count(); ++t) {
+          const detail::PixelBounds bounds = grid.bounds(t);
+          for (int y = bounds.y0; y <= bounds.y1; ++y) {
+            for (int x = bounds.x0; x <= bounds.x1; ++x) {
+              const std::size_t i = static_cast<std::size_t>(y) * width + x;
+              const std::int32_t id = planes.ids[i];
+              const bool backgroundOnly = tiles[t].covered == 0;
+              backgroundPixels += backgroundOnly && id >= 0;
+              const Rgba8 expected = backgroundOnly || id < 0 ? background : colors[id];
+              if (!(color[i] == expected) && ++differing <= 5)
+                ADD_FAILURE() << "pixel (" << x << ", " << y << ") of tile " << t << ", id " << id;
+            }
+          }
+        }
+        EXPECT_EQ(differing, 0u) << width << " x " << height << ", " << threads << " threads";
+        EXPECT_GT(backgroundPixels, 0u);  // the tiles said to show the background hold polygons
       }
     }
   }
