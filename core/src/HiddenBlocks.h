@@ -109,12 +109,7 @@ class HiddenBlockTest {
  public:
   HiddenBlockTest(const FrameTransform& transform, const TileGrid& grid,
                   const FrontDepthBlocks& front)
-      : transform_(transform),
-        viewport_(grid.viewport()),
-        front_(front),
-        eye_(transform.constants().eye),
-        near_(transform.constants().near),
-        parallel_(transform.constants().parallel) {}
+      : constants_(transform.constants()), viewport_(grid.viewport()), front_(front) {}
   // Whether every triangle of a triangle polygon with points in `box` loses the depth test
   // everywhere to the front faces (the header's proof).
   bool hidden(const Box& box) const;
@@ -123,12 +118,9 @@ class HiddenBlockTest {
   double nearestVertexKeyBound(double nearestDistance, double farthestDistance,
                                double largestOffset) const;
 
-  const FrameTransform& transform_;
+  ProjectionConstants constants_;
   PixelBounds viewport_;
   const FrontDepthBlocks& front_;
-  glm::dvec3 eye_;
-  double near_;
-  bool parallel_;
 };
 
 // Polygon ids per run (the header's runs): 8 measured best at 500k (section 30 of
