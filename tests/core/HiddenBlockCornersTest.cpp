@@ -30,6 +30,11 @@ using detail::FrameTransform;
 bool cornersOneByOne(const FrameTransform& transform, const Box& box, BlockCorners& out) {
   ClipPoint corners[8];
   if (!transform.boxInsideClipVolume(box, corners)) return false;
+  // FrameTransform's corners (18 products shared by the corners) are toClip's bits.
+  for (int i = 0; i < 8; ++i) {
+    const ClipPoint c = transform.toClip(box.corner(i));
+    EXPECT_TRUE(std::memcmp(&c, &corners[i], sizeof c) == 0) << "corner " << i;
+  }
   out.x0 = out.y0 = std::numeric_limits<std::int64_t>::max();
   out.x1 = out.y1 = std::numeric_limits<std::int64_t>::min();
   out.nearest = std::numeric_limits<double>::infinity();
