@@ -34,7 +34,8 @@ bool BlockCornersLanes(const ProjectionConstants& k, const Box& box, BlockCorner
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(d)>;
   const std::size_t n = hn::Lanes(d);
-  const V one = hn::Set(d, 1.0), margin = hn::Set(d, 1e-9), largest = hn::Set(d, std::numeric_limits<double>::max());
+  const V one = hn::Set(d, 1.0), margin = hn::Set(d, 1e-9),
+          largest = hn::Set(d, std::numeric_limits<double>::max());
   const V nearV = hn::Set(d, k.near), farV = hn::Set(d, k.far);
   const V absNear = hn::Set(d, std::abs(k.near)), absFar = hn::Set(d, std::abs(k.far));
   const V guardX = hn::Set(d, k.guardX), guardY = hn::Set(d, k.guardY);

@@ -74,7 +74,8 @@ double HiddenBlockTest::nearestVertexKeyBound(double nearestDistance, double far
   // key = (near·1 − d)·1: one rounding, at most u·(|near| + |d|) with d ≤ the corners'
   // largest computed distance + 2η.
   const double most = farthestDistance + 2.0 * eta;
-  return (constants_.near - least) + 1e-14 * (std::abs(constants_.near) + std::abs(least) + std::abs(most));
+  return (constants_.near - least) +
+         1e-14 * (std::abs(constants_.near) + std::abs(least) + std::abs(most));
 }
 
 namespace {

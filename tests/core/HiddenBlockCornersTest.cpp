@@ -72,17 +72,17 @@ std::size_t expectTheLanesCorners(const Camera& camera, std::uint32_t seed) {
     double distance = near + (far - near) * unit(random) * unit(random) * 1.2;
     if (kind == 1) distance = near * (1.0 + 1e-10 * signedUnit(random));  // on the near plane
     if (kind == 2) distance = far * (1.0 + 1e-10 * signedUnit(random));   // on the far plane
-    if (kind == 3) distance = near * signedUnit(random);  // around the eye
+    if (kind == 3) distance = near * signedUnit(random);                  // around the eye
     const double side = distance * (kind == 4 ? 40.0 : 0.6);
     glm::dvec3 sideways(signedUnit(random), signedUnit(random), signedUnit(random));
     sideways -= glm::dot(sideways, ahead) * ahead;  // the distance stays as chosen
     const glm::dvec3 center = eye + distance * ahead + side * sideways;
     // Boxes on the near or far plane within a few of the test's margins (1e-9).
-    const double size = distance * (kind == 1 || kind == 2 ? 1e-9 : 0.05) * unit(random) *
-                        unit(random);
+    const double size =
+        distance * (kind == 1 || kind == 2 ? 1e-9 : 0.05) * unit(random) * unit(random);
     glm::dvec3 half(size * unit(random), size * unit(random), size * unit(random));
-    if (kind == 5) half = glm::dvec3(0.0);                      // a point
-    if (kind == 6) half.y = 0.0;                                // flat
+    if (kind == 5) half = glm::dvec3(0.0);  // a point
+    if (kind == 6) half.y = 0.0;            // flat
     box.add(center - half), box.add(center + half);
     if (kind == 7 && i % 16 == 7) box.add(eye + glm::dvec3(0x1p501, 0.0, 0.0));  // scaled
     if (kind == 3 && i % 24 == 3) box.add(eye);                                  // the eye
