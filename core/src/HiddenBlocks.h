@@ -32,7 +32,8 @@
 //    clamped: nothing of theirs is dropped, and they are painted alike in both kinds of
 //    frame.)
 // 2. No triangle of the block is clipped and every point of it has d > 0: its box is inside
-//    the clip volume with a margin (FrameTransform::boxInsideClipVolume), so every vertex's
+//    the clip volume with a margin (FrameTransform::boxInsideClipVolume; its eight corners
+//    taken in SIMD lanes, HiddenBlockCorners.h, with the same bits), so every vertex's
 //    outcode is kInside and its window position and key are toWindow's of its own point.
 // 3. Every vertex key is at most nearestVertexKeyBound (HiddenBlocks.cpp): the view distance
 //    d is affine in the point, so its least over the box is at a corner; each computed
