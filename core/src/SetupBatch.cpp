@@ -485,6 +485,14 @@ void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   (batch, grid, skipBackFaces, boundaryEdges, verdicts, clampBackFaces);
 }
 
+BatchClassifier batchClassifier() {
+  // Before any dispatch the table's entry is Highway's first-call initializer, which would
+  // update the chosen target on every call: choose it first.
+  hwy::ChosenTarget& chosen = hwy::GetChosenTarget();
+  if (!chosen.IsInitialized()) chosen.Update(hwy::SupportedTargets());
+  return &HWY_DYNAMIC_DISPATCH(ClassifyBatch);
+}
+
 std::vector<SimdTarget> simdTargets() {
   // Highway lists only the pinned target once useSimdTarget pinned one: unpin first, so that
   // a test looping over the targets more than once covers every one each time.
