@@ -107,11 +107,14 @@ struct BoxCoverage {
     const int rows = hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElseZero(small, height))) + 1;
     V outside = hn::Zero(d), notSure = hn::Zero(d);
     V row[3] = {e[0].value, e[1].value, e[2].value};
+    // A bit per center, 1 << (4y + x): doubled a step along the row, not set from the
+    // scalar (a shift and a broadcast a center).
+    V rowBit = hn::Set(d, 1);
     for (int y = 0; y < rows; ++y) {
       V at[3] = {row[0], row[1], row[2]};
+      V bit = rowBit;
       for (int x = 0; x < columns; ++x) {
-        // A bit per center: the sign of a value (all ones when negative, by the shift).
-        const V bit = hn::Set(d, 1 << (4 * y + x));
+        // The sign of a value (all ones when negative, by the shift).
         outside = outside | hn::And(hn::ShiftRight<31>(at[0] | at[1] | at[2]), bit);
         if constexpr (kSure) {
           const V margin = (at[0] - sureFrom[0]) | (at[1] - sureFrom[1]) | (at[2] - sureFrom[2]);
@@ -119,9 +122,11 @@ struct BoxCoverage {
         }
         for (int k = 0; k < 3; ++k)
           at[k] = at[k] + e[k].stepX;
+        bit = bit + bit;
       }
       for (int k = 0; k < 3; ++k)
         row[k] = row[k] + e[k].stepY;
+      rowBit = hn::ShiftLeft<4>(rowBit);
     }
     // The box's centers: (width + 1) bits in each of (height + 1) rows of 4 (the shift in
     // range in every lane: other lanes' widths may be anything).
