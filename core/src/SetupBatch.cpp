@@ -386,11 +386,14 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
   const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
   const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
   const VD one = hn::Set(dd, 1.0);
-  const VD unsnappedKey = keyA + (dk1 * fine1 + dk2 * fine2) * (one / fineArea);
-  const VD snappedKey =
-      keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
+  // The unsnapped key keyA + (dk1 · fine1 + dk2 · fine2) · (1 / fineArea) or the snapped one
+  // from the snapped edge functions and area: the same operations on the plane's operands,
+  // one division for both.
+  const VD edge1 = hn::IfThenElse(plane, fine1, load(in.edge1));
+  const VD edge2 = hn::IfThenElse(plane, fine2, load(in.edge2));
+  const VD area = hn::IfThenElse(plane, fineArea, load(in.area));
   const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
-  VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
+  VD key = keyA + (dk1 * edge1 + dk2 * edge2) * (one / area);
   if (clamp) {  // clamped to nearestWrittenKey (+∞: unchanged), as TriangleDepth::keyAt clamps
     key = hn::Min(key, hn::PromoteTo(dd, hn::Load(df, in.nearest + lane)));
   }
@@ -419,8 +422,9 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool clamp, BatchV
   const VD sx = fineOr(unsnapped, in.sx, in.gridSx), sy = fineOr(unsnapped, in.sy, in.gridSy);
   const VD one = hn::Set(dd, 1.0);
   const VD finePerGrid2 = hn::Set(dd, double{kResidueScale} * kResidueScale);
+  // One division: the plane's area chosen first.
   const VD inverse =
-      hn::IfThenElse(unsnapped, one / fineArea, one / (load(in.area) * finePerGrid2));
+      one / hn::IfThenElse(unsnapped, fineArea, load(in.area) * finePerGrid2);
   const VD keyA = hn::PromoteTo(dd, hn::Load(df, in.keyA + lane));
   const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
   const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
