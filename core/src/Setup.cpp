@@ -502,7 +502,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   int lanes = 0;
   const auto settleBatch = [&] {
     classify(batch, context.grid, kSkipBackFaces || setup.defersBackFaces(), !kSkipBackFaces,
-                  verdicts, setup.clampsBackFaces());
+             verdicts, setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };

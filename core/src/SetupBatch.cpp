@@ -150,15 +150,15 @@ V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
   return bound - (edge.exact - edge.value);
 }
 
-// The coverage of the small lanes (SetupBatch.h; `edges` at their first center, as the
+// The coverage of the small lanes (SetupBatch.h; `boxEdges` at their first center, as the
 // pixel-center test computed them; b and c relative to a, the box in centers less one,
-// `extent` the bounding box's width plus height), stored to `coverage`; with boundary edges (a triangle polygon's three), a lane some covered
-// center of which is not surely inside them is left to the tile (without, every center is
-// sure): the lanes that stay small. Out of line: most batches of a dense mesh have none, and
-// inlined it cost their lanes 4 % more instructions (8M triangles).
+// `extent` the bounding box's width plus height), stored to `coverage`; with boundary edges
+// (a triangle polygon's three), a lane some covered center of which is not surely inside them
+// is left to the tile (without, every center is sure): the lanes that stay small. Out of
+// line: most batches of a dense mesh have none, and inlined it cost their lanes 4 % more
+// instructions (8M triangles).
 HWY_NOINLINE M smallLanes(D d, M small, const EdgeLanes (&boxEdges)[3], V ux, V uy, V vx, V vy,
-                          V width, V height, V extent, bool boundaryEdges,
-                          std::int32_t* coverage) {
+                          V width, V height, V extent, bool boundaryEdges, std::int32_t* coverage) {
   const V zero = hn::Zero(d);
   if (boundaryEdges) {
     const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
@@ -311,9 +311,9 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   if (fragments == 0 && !anySmall) return;
 
   if (anySmall) {
-    small = smallLanes(d, small, edges, ux, uy, vx, vy, width, height,
-                       (maxX - minX) + (maxY - minY), boundaryEdges,
-                       verdicts.smallPlane.coverage + lane);
+    small =
+        smallLanes(d, small, edges, ux, uy, vx, vy, width, height, (maxX - minX) + (maxY - minY),
+                   boundaryEdges, verdicts.smallPlane.coverage + lane);
   }
   const std::uint32_t smalls = laneBits(d, small) << lane;
   verdicts.small |= smalls;
@@ -423,8 +423,7 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool clamp, BatchV
   const VD one = hn::Set(dd, 1.0);
   const VD finePerGrid2 = hn::Set(dd, double{kResidueScale} * kResidueScale);
   // One division: the plane's area chosen first.
-  const VD inverse =
-      one / hn::IfThenElse(unsnapped, fineArea, load(in.area) * finePerGrid2);
+  const VD inverse = one / hn::IfThenElse(unsnapped, fineArea, load(in.area) * finePerGrid2);
   const VD keyA = hn::PromoteTo(dd, hn::Load(df, in.keyA + lane));
   const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
   const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
