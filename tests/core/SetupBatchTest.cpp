@@ -134,6 +134,18 @@ std::vector<WindowVertex> randomTriangles(std::size_t count, unsigned seed) {
   return corners;
 }
 
+// The batch of the triangles from `first` on (three corners each), lane l a polygon (left to
+// the per-triangle path) when l % 7 == 3.
+TriangleBatch batchAt(const std::vector<WindowVertex>& corners, std::size_t first) {
+  TriangleBatch batch{};
+  for (int lane = 0; lane < kBatchSize; ++lane) {
+    for (int j = 0; j < 3; ++j)
+      batch.v[j][lane] = corners[3 * (first + static_cast<std::size_t>(lane)) + j];
+    batch.triangle[lane] = lane % 7 != 3;  // some lanes hold polygons
+  }
+  return batch;
+}
+
 // One lane's verdict, and that its bits are at most one of the kinds.
 int verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
   const std::uint32_t bits[5] = {verdicts.culled, verdicts.zeroArea, verdicts.coversNoSample,
@@ -184,12 +196,7 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
     for (bool skipBackFaces : {false, true}) {
       std::size_t mismatches = 0, counts[6] = {}, records = 0, recordsBeyondFew = 0;
       for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
-        TriangleBatch batch{};
-        for (int lane = 0; lane < kBatchSize; ++lane) {
-          for (int j = 0; j < 3; ++j)
-            batch.v[j][lane] = corners[3 * (first + lane) + j];
-          batch.triangle[lane] = lane % 7 != 3;  // some lanes hold polygons
-        }
+        const TriangleBatch batch = batchAt(corners, first);
         detail::BatchVerdicts verdicts;
         detail::classifyBatch(batch, grid, skipBackFaces, !skipBackFaces, verdicts);
         EXPECT_EQ(verdicts.culledCount, std::popcount(verdicts.culled));
@@ -280,12 +287,7 @@ TEST_F(SetupBatches, ARunsClassifierIsTheBatchOfTheTargetInUse) {
     for (bool skipBackFaces : {false, true}) {
       for (bool clamp : {false, true}) {
         for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
-          TriangleBatch batch{};
-          for (int lane = 0; lane < kBatchSize; ++lane) {
-            for (int j = 0; j < 3; ++j)
-              batch.v[j][lane] = corners[3 * (first + lane) + j];
-            batch.triangle[lane] = lane % 5 != 2;
-          }
+          const TriangleBatch batch = batchAt(corners, first);
           detail::BatchVerdicts run, each;
           classify(batch, grid, skipBackFaces, !skipBackFaces, run, clamp);
           detail::classifyBatch(batch, grid, skipBackFaces, !skipBackFaces, each, clamp);
@@ -332,12 +334,7 @@ TEST_F(SetupBatches, BackFaceKeysAreClampedToTheirNearestVertexKeyOnEveryTarget)
     use(target);
     std::size_t clampedRecords = 0, clampedFragments = 0, frontRecords = 0, frontFragments = 0;
     for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
-      TriangleBatch batch{};
-      for (int lane = 0; lane < kBatchSize; ++lane) {
-        for (int j = 0; j < 3; ++j)
-          batch.v[j][lane] = corners[3 * (first + lane) + j];
-        batch.triangle[lane] = lane % 7 != 3;
-      }
+      const TriangleBatch batch = batchAt(corners, first);
       detail::BatchVerdicts unclamped, clamped;
       detail::classifyBatch(batch, grid, false, true, unclamped);
       detail::classifyBatch(batch, grid, false, true, clamped, true);
