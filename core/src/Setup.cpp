@@ -496,13 +496,14 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
                (context.order.ids.empty() && chunk.begin >= mesh.firstPolygon &&
                 chunk.end <= mesh.endPolygon()));
   const bool batched = setupBatchesEnabled();
+  const BatchClassifier classify = batched ? batchClassifier() : nullptr;
   TriangleBatch batch{};
   BatchVerdicts verdicts;
   std::size_t lanePolygon[kBatchSize];
   int lanes = 0;
   const auto settleBatch = [&] {
-    classifyBatch(batch, context.grid, kSkipBackFaces || setup.defersBackFaces(), !kSkipBackFaces,
-                  verdicts, setup.clampsBackFaces());
+    classify(batch, context.grid, kSkipBackFaces || setup.defersBackFaces(), !kSkipBackFaces,
+             verdicts, setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
@@ -707,13 +708,14 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     forEachShown([&](std::size_t polygon) { setup.run(polygon); });
     return end;
   }
+  const BatchClassifier classify = batchClassifier();
   TriangleBatch batch{};
   BatchVerdicts verdicts;
   std::size_t lanePolygon[kBatchSize];
   int lanes = 0;
   const auto settleBatch = [&] {
     std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
-    classifyBatch(batch, context.grid, false, true, verdicts, setup.clampsBackFaces());
+    classify(batch, context.grid, false, true, verdicts, setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };

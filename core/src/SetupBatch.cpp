@@ -5,7 +5,7 @@
 // is less than kMaxExtent = 2^14 grid steps (64 pixels) on each side, and coordinates are
 // taken relative to its vertex a: every vertex coordinate then is below 2^14 in magnitude, and
 // so is every edge's (dx, dy). The samples tested lie in the bounding box, or at most three
-// pixels (3 · 2^8) beyond it (in lanes whose box holds fewer centers); so each product of an
+// pixels (3 · 2^8) beyond it (the pixel-center test's steps); so each product of an
 // edge function, (q − p)·(s − p), is below 2^14 · (2^14 + 3 · 2^8) < 2^28.3, an edge function
 // below 2^29.3 and twice the area below 2^29: far from int32's 2^31. Lanes beyond the bound
 // (rare: a dense mesh's triangles are pixels across) have their coordinates zeroed before
@@ -107,11 +107,14 @@ struct BoxCoverage {
     const int rows = hn::GetLane(hn::MaxOfLanes(d, hn::IfThenElseZero(small, height))) + 1;
     V outside = hn::Zero(d), notSure = hn::Zero(d);
     V row[3] = {e[0].value, e[1].value, e[2].value};
+    // A bit per center, 1 << (4y + x): doubled a step along the row, not set from the
+    // scalar (a shift and a broadcast a center).
+    V rowBit = hn::Set(d, 1);
     for (int y = 0; y < rows; ++y) {
       V at[3] = {row[0], row[1], row[2]};
+      V bit = rowBit;
       for (int x = 0; x < columns; ++x) {
-        // A bit per center: the sign of a value (all ones when negative, by the shift).
-        const V bit = hn::Set(d, 1 << (4 * y + x));
+        // The sign of a value (all ones when negative, by the shift).
         outside = outside | hn::And(hn::ShiftRight<31>(at[0] | at[1] | at[2]), bit);
         if constexpr (kSure) {
           const V margin = (at[0] - sureFrom[0]) | (at[1] - sureFrom[1]) | (at[2] - sureFrom[2]);
@@ -119,9 +122,11 @@ struct BoxCoverage {
         }
         for (int k = 0; k < 3; ++k)
           at[k] = at[k] + e[k].stepX;
+        bit = bit + bit;
       }
       for (int k = 0; k < 3; ++k)
         row[k] = row[k] + e[k].stepY;
+      rowBit = hn::ShiftLeft<4>(rowBit);
     }
     // The box's centers: (width + 1) bits in each of (height + 1) rows of 4 (the shift in
     // range in every lane: other lanes' widths may be anything).
@@ -145,18 +150,16 @@ V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
   return bound - (edge.exact - edge.value);
 }
 
-// The coverage of the small lanes (SetupBatch.h; b and c relative to a, the first center
-// relative to a, the box in centers less one, `extent` the bounding box's width plus height),
-// stored to `coverage`; with boundary edges (a triangle polygon's three), a lane some covered
-// center of which is not surely inside them is left to the tile (without, every center is
-// sure): the lanes that stay small. Out of line: most batches of a dense mesh have none, and
-// inlined it cost their lanes 4 % more instructions (8M triangles).
-HWY_NOINLINE M smallLanes(D d, M small, V ux, V uy, V vx, V vy, V firstX, V firstY, V width,
-                          V height, V extent, bool boundaryEdges, std::int32_t* coverage) {
+// The coverage of the small lanes (SetupBatch.h; `boxEdges` at their first center, as the
+// pixel-center test computed them; b and c relative to a, the box in centers less one,
+// `extent` the bounding box's width plus height), stored to `coverage`; with boundary edges
+// (a triangle polygon's three), a lane some covered center of which is not surely inside them
+// is left to the tile (without, every center is sure): the lanes that stay small. Out of
+// line: most batches of a dense mesh have none, and inlined it cost their lanes 4 % more
+// instructions (8M triangles).
+HWY_NOINLINE M smallLanes(D d, M small, const EdgeLanes (&boxEdges)[3], V ux, V uy, V vx, V vy,
+                          V width, V height, V extent, bool boundaryEdges, std::int32_t* coverage) {
   const V zero = hn::Zero(d);
-  const EdgeLanes boxEdges[3] = {EdgeLanes(d, ux, uy, vx, vy, firstX, firstY),
-                                 EdgeLanes(d, vx, vy, zero, zero, firstX, firstY),
-                                 EdgeLanes(d, zero, zero, ux, uy, firstX, firstY)};
   if (boundaryEdges) {
     const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
                        sureFrom(d, zero - vx, zero - vy, extent, boxEdges[1]),
@@ -263,12 +266,15 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const M few = hn::Or(hn::Or(hn::And(width == zero, height < four),  // at most 4 centers
                               hn::And(height == zero, width < four)),
                        hn::And(width == one, height == one));
-  const M sampled = hn::AndNot(empty, hn::And(tested, few));
+  const M boxed = hn::AndNot(empty, tested);
+  const M sampled = hn::And(boxed, few);
 
-  // The first center, relative to a; zero in lanes not sampled (it may lie far outside
-  // their box).
-  const V sx = hn::IfThenElseZero(sampled, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
-  const V sy = hn::IfThenElseZero(sampled, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
+  // The first center of the box, relative to a: in the bounding box, so below 2^14 in
+  // magnitude (the edges' 32-bit range above holds); zero in lanes untested or with no center
+  // in their box (it may lie far outside it). The pixel-center test, the small lanes'
+  // coverage and the keys all start from it.
+  const V sx = hn::IfThenElseZero(boxed, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
+  const V sy = hn::IfThenElseZero(boxed, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
   const EdgeLanes edges[3] = {EdgeLanes(d, ux, uy, vx, vy, sx, sy),
                               EdgeLanes(d, vx, vy, zero, zero, sx, sy),
                               EdgeLanes(d, zero, zero, ux, uy, sx, sy)};
@@ -304,14 +310,10 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const bool anySmall = !hn::AllFalse(d, small);
   if (fragments == 0 && !anySmall) return;
 
-  // The first center of a kept lane's box, relative to a: in its bounding box, so below 2^14
-  // in magnitude (the edges' 32-bit range above holds).
-  const V firstX = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(x0) + half - a.x);
-  const V firstY = hn::IfThenElseZero(kept, hn::ShiftLeft<kSubpixelBits>(y0) + half - a.y);
   if (anySmall) {
-    small = smallLanes(d, small, ux, uy, vx, vy, firstX, firstY, width, height,
-                       (maxX - minX) + (maxY - minY), boundaryEdges,
-                       verdicts.smallPlane.coverage + lane);
+    small =
+        smallLanes(d, small, edges, ux, uy, vx, vy, width, height, (maxX - minX) + (maxY - minY),
+                   boundaryEdges, verdicts.smallPlane.coverage + lane);
   }
   const std::uint32_t smalls = laneBits(d, small) << lane;
   verdicts.small |= smalls;
@@ -327,15 +329,15 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   hn::Store(toFine(uy, bResidueY - aResidueY), d, keys.by + lane);
   hn::Store(toFine(vx, cResidueX - aResidueX), d, keys.cx + lane);
   hn::Store(toFine(vy, cResidueY - aResidueY), d, keys.cy + lane);
-  hn::Store(toFine(firstX, zero - aResidueX), d, keys.sx + lane);  // sx in fragment lanes
-  hn::Store(toFine(firstY, zero - aResidueY), d, keys.sy + lane);
+  hn::Store(toFine(sx, zero - aResidueX), d, keys.sx + lane);  // sx in fragment lanes
+  hn::Store(toFine(sy, zero - aResidueY), d, keys.sy + lane);
   if (smalls != 0) {
     hn::Store(ux, d, keys.gridBx + lane);
     hn::Store(uy, d, keys.gridBy + lane);
     hn::Store(vx, d, keys.gridCx + lane);
     hn::Store(vy, d, keys.gridCy + lane);
-    hn::Store(firstX, d, keys.gridSx + lane);
-    hn::Store(firstY, d, keys.gridSy + lane);
+    hn::Store(sx, d, keys.gridSx + lane);
+    hn::Store(sy, d, keys.gridSy + lane);
   }
   hn::Store(edges[1].exact, d, keys.edge1 + lane);
   hn::Store(edges[2].exact, d, keys.edge2 + lane);
@@ -384,11 +386,14 @@ void keyLanes(DD dd, const KeyInputs& in, std::size_t lane, bool boundaryEdges, 
   const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
   const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
   const VD one = hn::Set(dd, 1.0);
-  const VD unsnappedKey = keyA + (dk1 * fine1 + dk2 * fine2) * (one / fineArea);
-  const VD snappedKey =
-      keyA + (dk1 * load(in.edge1) + dk2 * load(in.edge2)) * (one / load(in.area));
+  // The unsnapped key keyA + (dk1 · fine1 + dk2 · fine2) · (1 / fineArea) or the snapped one
+  // from the snapped edge functions and area: the same operations on the plane's operands,
+  // one division for both.
+  const VD edge1 = hn::IfThenElse(plane, fine1, load(in.edge1));
+  const VD edge2 = hn::IfThenElse(plane, fine2, load(in.edge2));
+  const VD area = hn::IfThenElse(plane, fineArea, load(in.area));
   const VD largest = hn::Set(dd, std::numeric_limits<float>::max());
-  VD key = hn::IfThenElse(plane, unsnappedKey, snappedKey);
+  VD key = keyA + (dk1 * edge1 + dk2 * edge2) * (one / area);
   if (clamp) {  // clamped to nearestWrittenKey (+∞: unchanged), as TriangleDepth::keyAt clamps
     key = hn::Min(key, hn::PromoteTo(dd, hn::Load(df, in.nearest + lane)));
   }
@@ -417,8 +422,8 @@ void planeLanes(DD dd, const KeyInputs& in, std::size_t lane, bool clamp, BatchV
   const VD sx = fineOr(unsnapped, in.sx, in.gridSx), sy = fineOr(unsnapped, in.sy, in.gridSy);
   const VD one = hn::Set(dd, 1.0);
   const VD finePerGrid2 = hn::Set(dd, double{kResidueScale} * kResidueScale);
-  const VD inverse =
-      hn::IfThenElse(unsnapped, one / fineArea, one / (load(in.area) * finePerGrid2));
+  // One division: the plane's area chosen first.
+  const VD inverse = one / hn::IfThenElse(unsnapped, fineArea, load(in.area) * finePerGrid2);
   const VD keyA = hn::PromoteTo(dd, hn::Load(df, in.keyA + lane));
   const VD dk1 = hn::PromoteTo(dd, hn::Load(df, in.keyB + lane)) - keyA;
   const VD dk2 = hn::PromoteTo(dd, hn::Load(df, in.keyC + lane)) - keyA;
@@ -483,6 +488,14 @@ void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
                    bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces) {
   HWY_DYNAMIC_DISPATCH(ClassifyBatch)
   (batch, grid, skipBackFaces, boundaryEdges, verdicts, clampBackFaces);
+}
+
+BatchClassifier batchClassifier() {
+  // Before any dispatch the table's entry is Highway's first-call initializer, which would
+  // update the chosen target on every call: choose it first.
+  hwy::ChosenTarget& chosen = hwy::GetChosenTarget();
+  if (!chosen.IsInitialized()) chosen.Update(hwy::SupportedTargets());
+  return &HWY_DYNAMIC_DISPATCH(ClassifyBatch);
 }
 
 std::vector<SimdTarget> simdTargets() {

@@ -109,6 +109,14 @@ inline SmallTriangle smallTriangleOfLane(const BatchVerdicts& verdicts, int lane
 void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBackFaces,
                    bool boundaryEdges, BatchVerdicts& verdicts, bool clampBackFaces = false);
 
+// classifyBatch on the instruction set chosen now: a run of batches (Setup.cpp's setUpRun,
+// setUpBackRun) takes it once and calls it per batch, without Highway's dispatch (the chosen
+// target's index and its table) in every batch. The same function classifyBatch calls.
+using BatchClassifier = void (*)(const TriangleBatch& batch, const TileGrid& grid,
+                                 bool skipBackFaces, bool boundaryEdges, BatchVerdicts& verdicts,
+                                 bool clampBackFaces);
+BatchClassifier batchClassifier();
+
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render
 // runs.
 struct SimdTarget {

@@ -2,6 +2,7 @@
 // against the exact per-triangle decisions, and whole renders byte for byte against the
 // set-up without batches.
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -133,6 +134,18 @@ std::vector<WindowVertex> randomTriangles(std::size_t count, unsigned seed) {
   return corners;
 }
 
+// The batch of the triangles from `first` on (three corners each), lane l a polygon (left to
+// the per-triangle path) when l % 7 == 3.
+TriangleBatch batchAt(const std::vector<WindowVertex>& corners, std::size_t first) {
+  TriangleBatch batch{};
+  for (int lane = 0; lane < kBatchSize; ++lane) {
+    for (int j = 0; j < 3; ++j)
+      batch.v[j][lane] = corners[3 * (first + static_cast<std::size_t>(lane)) + j];
+    batch.triangle[lane] = lane % 7 != 3;  // some lanes hold polygons
+  }
+  return batch;
+}
+
 // One lane's verdict, and that its bits are at most one of the kinds.
 int verdictOf(const detail::BatchVerdicts& verdicts, int lane) {
   const std::uint32_t bits[5] = {verdicts.culled, verdicts.zeroArea, verdicts.coversNoSample,
@@ -181,14 +194,9 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
     SCOPED_TRACE(target.name);
     use(target);
     for (bool skipBackFaces : {false, true}) {
-      std::size_t mismatches = 0, counts[6] = {}, records = 0;
+      std::size_t mismatches = 0, counts[6] = {}, records = 0, recordsBeyondFew = 0;
       for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
-        TriangleBatch batch{};
-        for (int lane = 0; lane < kBatchSize; ++lane) {
-          for (int j = 0; j < 3; ++j)
-            batch.v[j][lane] = corners[3 * (first + lane) + j];
-          batch.triangle[lane] = lane % 7 != 3;  // some lanes hold polygons
-        }
+        const TriangleBatch batch = batchAt(corners, first);
         detail::BatchVerdicts verdicts;
         detail::classifyBatch(batch, grid, skipBackFaces, !skipBackFaces, verdicts);
         EXPECT_EQ(verdicts.culledCount, std::popcount(verdicts.culled));
@@ -226,6 +234,12 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
           // A small box's record, made from the same triangle.
           if (right && verdict == kTriangle)
             right = smallRecordRight(verdicts, lane, v, grid, skipBackFaces, records);
+          // Records of boxes of more than 4 centers or 2 × 3: the pixel-center test did not
+          // sample them, yet its edge values at their first center are the coverage's start.
+          const int width = samples.x1 - samples.x0, height = samples.y1 - samples.y0;
+          if (right && ((verdicts.small >> lane) & 1u) && width > 0 && height > 0 &&
+              width + height > 2)
+            ++recordsBeyondFew;
           right = right && (verdict == kTriangle || ((verdicts.small >> lane) & 1u) == 0);
           if (!right && ++mismatches <= 5) {
             ADD_FAILURE() << "triangle (" << v[0].x << "," << v[0].y << ") (" << v[1].x << ","
@@ -241,12 +255,64 @@ TEST_F(SetupBatches, VerdictsAreThePerTriangleSetUpOnEveryTarget) {
       }
       EXPECT_EQ(mismatches, 0u);
       EXPECT_GT(records, triangles / 200) << "small records met too seldom";
+      EXPECT_GT(recordsBeyondFew, triangles / 1000) << "boxes beyond 4 centers met too seldom";
       // Every kind is met (culled only when back faces are skipped).
       for (int k = kUntested; k <= kTriangle; ++k) {
         if (k == kCulled && !skipBackFaces) {
           EXPECT_EQ(counts[k], 0u);
         } else {
           EXPECT_GT(counts[k], triangles / 200) << "verdict " << k << " met too seldom";
+        }
+      }
+    }
+  }
+}
+
+// A run's classifier (batchClassifier, taken once per run of batches) is the batch of the
+// target in use: the same verdicts, samples, keys and records as classifyBatch, every
+// target; a target of its own each.
+TEST_F(SetupBatches, ARunsClassifierIsTheBatchOfTheTargetInUse) {
+  const detail::TileGrid grid(100, 70);
+  const std::vector<WindowVertex> corners = randomTriangles(4000, 19);
+  const std::size_t triangles = corners.size() / 3;
+  std::vector<detail::BatchClassifier> seen;
+  for (const SimdTarget& target : targets()) {
+    SCOPED_TRACE(target.name);
+    use(target);
+    const detail::BatchClassifier classify = detail::batchClassifier();
+    ASSERT_NE(classify, nullptr);
+    EXPECT_EQ(detail::batchClassifier(), classify);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), classify), 0);
+    seen.push_back(classify);
+    for (bool skipBackFaces : {false, true}) {
+      for (bool clamp : {false, true}) {
+        for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
+          const TriangleBatch batch = batchAt(corners, first);
+          detail::BatchVerdicts run, each;
+          classify(batch, grid, skipBackFaces, !skipBackFaces, run, clamp);
+          detail::classifyBatch(batch, grid, skipBackFaces, !skipBackFaces, each, clamp);
+          ASSERT_EQ(run.culled, each.culled);
+          ASSERT_EQ(run.zeroArea, each.zeroArea);
+          ASSERT_EQ(run.coversNoSample, each.coversNoSample);
+          ASSERT_EQ(run.fragment, each.fragment);
+          ASSERT_EQ(run.triangle, each.triangle);
+          ASSERT_EQ(run.clockwise & run.kept(), each.clockwise & each.kept());
+          ASSERT_EQ(run.small, each.small);
+          ASSERT_EQ(run.keptSamples, each.keptSamples);
+          for (std::uint32_t rest = run.kept(); rest != 0; rest &= rest - 1) {
+            const int lane = std::countr_zero(rest);
+            EXPECT_EQ(run.samples.x0[lane], each.samples.x0[lane]);
+            EXPECT_EQ(run.samples.y1[lane], each.samples.y1[lane]);
+            EXPECT_EQ(run.tile[lane], each.tile[lane]);
+            if ((run.fragment >> lane) & 1u) {
+              EXPECT_EQ(std::bit_cast<std::uint32_t>(run.key[lane]),
+                        std::bit_cast<std::uint32_t>(each.key[lane]));
+            }
+            if ((run.small >> lane) & 1u) {
+              EXPECT_TRUE(sameRecord(detail::smallTriangleOfLane(run, lane, 3),
+                                     detail::smallTriangleOfLane(each, lane, 3)));
+            }
+          }
         }
       }
     }
@@ -268,12 +334,7 @@ TEST_F(SetupBatches, BackFaceKeysAreClampedToTheirNearestVertexKeyOnEveryTarget)
     use(target);
     std::size_t clampedRecords = 0, clampedFragments = 0, frontRecords = 0, frontFragments = 0;
     for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
-      TriangleBatch batch{};
-      for (int lane = 0; lane < kBatchSize; ++lane) {
-        for (int j = 0; j < 3; ++j)
-          batch.v[j][lane] = corners[3 * (first + lane) + j];
-        batch.triangle[lane] = lane % 7 != 3;
-      }
+      const TriangleBatch batch = batchAt(corners, first);
       detail::BatchVerdicts unclamped, clamped;
       detail::classifyBatch(batch, grid, false, true, unclamped);
       detail::classifyBatch(batch, grid, false, true, clamped, true);
