@@ -105,13 +105,32 @@ double FrameTransform::viewPlaneDistance(const ClipPoint& c, int plane) const {
   }
 }
 
+// toClip's bits for each corner (this file is compiled -ffp-contract=off, as are the lanes of
+// HiddenBlockCorners.cpp): a corner's eye-relative coordinates are each one of the box's six
+// differences, so the rotation's nine products of a coordinate, taken once for low and once
+// for high (18 instead of 72), are the products toClip takes; glm's dot sums them as
+// (a + b) + c. The clip rows' products stay per corner.
 bool FrameTransform::clipCorners(const Box& box, ClipPoint (&corners)[8]) const {
+  const glm::dvec3 relative[2] = {box.low - eye_, box.high - eye_};
+  // toClip would scale a corner beyond kLargeCoordinate (or NaN): refused, as below.
+  if (!(largestMagnitude(relative[0]) <= kLargeCoordinate) ||
+      !(largestMagnitude(relative[1]) <= kLargeCoordinate) ||
+      std::isnan(relative[0].x + relative[0].y + relative[0].z + relative[1].x + relative[1].y +
+                 relative[1].z)) {
+    return false;
+  }
+  glm::dvec3 byX[2], byY[2], byZ[2];  // (right, up, back) times one coordinate
+  for (int k = 0; k < 2; ++k) {
+    byX[k] = glm::dvec3(right_.x, up_.x, back_.x) * relative[k].x;
+    byY[k] = glm::dvec3(right_.y, up_.y, back_.y) * relative[k].y;
+    byZ[k] = glm::dvec3(right_.z, up_.z, back_.z) * relative[k].z;
+  }
   for (int i = 0; i < 8; ++i) {
-    corners[i] = toClip(box.corner(i));
-    const ClipPoint& c = corners[i];
-    if (c.h != 1.0 || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.d)) {
-      return false;
-    }
+    const glm::dvec3 view = byX[i & 1] + byY[(i >> 1) & 1] + byZ[(i >> 2) & 1];
+    const glm::dvec4 view4(view, 1.0);
+    ClipPoint& c = corners[i];
+    c = {glm::dot(clipX_, view4), glm::dot(clipY_, view4), -view.z, 1.0};
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.d)) return false;
   }
   return true;
 }

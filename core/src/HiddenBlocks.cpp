@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 
+#include "HiddenBlockCorners.h"
 #include "facet/Conventions.h"
 
 namespace facet::detail {
@@ -15,25 +16,17 @@ namespace facet::detail {
 // The steps refer to HiddenBlocks.h's proof.
 bool HiddenBlockTest::hidden(const Box& box) const {
   if (box.empty()) return false;
-  ClipPoint corners[8];
   // Step 2: every point of the box inside the clip volume, so no triangle is clipped, and
-  // every distance d > 0.
-  if (!transform_.boxInsideClipVolume(box, corners)) return false;
-  std::int64_t x0 = std::numeric_limits<std::int64_t>::max(), y0 = x0;
-  std::int64_t x1 = std::numeric_limits<std::int64_t>::min(), y1 = x1;
-  double nearestDistance = std::numeric_limits<double>::infinity();
-  double farthestDistance = -nearestDistance, largestOffset = 0.0;
-  for (int i = 0; i < 8; ++i) {
-    const WindowVertex v = transform_.toWindow(corners[i]);
-    x0 = std::min<std::int64_t>(x0, v.x);
-    x1 = std::max<std::int64_t>(x1, v.x);
-    y0 = std::min<std::int64_t>(y0, v.y);
-    y1 = std::max<std::int64_t>(y1, v.y);
-    nearestDistance = std::min(nearestDistance, corners[i].d);
-    farthestDistance = std::max(farthestDistance, corners[i].d);
-    const glm::dvec3 offset = glm::abs(box.corner(i) - eye_);
-    largestOffset = std::max({largestOffset, offset.x, offset.y, offset.z});
-  }
+  // every distance d > 0 (FrameTransform::boxInsideClipVolume); the corners' window bounds
+  // and distances, all eight in SIMD lanes (HiddenBlockCorners.h: the bits of
+  // FrameTransform's corner by corner, on every instruction set).
+  BlockCorners corners;
+  if (!blockCorners(constants_, box, corners)) return false;
+  std::int64_t x0 = corners.x0, y0 = corners.y0, x1 = corners.x1, y1 = corners.y1;
+  // The corners' largest |coordinate − eye|: each is one of the box's six differences.
+  const glm::dvec3 low = glm::abs(box.low - constants_.eye);
+  const glm::dvec3 high = glm::abs(box.high - constants_.eye);
+  const double largestOffset = std::max({0.0, low.x, low.y, low.z, high.x, high.y, high.z});
   // Step 4: outward by two grid steps (each snapped vertex lies within 1/2 step and the
   // rounding of the corners' images).
   constexpr std::int64_t kMargin = 2;
@@ -53,7 +46,7 @@ bool HiddenBlockTest::hidden(const Box& box) const {
   const std::int64_t py0 = std::max<std::int64_t>(firstCenter(y0), viewport_.y0);
   const std::int64_t py1 = std::min<std::int64_t>(lastCenter(y1), viewport_.y1);
   if (px0 > px1 || py0 > py1) return false;
-  const double bound = nearestVertexKeyBound(nearestDistance, farthestDistance, largestOffset);
+  const double bound = nearestVertexKeyBound(corners.nearest, corners.farthest, largestOffset);
   // Step 5: the float the vertex key rounds to is at most the blocks' least key F_min
   // (rounding is monotone) when F_min >= bound; a tie keeps the front face.
   return front_.noneNearerThan(
@@ -73,15 +66,16 @@ double HiddenBlockTest::nearestVertexKeyBound(double nearestDistance, double far
   const double eta = 1e-14 * largestOffset;
   const double least = nearestDistance - 2.0 * eta;
   if (!(least > 0.0)) return std::numeric_limits<double>::infinity();
-  if (!parallel_) {
+  if (!constants_.parallel) {
     // key = near·(1·(1/d)): two roundings up at most (1 + u)² over near/least; this
     // division and product round by less than the 1e-14 added.
-    return near_ / least * (1.0 + 1e-14);
+    return constants_.near / least * (1.0 + 1e-14);
   }
   // key = (near·1 − d)·1: one rounding, at most u·(|near| + |d|) with d ≤ the corners'
   // largest computed distance + 2η.
   const double most = farthestDistance + 2.0 * eta;
-  return (near_ - least) + 1e-14 * (std::abs(near_) + std::abs(least) + std::abs(most));
+  return (constants_.near - least) +
+         1e-14 * (std::abs(constants_.near) + std::abs(least) + std::abs(most));
 }
 
 namespace {

@@ -32,7 +32,8 @@
 //    clamped: nothing of theirs is dropped, and they are painted alike in both kinds of
 //    frame.)
 // 2. No triangle of the block is clipped and every point of it has d > 0: its box is inside
-//    the clip volume with a margin (FrameTransform::boxInsideClipVolume), so every vertex's
+//    the clip volume with a margin (FrameTransform::boxInsideClipVolume; its eight corners
+//    taken in SIMD lanes, HiddenBlockCorners.h, with the same bits), so every vertex's
 //    outcode is kInside and its window position and key are toWindow's of its own point.
 // 3. Every vertex key is at most nearestVertexKeyBound (HiddenBlocks.cpp): the view distance
 //    d is affine in the point, so its least over the box is at a corner; each computed
@@ -109,12 +110,7 @@ class HiddenBlockTest {
  public:
   HiddenBlockTest(const FrameTransform& transform, const TileGrid& grid,
                   const FrontDepthBlocks& front)
-      : transform_(transform),
-        viewport_(grid.viewport()),
-        front_(front),
-        eye_(transform.constants().eye),
-        near_(transform.constants().near),
-        parallel_(transform.constants().parallel) {}
+      : constants_(transform.constants()), viewport_(grid.viewport()), front_(front) {}
   // Whether every triangle of a triangle polygon with points in `box` loses the depth test
   // everywhere to the front faces (the header's proof).
   bool hidden(const Box& box) const;
@@ -123,12 +119,9 @@ class HiddenBlockTest {
   double nearestVertexKeyBound(double nearestDistance, double farthestDistance,
                                double largestOffset) const;
 
-  const FrameTransform& transform_;
+  ProjectionConstants constants_;
   PixelBounds viewport_;
   const FrontDepthBlocks& front_;
-  glm::dvec3 eye_;
-  double near_;
-  bool parallel_;
 };
 
 // Polygon ids per run (the header's runs): 8 measured best at 500k (section 30 of

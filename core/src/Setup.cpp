@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <optional>
 #include <span>
@@ -599,6 +600,21 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   return position;
 }
 
+// The index of the first of ids[k, stop) at least `value` (stop when none is), for ascending
+// distinct ids with ids[k] < value: found directly when the ids from k on leave no gap below
+// `value` (a block deferred whole: its ids are consecutive), else by a binary search over at
+// most value − ids[k] ids, not over the rest of the chunk. Distinct ids: at most
+// value − ids[k] of them lie in [ids[k], value).
+std::size_t firstIdFrom(const std::vector<std::uint32_t>& ids, std::size_t k, std::size_t stop,
+                        std::uint32_t value) {
+  const std::size_t most = std::min<std::size_t>(stop, k + (value - ids[k]));
+  if (ids[most - 1] < value) return most;
+  return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
+                                                   ids.begin() + static_cast<std::ptrdiff_t>(most),
+                                                   value) -
+                                  ids.begin());
+}
+
 // Sets up the chunk's deferred back faces from index `first` on while they belong to `mesh`,
 // in batches unless they are off, after the blocks and runs hidden behind the front faces'
 // blocks are dropped (HiddenBlocks.h); returns where it stopped. What those leave is set up as
@@ -616,8 +632,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // The deferred back faces of a block of triangle polygons (BackBlock::skippable) whose box
   // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
   // before any per-polygon work (counted hidden, not drawn: one pass would have counted some
-  // of them outside or degenerate). The ids ascend (z-buffer order): a block's are found by a
-  // binary search.
+  // of them outside or degenerate). The ids ascend (z-buffer order): a block's end is found by
+  // firstIdFrom.
   std::optional<HiddenBlockTest> blocks;
   std::optional<BackFaceTest> cone;
   if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled()) {
@@ -636,10 +652,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
                  ? verdict == kBlockHidden
                  : facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
                        blocks->hidden(facts.box);
-    return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
-                                                     ids.begin() + static_cast<std::ptrdiff_t>(end),
-                                                     next) -
-                                    ids.begin());
+    return firstIdFrom(ids, k, end, next);
   };
   // The deferred back faces of a block not dropped whole, dropped run by run (HiddenBlocks.h,
   // steps R1-R3) before they are loaded: a run is the deferred ids of one aligned window of
@@ -718,8 +731,10 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
 // The back pass of a chunk: its deferred polygons, run by run of one mesh.
 void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
   chunk.firstKeyedSmall = chunk.smallTriangles.size();  // the front pass's records have none
-  // setUpBackRun finds a mesh's and a block's ids by binary search.
-  FACET_ASSERT(std::is_sorted(chunk.deferredBack.begin(), chunk.deferredBack.end()));
+  // setUpBackRun finds a mesh's ids by binary search and a block's by firstIdFrom (which
+  // counts on distinct ids: strictly ascending).
+  FACET_ASSERT(std::adjacent_find(chunk.deferredBack.begin(), chunk.deferredBack.end(),
+                                  std::greater_equal<>()) == chunk.deferredBack.end());
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
     const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
