@@ -547,8 +547,10 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     if (!certainBack) return false;
     // The transform phase's verdict when it left the block's points out (ViewCulling.h).
     const std::size_t block = polygon >> kBackBlockBits;
-    if (mesh.deferredBackBlocks ? !mesh.deferredBackBlocks[block]
-                                : !certainBack->certainlyCulled(mesh.backBlockFacts[block]))
+    if (mesh.deferredBackBlocks
+            ? !mesh.deferredBackBlocks[block]
+            : !certainBack->certainlyCulled(mesh.backBlockFacts->backTests[block],
+                                            mesh.backBlockFacts->backFrameOf(block)))
       return false;
     if (lanes > 0) {
       std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
@@ -628,13 +630,15 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
     const auto next =
         static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
-    const BackBlock& facts = mesh.backBlockFacts[block];
+    const MeshFacts& facts = *mesh.backBlockFacts;
     // A deferred block's verdict, from the same test (DeferredBackPoints.h).
     const std::uint8_t verdict = mesh.backBlockVerdicts ? mesh.backBlockVerdicts[block] : 0;
-    hidden = verdict != 0
-                 ? verdict == kBlockHidden
-                 : facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
-                       blocks->hidden(facts.box);
+    const BackBlockTest& test = facts.backTests[block];
+    const BackBlockFrame& frame = facts.backFrameOf(block);
+    hidden = verdict != 0 ? verdict == kBlockHidden
+                          : facts.backSkippable(block) &&
+                                (!hiddenBlocksConeOnly() || cone->certainlyCulled(test, frame)) &&
+                                blocks->hidden(boxOf(test, frame));
     return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
                                                      ids.begin() + static_cast<std::ptrdiff_t>(end),
                                                      next) -
@@ -671,7 +675,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
       const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
       if (cone && countingHiddenBlocks()) {
         const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
-        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts[block]);
+        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
+                                                       mesh.backBlockFacts->backFrameOf(block));
         hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
       }
       if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
@@ -681,8 +686,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         continue;
       }
       if (runs) {
-        runsOf(k, blockEnd, mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable,
-               each);
+        runsOf(k, blockEnd,
+               mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits), each);
         k = blockEnd;
         continue;
       }
