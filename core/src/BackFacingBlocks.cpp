@@ -32,12 +32,6 @@ constexpr double kLargestRounding = 0x1p-11;
 constexpr double kSnapDelta = 1.0 + 2.0 * kLargestRounding;  // Δ
 constexpr double kSlack = 1e-6;
 
-// The parts of u along the unit vector `axis` and normal to it.
-void split(const glm::dvec3& u, const glm::dvec3& axis, double& along, double& across) {
-  along = glm::dot(axis, u);
-  across = glm::length(u - along * axis);
-}
-
 }  // namespace
 
 namespace {
@@ -268,6 +262,15 @@ glm::dvec3 highOf(const BackBlockTest& block, const BackBlockFrame& frame) {
 glm::dvec3 centerOf(const glm::dvec3& low, const glm::dvec3& high) {
   return 0.5 * low + 0.5 * high;
 }
+// The centre of a compact record's ball: the stepped box's centre, within rounding, at half the
+// decoding's cost (the record's radius is measured from this point).
+glm::dvec3 ballCenterOf(const BackBlockTest& block, const BackBlockFrame& frame) {
+  const auto at = [&](int k) {
+    return frame.origin[k] +
+           static_cast<double>(int{block.low[k]} + int{block.high[k]}) * (0.5 * frame.step[k]);
+  };
+  return {at(0), at(1), at(2)};
+}
 
 }  // namespace
 
@@ -306,8 +309,12 @@ BackBlockTest testOf(const BackBlock& block, const BackBlockFrame& frame) {
   test.maxPerimeterPerDoubleArea = floatUp(block.maxPerimeterPerDoubleArea);
   // The ball about the stepped box's centre that holds the box (the pre-test's: a necessary
   // condition of the corners' test, whose verdict alone counts).
-  const glm::dvec3 low = lowOf(test, frame), high = highOf(test, frame);
-  test.ballRadius = floatUp(0.5 * glm::length(high - low) * (1.0 + 1e-12));
+  const Box box = boxOf(test, frame);
+  const glm::dvec3 center = ballCenterOf(test, frame);
+  double radius = 0.0;
+  for (int i = 0; i < 8; ++i)
+    radius = std::max(radius, glm::length(box.corner(i) - center));
+  test.ballRadius = floatUp(radius * (1.0 + 1e-12));
   return test;
 }
 
@@ -321,7 +328,7 @@ Box boxOf(const BackBlockTest& block, const BackBlockFrame& frame) {
 BackBlockCone coneOf(const BackBlockTest& block, const BackBlockFrame& frame) {
   BackBlockCone cone;
   cone.box = boxOf(block, frame);
-  cone.ballCenter = centerOf(cone.box.low, cone.box.high);
+  cone.ballCenter = ballCenterOf(block, frame);
   cone.ballRadius = block.ballRadius;
   cone.axis = glm::dvec3(block.axis[0], block.axis[1], block.axis[2]);
   cone.cosAngle = block.cosAngle;
@@ -395,26 +402,17 @@ BackFaceTest::BackFaceTest(const FrameTransform& transform)
 // (half of them) at an eighth of the cost; any block it passes, the corners decide.
 bool BackFaceTest::mayFaceAway(const BackBlockCone& block) const {
   if (!usable_ || !(block.cosAngle > 0.0)) return false;  // cosAngle 0: not skippable
-  const double radius = block.ballRadius;
-  double along = 0.0, across = 0.0;
-  split(c_.parallel ? awayFromViewer_ : block.ballCenter - c_.eye, facingAxis(block.axis), along,
-        across);
-  if (c_.parallel) return block.cosAngle * along - block.sinAngle * across > 0.0;
-  return block.cosAngle * (along + radius) - block.sinAngle * (across - radius) > 0.0;
+  return ballMayFaceAway(block.ballCenter, block.ballRadius, block.axis, block.cosAngle,
+                         block.sinAngle);
 }
 
 // The same on the compact record, decoding only what it reads (the ball and the cone).
 bool BackFaceTest::mayFaceAway(const BackBlockTest& block, const BackBlockFrame& frame) const {
   if (!usable_ || !(block.cosAngle > 0.0F)) return false;  // cosAngle 0: not skippable
-  BackBlockCone cone;
-  if (!c_.parallel) {
-    cone.ballCenter = centerOf(lowOf(block, frame), highOf(block, frame));
-    cone.ballRadius = block.ballRadius;
-  }
-  cone.axis = glm::dvec3(block.axis[0], block.axis[1], block.axis[2]);
-  cone.cosAngle = block.cosAngle;
-  cone.sinAngle = block.sinAngle;
-  return mayFaceAway(cone);
+  const glm::dvec3 center = c_.parallel ? glm::dvec3(0.0) : ballCenterOf(block, frame);
+  return ballMayFaceAway(center, block.ballRadius,
+                         glm::dvec3(block.axis[0], block.axis[1], block.axis[2]), block.cosAngle,
+                         block.sinAngle);
 }
 
 // Step 3 on the box's world corners of a block that passed the ball's pre-test: D, or a
@@ -531,7 +529,13 @@ bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
 
 bool BackFaceTest::culledPastPreTest(const BackBlockTest& block, const BackBlockFrame& frame,
                                      ParentClipBounds& parent) const {
-  const BackBlockCone cone = coneOf(block, frame);
+  BackBlockCone cone;  // what steps 3 and 5 read (not the ball)
+  cone.box = boxOf(block, frame);
+  cone.axis = glm::dvec3(block.axis[0], block.axis[1], block.axis[2]);
+  cone.cosAngle = block.cosAngle;
+  cone.sinAngle = block.sinAngle;
+  cone.minDoubleArea = block.minDoubleArea;
+  cone.maxPerimeterPerDoubleArea = block.maxPerimeterPerDoubleArea;
   FACET_ASSERT(!cone.box.empty());  // mayFaceAway passed: cosAngle > 0, skippable
   const double facing = facingMargin(cone);
   if (!(facing > 0.0)) return false;

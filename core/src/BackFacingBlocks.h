@@ -77,6 +77,8 @@
 
 #include <cstddef>
 
+#include <glm/geometric.hpp>
+
 #include "FrameTransform.h"
 #include "MeshAccess.h"
 #include "MeshCache.h"
@@ -158,6 +160,17 @@ class BackFaceTest {
   // that it is inlined (out of line it cost a third of the pre-test, perf at 2M).
   glm::dvec3 facingAxis(const glm::dvec3& axis) const {
     return c_.parallel ? axis : facingSign_ * axis;
+  }
+  // The pre-test on a ball and a cone (mayFaceAway): here, so that it is inlined.
+  bool ballMayFaceAway(const glm::dvec3& center, double radius, const glm::dvec3& axis,
+                       double cosAngle, double sinAngle) const {
+    // The parts of u along the unit vector c and normal to it.
+    const glm::dvec3 c = facingAxis(axis);
+    const glm::dvec3 u = c_.parallel ? awayFromViewer_ : center - c_.eye;
+    const double along = glm::dot(c, u);
+    const double across = glm::length(u - along * c);
+    if (c_.parallel) return cosAngle * along - sinAngle * across > 0.0;
+    return cosAngle * (along + radius) - sinAngle * (across - radius) > 0.0;
   }
   bool mayFaceAway(const BackBlockCone& block) const;
   bool certainlyCulled(const BackBlockCone& block) const;
