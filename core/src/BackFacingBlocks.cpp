@@ -417,7 +417,9 @@ bool BackFaceTest::mayFaceAway(const BackBlockTest& block, const BackBlockFrame&
 
 // Step 3 on the box's world corners of a block that passed the ball's pre-test: D, or a
 // value ≤ 0 when the block's cone does not face away from every corner.
-double BackFaceTest::facingMargin(const BackBlockCone& block) const {
+// Inlined: its box and cone are decoded into the caller's registers just before (called out of
+// line, reading them back through memory cost the 2M cull a third more on-CPU time).
+[[gnu::always_inline]] inline double BackFaceTest::facingMargin(const BackBlockCone& block) const {
   const glm::dvec3 axis = facingAxis(block.axis);
   // The largest squares, rooted once: the same values as the largest roots (a correctly
   // rounded square root is monotonic). A corner's u = corner − E takes each coordinate from
@@ -529,8 +531,9 @@ bool BackFaceTest::certainlyCulled(const BackBlock& block) const {
 
 bool BackFaceTest::culledPastPreTest(const BackBlockTest& block, const BackBlockFrame& frame,
                                      ParentClipBounds& parent) const {
-  BackBlockCone cone;  // what steps 3 and 5 read (not the ball)
-  cone.box = boxOf(block, frame);
+  BackBlockCone cone;  // what steps 3 and 5 read (not the ball), decoded here, in registers
+  cone.box.low = lowOf(block, frame);
+  cone.box.high = highOf(block, frame);
   cone.axis = glm::dvec3(block.axis[0], block.axis[1], block.axis[2]);
   cone.cosAngle = block.cosAngle;
   cone.sinAngle = block.sinAngle;
