@@ -614,7 +614,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const std::size_t end = static_cast<std::size_t>(
       std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId) -
       ids.begin());
-  // The deferred back faces of a block of triangle polygons (BackBlock::skippable) whose box
+  // The deferred back faces of a block of triangle polygons (MeshFacts::backSkippable) whose box
   // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
   // before any per-polygon work (counted hidden, not drawn: one pass would have counted some
   // of them outside or degenerate). The ids ascend (z-buffer order): a block's are found by a
@@ -655,7 +655,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
   // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
   // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
-  // block is a triangle (BackBlock::skippable).
+  // block is a triangle (MeshFacts::backSkippable).
   std::uint32_t shown[kPolygonsPerBackBlock];
   const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
     const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
