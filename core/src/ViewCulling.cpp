@@ -187,18 +187,26 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     const ViewCulling::MeshFlags& flags = culling.meshes[r.mesh];
     const std::uint8_t* visible = flags.outside > 0 ? flags.visible : nullptr;
     const MeshFacts& facts = cache[r.mesh];
-    ParentClipBounds parent;
-    for (std::size_t b = r.begin; b < r.end; ++b) {
-      flags.back[b] = 0;
-      const BackBlockFrame& frame = facts.backFrameOf(b);
-      if (!backBlockInView(visible, b) || !backFaceTest.mayFaceAway(facts.backTests[b], frame))
-        continue;
-      const Box* viewBlock = &facts.blocks[b >> (kBlockBits - kBackBlockBits)];
-      if (parent.box != viewBlock) {
-        parent = ParentClipBounds{};
-        parent.box = viewBlock;
+    // A view-culling block's back-face blocks at a time (the tasks start at one): the
+    // pre-tests first, their verdicts kept without a branch, so that the blocks' chains of
+    // decoding, dot products and square root overlap instead of restarting after each
+    // mispredicted verdict (half of them); then the rest of the test for those that passed.
+    constexpr std::size_t kBackBlocksPerBlock = std::size_t{1} << (kBlockBits - kBackBlockBits);
+    static_assert(kBackBlocksPerTask % kBackBlocksPerBlock == 0);
+    for (std::size_t first = r.begin; first < r.end; first += kBackBlocksPerBlock) {
+      const std::size_t end = std::min(r.end, first + kBackBlocksPerBlock);
+      std::fill(flags.back + first, flags.back + end, std::uint8_t{0});
+      if (!backBlockInView(visible, first)) continue;
+      const BackBlockFrame& frame = facts.backFrameOf(first);
+      bool mayFaceAway[kBackBlocksPerBlock];
+      for (std::size_t b = first; b < end; ++b)
+        mayFaceAway[b - first] = backFaceTest.mayFaceAway(facts.backTests[b], frame);
+      ParentClipBounds parent;
+      parent.box = &facts.blocks[first >> (kBlockBits - kBackBlockBits)];
+      for (std::size_t b = first; b < end; ++b) {
+        if (mayFaceAway[b - first])
+          flags.back[b] = backFaceTest.culledPastPreTest(facts.backTests[b], frame, parent);
       }
-      flags.back[b] = backFaceTest.culledPastPreTest(facts.backTests[b], frame, parent);
     }
   });
   for (std::size_t m = 0; m < meshes.size(); ++m)
