@@ -54,8 +54,30 @@
 //
 // A polygon that is not a triangle (facing by its normal in double), a degenerate triangle or
 // one with a non-finite point makes its block not skippable at measurement.
+//
+// The compact record. A mesh version keeps not the measured BackBlock but a BackBlockTest
+// (MeshCache.h), and the frame runs the steps above on what it decodes from it (BackBlockCone).
+// Each decoded fact is a weaker one of the same kind, so the proof holds for it as it stands:
+// - the box: low corners rounded down and high ones up to the view-culling block's grid, each
+//   checked at measurement with the very expression the frame decodes by (boxOf); a wider box
+//   holds every point the triangles use, which is all steps 1, 3 and 4 ask of it;
+// - the cone: the axis rounded to float, a, and the half-angle widened by the angle between
+//   the exact axis c and â = a/|a| (bounded above by |c − â|, plus 1e-15): every normal within
+//   α of c is within α + angle(c, â) of â, a cone around â. The test reads the axis as a,
+//   not â: along = a·u = |a|(â·u), and across = |u − (a·u)a| ≥ |u⊥| (its square is
+//   (1 − |a|²)²(â·u)² + |u⊥|²), so with the stored cosine rounded down from cos(α')/|a| and
+//   the sine up from sin(α'), cos'·along − sin'·across ≤ cos α'(â·u) − sin α'|u⊥| whenever
+//   â·u ≥ 0; when some corner has â·u < 0, both D are negative. So D' ≤ D of a true cone;
+// - the smallest doubled area rounded down and the largest perimeter / doubled area up (to
+//   float; 0 and infinity where float cannot hold them), which only shrink X − ΔρY and the
+//   left side of step 5.
+// So a block the compact test culls is culled by the exact test's proof, and the compact test
+// is the exact one on a wider box and cone (a test checks, on random blocks and boxes at the
+// ends of the 16-bit range and far from the origin, that it culls none the exact one keeps).
 
 #include <cstddef>
+
+#include <glm/geometric.hpp>
 
 #include "FrameTransform.h"
 #include "MeshAccess.h"
@@ -69,8 +91,28 @@ namespace facet::detail {
 BackBlock measureBackBlock(const MeshView& mesh, std::size_t begin, std::size_t end,
                            glm::vec3* faceNormals = nullptr);
 
-// What the frame's cull reads of the block (MeshCache.h).
-BackBlockTest testOf(const BackBlock& block);
+// The grid of a view-culling block's back-face blocks' boxes (MeshCache.h), from its box.
+BackBlockFrame backFrameOf(const Box& viewBlock);
+
+// The compact record of a block (MeshCache.h) on its view-culling block's grid: cosAngle 0
+// when the block is not skippable or its box does not fit the grid.
+BackBlockTest testOf(const BackBlock& block, const BackBlockFrame& frame);
+
+// The box a compact record keeps: it holds the measured block's.
+Box boxOf(const BackBlockTest& block, const BackBlockFrame& frame);
+
+// What the test computes with, in double: a compact record decoded, or a measured block's own
+// facts (coneOf(BackBlock), the exact test, for the tests).
+struct BackBlockCone {
+  glm::dvec3 ballCenter{0.0};
+  double ballRadius = 0.0;
+  glm::dvec3 axis{0.0};
+  double cosAngle = 0.0, sinAngle = 1.0;
+  Box box;
+  double minDoubleArea = 0.0, maxPerimeterPerDoubleArea = 0.0;
+};
+BackBlockCone coneOf(const BackBlockTest& block, const BackBlockFrame& frame);
+BackBlockCone coneOf(const BackBlock& block);
 
 // The compact form of the block's point spans (MeshCache.h) for a mesh of `pointCount` points.
 BackPointFlags pointFlagsOf(const BackBlock& block, std::size_t pointCount);
@@ -99,25 +141,42 @@ struct ParentClipBounds {
 class BackFaceTest {
  public:
   explicit BackFaceTest(const FrameTransform& transform);
-  // Whether every triangle of the block is culled by a mesh that skips back faces (above).
+  // Whether every triangle of the block is culled by a mesh that skips back faces (above),
+  // from its compact record (what a frame tests), or from the measured block's own facts (the
+  // exact test, for the tests).
+  bool certainlyCulled(const BackBlockTest& block, const BackBlockFrame& frame) const;
   bool certainlyCulled(const BackBlock& block) const;
   // A necessary condition of certainlyCulled from the block's cone and ball alone: false for a
   // block that is not skippable and for most that face the viewer (half of them).
-  bool mayFaceAway(const BackBlockTest& block) const;
+  bool mayFaceAway(const BackBlockTest& block, const BackBlockFrame& frame) const;
   // certainlyCulled for a block that passed mayFaceAway, steps 1 and 4 on `parent`'s box,
   // which holds the block's (measured on first use): skips fewer blocks only where the
   // parent's box is much wider than the block's.
-  bool culledPastPreTest(const BackBlockTest& block, ParentClipBounds& parent) const;
+  bool culledPastPreTest(const BackBlockTest& block, const BackBlockFrame& frame,
+                         ParentClipBounds& parent) const;
 
  private:
   // The cone's axis turned to the side step 3 tests (perspective: c' = −sign(k)·c); here, so
   // that it is inlined (out of line it cost a third of the pre-test, perf at 2M).
-  glm::dvec3 facingAxis(const BackBlockTest& block) const {
-    return c_.parallel ? block.axis : facingSign_ * block.axis;
+  glm::dvec3 facingAxis(const glm::dvec3& axis) const {
+    return c_.parallel ? axis : facingSign_ * axis;
   }
-  double facingMargin(const BackBlockTest& block) const;
+  // The pre-test on a ball and a cone (mayFaceAway): here, so that it is inlined.
+  bool ballMayFaceAway(const glm::dvec3& center, double radius, const glm::dvec3& axis,
+                       double cosAngle, double sinAngle) const {
+    // The parts of u along the unit vector c and normal to it.
+    const glm::dvec3 c = facingAxis(axis);
+    const glm::dvec3 u = c_.parallel ? awayFromViewer_ : center - c_.eye;
+    const double along = glm::dot(c, u);
+    const double across = glm::length(u - along * c);
+    if (c_.parallel) return cosAngle * along - sinAngle * across > 0.0;
+    return cosAngle * (along + radius) - sinAngle * (across - radius) > 0.0;
+  }
+  bool mayFaceAway(const BackBlockCone& block) const;
+  bool certainlyCulled(const BackBlockCone& block) const;
+  double facingMargin(const BackBlockCone& block) const;
   ClipBounds clipBounds(const Box& box) const;
-  bool culledWithin(const BackBlockTest& block, double facing, const ClipBounds& bounds) const;
+  bool culledWithin(const BackBlockCone& block, double facing, const ClipBounds& bounds) const;
   const FrameTransform& transform_;
   ProjectionConstants c_;
   bool usable_ = false;

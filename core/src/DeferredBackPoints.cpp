@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "BackFacingBlocks.h"
 #include "HiddenBlocks.h"
 #include "Transform.h"
 
@@ -24,8 +25,8 @@ std::uint8_t* latePointsOf(ViewCulling& culling, std::size_t m) {
 void markLatePoints(const FrameMesh& mesh, const MeshFacts& facts, const std::uint8_t* verdicts,
                     std::uint8_t* late, std::size_t flagCount) {
   std::fill(late, late + flagCount, std::uint8_t{0});
-  for (std::size_t b = 0; b < facts.backBlocks.size(); ++b) {
-    if (verdicts[b] == kBlockKept) markPointsOfBlock(facts.backBlocks[b], late);
+  for (std::size_t b = 0; b < facts.backBlockCount(); ++b) {
+    if (verdicts[b] == kBlockKept) markPointsOfBlock(facts, b, late);
   }
   for (std::size_t f = 0; f < flagCount; ++f)
     late[f] &= static_cast<std::uint8_t>(!mesh.neededPoints[f]);
@@ -44,7 +45,7 @@ void transformKeptBackBlocks(PhaseRunner& runner, std::span<FrameMesh> meshes,
   blockRanges.clear();
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     if (!meshes[m].deferredBackBlocks) continue;
-    const std::size_t count = cache[m].backBlocks.size();
+    const std::size_t count = cache[m].backBlockCount();
     for (std::size_t b = 0; b < count; b += kBlocksPerRejectTask)
       blockRanges.push_back({m, b, std::min(count, b + kBlocksPerRejectTask)});
   }
@@ -56,14 +57,15 @@ void transformKeptBackBlocks(PhaseRunner& runner, std::span<FrameMesh> meshes,
   runner.runUnreported(blockRanges.size(), [&](std::size_t i) {
     const MeshRange& r = blockRanges[i];
     const std::uint8_t* deferred = meshes[r.mesh].deferredBackBlocks;
-    const BackBlock* facts = cache[r.mesh].backBlocks.data();
+    const MeshFacts& facts = cache[r.mesh];
     std::uint8_t* verdicts = verdictsOf(culling, r.mesh);
     for (std::size_t b = r.begin; b < r.end; ++b) {
       if (!deferred[b]) {
         verdicts[b] = 0;
         continue;
       }
-      const bool dropped = reject && facts[b].skippable && hidden->hidden(facts[b].box);
+      const bool dropped = reject && facts.backSkippable(b) &&
+                           hidden->hidden(boxOf(facts.backTests[b], facts.backFrameOf(b)));
       verdicts[b] = dropped ? kBlockHidden : kBlockKept;
     }
   });
@@ -74,7 +76,7 @@ void transformKeptBackBlocks(PhaseRunner& runner, std::span<FrameMesh> meshes,
     // Without the reject the back pass tests nothing: no verdict for it to take.
     if (reject) mesh.backBlockVerdicts = verdicts;
     if (countingHiddenBlocks()) {
-      const std::size_t n = cache[m].backBlocks.size();
+      const std::size_t n = cache[m].backBlockCount();
       waitingBlocksDebug(n - std::size_t(std::count(verdicts, verdicts + n, std::uint8_t{0})),
                          std::size_t(std::count(verdicts, verdicts + n, kBlockKept)));
     }

@@ -23,7 +23,7 @@
 
 namespace facet::detail {
 
-struct BackBlock;  // MeshCache.h
+struct MeshFacts;  // MeshCache.h
 
 // A range of one mesh's points or polygons: the unit of the validation, transform and
 // shading tasks, which never straddle meshes.
@@ -68,9 +68,10 @@ struct FrameMesh {
   // Per polygon, its unit normal kept per mesh version (MeshCache.h); null: computed by the
   // shade phase from the points (an unversioned mesh).
   const glm::vec3* faceNormals = nullptr;
-  // Per back-face block, what the mesh version's measurement knows (MeshCache.h); null: an
-  // unversioned mesh. A two-pass frame's back pass may drop blocks whole (HiddenBlocks.h).
-  const BackBlock* backBlockFacts = nullptr;
+  // What the mesh version's measurement knows, its back-face blocks' compact records among it
+  // (MeshCache.h); null: an unversioned mesh. A two-pass frame's back pass may drop blocks
+  // whole (HiddenBlocks.h).
+  const MeshFacts* backBlockFacts = nullptr;
   // A two-pass frame's every-face mesh (DeferredBackPoints.h): per back-face block, whether
   // BackFaceTest proves it all back faces, so that the front pass defers it whole and its
   // points wait for the back pass's block reject (not in neededPoints); then per

@@ -1,7 +1,8 @@
 #pragma once
 
 // A two-pass frame's (Raster.h) back pass drops every deferred back face of a back-face block
-// (MeshCache.h, kPolygonsPerBackBlock polygons) whose 3D box projects behind the front faces'
+// (MeshCache.h, kPolygonsPerBackBlock polygons) whose 3D box (the compact record's, which
+// holds every point its polygons use: BackBlockTest) projects behind the front faces'
 // 8 × 8 pixel blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted
 // hidden (RenderStats::polygonsHidden), nothing is loaded, classified or painted. On by default
 // in two-pass frames (the plan decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off
@@ -16,7 +17,7 @@
 // covered count from the final ids. So, with W a key any of its triangles writes and F the
 // front key at that sample after the front pass (it only grows nearer afterwards):
 // 1. W ≤ its triangle's nearest vertex key, by construction: the block is dropped only when
-//    all its polygons are triangles (BackBlock::skippable), and every back face of an
+//    all its polygons are triangles (MeshFacts::backSkippable), and every back face of an
 //    every-face mesh that a depth-tested frame paints (its back bins, Chunk::binsFor: one
 //    pass or the back pass of two alike) is set up clamped when it is a triangle polygon's
 //    unclipped triangle (kClampedEdges: its three edges polygon-boundary edges plus the clamp

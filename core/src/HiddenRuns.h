@@ -19,7 +19,7 @@ namespace facet::detail {
 
 // What a block's runs are taken from: the mesh's window vertices and polygons, its first
 // polygon id (the deferred ids are global), and whether every polygon of the block is a
-// triangle (BackBlock::skippable: the sizes are not read).
+// triangle (MeshFacts::backSkippable: the sizes are not read).
 template <class Index>
 struct RunSource {
   const WindowVertex* vertices;

@@ -4,6 +4,7 @@
 
 #include "BackFacingBlocks.h"
 #include "FaceNormal.h"
+#include "Transform.h"
 
 namespace facet::detail {
 namespace {
@@ -32,24 +33,54 @@ bool boundPoints(const MeshView& mesh, std::size_t begin, std::size_t end, Box& 
   });
 }
 
+// Whether a mesh's back-face blocks' point flags or its scattered blocks' flags could reach
+// past 32 bits (BackPointFlags): its blocks keep their spans instead (MeshFacts::wideBackSpans).
+bool wideBackFlags(const MeshView& mesh) {
+  const std::size_t flags = (mesh.points.count + kPointsPerNeededFlag - 1) >> kNeededPointBits;
+  return flags >= kReadWholeBackBlock || mesh.polygons.connectivitySize >= kReadWholeBackBlock;
+}
+
 // Block b's box and finiteness, from the points its polygons use, its
 // back-face blocks, and its polygons' normals: each polygon read once (measureBackBlock).
-void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts) {
+// The blocks' compact records need the view-culling block's box: they are measured first. A
+// scattered block's flags go to the end of `scattered` (the task's), its BackPointFlags
+// pointing there until collectScatteredFlags moves them to the mesh's.
+void measureBlock(const MeshView& mesh, std::size_t b, MeshFacts& facts,
+                  std::vector<std::uint32_t>& scattered) {
+  constexpr std::size_t kBackBlocksPerBlock = kPolygonsPerBlock / kPolygonsPerBackBlock;
   const std::size_t begin = b * kPolygonsPerBlock;
   const std::size_t end = std::min(mesh.polygons.count, begin + kPolygonsPerBlock);
+  BackBlock backs[kBackBlocksPerBlock];
   Box box;
   bool finite = true;
+  std::size_t count = 0;
   for (std::size_t first = begin; first < end; first += kPolygonsPerBackBlock) {
-    const std::size_t index = first >> kBackBlockBits;
-    const BackBlock& back = facts.backBlocks[index] = measureBackBlock(
+    BackBlock& back = backs[count++] = measureBackBlock(
         mesh, first, std::min(end, first + kPolygonsPerBackBlock), facts.faceNormals.data());
-    facts.backTests[index] = testOf(back);
-    facts.backPointFlags[index] = pointFlagsOf(back, mesh.points.count);
     box.add(back.box);
     finite = finite && back.allFinite;
   }
   facts.blocks[b] = box;
   facts.blockFinite[b] = finite;
+  const BackBlockFrame frame = facts.backFrames[b] = backFrameOf(box);
+  const bool wide = !facts.wideBackSpans.empty();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t index = (begin >> kBackBlockBits) + i;
+    const BackBlock& back = backs[i];
+    facts.backTests[index] = testOf(back, frame);
+    BackPointFlags flags = pointFlagsOf(back, mesh.points.count);
+    if (wide) {
+      flags = BackPointFlags{kReadWholeBackBlock, 0, 0, 0};
+      facts.wideBackSpans[2 * index] = back.lowPoints;
+      facts.wideBackSpans[2 * index + 1] = back.highPoints;
+    } else if (flags.lowFirst == kReadWholeBackBlock) {
+      flags.highFirst = static_cast<std::uint32_t>(scattered.size());
+      scattered.insert(scattered.end(), back.scatteredPointFlags.begin(),
+                       back.scatteredPointFlags.end());
+      flags.highEnd = static_cast<std::uint32_t>(scattered.size());
+    }
+    facts.backPointFlags[index] = flags;
+  }
 }
 
 // Whether polygons [begin, end) are triangles stored in order: offsets[p] = 3p.
@@ -62,15 +93,22 @@ bool areTriangles(const MeshView& mesh, std::size_t begin, std::size_t end) {
   });
 }
 
-void sizeBlocks(MeshFacts& facts, std::size_t polygons) {
+void sizeBlocks(MeshFacts& facts, std::size_t polygons, bool wide) {
   const std::size_t blocks = (polygons + kPolygonsPerBlock - 1) / kPolygonsPerBlock;
   facts.blocks.resize(blocks);
   facts.blockFinite.resize(blocks);
   facts.faceNormals.resize(polygons);
   const std::size_t backBlocks = (polygons + kPolygonsPerBackBlock - 1) / kPolygonsPerBackBlock;
-  facts.backBlocks.resize(backBlocks);
   facts.backTests.resize(backBlocks);
+  facts.backTests.shrink_to_fit();
   facts.backPointFlags.resize(backBlocks);
+  facts.backPointFlags.shrink_to_fit();
+  facts.backFrames.resize(blocks);
+  facts.backFrames.shrink_to_fit();
+  facts.scatteredPointFlags.clear();
+  facts.wideBackSpans.clear();
+  if (wide) facts.wideBackSpans.resize(2 * backBlocks);
+  facts.wideBackSpans.shrink_to_fit();
 }
 
 }  // namespace
@@ -140,13 +178,16 @@ std::size_t MeshCache::planMeasurement(const Scene& scene) {
   const std::size_t pointTasks = ranges_.size();
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     if (!measuring_[m]) continue;
-    sizeBlocks(facts_[m], meshes[m].mesh.polygons.count);
+    sizeBlocks(facts_[m], meshes[m].mesh.polygons.count, wideBackFlags(meshes[m].mesh));
     for (std::size_t b = 0; b < facts_[m].blocks.size(); b += kBlocksPerTask)
       ranges_.push_back({m, b, std::min(facts_[m].blocks.size(), b + kBlocksPerTask)});
   }
   rangeBounds_.assign(pointTasks, Box{});
   rangeFinite_.assign(pointTasks, 1);
   rangeTriangles_.assign(ranges_.size() - pointTasks, 0);
+  rangeScattered_.resize(ranges_.size() - pointTasks);
+  for (std::vector<std::uint32_t>& flags : rangeScattered_)
+    flags.clear();
   return pointTasks;
 }
 
@@ -160,7 +201,7 @@ bool MeshCache::measure(PhaseRunner& runner, const Scene& scene) {
       return;
     }
     for (std::size_t b = r.begin; b < r.end; ++b)
-      measureBlock(mesh, b, facts_[r.mesh]);
+      measureBlock(mesh, b, facts_[r.mesh], rangeScattered_[i - pointTasks]);
     rangeTriangles_[i - pointTasks] =
         areTriangles(mesh, r.begin * kPolygonsPerBlock,
                      std::min(mesh.polygons.count, r.end * kPolygonsPerBlock));
@@ -168,8 +209,38 @@ bool MeshCache::measure(PhaseRunner& runner, const Scene& scene) {
   if (completed) {
     collectBounds(pointTasks);
     collectTriangles(pointTasks);
+    collectScatteredFlags(pointTasks);
   }
   return completed;
+}
+
+// The block tasks' scattered flags, in order, to their meshes' (MeshFacts::scatteredPointFlags),
+// each scattered block's BackPointFlags moved along: the tasks of a mesh are in block order.
+void MeshCache::collectScatteredFlags(std::size_t pointTasks) {
+  for (std::size_t i = pointTasks; i < ranges_.size(); ++i) {
+    const std::vector<std::uint32_t>& flags = rangeScattered_[i - pointTasks];
+    if (flags.empty()) continue;
+    MeshFacts& facts = facts_[ranges_[i].mesh];
+    // Fits: a mesh's scattered flags are at most its corners (wideBackFlags).
+    const auto base = static_cast<std::uint32_t>(facts.scatteredPointFlags.size());
+    facts.scatteredPointFlags.insert(facts.scatteredPointFlags.end(), flags.begin(), flags.end());
+    const std::size_t first = ranges_[i].begin << (kBlockBits - kBackBlockBits);
+    const std::size_t end =
+        std::min(facts.backBlockCount(), ranges_[i].end << (kBlockBits - kBackBlockBits));
+    for (std::size_t b = first; b < end; ++b) {
+      BackPointFlags& block = facts.backPointFlags[b];
+      if (block.lowFirst != kReadWholeBackBlock) continue;
+      block.highFirst += base;
+      block.highEnd += base;
+    }
+  }
+  for (std::vector<std::uint32_t>& flags : rangeScattered_) {
+    flags.clear();
+    flags.shrink_to_fit();
+  }
+  for (std::size_t m = 0; m < facts_.size(); ++m) {
+    if (measuring_[m]) facts_[m].scatteredPointFlags.shrink_to_fit();
+  }
 }
 
 // A measured mesh is all triangles when each of its block tasks found only triangles.

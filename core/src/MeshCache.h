@@ -42,17 +42,20 @@ static_assert(kBackBlockBits <= kBlockBits);
 // The needed-point flags (Transform.h) a back-face block's two point spans fall in, what the
 // frame's markNeededPoints reads for every block in view and not skipped: [first, end) flag
 // ranges, empty when first == end. A block with scattered flags (BackBlock) has lowFirst
-// kReadWholeBackBlock, and so has every block of a mesh with more flags than 32 bits count.
+// kReadWholeBackBlock and its flags at [highFirst, highEnd) of MeshFacts::scatteredPointFlags;
+// so has every block of a mesh with more flags (or corners) than 32 bits count, whose spans are
+// in MeshFacts::wideBackSpans instead.
 struct BackPointFlags {
   std::uint32_t lowFirst = 0, lowEnd = 0, highFirst = 0, highEnd = 0;
 };
 inline constexpr std::uint32_t kReadWholeBackBlock = UINT32_MAX;
 
-// What a back-face block's polygons share, per mesh version: the cone their normals lie in
-// and the smallest size and worst shape among them (BackFacingBlocks.h says how a frame uses
-// them). `skippable` is false unless every polygon is a triangle of finite points with an
-// area and a shape whose normal the measurement can trust (BackFacingBlocks.cpp,
-// measureBackBlock).
+// What a back-face block's polygons share, as measureBackBlock finds it (BackFacingBlocks.h
+// says how a frame uses it): the cone their normals lie in and the smallest size and worst
+// shape among them. `skippable` is false unless every polygon is a triangle of finite points
+// with an area and a shape whose normal the measurement can trust (BackFacingBlocks.cpp,
+// measureBackBlock). Not kept: a mesh version keeps its compact form (BackBlockTest,
+// BackPointFlags), 60 bytes where this is ~200 (bench/core-frame-issue11.md, section 44).
 struct BackBlock {
   Box box;  // the points its triangles use
   // Their ids, as two spans split at the middle of their range (the second may be empty): a
@@ -65,31 +68,40 @@ struct BackBlock {
   // apart), the needed-point flags (Transform.h) its points fall in, ascending, each once:
   // marking them frees the points between (ViewCulling.cpp). Empty otherwise.
   std::vector<std::uint32_t> scatteredPointFlags;
-  // The box's bounding ball, for the test's pre-test (BackFaceTest::mayFaceAway): a square
-  // root per block and frame saved.
-  glm::dvec3 ballCenter{0.0};
-  double ballRadius = 0.0;
   glm::dvec3 axis{0.0};
-  double cosAngle = 0.0, sinAngle = 1.0;  // half-angle of the cone, widened for rounding
+  double angle = 0.0;                     // half-angle of the cone, widened for rounding
+  double cosAngle = 0.0, sinAngle = 1.0;  // its cosine and sine
   double minDoubleArea = 0.0;             // the smallest |(p1 − p0) × (p2 − p0)|, rounded down
   double maxPerimeterPerDoubleArea = 0.0;  // the largest perimeter / doubled area, rounded up
   bool skippable = false;
   bool allFinite = true;  // every point its polygons use is finite
 };
 
-// What every frame's cull reads of a back-face block (BackFaceTest), copied from it in the
-// order the test reads it: 136 bytes, where the whole BackBlock is ~200 and its spans and
-// flags are read by markNeededPoints from BackPointFlags. At 2M polygons 31k blocks are tested
-// a frame (bench/core-frame-issue11.md, section 39). cosAngle is 0 unless the block is
-// skippable (a skippable block's is at least cos 1.5): the pre-test rejects it then.
-struct BackBlockTest {
-  glm::dvec3 ballCenter{0.0};
-  double ballRadius = 0.0;
-  glm::dvec3 axis{0.0};
-  double cosAngle = 0.0, sinAngle = 1.0;
-  Box box;
-  double minDoubleArea = 0.0, maxPerimeterPerDoubleArea = 0.0;
+// The grid a view-culling block's back-face blocks' boxes are kept on (BackBlockTest): a box
+// corner q (0..65535 per coordinate) is origin + q·step, the view-culling block's box low
+// corner and a 65535th of its size (a little more, so that 65535 reaches its high corner).
+struct BackBlockFrame {
+  glm::dvec3 origin{0.0};
+  glm::dvec3 step{0.0};
 };
+
+// What every frame's cull reads of a back-face block (BackFaceTest), per mesh version: its
+// box in steps of its view-culling block's BackBlockFrame, rounded outward; its cone in float,
+// the axis rounded and the angle widened to cover that, the cosine rounded down (and divided
+// by the rounded axis' length) and the sine up; the ball radius (of the stepped box, about
+// its centre) and the sizes rounded outward too. 44 bytes, where the measured BackBlock is
+// ~200; at 2M polygons 31k blocks are tested a frame. A test that passes on these passes on
+// the exact record's proof (BackFacingBlocks.h, "The compact record"). cosAngle is 0 unless
+// the block is skippable and its box could be stepped (a skippable block's is at least
+// cos 1.5): the pre-test rejects it then, and the back pass's hidden blocks take none of it.
+struct BackBlockTest {
+  std::uint16_t low[3] = {0, 0, 0}, high[3] = {0, 0, 0};
+  float axis[3] = {0.0F, 0.0F, 0.0F};
+  float cosAngle = 0.0F, sinAngle = 1.0F;
+  float ballRadius = 0.0F;
+  float minDoubleArea = 0.0F, maxPerimeterPerDoubleArea = 0.0F;
+};
+static_assert(sizeof(BackBlockTest) == 44);
 
 // What makes two MeshViews the same arrays (MeshView::version's promise).
 struct MeshIdentity {
@@ -118,10 +130,24 @@ struct MeshFacts {
   // A measured mesh whose every polygon is a triangle (offsets[p] = 3p): its corners can be
   // read without the offsets (MeshAccess.h, Triangles).
   bool allTriangles = false;
-  std::vector<BackBlock> backBlocks;  // per kPolygonsPerBackBlock polygons
-  // The same blocks' cones and point flags, compact: what the frame's cull reads of each.
+  // Per back-face block (kPolygonsPerBackBlock polygons): its compact record and point flags,
+  // what the frame reads of it; per view-culling block the grid its back-face blocks' boxes
+  // are kept on.
   std::vector<BackBlockTest> backTests;
   std::vector<BackPointFlags> backPointFlags;
+  std::vector<BackBlockFrame> backFrames;
+  // The scattered blocks' flags, in block order (BackPointFlags).
+  std::vector<std::uint32_t> scatteredPointFlags;
+  // Two per back-face block, only for a mesh with more needed-point flags or corners than 32
+  // bits count (BackPointFlags).
+  std::vector<PointSpan> wideBackSpans;
+
+  std::size_t backBlockCount() const { return backTests.size(); }
+  const BackBlockFrame& backFrameOf(std::size_t block) const {
+    return backFrames[block >> (kBlockBits - kBackBlockBits)];
+  }
+  // Every polygon of the block is a triangle and its record can skip it (BackBlockTest).
+  bool backSkippable(std::size_t block) const { return backTests[block].cosAngle > 0.0F; }
 };
 
 // The box of a mesh's finite points (for a plan made ahead of a render).
@@ -144,6 +170,7 @@ class MeshCache {
   std::size_t planMeasurement(const Scene& scene);
   void collectBounds(std::size_t pointTasks);
   void collectTriangles(std::size_t pointTasks);
+  void collectScatteredFlags(std::size_t pointTasks);
 
   std::vector<MeshFacts> facts_;
   std::vector<std::uint8_t> checking_, measuring_, bounding_;  // per mesh, this render
@@ -152,6 +179,7 @@ class MeshCache {
   std::vector<Box> rangeBounds_;
   std::vector<std::uint8_t> rangeFinite_;
   std::vector<std::uint8_t> rangeTriangles_;  // per block task: its polygons are all triangles
+  std::vector<std::vector<std::uint32_t>> rangeScattered_;  // per block task (measureBlock)
 };
 
 }  // namespace facet::detail

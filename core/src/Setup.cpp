@@ -549,8 +549,10 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     if (!certainBack) return false;
     // The transform phase's verdict when it left the block's points out (ViewCulling.h).
     const std::size_t block = polygon >> kBackBlockBits;
-    if (mesh.deferredBackBlocks ? !mesh.deferredBackBlocks[block]
-                                : !certainBack->certainlyCulled(mesh.backBlockFacts[block]))
+    if (mesh.deferredBackBlocks
+            ? !mesh.deferredBackBlocks[block]
+            : !certainBack->certainlyCulled(mesh.backBlockFacts->backTests[block],
+                                            mesh.backBlockFacts->backFrameOf(block)))
       return false;
     if (lanes > 0) {
       std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
@@ -629,7 +631,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const std::size_t end = static_cast<std::size_t>(
       std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId) -
       ids.begin());
-  // The deferred back faces of a block of triangle polygons (BackBlock::skippable) whose box
+  // The deferred back faces of a block of triangle polygons (MeshFacts::backSkippable) whose box
   // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
   // before any per-polygon work (counted hidden, not drawn: one pass would have counted some
   // of them outside or degenerate). The ids ascend (z-buffer order): a block's end is found by
@@ -645,13 +647,15 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
     const auto next =
         static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
-    const BackBlock& facts = mesh.backBlockFacts[block];
+    const MeshFacts& facts = *mesh.backBlockFacts;
     // A deferred block's verdict, from the same test (DeferredBackPoints.h).
     const std::uint8_t verdict = mesh.backBlockVerdicts ? mesh.backBlockVerdicts[block] : 0;
-    hidden = verdict != 0
-                 ? verdict == kBlockHidden
-                 : facts.skippable && (!hiddenBlocksConeOnly() || cone->certainlyCulled(facts)) &&
-                       blocks->hidden(facts.box);
+    const BackBlockTest& test = facts.backTests[block];
+    const BackBlockFrame& frame = facts.backFrameOf(block);
+    hidden = verdict != 0 ? verdict == kBlockHidden
+                          : facts.backSkippable(block) &&
+                                (!hiddenBlocksConeOnly() || cone->certainlyCulled(test, frame)) &&
+                                blocks->hidden(boxOf(test, frame));
     return firstIdFrom(ids, k, end, next);
   };
   // The deferred back faces of a block not dropped whole, dropped run by run (HiddenBlocks.h,
@@ -665,7 +669,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
   // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
   // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
-  // block is a triangle (BackBlock::skippable).
+  // block is a triangle (MeshFacts::backSkippable).
   std::uint32_t shown[kPolygonsPerBackBlock];
   const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
     const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
@@ -685,7 +689,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
       const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
       if (cone && countingHiddenBlocks()) {
         const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
-        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts[block]);
+        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
+                                                       mesh.backBlockFacts->backFrameOf(block));
         hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
       }
       if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
@@ -695,8 +700,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         continue;
       }
       if (runs) {
-        runsOf(k, blockEnd, mesh.backBlockFacts[(ids[k] - firstId) >> kBackBlockBits].skippable,
-               each);
+        runsOf(k, blockEnd,
+               mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits), each);
         k = blockEnd;
         continue;
       }

@@ -67,7 +67,7 @@ void markNeededPoints(const MeshFacts& facts, const std::uint8_t* visible, const
     if (!backBlockInView(visible, b) || (back && back[b])) continue;
     const BackPointFlags& ranges = facts.backPointFlags[b];
     if (ranges.lowFirst == kReadWholeBackBlock) {
-      markPointsOfBlock(facts.backBlocks[b], flags);
+      markPointsOfBlock(facts, b, flags);
       continue;
     }
     fillFlags(ranges.lowFirst, ranges.lowEnd, flags);
@@ -96,7 +96,7 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
   // The blocks it skips (testsBackBlocks) or the front pass will defer (defersBackBlocks).
   const std::size_t flagged =
       flags.testsBackBlocks || flags.defersBackBlocks
-          ? std::size_t(std::count(flags.back, flags.back + facts.backBlocks.size(), 1))
+          ? std::size_t(std::count(flags.back, flags.back + facts.backBlockCount(), 1))
           : 0;
   const std::size_t skipped = flags.testsBackBlocks ? flagged : 0;
   const std::uint8_t* visibleOrAll = flags.outside > 0 ? flags.visible : nullptr;
@@ -107,7 +107,7 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
   }
   if (skipped > 0) {
     // Only the last back-face block may be short (skipped > 0: there is one).
-    const std::size_t lastBlock = facts.backBlocks.size() - 1;
+    const std::size_t lastBlock = facts.backBlockCount() - 1;
     const std::size_t lastBlockPolygons =
         mesh.mesh().polygons.count - (lastBlock << kBackBlockBits);
     culling.backBlocksSkipped += skipped;
@@ -124,14 +124,18 @@ void applyCulling(FrameMesh& mesh, const MeshFacts& facts, ViewCulling& culling,
 
 }  // namespace
 
-void markPointsOfBlock(const BackBlock& block, std::uint8_t* flags) {
-  if (!block.scatteredPointFlags.empty()) {
-    for (const std::uint32_t f : block.scatteredPointFlags)
-      flags[f] = 1;
-    return;
+void markPointsOfBlock(const MeshFacts& facts, std::size_t block, std::uint8_t* flags) {
+  const BackPointFlags& ranges = facts.backPointFlags[block];
+  if (ranges.lowFirst != kReadWholeBackBlock) {
+    fillFlags(ranges.lowFirst, ranges.lowEnd, flags);
+    fillFlags(ranges.highFirst, ranges.highEnd, flags);
+  } else if (!facts.wideBackSpans.empty()) {
+    markPointsOf(facts.wideBackSpans[2 * block], flags);
+    markPointsOf(facts.wideBackSpans[2 * block + 1], flags);
+  } else {
+    for (std::uint32_t i = ranges.highFirst; i < ranges.highEnd; ++i)
+      flags[facts.scatteredPointFlags[i]] = 1;
   }
-  markPointsOf(block.lowPoints, flags);
-  markPointsOf(block.highPoints, flags);
 }
 
 void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, const MeshCache& cache,
@@ -142,7 +146,7 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
   std::size_t blocks = 0, pointFlags = 0, backBlocks = 0;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     blocks += cache[m].blocks.size();
-    backBlocks += cache[m].backBlocks.size();
+    backBlocks += cache[m].backBlockCount();
     pointFlags += flagCount(meshes[m].mesh());
   }
   culling.visibleBlocks.resize(blocks);  // pointers into these stay valid below
@@ -160,7 +164,7 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     flags.back = culling.backBlocks.data() + firstBackBlock;
     flags.needed = culling.neededPoints.data() + firstFlag;
     firstBlock += facts.blocks.size();
-    firstBackBlock += facts.backBlocks.size();
+    firstBackBlock += facts.backBlockCount();
     firstFlag += flagCount(mesh.mesh());
     if (!cullable(mesh, facts, transform)) continue;
     culling.blocksTested += facts.blocks.size();
@@ -170,9 +174,9 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     flags.defersBackBlocks = !flags.testsBackBlocks && deferBackBlockPoints &&
                              surelyDrawsBackFaces(mesh, closedSurfaces);
     if (!flags.testsBackBlocks && !flags.defersBackBlocks) continue;
-    for (std::size_t b = 0; b < facts.backBlocks.size(); b += kBackBlocksPerTask)
+    for (std::size_t b = 0; b < facts.backBlockCount(); b += kBackBlocksPerTask)
       culling.backRanges.push_back(
-          {m, b, std::min(facts.backBlocks.size(), b + kBackBlocksPerTask)});
+          {m, b, std::min(facts.backBlockCount(), b + kBackBlocksPerTask)});
   }
   // The back-face blocks, independent of each other, on every thread: at 2M polygons about
   // 31,000 of them, most of the culling's work. The pre-test reads the compact cones
@@ -183,16 +187,26 @@ void cullBlocksOutsideView(PhaseRunner& runner, std::span<FrameMesh> meshes, con
     const ViewCulling::MeshFlags& flags = culling.meshes[r.mesh];
     const std::uint8_t* visible = flags.outside > 0 ? flags.visible : nullptr;
     const MeshFacts& facts = cache[r.mesh];
-    ParentClipBounds parent;
-    for (std::size_t b = r.begin; b < r.end; ++b) {
-      flags.back[b] = 0;
-      if (!backBlockInView(visible, b) || !backFaceTest.mayFaceAway(facts.backTests[b])) continue;
-      const Box* viewBlock = &facts.blocks[b >> (kBlockBits - kBackBlockBits)];
-      if (parent.box != viewBlock) {
-        parent = ParentClipBounds{};
-        parent.box = viewBlock;
+    // A view-culling block's back-face blocks at a time (the tasks start at one): the
+    // pre-tests first, their verdicts kept without a branch, so that the blocks' chains of
+    // decoding, dot products and square root overlap instead of restarting after each
+    // mispredicted verdict (half of them); then the rest of the test for those that passed.
+    constexpr std::size_t kBackBlocksPerBlock = std::size_t{1} << (kBlockBits - kBackBlockBits);
+    static_assert(kBackBlocksPerTask % kBackBlocksPerBlock == 0);
+    for (std::size_t first = r.begin; first < r.end; first += kBackBlocksPerBlock) {
+      const std::size_t end = std::min(r.end, first + kBackBlocksPerBlock);
+      std::fill(flags.back + first, flags.back + end, std::uint8_t{0});
+      if (!backBlockInView(visible, first)) continue;
+      const BackBlockFrame& frame = facts.backFrameOf(first);
+      bool mayFaceAway[kBackBlocksPerBlock];
+      for (std::size_t b = first; b < end; ++b)
+        mayFaceAway[b - first] = backFaceTest.mayFaceAway(facts.backTests[b], frame);
+      ParentClipBounds parent;
+      parent.box = &facts.blocks[first >> (kBlockBits - kBackBlockBits)];
+      for (std::size_t b = first; b < end; ++b) {
+        if (mayFaceAway[b - first])
+          flags.back[b] = backFaceTest.culledPastPreTest(facts.backTests[b], frame, parent);
       }
-      flags.back[b] = backFaceTest.culledPastPreTest(facts.backTests[b], parent);
     }
   });
   for (std::size_t m = 0; m < meshes.size(); ++m)

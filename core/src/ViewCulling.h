@@ -58,9 +58,10 @@ struct ViewCulling {
   std::vector<MeshRange> backRanges;  // scratch: the back-face blocks' test tasks
 };
 
-// Marks the needed-point flags (Transform.h) of the points a back-face block uses: its two
-// spans or, when those are scattered, its list of flags.
-void markPointsOfBlock(const BackBlock& block, std::uint8_t* flags);
+// Marks the needed-point flags (Transform.h) of the points a back-face block of the mesh uses:
+// its two spans' flag ranges or, when those are scattered, its list of flags
+// (MeshFacts::backPointFlags).
+void markPointsOfBlock(const MeshFacts& facts, std::size_t block, std::uint8_t* flags);
 
 // Tests the blocks of every measured mesh against the view and points the meshes with
 // blocks outside it at their flags (FrameMesh::visibleBlocks, FrameMesh::neededPoints), and

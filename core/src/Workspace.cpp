@@ -73,7 +73,7 @@ void Renderer::Workspace::prepareMeshes(const Scene& scene) {
     const detail::MeshFacts& facts = cache[meshes.size() - 1];
     if (facts.measured) {
       meshes.back().faceNormals = facts.faceNormals.data();
-      meshes.back().backBlockFacts = facts.backBlocks.data();
+      meshes.back().backBlockFacts = &facts;
       meshes.back().allTriangles = facts.allTriangles;
     }
     firstVertex += mesh.mesh.points.count;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -18,7 +19,9 @@
 #include "../support/TestRender.h"
 #include "BackFacingBlocks.h"
 #include "MeshCache.h"
+#include "PhaseRunner.h"
 #include "SetupBatch.h"
+#include "ThreadPool.h"
 #include "Transform.h"
 #include "ViewCulling.h"
 
@@ -473,13 +476,29 @@ TEST_F(BackFacingBlocks, CompactRecordsAgreeWithTheWholeBlocks) {
     const detail::BackPointFlags ranges = detail::pointFlagsOf(block, view.points.count);
     ASSERT_NE(ranges.lowFirst, detail::kReadWholeBackBlock);
     std::vector<std::uint8_t> whole(flagCount, 0), compact(flagCount, 0);
-    detail::markPointsOfBlock(block, whole.data());
+    for (const detail::PointSpan& span : {block.lowPoints, block.highPoints}) {
+      if (span.first > span.last) continue;
+      std::fill(
+          whole.begin() + static_cast<std::ptrdiff_t>(span.first >> detail::kNeededPointBits),
+          whole.begin() + static_cast<std::ptrdiff_t>(span.last >> detail::kNeededPointBits) + 1,
+          1);
+    }
     std::fill(compact.begin() + ranges.lowFirst, compact.begin() + ranges.lowEnd, 1);
     std::fill(compact.begin() + ranges.highFirst, compact.begin() + ranges.highEnd, 1);
     EXPECT_EQ(compact, whole) << "block " << b;
-    const detail::BackBlockTest test = detail::testOf(block);
-    EXPECT_EQ(test.box.low, block.box.low);
-    EXPECT_EQ(test.cosAngle, block.skippable ? block.cosAngle : 0.0);
+    // On the grid of its own box: the stepped box is the box, the cone a little wider.
+    const detail::BackBlockTest test = detail::testOf(block, detail::backFrameOf(block.box));
+    const detail::Box box = detail::boxOf(test, detail::backFrameOf(block.box));
+    EXPECT_EQ(box.low, block.box.low);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_GE(box.high[k], block.box.high[k]);
+    ASSERT_EQ(test.cosAngle > 0.0F, block.skippable);
+    if (block.skippable) {
+      // The test reads the rounded axis a, not â: the cosine is over |a| (BackFacingBlocks.h).
+      const double length = glm::length(glm::dvec3(test.axis[0], test.axis[1], test.axis[2]));
+      EXPECT_LE(test.cosAngle * length, block.cosAngle);
+      EXPECT_GT(test.cosAngle * length, block.cosAngle - 1e-5);
+    }
   }
   const Mesh meridians =
       makeUvSphere(600, 300, 1.0, glm::dvec3(0.0), UvSphereOrder::vtkSphereSource);
@@ -496,7 +515,118 @@ TEST_F(BackFacingBlocks, CompactRecordsAgreeWithTheWholeBlocks) {
   quads.addPolygon({0, 1, 2, 3});
   const detail::BackBlock quad = detail::measureBackBlock(quads.view(), 0, 1);
   ASSERT_FALSE(quad.skippable);
-  EXPECT_EQ(detail::testOf(quad).cosAngle, 0.0);
+  EXPECT_EQ(detail::testOf(quad, detail::backFrameOf(quad.box)).cosAngle, 0.0F);
+}
+
+// A scattered block's flags are kept in its mesh's list (MeshFacts::scatteredPointFlags) and
+// marked from there; a band's from its ranges: markPointsOfBlock marks what the measured
+// block's spans or list name, on a mesh measured by a render.
+TEST_F(BackFacingBlocks, MeasuredMeshesKeepTheFlagsOfTheirScatteredBlocks) {
+  const Mesh meridians =
+      makeUvSphere(600, 300, 1.0, glm::dvec3(0.0), UvSphereOrder::vtkSphereSource);
+  const MeshView view = closedView(meridians);
+  detail::MeshCache cache;
+  Scene scene = oneMeshScene(view);
+  detail::ThreadPool pool(2);
+  const detail::PhaseRunner::ProgressCallback noProgress;
+  detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Measure});
+  ASSERT_TRUE(cache.update(runner, scene, true));
+  const detail::MeshFacts& facts = cache[0];
+  const std::size_t flagCount =
+      (view.points.count + detail::kPointsPerNeededFlag - 1) >> detail::kNeededPointBits;
+  std::size_t scattered = 0;
+  for (std::size_t b = 0; b < facts.backBlockCount(); ++b) {
+    const std::size_t begin = b * detail::kPolygonsPerBackBlock;
+    const detail::BackBlock block = detail::measureBackBlock(
+        view, begin, std::min(view.polygons.count, begin + detail::kPolygonsPerBackBlock));
+    std::vector<std::uint8_t> expected(flagCount, 0), marked(flagCount, 0);
+    if (!block.scatteredPointFlags.empty()) {
+      ++scattered;
+      for (const std::uint32_t f : block.scatteredPointFlags)
+        expected[f] = 1;
+    } else {
+      for (const detail::PointSpan& span : {block.lowPoints, block.highPoints}) {
+        for (std::size_t id = span.first; id <= span.last && span.first <= span.last; ++id)
+          expected[id >> detail::kNeededPointBits] = 1;
+      }
+    }
+    detail::markPointsOfBlock(facts, b, marked.data());
+    ASSERT_EQ(marked, expected) << "block " << b;
+    const detail::BackBlockTest compact = detail::testOf(block, facts.backFrameOf(b));
+    EXPECT_EQ(std::memcmp(&compact, &facts.backTests[b], sizeof compact), 0) << "block " << b;
+  }
+  EXPECT_GT(scattered, 4u);  // both caps
+}
+
+// The compact record is conservative (BackFacingBlocks.h, "The compact record"): on random
+// blocks (patches of tiny triangles and slivers too) seen from random views, perspective and
+// parallel, near the origin and far from it, with their boxes anywhere on their grid (the
+// grid's box the block's own: its corners at 0 and 65535; or up to 40 times wider around it),
+// every block the compact test culls, the exact test culls, the stepped box holds the block's
+// and every normal is inside the stored cone; and the compact test culls nearly as many.
+TEST_F(BackFacingBlocks, CompactTestCullsOnlyWhatTheExactTestCulls) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t exactCulled = 0, compactCulled = 0, blocks = 0, atEnds = 0;
+  for (const glm::dvec3 center : {glm::dvec3(0.0), glm::dvec3(3.0, -2.0, 1.0),
+                                  glm::dvec3(1e5, 2e5, -3e5), glm::dvec3(-7e7, 1e6, 3e7)}) {
+    const Mesh mesh = patches(48, static_cast<unsigned>(center.x) + 3u, center);
+    const MeshView view = mesh.view();
+    std::vector<detail::BackBlock> measured;
+    for (std::size_t b = 0; b < 48; ++b) {
+      const std::size_t begin = b * detail::kPolygonsPerBackBlock;
+      measured.push_back(
+          detail::measureBackBlock(view, begin, begin + detail::kPolygonsPerBackBlock));
+    }
+    for (int v = 0; v < 24; ++v) {
+      const Camera camera = randomCamera(random, center, v % 3 == 2);
+      const detail::FrameTransform transform(camera, 640, 480);
+      const detail::BackFaceTest test(transform);
+      for (std::size_t b = 0; b < measured.size(); ++b) {
+        const detail::BackBlock& block = measured[b];
+        if (!block.skippable) continue;
+        detail::Box grid = block.box;
+        if ((v + b) % 3 != 0) {  // a wider grid, the block anywhere in it
+          const glm::dvec3 size = block.box.high - block.box.low;
+          for (int k = 0; k < 3; ++k) {
+            grid.low[k] -= 40.0 * size[k] * unit(random);
+            grid.high[k] += 40.0 * size[k] * unit(random);
+          }
+        }
+        const detail::BackBlockFrame frame = detail::backFrameOf(grid);
+        const detail::BackBlockTest compact = detail::testOf(block, frame);
+        ASSERT_GT(compact.cosAngle, 0.0F) << "block " << b;
+        const detail::Box box = detail::boxOf(compact, frame);
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_LE(box.low[k], block.box.low[k]);
+          ASSERT_GE(box.high[k], block.box.high[k]);
+          atEnds += compact.low[k] == 0 && compact.high[k] == 65535;
+        }
+        const glm::dvec3 axis(compact.axis[0], compact.axis[1], compact.axis[2]);
+        const double length = glm::length(axis);
+        for (std::size_t p = b * detail::kPolygonsPerBackBlock;
+             p < (b + 1) * detail::kPolygonsPerBackBlock; ++p) {
+          const auto corner = [&](int k) {
+            return mesh.points[static_cast<std::size_t>(mesh.connectivity[3 * p + k])];
+          };
+          const glm::dvec3 n =
+              glm::normalize(glm::cross(corner(1) - corner(0), corner(2) - corner(0)));
+          ASSERT_GE(glm::dot(n, axis) / length, compact.cosAngle * length) << "polygon " << p;
+        }
+        EXPECT_LE(compact.minDoubleArea, block.minDoubleArea);
+        EXPECT_GE(compact.maxPerimeterPerDoubleArea, block.maxPerimeterPerDoubleArea);
+        const bool exact = test.certainlyCulled(block);
+        const bool stepped = test.certainlyCulled(compact, frame);
+        ASSERT_TRUE(exact || !stepped) << "block " << b << ", view " << v;
+        ++blocks;
+        exactCulled += exact;
+        compactCulled += stepped;
+      }
+    }
+  }
+  EXPECT_GT(atEnds, blocks / 4);
+  EXPECT_GT(exactCulled, blocks / 10);
+  EXPECT_GE(compactCulled, exactCulled * 9 / 10) << exactCulled << " of " << blocks;
 }
 
 // The points a drawn block needs are transformed whatever the layout of their ids and
