@@ -85,33 +85,47 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
       df, depth);
 }
 
-// How far ahead of the group it colors colorRow prefetches its polygons' colors, in pixels.
-// Shown polygons' colors lie scattered through a plane of one per polygon (2 MB at 500k,
-// beyond L2), and a row's neighbouring pixels mostly show polygons far apart in it: the
-// lookups were ~60 % of the 500k resolve on AVX3 (perf: 1.4 ms a frame, 0.55 ms with the
-// colors not looked up). 128 pixels ahead took ~15 % off the resolve (64 and 256 less).
-constexpr std::size_t kColorPrefetchPixels = 128;
-
-// The colors of the polygons shown at pixels [0, lanes) of `ids`, fetched toward the caches.
-HWY_INLINE void prefetchColors(const std::uint32_t* colors, const std::int32_t* ids,
-                               std::size_t lanes) {
-  for (std::size_t i = 0; i < lanes; ++i) {
-    if (ids[i] >= 0) hwy::Prefetch(colors + ids[i]);
-  }
+// The colors of the polygons a group of pixels shows (lanes of DC from `ids`), fetched toward
+// the caches. Shown polygons' colors lie scattered through a plane of one per polygon (2 MB
+// at 500k, beyond L2), and a row's neighbouring pixels mostly show polygons far apart in it:
+// the lookups were ~60 % of the 500k resolve on AVX3 (bench/core-frame-issue11.md section 40).
+HWY_INLINE void prefetchColors(const std::uint32_t* colors, const std::int32_t* ids) {
+  const DC di;
+  const hn::Vec<DC> id = hn::LoadU(di, ids);
+  const hn::Mask<DC> none = id < hn::Zero(di);
+  if (hn::AllTrue(di, none)) return;
+  HWY_ALIGN std::int32_t lane[hn::MaxLanes(DC())];
+  hn::Store(hn::IfThenZeroElse(none, id), di, lane);
+  for (std::size_t i = 0; i < hn::Lanes(di); ++i)
+    hwy::Prefetch(colors + lane[i]);
 }
+
+// The rows of a band below the one colorRow colors, from its first pixel (null: none, past
+// the band). While a row is colored, the colors of the polygons the next row shows are
+// fetched (its ids, fetched the row before, in cache), and the ids of the row after it: a
+// whole row ahead of their use, where 128 pixels ahead in the row took ~15 % off the 500k
+// resolve and a row ahead ~30 % (section 42). Within the band: its rows lie in one row of
+// tiles, so the next row's ids are read only where its own colors read them.
+struct RowsBelow {
+  const std::int32_t* next = nullptr;       // ids: the colors they show are prefetched
+  const std::int32_t* afterNext = nullptr;  // ids, prefetched
+  RowsBelow from(std::size_t x) const {
+    return {next ? next + x : nullptr, afterNext ? afterNext + x : nullptr};
+  }
+};
 
 // One row's colors, `count` pixels from `ids` to `color` (kStream: storeRow's).
 template <bool kStream>
 HWY_INLINE void colorRow(const std::uint32_t* colors, std::uint32_t background,
-                         const std::int32_t* ids, std::uint32_t* color, std::size_t count) {
+                         const std::int32_t* ids, std::uint32_t* color, std::size_t count,
+                         const RowsBelow& below) {
   const DCU du;
   const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
-  const std::size_t lanes = hn::Lanes(du);
   storeRow<kStream>(
       du, color, count, [&](std::size_t x) { color[x] = ids[x] < 0 ? background : colors[ids[x]]; },
       [&](std::size_t x) {
-        const std::size_t ahead = x + kColorPrefetchPixels;
-        if (ahead + lanes <= count) prefetchColors(colors, ids + ahead, lanes);
+        if (below.next) prefetchColors(colors, below.next + x);
+        if (below.afterNext) hwy::Prefetch(below.afterNext + x);
         return colorGroup(colors, backgroundColor, ids + x);
       });
 }
@@ -138,7 +152,8 @@ HWY_INLINE bool backgroundTile(const PaintCounts* tileRow, std::size_t x) {
 template <bool kStream>
 HWY_INLINE void colorRowByTiles(const std::uint32_t* colors, std::uint32_t background,
                                 const std::int32_t* ids, std::uint32_t* color, std::size_t x0,
-                                std::size_t count, const PaintCounts* tileRow) {
+                                std::size_t count, const PaintCounts* tileRow,
+                                const RowsBelow& below) {
   constexpr auto kTile = static_cast<std::size_t>(TileGrid::kTileSize);
   const std::size_t end = x0 + count;
   for (std::size_t x = x0; x < end;) {
@@ -150,7 +165,8 @@ HWY_INLINE void colorRowByTiles(const std::uint32_t* colors, std::uint32_t backg
     if (runIsBackground) {
       backgroundRow<kStream>(background, color + (x - x0), runEnd - x);
     } else {
-      colorRow<kStream>(colors, background, ids + (x - x0), color + (x - x0), runEnd - x);
+      colorRow<kStream>(colors, background, ids + (x - x0), color + (x - x0), runEnd - x,
+                        below.from(x - x0));
     }
     x = runEnd;
   }
@@ -208,16 +224,19 @@ void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, boo
     auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
     const std::int32_t* ids = context.polygonId + row;
     const auto x0 = static_cast<std::size_t>(pixels.x0);
+    const std::size_t rowStep = static_cast<std::size_t>(context.width);
+    const RowsBelow below{y < pixels.y1 ? ids + rowStep : nullptr,
+                          y + 1 < pixels.y1 ? ids + 2 * rowStep : nullptr};
     if (spans) {
       spans[y - pixels.y0] = colorRowFindingSpan(colors, background, ids, color, width);
     } else if (tileRow && stream) {
-      colorRowByTiles<true>(colors, background, ids, color, x0, width, tileRow);
+      colorRowByTiles<true>(colors, background, ids, color, x0, width, tileRow, below);
     } else if (tileRow) {
-      colorRowByTiles<false>(colors, background, ids, color, x0, width, tileRow);
+      colorRowByTiles<false>(colors, background, ids, color, x0, width, tileRow, below);
     } else if (stream) {
-      colorRow<true>(colors, background, ids, color, width);
+      colorRow<true>(colors, background, ids, color, width, below);
     } else {
-      colorRow<false>(colors, background, ids, color, width);
+      colorRow<false>(colors, background, ids, color, width, below);
     }
   }
   if (stream) hwy::FlushStream();  // weakly ordered: done before the band is handed back
