@@ -100,12 +100,13 @@ HWY_INLINE void prefetchColors(const std::uint32_t* colors, const std::int32_t* 
     hwy::Prefetch(colors + lane[i]);
 }
 
-// The rows of a band below the one colorRow colors, from its first pixel (null: none, past
-// the band). While a row is colored, the colors of the polygons the next row shows are
+// The rows of a resolve task below the one colorRow colors, from its first pixel (null: none,
+// past the task). While a row is colored, the colors of the polygons the next row shows are
 // fetched (its ids, fetched the row before, in cache), and the ids of the row after it: a
-// whole row ahead of their use, where 128 pixels ahead in the row took ~15 % off the 500k
-// resolve and a row ahead ~30 % (section 42). Within the band: its rows lie in one row of
-// tiles, so the next row's ids are read only where its own colors read them.
+// whole row ahead of their use. 128 pixels ahead in the row (section 40) took ~16 % off the
+// 500k resolve; a row ahead in its place took ~30 % off that (bench/core-frame-issue11.md
+// section 42; both together no better). Within the task: its rows lie in one row of tiles, so the
+// next row's ids are read only where its own colors read them.
 struct RowsBelow {
   const std::int32_t* next = nullptr;       // ids: the colors they show are prefetched
   const std::int32_t* afterNext = nullptr;  // ids, prefetched
