@@ -85,33 +85,48 @@ HWY_INLINE void depthGroup(const DepthConstants& k, const std::int32_t* ids, flo
       df, depth);
 }
 
-// How far ahead of the group it colors colorRow prefetches its polygons' colors, in pixels.
-// Shown polygons' colors lie scattered through a plane of one per polygon (2 MB at 500k,
-// beyond L2), and a row's neighbouring pixels mostly show polygons far apart in it: the
-// lookups were ~60 % of the 500k resolve on AVX3 (perf: 1.4 ms a frame, 0.55 ms with the
-// colors not looked up). 128 pixels ahead took ~15 % off the resolve (64 and 256 less).
-constexpr std::size_t kColorPrefetchPixels = 128;
-
-// The colors of the polygons shown at pixels [0, lanes) of `ids`, fetched toward the caches.
-HWY_INLINE void prefetchColors(const std::uint32_t* colors, const std::int32_t* ids,
-                               std::size_t lanes) {
-  for (std::size_t i = 0; i < lanes; ++i) {
-    if (ids[i] >= 0) hwy::Prefetch(colors + ids[i]);
-  }
+// The colors of the polygons a group of pixels shows (lanes of DC from `ids`), fetched toward
+// the caches. Shown polygons' colors lie scattered through a plane of one per polygon (2 MB
+// at 500k, beyond L2), and a row's neighbouring pixels mostly show polygons far apart in it:
+// the lookups were ~60 % of the 500k resolve on AVX3 (bench/core-frame-issue11.md section 40).
+HWY_INLINE void prefetchColors(const std::uint32_t* colors, const std::int32_t* ids) {
+  const DC di;
+  const hn::Vec<DC> id = hn::LoadU(di, ids);
+  const hn::Mask<DC> none = id < hn::Zero(di);
+  if (hn::AllTrue(di, none)) return;
+  HWY_ALIGN std::int32_t lane[hn::MaxLanes(DC())];
+  hn::Store(hn::IfThenZeroElse(none, id), di, lane);
+  for (std::size_t i = 0; i < hn::Lanes(di); ++i)
+    hwy::Prefetch(colors + lane[i]);
 }
+
+// The rows of a resolve task below the one colorRow colors, from its first pixel (null: none,
+// past the task). While a row is colored, the colors of the polygons the next row shows are
+// fetched (its ids, fetched the row before, in cache), and the ids of the row after it: a
+// whole row ahead of their use. 128 pixels ahead in the row (section 40) took ~16 % off the
+// 500k resolve; a row ahead in its place took ~30 % off that (bench/core-frame-issue11.md
+// section 45; both together no better). Within the task: its rows lie in one row of tiles, so the
+// next row's ids are read only where its own colors read them.
+struct RowsBelow {
+  const std::int32_t* next = nullptr;       // ids: the colors they show are prefetched
+  const std::int32_t* afterNext = nullptr;  // ids, prefetched
+  RowsBelow from(std::size_t x) const {
+    return {next ? next + x : nullptr, afterNext ? afterNext + x : nullptr};
+  }
+};
 
 // One row's colors, `count` pixels from `ids` to `color` (kStream: storeRow's).
 template <bool kStream>
 HWY_INLINE void colorRow(const std::uint32_t* colors, std::uint32_t background,
-                         const std::int32_t* ids, std::uint32_t* color, std::size_t count) {
+                         const std::int32_t* ids, std::uint32_t* color, std::size_t count,
+                         const RowsBelow& below) {
   const DCU du;
   const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
-  const std::size_t lanes = hn::Lanes(du);
   storeRow<kStream>(
       du, color, count, [&](std::size_t x) { color[x] = ids[x] < 0 ? background : colors[ids[x]]; },
       [&](std::size_t x) {
-        const std::size_t ahead = x + kColorPrefetchPixels;
-        if (ahead + lanes <= count) prefetchColors(colors, ids + ahead, lanes);
+        if (below.next) prefetchColors(colors, below.next + x);
+        if (below.afterNext) hwy::Prefetch(below.afterNext + x);
         return colorGroup(colors, backgroundColor, ids + x);
       });
 }
@@ -138,7 +153,8 @@ HWY_INLINE bool backgroundTile(const PaintCounts* tileRow, std::size_t x) {
 template <bool kStream>
 HWY_INLINE void colorRowByTiles(const std::uint32_t* colors, std::uint32_t background,
                                 const std::int32_t* ids, std::uint32_t* color, std::size_t x0,
-                                std::size_t count, const PaintCounts* tileRow) {
+                                std::size_t count, const PaintCounts* tileRow,
+                                const RowsBelow& below) {
   constexpr auto kTile = static_cast<std::size_t>(TileGrid::kTileSize);
   const std::size_t end = x0 + count;
   for (std::size_t x = x0; x < end;) {
@@ -150,7 +166,8 @@ HWY_INLINE void colorRowByTiles(const std::uint32_t* colors, std::uint32_t backg
     if (runIsBackground) {
       backgroundRow<kStream>(background, color + (x - x0), runEnd - x);
     } else {
-      colorRow<kStream>(colors, background, ids + (x - x0), color + (x - x0), runEnd - x);
+      colorRow<kStream>(colors, background, ids + (x - x0), color + (x - x0), runEnd - x,
+                        below.from(x - x0));
     }
     x = runEnd;
   }
@@ -197,9 +214,10 @@ HWY_INLINE std::array<int, 2> colorRowFindingSpan(const std::uint32_t* colors,
 }
 
 // The colors of a band of rows within one row of tiles, `tileRow` its tiles' counts (null:
-// every id read).
+// every id read); rows through `lastRowAhead` (the task's, in the same row of tiles) are read
+// ahead (RowsBelow).
 void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, bool stream,
-                   std::array<int, 2>* spans, const PaintCounts* tileRow) {
+                   std::array<int, 2>* spans, const PaintCounts* tileRow, int lastRowAhead) {
   const auto* colors = reinterpret_cast<const std::uint32_t*>(context.colors);
   const std::uint32_t background = wordOf(context.background);
   const std::size_t width = static_cast<std::size_t>(pixels.x1 - pixels.x0 + 1);
@@ -208,16 +226,19 @@ void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, boo
     auto* color = reinterpret_cast<std::uint32_t*>(context.color + row);
     const std::int32_t* ids = context.polygonId + row;
     const auto x0 = static_cast<std::size_t>(pixels.x0);
+    const std::size_t rowStep = static_cast<std::size_t>(context.width);
+    const RowsBelow below{y < lastRowAhead ? ids + rowStep : nullptr,
+                          y + 1 < lastRowAhead ? ids + 2 * rowStep : nullptr};
     if (spans) {
       spans[y - pixels.y0] = colorRowFindingSpan(colors, background, ids, color, width);
     } else if (tileRow && stream) {
-      colorRowByTiles<true>(colors, background, ids, color, x0, width, tileRow);
+      colorRowByTiles<true>(colors, background, ids, color, x0, width, tileRow, below);
     } else if (tileRow) {
-      colorRowByTiles<false>(colors, background, ids, color, x0, width, tileRow);
+      colorRowByTiles<false>(colors, background, ids, color, x0, width, tileRow, below);
     } else if (stream) {
-      colorRow<true>(colors, background, ids, color, width);
+      colorRow<true>(colors, background, ids, color, width, below);
     } else {
-      colorRow<false>(colors, background, ids, color, width);
+      colorRow<false>(colors, background, ids, color, width, below);
     }
   }
   if (stream) hwy::FlushStream();  // weakly ordered: done before the band is handed back
@@ -286,10 +307,15 @@ HWY_AFTER_NAMESPACE();
 namespace facet::detail {
 namespace {
 
-// Rows per resolve task: whole rows, not tiles. The pass is bound by memory, and a tile's
+// Rows per resolve step (colored, then handed on: the estimate, ResolvedRowsCallback) and per
+// task but for the two below: whole rows, not tiles. The pass is bound by memory, and a tile's
 // rows are 256 bytes of each plane, each in a page of its own (a 1080p row of ids is 7.5
 // KiB), which the hardware prefetchers do not follow; a band of whole rows streams.
 constexpr int kRowsPerTask = 8;
+// Without the estimate, tasks of two steps: the rows a task colors are read a row ahead
+// (RowsBelow), the first row of a task not (its colors not prefetched, nor the first two rows'
+// ids). 16 rows: the 500k resolve -2 % on-CPU at 1 thread (noise), -9 % at 2 (section 45).
+constexpr int kRowsPerColoringTask = 16;
 // With the estimate, taller bands, resolved kRowsPerTask rows at a time and each step's rows
 // estimated right after (ResolvedBandEstimate). A band also finds the fields of the row either
 // side of it, with the colors gathered again by polygon id (another task's rows): 2 rows a
@@ -298,6 +324,8 @@ constexpr int kRowsPerTask = 8;
 constexpr int kRowsPerEstimatingTask = 32;
 // A band lies in one row of tiles (ResolveContext::tiles).
 static_assert(TileGrid::kTileSize % kRowsPerTask == 0 &&
+              TileGrid::kTileSize % kRowsPerColoringTask == 0 &&
+              kRowsPerColoringTask % kRowsPerTask == 0 &&
               TileGrid::kTileSize % kRowsPerEstimatingTask == 0);
 
 HWY_EXPORT(ResolveColors);
@@ -323,7 +351,7 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
   // The estimate reads the band's colors right after it is resolved: from the caches.
   const bool estimatesRows = context.estimate && context.estimate->rows;
   if (context.estimate && context.estimate->beforeResolve) context.estimate->beforeResolve();
-  const int rowsPerTask = estimatesRows ? kRowsPerEstimatingTask : kRowsPerTask;
+  const int rowsPerTask = estimatesRows ? kRowsPerEstimatingTask : kRowsPerColoringTask;
   const int bands = (viewport.y1 - viewport.y0 + rowsPerTask) / rowsPerTask;
   const std::size_t colorBytes = static_cast<std::size_t>(viewport.x1 - viewport.x0 + 1) *
                                  static_cast<std::size_t>(viewport.y1 - viewport.y0 + 1) *
@@ -348,7 +376,7 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
                                               static_cast<std::size_t>(grid.tilesX())
                         : nullptr;
       HWY_DYNAMIC_DISPATCH(ResolveColors)
-      (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans, tileRow);
+      (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans, tileRow, y1);
       if (estimate) estimate->resolvedThrough(s1);
       if (context.resolvedRows) (*context.resolvedRows)(*context.target, s0, s1);
     }

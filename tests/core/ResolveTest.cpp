@@ -5,10 +5,15 @@
 // are), for perspective and parallel cameras, keys of every magnitude, images whose width is
 // no multiple of a group, colors stored plainly and streamed.
 
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <new>
 #include <random>
 #include <vector>
 
@@ -163,6 +168,88 @@ TEST_F(Resolve, BackgroundOnlyTilesTakeTheBackgroundAndNoOtherTileDoes) {
         }
         EXPECT_EQ(differing, 0u) << width << " x " << height << ", " << threads << " threads";
         EXPECT_GT(backgroundPixels, 0u);  // the tiles said to show the background hold polygons
+      }
+    }
+  }
+}
+
+// An id plane whose last byte ends a page and the page after it unreadable: a read past its
+// last row faults.
+class GuardedIds {
+ public:
+  explicit GuardedIds(const std::vector<std::int32_t>& ids) {
+    const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+    const std::size_t bytes = ids.size() * sizeof(std::int32_t);
+    mapped_ = (bytes + page - 1) / page * page + page;
+    base_ = mmap(nullptr, mapped_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (base_ == MAP_FAILED) throw std::bad_alloc();
+    char* guard = static_cast<char*>(base_) + mapped_ - page;
+    mprotect(guard, page, PROT_NONE);
+    ids_ = reinterpret_cast<std::int32_t*>(guard - bytes);
+    std::memcpy(ids_, ids.data(), bytes);
+  }
+  GuardedIds(const GuardedIds&) = delete;
+  GuardedIds& operator=(const GuardedIds&) = delete;
+  ~GuardedIds() { munmap(base_, mapped_); }
+  const std::int32_t* data() const { return ids_; }
+
+ private:
+  void* base_ = nullptr;
+  std::size_t mapped_ = 0;
+  std::int32_t* ids_ = nullptr;
+};
+
+// While coloring a row the resolve reads the next row's ids (their colors fetched a row
+// ahead) and fetches the row after it, within its task: at the image's last rows it reads
+// nothing past the plane (a page no one may read follows it), for last tasks of 1, 3 and 10
+// rows (8 + 2: read ahead across its steps), an image of one row, widths no multiple of a
+// vector, with the tiles and without, colors stored plainly and streamed (1031 x 1025), on
+// every instruction set, 1 and 2 threads; and every pixel is its polygon's color or the
+// background's.
+TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
+  static_assert(1031 * 1025 * sizeof(Rgba8) >= detail::kStreamedColorBytes);
+  std::vector<Rgba8> colors(500);
+  for (std::size_t i = 0; i < colors.size(); ++i)
+    colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
+  const Rgba8 background{9, 8, 7, 0};
+  const detail::PhaseRunner::ProgressCallback noProgress;
+  for (const auto& [width, height] : {std::pair{131, 65}, std::pair{200, 74}, std::pair{67, 3},
+                                      std::pair{29, 1}, std::pair{1031, 1025}}) {
+    const detail::TileGrid grid(width, height);
+    std::vector<std::int32_t> plainIds = randomPlanes(width, height, 500, 3).ids;
+    // The last row shows polygons everywhere: its tiles are covered, its ids all read.
+    std::fill(plainIds.end() - width, plainIds.end(), 17);
+    const GuardedIds ids(plainIds);
+    std::vector<detail::PaintCounts> tiles(grid.count());
+    for (std::size_t t = 0; t < grid.count(); ++t) {
+      const detail::PixelBounds bounds = grid.bounds(t);
+      for (int y = bounds.y0; y <= bounds.y1; ++y) {
+        for (int x = bounds.x0; x <= bounds.x1; ++x)
+          tiles[t].covered += plainIds[static_cast<std::size_t>(y) * width + x] >= 0;
+      }
+    }
+    for (const detail::SimdTarget& target : detail::simdTargets()) {
+      SCOPED_TRACE(target.name);
+      detail::useSimdTarget(target.bits);
+      for (const int threads : {1, 2}) {
+        for (const bool withTiles : {false, true}) {
+          detail::ThreadPool pool(threads);
+          std::vector<Rgba8> color(plainIds.size(), Rgba8{1, 2, 3, 4});
+          detail::ResolveContext context{colors.data(), background, color.data(), ids.data(),
+                                         width};
+          if (withTiles) context.tiles = tiles.data();
+          detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
+          ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
+          std::size_t differing = 0;
+          for (std::size_t i = 0; i < plainIds.size(); ++i) {
+            const std::int32_t id = plainIds[i];
+            const Rgba8 expected = id < 0 ? background : colors[id];
+            if (!(color[i] == expected) && ++differing <= 5)
+              ADD_FAILURE() << "pixel " << i << ", id " << id;
+          }
+          EXPECT_EQ(differing, 0u)
+              << width << " x " << height << ", " << threads << " threads, tiles " << withTiles;
+        }
       }
     }
   }
