@@ -38,8 +38,8 @@ bool cornersOneByOne(const FrameTransform& transform, const Box& box, BlockCorne
   bool unscaled = !box.empty();
   for (int i = 0; i < 8; ++i) {
     const ClipPoint& c = each[i] = transform.toClip(box.corner(i));
-    unscaled = unscaled && c.h == 1.0 && std::isfinite(c.x) && std::isfinite(c.y) &&
-               std::isfinite(c.d);
+    unscaled =
+        unscaled && c.h == 1.0 && std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.d);
   }
   for (int i = 0; i < 8 && unscaled; ++i)
     EXPECT_TRUE(std::memcmp(&each[i], &corners[i], sizeof each[i]) == 0) << "corner " << i;

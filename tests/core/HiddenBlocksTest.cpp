@@ -279,8 +279,8 @@ TEST(FirstIdFrom, IsTheLowerBoundOfTheNextBlocksFirstId) {
       const int how = kind(random);
       const double keep = unit(random);
       for (std::uint32_t i = 0; i < kBlock; ++i) {
-        const bool kept = how == 0 || (how == 2 && unit(random) < keep) ||
-                          (how == 3 && i + 1 < kBlock);
+        const bool kept =
+            how == 0 || (how == 2 && unit(random) < keep) || (how == 3 && i + 1 < kBlock);
         if (kept) ids.push_back(first + b * kBlock + i);
       }
     }
@@ -292,7 +292,8 @@ TEST(FirstIdFrom, IsTheLowerBoundOfTheNextBlocksFirstId) {
           std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
                            ids.begin() + static_cast<std::ptrdiff_t>(stop), next) -
           ids.begin());
-      ASSERT_EQ(detail::firstIdFrom(ids, k, stop, next), expected) << "chunk " << chunk << " k " << k;
+      ASSERT_EQ(detail::firstIdFrom(ids, k, stop, next), expected)
+          << "chunk " << chunk << " k " << k;
       (expected - k == next - ids[k] ? direct : searched) += 1;
     }
   }
