@@ -98,6 +98,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "Box.h"
 #include "FrameTransform.h"
@@ -124,6 +125,26 @@ class HiddenBlockTest {
   PixelBounds viewport_;
   const FrontDepthBlocks& front_;
 };
+
+// The index of the first of ids[k, stop) at least `value` (stop when none is), for ascending
+// distinct ids with ids[k] < value and k < stop (the back pass's deferred ids, Setup.cpp: the
+// end of a block's, `value` the next block's first id): found directly when the ids from k on
+// leave no gap below `value` (a block deferred whole: its ids are consecutive), else by a
+// binary search over at most value − ids[k] ids, not over the rest of the chunk. Distinct
+// ids: at most value − ids[k] of them lie in [ids[k], value). Whatever the ids, only
+// ids[k, stop) are read. A repeated id (never: the back pass asserts strictly ascending ids;
+// the front pass appends each polygon once, in id order) may end it early, at an id still
+// below `value`, never past it: the back pass then takes the rest of the block as another
+// block of the same verdict (its blocks counted twice, nothing drawn differently).
+inline std::size_t firstIdFrom(const std::vector<std::uint32_t>& ids, std::size_t k,
+                               std::size_t stop, std::uint32_t value) {
+  const std::size_t most = std::min<std::size_t>(stop, k + (value - ids[k]));
+  if (ids[most - 1] < value) return most;
+  return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
+                                                   ids.begin() + static_cast<std::ptrdiff_t>(most),
+                                                   value) -
+                                  ids.begin());
+}
 
 // Polygon ids per run (the header's runs): 8 measured best at 500k (section 30 of
 // bench/core-frame-issue11.md: 4 the same, 16 and up fewer dropped).

@@ -602,21 +602,6 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   return position;
 }
 
-// The index of the first of ids[k, stop) at least `value` (stop when none is), for ascending
-// distinct ids with ids[k] < value: found directly when the ids from k on leave no gap below
-// `value` (a block deferred whole: its ids are consecutive), else by a binary search over at
-// most value − ids[k] ids, not over the rest of the chunk. Distinct ids: at most
-// value − ids[k] of them lie in [ids[k], value).
-std::size_t firstIdFrom(const std::vector<std::uint32_t>& ids, std::size_t k, std::size_t stop,
-                        std::uint32_t value) {
-  const std::size_t most = std::min<std::size_t>(stop, k + (value - ids[k]));
-  if (ids[most - 1] < value) return most;
-  return static_cast<std::size_t>(std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
-                                                   ids.begin() + static_cast<std::ptrdiff_t>(most),
-                                                   value) -
-                                  ids.begin());
-}
-
 // Sets up the chunk's deferred back faces from index `first` on while they belong to `mesh`,
 // in batches unless they are off, after the blocks and runs hidden behind the front faces'
 // blocks are dropped (HiddenBlocks.h); returns where it stopped. What those leave is set up as

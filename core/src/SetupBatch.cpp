@@ -517,6 +517,10 @@ const char* simdTargetInUse() {
   return HWY_DYNAMIC_DISPATCH(BatchTargetName)();
 }
 
+void forgetSimdTarget() {
+  hwy::GetChosenTarget().DeInit();
+}
+
 void enableSetupBatches(bool on) {
   batchesOn = on;
 }

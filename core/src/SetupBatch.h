@@ -130,6 +130,9 @@ std::vector<SimdTarget> simdTargets();
 void useSimdTarget(std::int64_t target);
 // The instruction set the batch runs on now.
 const char* simdTargetInUse();
+// Tests: Highway's chosen target forgotten, as before a process's first dispatch (the next
+// dispatch, or batchClassifier, chooses the best again).
+void forgetSimdTarget();
 // Off: every polygon through the per-triangle path alone (the set-up before batches).
 void enableSetupBatches(bool on);
 bool setupBatchesEnabled();

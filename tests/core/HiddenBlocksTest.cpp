@@ -259,6 +259,61 @@ TEST(FrontDepthBlocks, EarlyStopDecidesAsTheBoxsLeastKey) {
   EXPECT_GT(failed, 1000u);
 }
 
+// firstIdFrom (HiddenBlocks.h), the back pass's end of a block's deferred ids, against
+// std::lower_bound over the rest of the chunk: chunks of strictly ascending ids with blocks
+// deferred whole (consecutive ids), sparse ones, gaps right at a block's end, and a chunk
+// that stops inside a block (stop < size). Then, with repeated ids (never met, asserted):
+// never past the block's end and never outside ids[k, stop).
+TEST(FirstIdFrom, IsTheLowerBoundOfTheNextBlocksFirstId) {
+  constexpr std::uint32_t kBlock = detail::kPolygonsPerBackBlock;
+  std::mt19937 random(44);
+  std::uniform_int_distribution<int> kind(0, 3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t direct = 0, searched = 0;
+  for (int chunk = 0; chunk < 300; ++chunk) {
+    // A mesh's ids from `first` on (its blocks start there): 40 blocks, each deferred whole,
+    // not at all, sparsely, or all but its last id.
+    std::vector<std::uint32_t> ids;
+    const std::uint32_t first = 1000 + static_cast<std::uint32_t>(chunk) * 7;
+    for (std::uint32_t b = 0; b < 40; ++b) {
+      const int how = kind(random);
+      const double keep = unit(random);
+      for (std::uint32_t i = 0; i < kBlock; ++i) {
+        const bool kept =
+            how == 0 || (how == 2 && unit(random) < keep) || (how == 3 && i + 1 < kBlock);
+        if (kept) ids.push_back(first + b * kBlock + i);
+      }
+    }
+    if (ids.empty()) continue;
+    const std::size_t stop = chunk % 3 == 0 ? ids.size() - ids.size() / 5 : ids.size();
+    for (std::size_t k = 0; k < stop; ++k) {
+      const std::uint32_t next = first + ((ids[k] - first) / kBlock + 1) * kBlock;
+      const auto expected = static_cast<std::size_t>(
+          std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(k),
+                           ids.begin() + static_cast<std::ptrdiff_t>(stop), next) -
+          ids.begin());
+      ASSERT_EQ(detail::firstIdFrom(ids, k, stop, next), expected)
+          << "chunk " << chunk << " k " << k;
+      (expected - k == next - ids[k] ? direct : searched) += 1;
+    }
+  }
+  EXPECT_GT(direct, 1000u);  // both ways met often
+  EXPECT_GT(searched, 1000u);
+  // Repeated ids: it may stop early, at an id below the next block's (64), never past it; the
+  // back pass's loop (k = the end) still reaches the block's end, piece by piece.
+  const std::vector<std::uint32_t> repeated = {60, 60, 60, 61, 62, 63, 64, 64, 65};
+  EXPECT_EQ(detail::firstIdFrom(repeated, 0, repeated.size(), 64), 4u);
+  std::size_t k = 0, pieces = 0;
+  while (k < 6) {
+    const std::size_t end = detail::firstIdFrom(repeated, k, repeated.size(), 64);
+    ASSERT_GT(end, k);
+    ASSERT_LE(end, 6u);
+    k = end, ++pieces;
+  }
+  EXPECT_EQ(pieces, 2u);
+  EXPECT_EQ(detail::firstIdFrom(repeated, 6, 8, 128), 8u);  // the chunk stops in the block
+}
+
 // The squares' scenes' camera: at the origin, looking down −Z.
 Camera lookingDownZ() {
   Camera camera;

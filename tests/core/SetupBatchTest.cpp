@@ -9,6 +9,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -317,6 +318,27 @@ TEST_F(SetupBatches, ARunsClassifierIsTheBatchOfTheTargetInUse) {
       }
     }
   }
+}
+
+// batchClassifier before any dispatch (a process's first render): Highway's table then holds
+// its first-call initializer, which batchClassifier must not hand out (each batch would update
+// the chosen target again); it chooses the target first. Two runs starting at once on two
+// threads (two renders) get the best target's batch, as one run does. Checked to fail without
+// the choice (batchClassifier returned the initializer).
+TEST_F(SetupBatches, ARunsClassifierBeforeAnyDispatchIsTheBestTargets) {
+  const SimdTarget best = targets().front();
+  use(best);
+  const detail::BatchClassifier bestClassifier = detail::batchClassifier();
+  for (int round = 0; round < 20; ++round) {
+    detail::forgetSimdTarget();
+    detail::BatchClassifier classifiers[2] = {};
+    std::thread other([&] { classifiers[1] = detail::batchClassifier(); });
+    classifiers[0] = detail::batchClassifier();
+    other.join();
+    ASSERT_EQ(classifiers[0], bestClassifier) << "round " << round;
+    ASSERT_EQ(classifiers[1], bestClassifier) << "round " << round;
+  }
+  EXPECT_STREQ(detail::simdTargetInUse(), best.name);
 }
 
 // With clampBackFaces (one pass or a two-pass frame's back pass) the kept back faces' keys
