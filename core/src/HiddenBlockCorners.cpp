@@ -1,6 +1,6 @@
 // HiddenBlockCorners.h's corners in lanes, compiled once per instruction set by Highway's
-// foreach_target (this file includes itself) and dispatched at run time: HiddenBlockTest takes the chosen target's function once
-// (blockCornersFunction) and calls it per block.
+// foreach_target (this file includes itself) and dispatched at run time: HiddenBlockTest takes the
+// chosen target's function once (blockCornersFunction) and calls it per block.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "HiddenBlockCorners.cpp"
