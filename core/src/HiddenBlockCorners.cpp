@@ -1,5 +1,6 @@
 // HiddenBlockCorners.h's corners in lanes, compiled once per instruction set by Highway's
-// foreach_target (this file includes itself) and dispatched at run time, once per block.
+// foreach_target (this file includes itself) and dispatched at run time: HiddenBlockTest takes the
+// chosen target's function once (blockCornersFunction) and calls it per block.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "HiddenBlockCorners.cpp"
@@ -11,6 +12,7 @@
 #include <limits>
 
 #include "HiddenBlockCorners.h"
+#include "SetupBatch.h"
 #include "facet/Conventions.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -114,6 +116,11 @@ HWY_EXPORT(BlockCornersLanes);
 
 bool blockCorners(const ProjectionConstants& constants, const Box& box, BlockCorners& corners) {
   return HWY_DYNAMIC_DISPATCH(BlockCornersLanes)(constants, box, corners);
+}
+
+BlockCornersFunction blockCornersFunction() {
+  chooseSimdTarget();
+  return &HWY_DYNAMIC_DISPATCH(BlockCornersLanes);
 }
 
 }  // namespace facet::detail

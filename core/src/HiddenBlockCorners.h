@@ -27,4 +27,11 @@ struct BlockCorners {
 // true and `corners` set. `box` is not empty.
 bool blockCorners(const ProjectionConstants& constants, const Box& box, BlockCorners& corners);
 
+// blockCorners on the instruction set chosen now: HiddenBlockTest takes it once and calls it
+// per block, without Highway's dispatch (the chosen target's index and its table) in every
+// block. The same function blockCorners calls.
+using BlockCornersFunction = bool (*)(const ProjectionConstants& constants, const Box& box,
+                                      BlockCorners& corners);
+BlockCornersFunction blockCornersFunction();
+
 }  // namespace facet::detail

@@ -21,7 +21,7 @@ bool HiddenBlockTest::hidden(const Box& box) const {
   // and distances, all eight in SIMD lanes (HiddenBlockCorners.h: the bits of
   // FrameTransform's corner by corner, on every instruction set).
   BlockCorners corners;
-  if (!blockCorners(constants_, box, corners)) return false;
+  if (!corners_(constants_, box, corners)) return false;
   std::int64_t x0 = corners.x0, y0 = corners.y0, x1 = corners.x1, y1 = corners.y1;
   // The corners' largest |coordinate − eye|: each is one of the box's six differences.
   const glm::dvec3 low = glm::abs(box.low - constants_.eye);

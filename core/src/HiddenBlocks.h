@@ -102,6 +102,7 @@
 
 #include "Box.h"
 #include "FrameTransform.h"
+#include "HiddenBlockCorners.h"
 #include "RasterTriangle.h"
 #include "TileGrid.h"
 #include "facet/Conventions.h"
@@ -112,7 +113,10 @@ class HiddenBlockTest {
  public:
   HiddenBlockTest(const FrameTransform& transform, const TileGrid& grid,
                   const FrontDepthBlocks& front)
-      : constants_(transform.constants()), viewport_(grid.viewport()), front_(front) {}
+      : constants_(transform.constants()),
+        viewport_(grid.viewport()),
+        front_(front),
+        corners_(blockCornersFunction()) {}
   // Whether every triangle of a triangle polygon with points in `box` loses the depth test
   // everywhere to the front faces (the header's proof).
   bool hidden(const Box& box) const;
@@ -124,6 +128,7 @@ class HiddenBlockTest {
   ProjectionConstants constants_;
   PixelBounds viewport_;
   const FrontDepthBlocks& front_;
+  BlockCornersFunction corners_;  // blockCorners on the target chosen when the test was made
 };
 
 // The index of the first of ids[k, stop) at least `value` (stop when none is), for ascending

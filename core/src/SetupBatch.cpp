@@ -490,11 +490,13 @@ void classifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   (batch, grid, skipBackFaces, boundaryEdges, verdicts, clampBackFaces);
 }
 
-BatchClassifier batchClassifier() {
-  // Before any dispatch the table's entry is Highway's first-call initializer, which would
-  // update the chosen target on every call: choose it first.
+void chooseSimdTarget() {
   hwy::ChosenTarget& chosen = hwy::GetChosenTarget();
   if (!chosen.IsInitialized()) chosen.Update(hwy::SupportedTargets());
+}
+
+BatchClassifier batchClassifier() {
+  chooseSimdTarget();
   return &HWY_DYNAMIC_DISPATCH(ClassifyBatch);
 }
 

@@ -116,6 +116,11 @@ using BatchClassifier = void (*)(const TriangleBatch& batch, const TileGrid& gri
                                  bool skipBackFaces, bool boundaryEdges, BatchVerdicts& verdicts,
                                  bool clampBackFaces);
 BatchClassifier batchClassifier();
+// Highway's target chosen if no dispatch chose it yet (a process's first render): before that,
+// a dispatch table's entry is Highway's first-call initializer, which updates the choice on
+// every call. batchClassifier and blockCornersFunction (HiddenBlockCorners.h) call it before
+// they take a table's entry once for many calls.
+void chooseSimdTarget();
 
 // Tests and benchmarks: which instruction sets the batch runs on. Not for use while a render
 // runs.

@@ -2,12 +2,14 @@
 // FrameTransform's corner by corner (boxInsideClipVolume, toWindow), on every instruction set
 // this CPU has: the same answer and the same bits.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -108,10 +110,15 @@ std::size_t expectTheLanesCorners(const Camera& camera, std::uint32_t seed) {
   for (const detail::SimdTarget& target : detail::simdTargets()) {
     SCOPED_TRACE(target.name);
     detail::useSimdTarget(target.bits);
+    // HiddenBlockTest's way: the target's function taken once, called per box.
+    const detail::BlockCornersFunction taken = detail::blockCornersFunction();
     for (std::size_t b = 0; b < boxes.size(); ++b) {
       BlockCorners corners;
       const bool lanesInside = detail::blockCorners(constants, boxes[b], corners);
       EXPECT_EQ(lanesInside, expectedInside[b] != 0) << "box " << b;
+      BlockCorners takenCorners;
+      EXPECT_EQ(taken(constants, boxes[b], takenCorners), lanesInside) << "box " << b;
+      if (lanesInside) EXPECT_EQ(std::memcmp(&takenCorners, &corners, sizeof corners), 0);
       if (!lanesInside || expectedInside[b] == 0) continue;
       EXPECT_EQ(corners.x0, expected[b].x0) << "box " << b;
       EXPECT_EQ(corners.y0, expected[b].y0) << "box " << b;
@@ -180,6 +187,34 @@ TEST_F(HiddenBlockCorners, NearPlaneStraddlersAreOutsideAndPointBoxesFinite) {
     EXPECT_EQ(corners.y0, expected.y0);
   }
   detail::useSimdTarget(0);
+}
+
+// blockCornersFunction (HiddenBlockTest takes it once): the function of the target in use, a
+// different one per target; before any dispatch (a process's first render, two at once on two
+// threads) the best target's, not Highway's first-call initializer.
+TEST_F(HiddenBlockCorners, TheTakenFunctionIsTheTargetInUses) {
+  std::vector<detail::BlockCornersFunction> seen;
+  for (const detail::SimdTarget& target : detail::simdTargets()) {
+    SCOPED_TRACE(target.name);
+    detail::useSimdTarget(target.bits);
+    const detail::BlockCornersFunction taken = detail::blockCornersFunction();
+    ASSERT_NE(taken, nullptr);
+    EXPECT_EQ(detail::blockCornersFunction(), taken);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), taken), 0);
+    seen.push_back(taken);
+  }
+  detail::useSimdTarget(0);
+  const detail::BlockCornersFunction best = detail::blockCornersFunction();
+  EXPECT_EQ(best, seen.front());
+  for (int round = 0; round < 20; ++round) {
+    detail::forgetSimdTarget();
+    detail::BlockCornersFunction taken[2] = {};
+    std::thread other([&] { taken[1] = detail::blockCornersFunction(); });
+    taken[0] = detail::blockCornersFunction();
+    other.join();
+    ASSERT_EQ(taken[0], best) << "round " << round;
+    ASSERT_EQ(taken[1], best) << "round " << round;
+  }
 }
 
 }  // namespace
