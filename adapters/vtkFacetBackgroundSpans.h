@@ -30,20 +30,35 @@ public:
   /**
    * Calls write(begin, end) over the pixels of rows [firstRow, endRow) whose id may differ
    * from the plane's, given this frame's polygon ids (width × height, row after row), and
-   * records this frame's spans of those rows. Distinct rows may be written from distinct
-   * threads at once.
+   * records this frame's spans of those rows. Every id of those rows outside columns
+   * [shownX0, shownX1) is background (the renderer says so: Renderer::ResolvedRowsCallback),
+   * and is not read: the resolve leaves such ids unread, so they are not in cache. Distinct
+   * rows may be written from distinct threads at once.
    */
   template<class Write>
   void WriteChanged(const std::int32_t* polygonIds,
     vtkIdType firstRow,
     vtkIdType endRow,
+    int shownX0,
+    int shownX1,
     Write&& write)
   {
     const vtkIdType width = this->Width;
+    shownX0 = std::max(shownX0, 0);
+    shownX1 = std::min(shownX1, static_cast<int>(width));
     for (vtkIdType row = firstRow; row < endRow; ++row)
     {
       const vtkIdType start = row * width;
-      const Span shown = ShownSpan(polygonIds + start, static_cast<int>(width));
+      Span shown{ 0, 0 };
+      if (shownX0 < shownX1)
+      {
+        shown = ShownSpan(polygonIds + start + shownX0, shownX1 - shownX0);
+        if (shown.First < shown.Last)
+        {
+          shown.First += shownX0;
+          shown.Last += shownX0;
+        }
+      }
       Span& last = this->Spans[static_cast<std::size_t>(row)];
       const Span both = Union(last, shown);
       if (both.First < both.Last)

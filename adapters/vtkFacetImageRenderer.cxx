@@ -244,14 +244,15 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
     }
   };
   // A band's CellId: only where this frame's or the last one's ids are not background.
-  const auto writeBandIds = [&](vtkIdType firstRow, vtkIdType endRow) {
+  // The renderer says which columns may show a polygon: the ids outside are not read.
+  const auto writeBandIds = [&](vtkIdType firstRow, vtkIdType endRow, int shownX0, int shownX1) {
     if (!this->SkipsBackgroundIds)
     {
       mapIds(polygonIds, firstRow * this->Width, endRow * this->Width);
       return;
     }
     this->CellIdSpans.WriteChanged(
-      polygonIds, firstRow, endRow, [&](vtkIdType begin, vtkIdType end) {
+      polygonIds, firstRow, endRow, shownX0, shownX1, [&](vtkIdType begin, vtkIdType end) {
         mapIds(polygonIds, begin, end);
       });
   };
@@ -284,7 +285,7 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
     // this image (not of a quality mode's sample grid).
     this->Renderer.setResolvedRowsCallback(!writesOutput
         ? facet::Renderer::ResolvedRowsCallback{}
-        : [&](const facet::FramebufferView& view, int y0, int y1) {
+        : [&](const facet::FramebufferView& view, int y0, int y1, int x0, int x1) {
             if (view.polygonId == polygonIds && view.width == this->Width)
             {
               const vtkIdType begin = static_cast<vtkIdType>(y0) * this->Width,
@@ -296,7 +297,7 @@ bool vtkFacetImageRenderer::Render(const facet::Scene& scene,
               }
               if (mapIds)
               {
-                writeBandIds(y0, y1 + 1);
+                writeBandIds(y0, y1 + 1, x0, x1);
               }
               rowsWritten += y1 - y0 + 1;
             }

@@ -378,7 +378,25 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
       HWY_DYNAMIC_DISPATCH(ResolveColors)
       (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans, tileRow, y1);
       if (estimate) estimate->resolvedThrough(s1);
-      if (context.resolvedRows) (*context.resolvedRows)(*context.target, s0, s1);
+      if (context.resolvedRows) {
+        // The columns outside which the step's rows show only the background: its covered
+        // tiles' (whose ids the colors read), so that the callback need not read the ids of
+        // the rest (from memory: not read here).
+        int shownX0 = 0, shownX1 = context.width;
+        if (tileRow && wholeRows) {
+          const int tilesX = static_cast<int>(grid.tilesX());
+          int first = tilesX, last = -1;
+          for (int t = 0; t < tilesX; ++t) {
+            if (tileRow[t].covered != 0) {
+              first = std::min(first, t);
+              last = t;
+            }
+          }
+          shownX0 = last < 0 ? 0 : first * TileGrid::kTileSize;
+          shownX1 = last < 0 ? 0 : std::min(context.width, (last + 1) * TileGrid::kTileSize);
+        }
+        (*context.resolvedRows)(*context.target, s0, s1, shownX0, shownX1);
+      }
     }
   });
 }

@@ -1,6 +1,7 @@
 // Bad input gets a clear error; odd input renders without NaN, crash or stray writes.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -337,7 +338,7 @@ TEST(RendererProgress, ACallbackThatThrowsMidSequenceLeavesNoStaleFrame) {
         return true;
       });
     } else {
-      renderer.setResolvedRowsCallback([&](const FramebufferView&, int, int) {
+      renderer.setResolvedRowsCallback([&](const FramebufferView&, int, int, int, int) {
         if (++calls == 3) throw std::runtime_error("stop");
       });
     }
@@ -367,27 +368,42 @@ TEST(RendererResolvedRows, EveryRowOnceWithItsFinalPixels) {
   std::vector<Rgba8> colors(fb.pixelCount());
   std::vector<float> depths(fb.pixelCount());
   std::vector<std::int32_t> ids(fb.pixelCount());
-  renderer.setResolvedRowsCallback([&](const FramebufferView& target, int y0, int y1) {
-    EXPECT_EQ(target.color, view.color);
-    EXPECT_EQ(target.depth, view.depth);
-    EXPECT_EQ(target.polygonId, view.polygonId);
-    ASSERT_LE(0, y0);
-    ASSERT_LE(y0, y1);
-    ASSERT_LT(y1, target.height);
-    const std::size_t begin = static_cast<std::size_t>(y0) * target.width;
-    const std::size_t end = static_cast<std::size_t>(y1 + 1) * target.width;
-    std::copy(target.color + begin, target.color + end, colors.begin() + begin);
-    std::copy(target.depth + begin, target.depth + end, depths.begin() + begin);
-    std::copy(target.polygonId + begin, target.polygonId + end, ids.begin() + begin);
-    for (int y = y0; y <= y1; ++y)
-      ++calls[y];  // rows of one band: no other thread's
-  });
+  std::atomic<int> narrowed{0};  // bands with background tiles left out
+  renderer.setResolvedRowsCallback(
+      [&](const FramebufferView& target, int y0, int y1, int x0, int x1) {
+        EXPECT_EQ(target.color, view.color);
+        EXPECT_EQ(target.depth, view.depth);
+        EXPECT_EQ(target.polygonId, view.polygonId);
+        ASSERT_LE(0, y0);
+        ASSERT_LE(y0, y1);
+        ASSERT_LT(y1, target.height);
+        const std::size_t begin = static_cast<std::size_t>(y0) * target.width;
+        const std::size_t end = static_cast<std::size_t>(y1 + 1) * target.width;
+        std::copy(target.color + begin, target.color + end, colors.begin() + begin);
+        std::copy(target.depth + begin, target.depth + end, depths.begin() + begin);
+        std::copy(target.polygonId + begin, target.polygonId + end, ids.begin() + begin);
+        // Outside columns [x0, x1) the band shows the background.
+        EXPECT_LE(0, x0);
+        EXPECT_LE(x0, x1);
+        EXPECT_LE(x1, target.width);
+        if (x1 - x0 < target.width) ++narrowed;
+        for (int y = y0; y <= y1; ++y) {
+          ++calls[y];  // rows of one band: no other thread's
+          const std::int32_t* row = target.polygonId + static_cast<std::size_t>(y) * target.width;
+          for (int x = 0; x < target.width; ++x)
+            if (x < x0 || x >= x1) {
+              EXPECT_LT(row[x], 0) << x << ", " << y;
+            }
+        }
+      });
   const std::pair<Color, RenderPath> frames[] = {{Color(0.0f), RenderPath::Full},
                                                  {Color(0.2f, 0.3f, 0.4f), RenderPath::Resolve}};
   for (const auto& [background, path] : frames) {
     renderer.setBackground(background);
     std::fill(calls.begin(), calls.end(), 0);
+    narrowed = 0;
     const RenderStats stats = renderer.render(scene, camera, fb);
+    EXPECT_GT(narrowed, 0);
     SCOPED_TRACE(stats.plan.pathReason);
     EXPECT_EQ(stats.plan.path, path);
     EXPECT_EQ(std::count(calls.begin(), calls.end(), 1), 67);

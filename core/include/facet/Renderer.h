@@ -71,8 +71,12 @@ class Renderer {
   /// render() as the progress callback's does. With depth output off the depth plane holds
   /// depth keys. Under a QualityRenderer, `target` is the planes that renderer hands the
   /// render: its sample grid when it supersamples, and at one sample a band whose polygons
-  /// it reshades afterwards does not have its final colors yet.
-  using ResolvedRowsCallback = std::function<void(const FramebufferView& target, int y0, int y1)>;
+  /// it reshades afterwards does not have its final colors yet. Every pixel of the band
+  /// outside columns [x0, x1) shows the background (its polygon id is negative; x0 == x1: the
+  /// whole band): the columns of the tiles the band's polygons cover, or the whole row, so
+  /// that the callback need not read background ids the resolve left unread (not in cache).
+  using ResolvedRowsCallback =
+      std::function<void(const FramebufferView& target, int y0, int y1, int x0, int x1)>;
 
   Renderer();
   ~Renderer();
