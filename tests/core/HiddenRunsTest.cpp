@@ -166,5 +166,39 @@ TEST_F(HiddenRuns, LanesDropTheRunsOfTheVertexBoundsOnEveryTarget) {
   }
 }
 
+// The block's prefetch (shownOfRunsOf asks for all its ids' offsets and, triangles, their
+// connectivity first) at the edges: no ids, the last polygon alone, every id of the last block
+// (its reach ends at the offsets' last entry and the connectivity's end); the same answer.
+TEST_F(HiddenRuns, TheBlocksEdgesGiveTheVertexAnswerOnEveryTarget) {
+  constexpr std::uint32_t kFirstId = 64, kCount = 128;
+  for (const bool quads : {false, true}) {
+    SCOPED_TRACE(quads ? "some quads" : "triangles");
+    std::mt19937 random(quads ? 3 : 5);
+    const TestPolygons<std::int64_t> polygons(kCount, vertices_.size(), quads, random);
+    const RunSource<std::int64_t> source{vertices_.data(), polygons.view(), kFirstId, !quads};
+    const detail::HiddenRunTest test(grid_, front_);
+    std::vector<std::uint32_t> lastBlock;
+    for (std::uint32_t id = kFirstId + kCount - 64; id < kFirstId + kCount; ++id)
+      lastBlock.push_back(id);
+    const std::vector<std::vector<std::uint32_t>> blocks = {
+        {}, {kFirstId + kCount - 1}, {kFirstId}, lastBlock};
+    for (const std::vector<std::uint32_t>& ids : blocks) {
+      RunTally expectedTally;
+      const std::vector<std::uint32_t> expected = shownByVertex(test, source, ids, expectedTally);
+      for (const detail::SimdTarget& target : detail::simdTargets()) {
+        SCOPED_TRACE(target.name);
+        detail::useSimdTarget(target.bits);
+        std::vector<std::uint32_t> shown(ids.size() + 1);
+        RunTally tally;
+        shown.resize(detail::shownOfRuns(test, source, ids, shown.data(), tally));
+        EXPECT_EQ(shown, expected) << ids.size() << " ids";
+        EXPECT_EQ(tally.runs, expectedTally.runs);
+        EXPECT_EQ(tally.hiddenPolygons, expectedTally.hiddenPolygons);
+      }
+      detail::useSimdTarget(0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace facet::testing
