@@ -332,6 +332,20 @@ HWY_EXPORT(ResolveColors);
 HWY_EXPORT(ResolveDepths);
 HWY_EXPORT(WidenPolygonIds);
 
+// The columns [x0, x1) outside which a row of tiles shows only the background: from its first
+// to its last covered tile ({0, 0}: none covered). The resolve reads only covered tiles' ids,
+// so a ResolvedRowsCallback given these need not read the rest (from memory).
+std::array<int, 2> coveredColumns(const PaintCounts* tileRow, int tilesX, int width) {
+  int first = -1, last = -1;
+  for (int t = 0; t < tilesX; ++t) {
+    if (tileRow[t].covered == 0) continue;
+    if (first < 0) first = t;
+    last = t;
+  }
+  if (last < 0) return {0, 0};
+  return {first * TileGrid::kTileSize, std::min(width, (last + 1) * TileGrid::kTileSize)};
+}
+
 }  // namespace
 
 void resolveDepths(const std::int32_t* polygonId, float* depth, int width,
@@ -379,22 +393,9 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
       (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans, tileRow, y1);
       if (estimate) estimate->resolvedThrough(s1);
       if (context.resolvedRows) {
-        // The columns outside which the step's rows show only the background: its covered
-        // tiles' (whose ids the colors read), so that the callback need not read the ids of
-        // the rest (from memory: not read here).
-        int shownX0 = 0, shownX1 = context.width;
-        if (tileRow && wholeRows) {
-          const int tilesX = static_cast<int>(grid.tilesX());
-          int first = tilesX, last = -1;
-          for (int t = 0; t < tilesX; ++t) {
-            if (tileRow[t].covered != 0) {
-              first = std::min(first, t);
-              last = t;
-            }
-          }
-          shownX0 = last < 0 ? 0 : first * TileGrid::kTileSize;
-          shownX1 = last < 0 ? 0 : std::min(context.width, (last + 1) * TileGrid::kTileSize);
-        }
+        const auto [shownX0, shownX1] = tileRow && wholeRows
+                                            ? coveredColumns(tileRow, grid.tilesX(), context.width)
+                                            : std::array<int, 2>{0, context.width};
         (*context.resolvedRows)(*context.target, s0, s1, shownX0, shownX1);
       }
     }
