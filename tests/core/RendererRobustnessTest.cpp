@@ -331,7 +331,7 @@ TEST(RendererProgress, ACallbackThatThrowsMidSequenceLeavesNoStaleFrame) {
     renderer.setThreadCount(2);
     Framebuffer fb(160, 120);
     renderer.render(scene, first, fb);
-    int calls = 0;
+    std::atomic<int> calls = 0;  // the rows callback runs on the resolve's threads
     if (fromProgress) {
       renderer.setProgressCallback([&](double) {
         if (++calls == 4) throw std::runtime_error("stop");
