@@ -9,7 +9,6 @@
 #include <optional>
 #include <random>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -329,15 +328,7 @@ TEST_F(SetupBatches, ARunsClassifierBeforeAnyDispatchIsTheBestTargets) {
   const SimdTarget best = targets().front();
   use(best);
   const detail::BatchClassifier bestClassifier = detail::batchClassifier();
-  for (int round = 0; round < 20; ++round) {
-    detail::forgetSimdTarget();
-    detail::BatchClassifier classifiers[2] = {};
-    std::thread other([&] { classifiers[1] = detail::batchClassifier(); });
-    classifiers[0] = detail::batchClassifier();
-    other.join();
-    ASSERT_EQ(classifiers[0], bestClassifier) << "round " << round;
-    ASSERT_EQ(classifiers[1], bestClassifier) << "round " << round;
-  }
+  expectFirstDispatchOnTwoThreadsGives(detail::batchClassifier, bestClassifier);
   EXPECT_STREQ(detail::simdTargetInUse(), best.name);
 }
 
