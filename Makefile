@@ -232,9 +232,9 @@ bench: build
 # Facet against VTK (MSAA off and default), raw llvmpipe (OSMesa), an Embree ray caster and
 # the memory-bound limit, in one run and one table (bench/peers.py). Configures again so
 # that CMake finds the peers' libraries just installed. Under Xvfb as the plugin suite runs it
-# (tests/plugin/xvfb_run.sh: a display and an X authority file of its own outside /tmp, the run
-# tried again when VTK reports "bad X server connection" — four runs of 2026-11-22/23 under
-# plain xvfb-run stopped so, in any round, nothing in Xvfb's log).
+# (tests/plugin/xvfb_run.sh: a display and an X authority file of its own outside /tmp, and
+# Xvfb -noreset: without it VTK's next window, opened milliseconds after the last one closed,
+# could connect while the server reset and abort on "bad X server connection").
 bench-peers: deps
 	$(call install-missing,$(PEER_PACKAGES))
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)

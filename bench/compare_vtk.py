@@ -9,7 +9,11 @@ Facet (multisampling off: one sample per pixel) and with VTK's defaults (the win
 the build tree's facet_bench (2 threads, full frame including the clear) run by this script
 in the same session. Prints a table and the ratios.
 
-    xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench/compare_vtk.py
+    xvfb-run -a -s "-noreset -screen 0 1920x1080x24" /usr/bin/python3 bench/compare_vtk.py
+
+(-noreset: every measurement deletes its window, and so its X connection, and the next one
+connects milliseconds later; a server that resets when its last client leaves may drop that
+connection: VTK's "bad X server connection". tests/plugin/xvfb_run.sh passes it.)
 
 Give --facet-bench twice (a build before a change, then one after) for both tables against
 the same VTK frames, in one run.

@@ -7,8 +7,8 @@ the same spheres offscreen (llvmpipe under Xvfb) with one positional light and r
 frame back, as bench/compare_vtk.py does, in the same run: like for like (multisampling
 off) and with VTK's default multisampling.
 
-    PYTHONPATH=build/lib/python3.11/dist-packages xvfb-run -a -s "-screen 0 1920x1080x24" \\
-        /usr/bin/python3 bench/filter_speed.py
+    PYTHONPATH=build/lib/python3.11/dist-packages \\
+        xvfb-run -a -s "-noreset -screen 0 1920x1080x24" /usr/bin/python3 bench/filter_speed.py
 
 --overhead (no VTK renderer, no Xvfb): what Update() costs beyond the core's frame, and what
 the error estimate adds, per size; two filters on the same input (EstimateError off and on)

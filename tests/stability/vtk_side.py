@@ -7,7 +7,8 @@ tests/plugin/xvfb_run.sh).
 
 One image per process: with VTK 9.1 on Mesa's llvmpipe under Xvfb, a second render window
 rendering in the same process aborts about one time in ten (measured: 6 of 60 runs with a
-scene and its reference, 0 of 60 with one image).
+scene and its reference, 0 of 60 with one image; not told apart then, it may have been the X
+server's reset between the two windows that tests/plugin/xvfb_run.sh now turns off).
 """
 import json
 import os
@@ -54,8 +55,9 @@ def _limit_memory():
 
 
 def _run_once(case, which, path, attempts=3):
-    """(status, stderr) of one process; an X connection that fails under load (see
-    tests/plugin/xvfb_run.sh) is tried again."""
+    """(status, stderr) of one process; VTK's "bad X server connection" is tried again (an
+    X server that resets when its last client leaves can drop the next case's connection;
+    tests/plugin/xvfb_run.sh starts Xvfb with -noreset, another server may not)."""
     for _ in range(attempts):
         try:
             process = subprocess.run(
