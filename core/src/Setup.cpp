@@ -574,7 +574,9 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   // blocks, and after another program's frame (VTK's in bench/peers.py's paired frames) the
   // mesh is not in cache (core-frame-issue11.md, section 51). Only a hint: a block prefetched
   // may still be deferred.
-  const auto prefetchAfterGap = [&](std::size_t from, std::size_t end) {
+  // Inlined by force: a function of prefetches alone is "pure" to GCC, and its calls dropped.
+  const auto prefetchAfterGap = [&](std::size_t from, std::size_t end)
+      __attribute__((always_inline)) {
     std::size_t next = from;
     while (next < end && (!inView(next) || culledWhole(next)))
       next = std::min(end, (next | (kPolygonsPerBackBlock - 1)) + 1);

@@ -56,7 +56,8 @@ void transformRange(const FrameMesh& mesh, const std::uint8_t* flags,
     };
     // The first kPrefetchPoints of a run: by then the hardware's streams have caught on.
     constexpr std::size_t kPrefetchPoints = 128;
-    const auto prefetchRun = [&](std::size_t f, std::size_t runEnd) {
+    // Inlined by force: a function of prefetches alone is "pure" to GCC, and its calls dropped.
+    const auto prefetchRun = [&](std::size_t f, std::size_t runEnd) __attribute__((always_inline)) {
       if (f >= runEnd) return;
       const std::size_t begin = f << kNeededPointBits,
                         end =
