@@ -20,6 +20,8 @@
 // by meridian: the VTK filter's users' sphere). The same surface is drawn either way. ORDER
 // both renders the two in one process, frame by frame in turn at the same views, and prints
 // each one's process CPU time a frame and their ratio (the measure that holds under load).
+// ORDER cold[=SWEEP_MB] renders vtkSphereSource's order after another frame or after a memory
+// sweep (64 MB by default), in turn, and prints each phase's median both ways (runColdWarm).
 //
 //   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
 //                               [ARRAYS] [ORDER]
@@ -214,6 +216,51 @@ int runBothOrders(const Options& o) {
   return 0;
 }
 
+// ORDER cold: vtkSphereSource's order, each frame after either another frame (warm) or a
+// SWEEP_MB memory sweep on the calling thread (cold: the last-level cache holds the sweep's
+// bytes, none of the frame's, as after VTK's llvmpipe frame in bench/peers.py's paired
+// frames), the two in turn; each phase's median wall time per side and the ratio cold / warm.
+int runColdWarm(const Options& o, std::size_t sweepBytes) {
+  SphereScene s(o, testing::UvSphereOrder::vtkSphereSource);
+  s.render();  // the first frame: buffers grow, the mesh is measured
+  std::vector<std::uint64_t> sweep(sweepBytes / sizeof(std::uint64_t), 1);
+  std::vector<double> times[2][6];
+  std::uint64_t sink = 0;
+  for (int i = 0; i < o.frames; ++i) {
+    for (int k = 0; k < 2; ++k) {
+      const int cold = (i + k) % 2;
+      if (cold) {
+        for (std::uint64_t& v : sweep) sink += v++;  // read and write every line
+      } else {
+        s.turn(o.turn);
+        s.render();
+      }
+      s.turn(o.turn);
+      const RenderStats r = s.render();
+      const double now[6] = {r.validateSeconds, r.transformSeconds, r.setupSeconds,
+                             r.rasterSeconds,   r.shadeSeconds,     r.totalSeconds};
+      for (int p = 0; p < 6; ++p) times[cold][p].push_back(now[p]);
+    }
+  }
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  static constexpr const char* kNames[6] = {"validate", "transform", "setup",
+                                            "raster",   "shade",     "total"};
+  std::printf("%d triangles, closed %d, %d threads, turn %g, order vtk, %d frames each, after a "
+              "frame (warm) or a %zu MB sweep (cold), median ms (sweep sum %llu):\n",
+              o.triangles, int(o.closed), o.threads, o.turn, o.frames, sweepBytes >> 20,
+              static_cast<unsigned long long>(sink & 0xff));
+  for (int p = 0; p < 6; ++p) {
+    const double warm = median(times[0][p]), cold = median(times[1][p]);
+    std::printf("  %-9s warm %7.3f cold %7.3f cold/warm %.3f\n", kNames[p], warm * 1e3,
+                cold * 1e3, warm > 0 ? cold / warm : 0.0);
+  }
+  std::printf("planes %016llx\n", static_cast<unsigned long long>(fingerprint(s.framebuffer)));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -234,8 +281,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string_view order = argc > 9 ? argv[9] : "ring";
-  if (order != "ring" && order != "vtk" && order != "both") {
-    std::fprintf(stderr, "ORDER is ring, vtk or both, not %s\n", argv[9]);
+  if (order != "ring" && order != "vtk" && order != "both" && order.substr(0, 4) != "cold") {
+    std::fprintf(stderr, "ORDER is ring, vtk, both or cold[=SWEEP_MB], not %s\n", argv[9]);
     return 2;
   }
   Options options;
@@ -248,6 +295,10 @@ int main(int argc, char** argv) {
   if (argc > 7) options.start = std::atof(argv[7]);
   options.arrays = arrays;
   if (order == "both") return runBothOrders(options);
+  if (order.substr(0, 4) == "cold") {
+    const int megabytes = order.size() > 5 ? std::atoi(order.data() + 5) : 64;
+    return runColdWarm(options, static_cast<std::size_t>(std::max(megabytes, 1)) << 20);
+  }
   return run(options, order == "vtk" ? testing::UvSphereOrder::vtkSphereSource
                                      : testing::UvSphereOrder::ringByRing);
 }

@@ -37,8 +37,9 @@ host under these VMs changes speed in steps (bench/core-frame-issue11.md, sectio
 round starts with a speed check (a fixed pure-Python loop, best of 5), printed beside it,
 so a round measured on a slow host shows as one. The targets against VTK 1x and between
 every face and closed are then measured frame by frame in turn (--paired-frames of VTK 1x,
-Update closed and Update every face, one after the other, in one process): each ratio is
-of two frames a second apart, and the verdict is on the median of those ratios.
+Update closed and Update every face, one after the other, in one process, each frame starting
+with the next of the three: --paired-order): each ratio is of two frames a second apart, and
+the verdict is on the median of those ratios.
 
     make bench-peers
     XVFB_SCREEN=1920x1080x24 tests/plugin/xvfb_run.sh /usr/bin/python3 bench/peers.py --sizes 500000
@@ -169,29 +170,39 @@ def print_targets(rounds):
 
 
 def paired_ratios(args, update_timer):
-    """{(triangles, name): [ratio per frame]}: VTK 1x (at 500k and 2M), Update closed and
-    Update every face rendered in turn, frame after frame, the filters turning once around."""
-    ratios = {}
+    """({(triangles, name): [ratio per frame]}, {(triangles, column): [seconds per frame]}):
+    VTK 1x (at 500k and 2M), Update closed and Update every face rendered in turn, frame after
+    frame, the filters turning once around. --paired-order rotate (the default) starts each
+    frame with the next of the three, so that each follows each other as often (a frame right
+    after VTK's finds none of its bytes in cache: bench/core-frame-issue11.md, section 51);
+    fixed keeps the order VTK, closed, every face of the runs before it."""
+    ratios, seconds = {}, {}
     turn = 360.0 / args.paired_frames
     for triangles in args.sizes:
         theta = PEER_SIZES[triangles]
-        vtk_frame = vtk_frame_timer(theta, 0)[0] if triangles in (500000, 2000000) else None
-        closed = update_timer(theta, args.threads, True, turn)[0]
-        every = update_timer(theta, args.threads, False, turn)[0]
-        for _ in range(args.paired_frames):
-            vtk_seconds = vtk_frame() if vtk_frame else None
-            closed_seconds, every_seconds = closed(), every()
-            if vtk_seconds:
+        timers = {}
+        if triangles in (500000, 2000000):
+            timers["VTK 1x"] = vtk_frame_timer(theta, 0)[0]
+        timers["Update closed"] = update_timer(theta, args.threads, True, turn)[0]
+        timers["Update every face"] = update_timer(theta, args.threads, False, turn)[0]
+        names = list(timers)
+        for frame in range(args.paired_frames):
+            start = frame % len(names) if args.paired_order == "rotate" else 0
+            frame_seconds = {name: timers[name]() for name in names[start:] + names[:start]}
+            for name, value in frame_seconds.items():
+                seconds.setdefault((triangles, name), []).append(value)
+            closed_seconds = frame_seconds["Update closed"]
+            if "VTK 1x" in frame_seconds:
                 ratios.setdefault((triangles, "Update closed / VTK 1x"), []).append(
-                    closed_seconds / vtk_seconds)
+                    closed_seconds / frame_seconds["VTK 1x"])
             ratios.setdefault((triangles, "Update every face / Update closed"), []).append(
-                every_seconds / closed_seconds)
-    return ratios
+                frame_seconds["Update every face"] / closed_seconds)
+    return ratios, seconds
 
 
-def print_paired_targets(ratios, frames):
+def print_paired_targets(ratios, seconds, frames, order):
     print(f"\nThe same targets frame by frame in turn ({frames} frames of each, one after the "
-          "other; median and range of the ratios of neighbouring frames)")
+          f"other, order {order}; median and range of the ratios of neighbouring frames)")
     bounds = {"Update closed / VTK 1x": 0.1, "Update every face / Update closed": 1.5}
     for (triangles, name), values in ratios.items():
         median = statistics.median(values)
@@ -199,6 +210,9 @@ def print_paired_targets(ratios, frames):
         spread = f"{min(values):.3f}-{max(values):.3f}"
         print(f"  {f'{triangles}: {name}':<50} {median:>7.3f} {spread:>13} "
               f"(target <= {bounds[name]}) {verdict}")
+    print("  their frames, median ms: " + "; ".join(
+        f"{triangles} {name} {milliseconds(statistics.median(values))}"
+        for (triangles, name), values in seconds.items()))
 
 
 def filter_overhead_ratios(args, bin_dir):
@@ -334,6 +348,10 @@ def main():
     parser.add_argument("--rounds", type=int, default=3, help="times the whole set is measured")
     parser.add_argument("--paired-frames", type=int, default=20,
                         help="frames of each in the frame-by-frame comparison (0: none)")
+    parser.add_argument("--paired-order", choices=("rotate", "fixed"), default="rotate",
+                        help="the frame-by-frame comparison's order: rotate (each frame starts "
+                        "with the next of VTK 1x, closed, every face) or fixed (always that "
+                        "order, as before session 16)")
     parser.add_argument("--sizes", type=int, nargs="+", default=list(PEER_SIZES),
                         choices=list(PEER_SIZES), help="triangle counts (default: all)")
     args = parser.parse_args()
@@ -349,7 +367,8 @@ def main():
         rounds.append(rows)
 
     from filter_speed import facet_frame_timer
-    ratios = paired_ratios(args, facet_frame_timer) if args.paired_frames > 0 else {}
+    ratios, paired_seconds = (paired_ratios(args, facet_frame_timer) if args.paired_frames > 0
+                              else ({}, {}))
     overhead = filter_overhead_ratios(args, args.build_dir / "bin")
     load_end = uptime()
 
@@ -357,7 +376,7 @@ def main():
     print_tables(rows)
     print_targets(rounds)
     if ratios:
-        print_paired_targets(ratios, args.paired_frames)
+        print_paired_targets(ratios, paired_seconds, args.paired_frames, args.paired_order)
     if overhead:
         print_filter_overhead(overhead, args.frames)
     print("Speed check per round (ms; a slower host shows larger): "
