@@ -20,9 +20,14 @@
 // by meridian: the VTK filter's users' sphere). The same surface is drawn either way. ORDER
 // both renders the two in one process, frame by frame in turn at the same views, and prints
 // each one's process CPU time a frame and their ratio (the measure that holds under load).
+// CACHE picks the caches' state at each frame's start: warm (the default: the previous frame
+// left them), cold (before each frame, outside the timed part, two threads write and read
+// 64 MB of their own, twice the VM's 32 MB L3, as a VTK frame between two Updates would) or
+// both (cold and warm frames in turn, which first alternating; each phase's median of either
+// kind and their difference printed: what the cold caches cost a phase).
 //
 //   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
-//                               [ARRAYS] [ORDER]
+//                               [ARRAYS] [ORDER] [CACHE]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -38,6 +43,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "TurningView.h"
@@ -56,6 +62,51 @@ struct Phases {
     for (int i = 0; i < 6; ++i)
       seconds[i] = std::min(seconds[i], now[i]);
   }
+};
+
+// Each phase's times, every frame's, for medians.
+struct PhaseSamples {
+  std::vector<double> seconds[6];
+  void add(const RenderStats& s) {
+    const double now[6] = {s.validateSeconds, s.transformSeconds, s.setupSeconds,
+                           s.rasterSeconds,   s.shadeSeconds,     s.totalSeconds};
+    for (int i = 0; i < 6; ++i)
+      seconds[i].push_back(now[i]);
+  }
+  double median(int phase) const {
+    std::vector<double> v = seconds[phase];
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  }
+};
+
+// CACHE cold: two threads (the renderer's default thread count here) each write then read a
+// 64 MB buffer of their own, so that neither core's L2 nor the shared L3 holds the mesh, the
+// renderer's buffers or the framebuffer when the frame starts; not timed.
+class CacheEvictor {
+ public:
+  void evict() {
+    std::thread other([this] { sweep(buffers_[1]); });
+    sweep(buffers_[0]);
+    other.join();
+  }
+
+ private:
+  static constexpr std::size_t kWords = (std::size_t{64} << 20) / sizeof(std::uint64_t);
+  void sweep(std::vector<std::uint64_t>& buffer) {
+    if (buffer.empty()) buffer.resize(kWords);
+    ++pass_;
+    for (std::size_t i = 0; i < buffer.size(); i += 8)  // one write a 64-byte line
+      buffer[i] = pass_ + i;
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < buffer.size(); i += 8)
+      sum += buffer[i];
+    sink_ = sink_ + sum;
+  }
+  std::vector<std::uint64_t> buffers_[2];
+  std::uint64_t pass_ = 0;
+  volatile std::uint64_t sink_ = 0;
 };
 
 // FNV-1a over the last frame's color, depth and polygon-id bytes: two builds that must give
@@ -106,6 +157,7 @@ struct Options {
   std::uint64_t version = 1;
   double start = 0.0;
   std::string_view arrays = "f64";
+  std::string_view cache = "warm";
 };
 
 const char* nameOf(testing::UvSphereOrder order) {
@@ -142,6 +194,14 @@ struct SphereScene {
   }
 };
 
+// The process's CPU time, every thread's: it stops while the threads are descheduled, so the
+// ratio of two orders' sums holds under a shared machine's load where wall time does not.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 int run(const Options& o, testing::UvSphereOrder order) {
   SphereScene s(o, order);
   // The first frame: buffers grow, the versioned mesh is measured (the filter's first
@@ -149,10 +209,41 @@ int run(const Options& o, testing::UvSphereOrder order) {
   const RenderStats first = s.render();
   Phases best;
   RenderStats last;
+  CacheEvictor evictor;
+  Phases bestOf[2];            // CACHE both: [0] cold frames, [1] warm frames
+  PhaseSamples samples[2];     // every frame's phases, cold and warm (warm only unless CACHE)
+  std::vector<double> cpu[2];  // every frame's process CPU time, cold and warm
   for (int i = 0; i < o.frames; ++i) {
     s.turn(o.turn);
+    const bool cold = o.cache == "cold" || (o.cache == "both" && i % 2 == 0);
+    if (cold) evictor.evict();
+    const double before = processCpuSeconds();
     last = s.render();
+    cpu[cold ? 0 : 1].push_back(processCpuSeconds() - before);
     best.keepBest(last);
+    bestOf[cold ? 0 : 1].keepBest(last);
+    samples[cold ? 0 : 1].add(last);
+  }
+  static constexpr const char* kPhaseNames[6] = {"validate", "transform",     "setup",
+                                                 "raster",   "shade+resolve", "total"};
+  for (int kind = 0; kind < 2; ++kind) {
+    if (samples[kind].seconds[0].empty()) continue;
+    std::printf("%s frames (%zu), median ms:", kind == 0 ? "cold" : "warm",
+                samples[kind].seconds[0].size());
+    for (int p = 0; p < 6; ++p)
+      std::printf(" %s %.3f", kPhaseNames[p], samples[kind].median(p) * 1e3);
+    std::vector<double>& c = cpu[kind];
+    std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
+    std::printf("; CPU %.3f; best ms:", c[c.size() / 2] * 1e3);
+    for (int p = 0; p < 6; ++p)
+      std::printf(" %s %.3f", kPhaseNames[p], bestOf[kind].seconds[p] * 1e3);
+    std::printf("\n");
+  }
+  if (!samples[0].seconds[0].empty() && !samples[1].seconds[0].empty()) {
+    std::printf("cold - warm, medians, ms:");
+    for (int p = 0; p < 6; ++p)
+      std::printf(" %s %+.3f", kPhaseNames[p], (samples[0].median(p) - samples[1].median(p)) * 1e3);
+    std::printf("\n");
   }
   const double* t = best.seconds;
   std::printf(
@@ -169,14 +260,6 @@ int run(const Options& o, testing::UvSphereOrder order) {
   return 0;
 }
 
-// The process's CPU time, every thread's: it stops while the threads are descheduled, so the
-// ratio of two orders' sums holds under a shared machine's load where wall time does not.
-double processCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 // ORDER both: the two orders' spheres rendered in one process, frame by frame in turn (which
 // goes first alternates), at the same views; each frame's process CPU time summed per order.
 int runBothOrders(const Options& o) {
@@ -189,10 +272,13 @@ int runBothOrders(const Options& o) {
   double cpu[2] = {0.0, 0.0};
   Phases best[2];
   RenderStats last[2];
+  CacheEvictor evictor;
   for (int i = 0; i < o.frames; ++i) {
     for (int k = 0; k < 2; ++k) {
       const int side = (i + k) % 2;
       scenes[side]->turn(o.turn);
+      // CACHE cold or both: every frame cold here (both orders alike).
+      if (o.cache != "warm") evictor.evict();
       const double before = processCpuSeconds();
       last[side] = scenes[side]->render();
       cpu[side] += processCpuSeconds() - before;
@@ -224,7 +310,7 @@ int main(int argc, char** argv) {
         "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
         "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned] "
         "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32] "
-        "[ORDER ring|vtk|both]\n",
+        "[ORDER ring|vtk|both] [CACHE warm|cold|both]\n",
         argv[0], bench::kTurnDegreesPerFrame);
     return 2;
   }
@@ -238,7 +324,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ORDER is ring, vtk or both, not %s\n", argv[9]);
     return 2;
   }
+  const std::string_view cache = argc > 10 ? argv[10] : "warm";
+  if (cache != "warm" && cache != "cold" && cache != "both") {
+    std::fprintf(stderr, "CACHE is warm, cold or both, not %s\n", argv[10]);
+    return 2;
+  }
   Options options;
+  options.cache = cache;
   options.triangles = triangles;
   options.closed = std::atoi(argv[2]) != 0;
   if (argc > 3) options.frames = std::atoi(argv[3]);
