@@ -20,11 +20,14 @@
 // by meridian: the VTK filter's users' sphere). The same surface is drawn either way. ORDER
 // both renders the two in one process, frame by frame in turn at the same views, and prints
 // each one's process CPU time a frame and their ratio (the measure that holds under load).
-// ORDER cold[=SWEEP_MB] renders vtkSphereSource's order after another frame or after a memory
-// sweep (64 MB by default), in turn, and prints each phase's median both ways (runColdWarm).
+// CACHE picks the caches' state at each frame's start: warm (the default: the previous frame
+// left them), cold (before each frame, outside the timed part, two threads write and read
+// 64 MB of their own, twice the VM's 32 MB L3, as a VTK frame between two Updates would) or
+// both (cold and warm frames in turn, which first alternating; each phase's median of either
+// kind and their difference printed: what the cold caches cost a phase).
 //
 //   build/bin/facet_phase_times TRIANGLES CLOSED [FRAMES] [THREADS] [TURN] [VERSION] [START]
-//                               [ARRAYS] [ORDER]
+//                               [ARRAYS] [ORDER] [CACHE]
 //   build/bin/facet_phase_times 500000 0 20 2
 //
 // It uses only the public API and the tests' sphere generator, so it also compiles against
@@ -40,6 +43,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "TurningView.h"
@@ -58,6 +62,51 @@ struct Phases {
     for (int i = 0; i < 6; ++i)
       seconds[i] = std::min(seconds[i], now[i]);
   }
+};
+
+// Each phase's times, every frame's, for medians.
+struct PhaseSamples {
+  std::vector<double> seconds[6];
+  void add(const RenderStats& s) {
+    const double now[6] = {s.validateSeconds, s.transformSeconds, s.setupSeconds,
+                           s.rasterSeconds,   s.shadeSeconds,     s.totalSeconds};
+    for (int i = 0; i < 6; ++i)
+      seconds[i].push_back(now[i]);
+  }
+  double median(int phase) const {
+    std::vector<double> v = seconds[phase];
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  }
+};
+
+// CACHE cold: two threads (the renderer's default thread count here) each write then read a
+// 64 MB buffer of their own, so that neither core's L2 nor the shared L3 holds the mesh, the
+// renderer's buffers or the framebuffer when the frame starts; not timed.
+class CacheEvictor {
+ public:
+  void evict() {
+    std::thread other([this] { sweep(buffers_[1]); });
+    sweep(buffers_[0]);
+    other.join();
+  }
+
+ private:
+  static constexpr std::size_t kWords = (std::size_t{64} << 20) / sizeof(std::uint64_t);
+  void sweep(std::vector<std::uint64_t>& buffer) {
+    if (buffer.empty()) buffer.resize(kWords);
+    ++pass_;
+    for (std::size_t i = 0; i < buffer.size(); i += 8)  // one write a 64-byte line
+      buffer[i] = pass_ + i;
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < buffer.size(); i += 8)
+      sum += buffer[i];
+    sink_ = sink_ + sum;
+  }
+  std::vector<std::uint64_t> buffers_[2];
+  std::uint64_t pass_ = 0;
+  volatile std::uint64_t sink_ = 0;
 };
 
 // FNV-1a over the last frame's color, depth and polygon-id bytes: two builds that must give
@@ -108,6 +157,7 @@ struct Options {
   std::uint64_t version = 1;
   double start = 0.0;
   std::string_view arrays = "f64";
+  std::string_view cache = "warm";
 };
 
 const char* nameOf(testing::UvSphereOrder order) {
@@ -144,6 +194,14 @@ struct SphereScene {
   }
 };
 
+// The process's CPU time, every thread's: it stops while the threads are descheduled, so the
+// ratio of two orders' sums holds under a shared machine's load where wall time does not.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 int run(const Options& o, testing::UvSphereOrder order) {
   SphereScene s(o, order);
   // The first frame: buffers grow, the versioned mesh is measured (the filter's first
@@ -151,10 +209,41 @@ int run(const Options& o, testing::UvSphereOrder order) {
   const RenderStats first = s.render();
   Phases best;
   RenderStats last;
+  CacheEvictor evictor;
+  Phases bestOf[2];            // CACHE both: [0] cold frames, [1] warm frames
+  PhaseSamples samples[2];     // every frame's phases, cold and warm (warm only unless CACHE)
+  std::vector<double> cpu[2];  // every frame's process CPU time, cold and warm
   for (int i = 0; i < o.frames; ++i) {
     s.turn(o.turn);
+    const bool cold = o.cache == "cold" || (o.cache == "both" && i % 2 == 0);
+    if (cold) evictor.evict();
+    const double before = processCpuSeconds();
     last = s.render();
+    cpu[cold ? 0 : 1].push_back(processCpuSeconds() - before);
     best.keepBest(last);
+    bestOf[cold ? 0 : 1].keepBest(last);
+    samples[cold ? 0 : 1].add(last);
+  }
+  static constexpr const char* kPhaseNames[6] = {"validate", "transform",     "setup",
+                                                 "raster",   "shade+resolve", "total"};
+  for (int kind = 0; kind < 2; ++kind) {
+    if (samples[kind].seconds[0].empty()) continue;
+    std::printf("%s frames (%zu), median ms:", kind == 0 ? "cold" : "warm",
+                samples[kind].seconds[0].size());
+    for (int p = 0; p < 6; ++p)
+      std::printf(" %s %.3f", kPhaseNames[p], samples[kind].median(p) * 1e3);
+    std::vector<double>& c = cpu[kind];
+    std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
+    std::printf("; CPU %.3f; best ms:", c[c.size() / 2] * 1e3);
+    for (int p = 0; p < 6; ++p)
+      std::printf(" %s %.3f", kPhaseNames[p], bestOf[kind].seconds[p] * 1e3);
+    std::printf("\n");
+  }
+  if (!samples[0].seconds[0].empty() && !samples[1].seconds[0].empty()) {
+    std::printf("cold - warm, medians, ms:");
+    for (int p = 0; p < 6; ++p)
+      std::printf(" %s %+.3f", kPhaseNames[p], (samples[0].median(p) - samples[1].median(p)) * 1e3);
+    std::printf("\n");
   }
   const double* t = best.seconds;
   std::printf(
@@ -171,14 +260,6 @@ int run(const Options& o, testing::UvSphereOrder order) {
   return 0;
 }
 
-// The process's CPU time, every thread's: it stops while the threads are descheduled, so the
-// ratio of two orders' sums holds under a shared machine's load where wall time does not.
-double processCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 // ORDER both: the two orders' spheres rendered in one process, frame by frame in turn (which
 // goes first alternates), at the same views; each frame's process CPU time summed per order.
 int runBothOrders(const Options& o) {
@@ -191,10 +272,13 @@ int runBothOrders(const Options& o) {
   double cpu[2] = {0.0, 0.0};
   Phases best[2];
   RenderStats last[2];
+  CacheEvictor evictor;
   for (int i = 0; i < o.frames; ++i) {
     for (int k = 0; k < 2; ++k) {
       const int side = (i + k) % 2;
       scenes[side]->turn(o.turn);
+      // CACHE cold or both: every frame cold here (both orders alike).
+      if (o.cache != "warm") evictor.evict();
       const double before = processCpuSeconds();
       last[side] = scenes[side]->render();
       cpu[side] += processCpuSeconds() - before;
@@ -216,51 +300,6 @@ int runBothOrders(const Options& o) {
   return 0;
 }
 
-// ORDER cold: vtkSphereSource's order, each frame after either another frame (warm) or a
-// SWEEP_MB memory sweep on the calling thread (cold: the last-level cache holds the sweep's
-// bytes, none of the frame's, as after VTK's llvmpipe frame in bench/peers.py's paired
-// frames), the two in turn; each phase's median wall time per side and the ratio cold / warm.
-int runColdWarm(const Options& o, std::size_t sweepBytes) {
-  SphereScene s(o, testing::UvSphereOrder::vtkSphereSource);
-  s.render();  // the first frame: buffers grow, the mesh is measured
-  std::vector<std::uint64_t> sweep(sweepBytes / sizeof(std::uint64_t), 1);
-  std::vector<double> times[2][6];
-  std::uint64_t sink = 0;
-  for (int i = 0; i < o.frames; ++i) {
-    for (int k = 0; k < 2; ++k) {
-      const int cold = (i + k) % 2;
-      if (cold) {
-        for (std::uint64_t& v : sweep) sink += v++;  // read and write every line
-      } else {
-        s.turn(o.turn);
-        s.render();
-      }
-      s.turn(o.turn);
-      const RenderStats r = s.render();
-      const double now[6] = {r.validateSeconds, r.transformSeconds, r.setupSeconds,
-                             r.rasterSeconds,   r.shadeSeconds,     r.totalSeconds};
-      for (int p = 0; p < 6; ++p) times[cold][p].push_back(now[p]);
-    }
-  }
-  const auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  static constexpr const char* kNames[6] = {"validate", "transform", "setup",
-                                            "raster",   "shade",     "total"};
-  std::printf("%d triangles, closed %d, %d threads, turn %g, order vtk, %d frames each, after a "
-              "frame (warm) or a %zu MB sweep (cold), median ms (sweep sum %llu):\n",
-              o.triangles, int(o.closed), o.threads, o.turn, o.frames, sweepBytes >> 20,
-              static_cast<unsigned long long>(sink & 0xff));
-  for (int p = 0; p < 6; ++p) {
-    const double warm = median(times[0][p]), cold = median(times[1][p]);
-    std::printf("  %-9s warm %7.3f cold %7.3f cold/warm %.3f\n", kNames[p], warm * 1e3,
-                cold * 1e3, warm > 0 ? cold / warm : 0.0);
-  }
-  std::printf("planes %016llx\n", static_cast<unsigned long long>(fingerprint(s.framebuffer)));
-  return 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -271,7 +310,7 @@ int main(int argc, char** argv) {
         "usage: %s TRIANGLES(>= 18, e.g. 20000, 500000, 2000000) CLOSED(0|1) [FRAMES] "
         "[THREADS] [TURN degrees per frame, default %g] [VERSION, default 1; 0: unversioned] "
         "[START degrees turned before the first frame, default 0] [ARRAYS f64|d64|f32|d32] "
-        "[ORDER ring|vtk|both]\n",
+        "[ORDER ring|vtk|both] [CACHE warm|cold|both]\n",
         argv[0], bench::kTurnDegreesPerFrame);
     return 2;
   }
@@ -281,11 +320,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string_view order = argc > 9 ? argv[9] : "ring";
-  if (order != "ring" && order != "vtk" && order != "both" && order.substr(0, 4) != "cold") {
-    std::fprintf(stderr, "ORDER is ring, vtk, both or cold[=SWEEP_MB], not %s\n", argv[9]);
+  if (order != "ring" && order != "vtk" && order != "both") {
+    std::fprintf(stderr, "ORDER is ring, vtk or both, not %s\n", argv[9]);
+    return 2;
+  }
+  const std::string_view cache = argc > 10 ? argv[10] : "warm";
+  if (cache != "warm" && cache != "cold" && cache != "both") {
+    std::fprintf(stderr, "CACHE is warm, cold or both, not %s\n", argv[10]);
     return 2;
   }
   Options options;
+  options.cache = cache;
   options.triangles = triangles;
   options.closed = std::atoi(argv[2]) != 0;
   if (argc > 3) options.frames = std::atoi(argv[3]);
@@ -295,10 +340,6 @@ int main(int argc, char** argv) {
   if (argc > 7) options.start = std::atof(argv[7]);
   options.arrays = arrays;
   if (order == "both") return runBothOrders(options);
-  if (order.substr(0, 4) == "cold") {
-    const int megabytes = order.size() > 5 ? std::atoi(order.data() + 5) : 64;
-    return runColdWarm(options, static_cast<std::size_t>(std::max(megabytes, 1)) << 20);
-  }
   return run(options, order == "vtk" ? testing::UvSphereOrder::vtkSphereSource
                                      : testing::UvSphereOrder::ringByRing);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
@@ -118,6 +119,8 @@ class PolygonSetup {
   // is read once.
   void load(std::size_t first, int count, TriangleBatch& batch, int lane) const {
     const auto* offsets = polygons_.offsets + first;
+    prefetchAhead<1>(offsets);
+    prefetchAhead<3>(polygons_.connectivity + static_cast<std::size_t>(offsets[0]));
     auto begin = static_cast<std::size_t>(offsets[0]);
     for (int k = 0; k < count; ++k) {
       const auto end = static_cast<std::size_t>(offsets[k + 1]);
@@ -129,6 +132,21 @@ class PolygonSetup {
       }
       begin = end;
     }
+  }
+
+  // The entries of a batch's polygons (kPerPolygon each) kPrefetchPolygons polygons past
+  // `at`, asked for now: the loader reads the offsets and connectivity in order, from memory
+  // after a frame that evicted them (section 52). A fixed count of lines, unrolled: a load of
+  // fewer polygons asks for lines the next one would (harmless). Addresses as integers: they
+  // may lie past the array's end, where a prefetch does not fault.
+  template <int kPerPolygon, class Index>
+  static void prefetchAhead(const Index* at) {
+    constexpr std::size_t kPrefetchPolygons = 64;
+    constexpr std::size_t kBytes = kBatchSize * kPerPolygon * sizeof(Index);
+    const std::uintptr_t from =
+        reinterpret_cast<std::uintptr_t>(at) + kPrefetchPolygons * kPerPolygon * sizeof(Index);
+    for (std::size_t line = 0; line < kBytes; line += 64)
+      __builtin_prefetch(reinterpret_cast<const void*>(from + line));
   }
 
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the

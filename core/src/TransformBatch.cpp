@@ -11,6 +11,7 @@
 // project(), its non-finite clip point makes it an outside vertex with kNonFinite.
 
 #include <bit>
+#include <cstdint>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "TransformBatch.cpp"
@@ -160,8 +161,22 @@ std::uint32_t projectTyped(const FrameTransform& transform, const Scalar* xyz, s
     vertices[i] = transform.project(point);
     any |= vertices[i].outcode;
   };
+  // The points and vertices kPrefetchBytes ahead, asked for a lane group at a time (one line
+  // of each at least every 64 bytes read or written): a run of needed points starts cold after
+  // a frame that evicted them, before the hardware's stream prefetcher has seen it. Addresses
+  // as integers: they may lie past the arrays' ends, where a prefetch does not fault.
+  constexpr std::uintptr_t kPrefetchBytes = 1024;
+  const std::uintptr_t pointBytes = 3 * sizeof(Scalar) * lanes;
+  const std::uintptr_t vertexBytes = sizeof(WindowVertex) * lanes;
+  std::uintptr_t pointAhead = reinterpret_cast<std::uintptr_t>(xyz) + kPrefetchBytes;
+  std::uintptr_t vertexAhead = reinterpret_cast<std::uintptr_t>(vertices) + kPrefetchBytes;
   std::size_t i = 0;
   for (; i + lanes <= count; i += lanes) {
+    for (std::uintptr_t b = 0; b < pointBytes; b += 64)
+      __builtin_prefetch(reinterpret_cast<const void*>(pointAhead + b));
+    for (std::uintptr_t b = 0; b < vertexBytes; b += 64)
+      __builtin_prefetch(reinterpret_cast<const void*>(vertexAhead + b), 1);
+    pointAhead += pointBytes, vertexAhead += vertexBytes;
     V relative[3];
     loadPoints(d, xyz, i, relative);
     for (int c = 0; c < 3; ++c)
