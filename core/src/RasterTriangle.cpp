@@ -323,9 +323,9 @@ struct BoxRaster {
   // (paintTriangleRefiningEverySample, the tests' reference for it).
   template <DepthMode kMode, bool kRefine, bool kClamp, bool kRefineEverySample = false>
   [[gnu::always_inline]] void paintRows(const WindowVertex& a, const WindowVertex& b,
-                                        const WindowVertex& c, std::int64_t area,
-                                        EdgeMask boundary, std::int32_t polygonId,
-                                        const Planes& planes, PaintCounts& counts) {
+                                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                        std::int32_t polygonId, const Planes& planes,
+                                        PaintCounts& counts) {
     const double keyPerPixel = depth.perPixelX();
     // refine()'s test on the biased values themselves (refine() unrolled: the samples surely
     // inside every edge, nearly all, take keyInside; the others keyNearEdge, out of line): the
@@ -740,13 +740,11 @@ void paintTriangleRefiningEverySample(const WindowVertex& a, const WindowVertex&
   }
   BoxRaster raster(a, b, c, area, boundary, box);
   if (boundary == 0) {
-    raster.paintRows<kMode, false, false, true>(a, b, c, area, boundary, polygonId, planes,
-                                                counts);
+    raster.paintRows<kMode, false, false, true>(a, b, c, area, boundary, polygonId, planes, counts);
   } else if (boundary == kClampedEdges) {
     raster.paintRows<kMode, true, true, true>(a, b, c, area, boundary, polygonId, planes, counts);
   } else {
-    raster.paintRows<kMode, true, false, true>(a, b, c, area, boundary, polygonId, planes,
-                                               counts);
+    raster.paintRows<kMode, true, false, true>(a, b, c, area, boundary, polygonId, planes, counts);
   }
 }
 
@@ -869,9 +867,11 @@ template void paintTriangle<DepthMode::Test, false>(const WindowVertex&, const W
 template void paintTriangle<DepthMode::Test, true>(const WindowVertex&, const WindowVertex&,
                                                    const WindowVertex&, EdgeMask, std::int32_t,
                                                    const PixelBounds&, const Planes&, PaintCounts&);
-template void paintTriangleRefiningEverySample<DepthMode::Test>(
-    const WindowVertex&, const WindowVertex&, const WindowVertex&, EdgeMask, std::int32_t,
-    const PixelBounds&, const Planes&, PaintCounts&);
+template void paintTriangleRefiningEverySample<DepthMode::Test>(const WindowVertex&,
+                                                                const WindowVertex&,
+                                                                const WindowVertex&, EdgeMask,
+                                                                std::int32_t, const PixelBounds&,
+                                                                const Planes&, PaintCounts&);
 template void paintTriangleRefiningEverySample<DepthMode::Overwrite>(
     const WindowVertex&, const WindowVertex&, const WindowVertex&, EdgeMask, std::int32_t,
     const PixelBounds&, const Planes&, PaintCounts&);
