@@ -176,18 +176,19 @@ TEST_F(Resolve, BackgroundOnlyTilesTakeTheBackgroundAndNoOtherTileDoes) {
 }
 
 // An id plane whose last byte ends a page and the page after it unreadable: a read past its
-// last row faults.
+// last row faults. With `before`, its first byte begins a page and the page before it is
+// unreadable: a read before its first row faults.
 class GuardedIds {
  public:
-  explicit GuardedIds(const std::vector<std::int32_t>& ids) {
+  explicit GuardedIds(const std::vector<std::int32_t>& ids, bool before = false) {
     const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
     const std::size_t bytes = ids.size() * sizeof(std::int32_t);
     mapped_ = (bytes + page - 1) / page * page + page;
     base_ = mmap(nullptr, mapped_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (base_ == MAP_FAILED) throw std::bad_alloc();
-    char* guard = static_cast<char*>(base_) + mapped_ - page;
+    char* guard = static_cast<char*>(base_) + (before ? 0 : mapped_ - page);
     mprotect(guard, page, PROT_NONE);
-    ids_ = reinterpret_cast<std::int32_t*>(guard - bytes);
+    ids_ = reinterpret_cast<std::int32_t*>(before ? guard + page : guard - bytes);
     std::memcpy(ids_, ids.data(), bytes);
   }
   GuardedIds(const GuardedIds&) = delete;
@@ -221,7 +222,8 @@ std::vector<detail::EstimateSums> estimateOfImage(const std::vector<Rgba8>& colo
 // While coloring a row the resolve reads the next row's ids (their colors fetched a row
 // ahead) and fetches the row after it, within its task (with the estimate, also the row
 // below the task, which the estimate reads): at the image's last rows it reads nothing past
-// the plane (a page no one may read follows it), for last tasks of 1, 3 and 10 rows (8 + 2:
+// the plane (a page no one may read follows it), nor before its first row (a
+// page no one may read before it), for last tasks of 1, 3 and 10 rows (8 + 2:
 // read ahead across its steps), an image of one row, widths no multiple of a vector, with
 // the tiles and without, colors stored plainly and streamed (1031 x 1025), the estimate off
 // and on (its bands of 32 rows, each row's covered span found as it is colored), on every
@@ -241,9 +243,12 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
                                       std::pair{29, 1}, std::pair{1031, 1025}}) {
     const detail::TileGrid grid(width, height);
     std::vector<std::int32_t> plainIds = randomPlanes(width, height, 500, 3).ids;
-    // The last row shows polygons everywhere: its tiles are covered, its ids all read.
+    // The first and last rows show polygons everywhere: their tiles are covered, their ids
+    // all read.
+    std::fill(plainIds.begin(), plainIds.begin() + width, 23);
     std::fill(plainIds.end() - width, plainIds.end(), 17);
-    const GuardedIds ids(plainIds);
+    for (const bool guardBefore : {false, true}) {
+    const GuardedIds ids(plainIds, guardBefore);
     std::vector<detail::PaintCounts> tiles(grid.count());
     for (std::size_t t = 0; t < grid.count(); ++t) {
       const detail::PixelBounds bounds = grid.bounds(t);
@@ -296,10 +301,11 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
             }
             EXPECT_EQ(differing + differingRows, 0u)
                 << width << " x " << height << ", " << threads << " threads, tiles " << withTiles
-                << ", estimate " << estimating;
+                << ", estimate " << estimating << ", guard before " << guardBefore;
           }
         }
       }
+    }
     }
   }
 }
