@@ -57,7 +57,7 @@ double median(std::vector<double> values) {
 
 enum class Side { Both, Off, On };
 
-int threadCount = 2;                    // --threads
+int threadCount = 2;                        // --threads
 int imageWidth = 1920, imageHeight = 1080;  // --size
 
 // Per frame, the wall seconds of the render's phases and of the QualityRenderer around it.

@@ -338,7 +338,10 @@ constexpr int kRowsPerColoringTask = 16;
 // estimated right after (ResolvedBandEstimate). A band also finds the fields of the row either
 // side of it, with the colors gathered again by polygon id (another task's rows): 2 rows a
 // band, 3.5 times a band row's cost each at 500k; a sixteenth of the rows at 32, a quarter at
-// 8. 64 was no faster (bench/estimate-cost.md).
+// 8. 64 was no faster (bench/estimate-cost.md). Its rows are read a row ahead as without the
+// estimate, and the row below it too (its colors prefetched while the band's last is
+// colored: NeighbourFieldsById ~-65 % on-CPU at 500k); the row above it prefetched while its
+// first is colored paid nothing (bench/core-frame-issue11.md section 51).
 constexpr int kRowsPerEstimatingTask = 32;
 // A band lies in one row of tiles (ResolveContext::tiles).
 static_assert(TileGrid::kTileSize % kRowsPerTask == 0 &&

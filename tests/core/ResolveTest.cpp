@@ -222,13 +222,13 @@ std::vector<detail::EstimateSums> estimateOfImage(const std::vector<Rgba8>& colo
 // While coloring a row the resolve reads the next row's ids (their colors fetched a row
 // ahead) and fetches the row after it, within its task (with the estimate, also the row
 // below the task, which the estimate reads): at the image's last rows it reads nothing past
-// the plane (a page no one may read follows it), nor before its first row (a
-// page no one may read before it), for last tasks of 1, 3 and 10 rows (8 + 2:
-// read ahead across its steps), an image of one row, widths no multiple of a vector, with
-// the tiles and without, colors stored plainly and streamed (1031 x 1025), the estimate off
-// and on (its bands of 32 rows, each row's covered span found as it is colored), on every
-// instruction set, 1 and 2 threads; and every pixel is its polygon's color or the
-// background's, and every row's estimate the pass over the finished image's.
+// the plane (a page no one may read follows it), nor before its first row (a page no one may
+// read before it), for last tasks of 1, 3 and 10 rows (8 + 2: read ahead across its steps),
+// an image of one row, widths no multiple of a vector, with the tiles and without, colors
+// stored plainly and streamed (1031 x 1025), the estimate off and on (its bands of 32 rows,
+// each row's covered span found as it is colored), on every instruction set, 1 and 2
+// threads; and every pixel is its polygon's color or the background's, and every row's
+// estimate the pass over the finished image's.
 TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
   static_assert(1031 * 1025 * sizeof(Rgba8) >= detail::kStreamedColorBytes);
   std::vector<Rgba8> colors(500);
@@ -248,64 +248,64 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
     std::fill(plainIds.begin(), plainIds.begin() + width, 23);
     std::fill(plainIds.end() - width, plainIds.end(), 17);
     for (const bool guardBefore : {false, true}) {
-    const GuardedIds ids(plainIds, guardBefore);
-    std::vector<detail::PaintCounts> tiles(grid.count());
-    for (std::size_t t = 0; t < grid.count(); ++t) {
-      const detail::PixelBounds bounds = grid.bounds(t);
-      for (int y = bounds.y0; y <= bounds.y1; ++y) {
-        for (int x = bounds.x0; x <= bounds.x1; ++x)
-          tiles[t].covered += plainIds[static_cast<std::size_t>(y) * width + x] >= 0;
+      const GuardedIds ids(plainIds, guardBefore);
+      std::vector<detail::PaintCounts> tiles(grid.count());
+      for (std::size_t t = 0; t < grid.count(); ++t) {
+        const detail::PixelBounds bounds = grid.bounds(t);
+        for (int y = bounds.y0; y <= bounds.y1; ++y) {
+          for (int x = bounds.x0; x <= bounds.x1; ++x)
+            tiles[t].covered += plainIds[static_cast<std::size_t>(y) * width + x] >= 0;
+        }
       }
-    }
-    std::vector<Rgba8> expectedColor(plainIds.size());
-    for (std::size_t i = 0; i < plainIds.size(); ++i)
-      expectedColor[i] = plainIds[i] < 0 ? background : colors[plainIds[i]];
-    const std::vector<detail::EstimateSums> expectedEstimate =
-        estimateOfImage(expectedColor, ids.data(), fixedBounds.data(), width, height);
-    for (const detail::SimdTarget& target : detail::simdTargets()) {
-      SCOPED_TRACE(target.name);
-      detail::useSimdTarget(target.bits);
-      for (const int threads : {1, 2}) {
-        for (const bool withTiles : {false, true}) {
-          for (const bool estimating : {false, true}) {
-            detail::ThreadPool pool(threads);
-            std::vector<Rgba8> color(plainIds.size(), Rgba8{1, 2, 3, 4});
-            detail::ResolveContext context{colors.data(), background, color.data(), ids.data(),
-                                           width};
-            if (withTiles) context.tiles = tiles.data();
-            detail::EstimateHook hook;
-            std::vector<detail::EstimateSums> estimate(static_cast<std::size_t>(height));
-            if (estimating) {
-              hook.fixedBounds = fixedBounds.data();
-              hook.height = height;
-              hook.rows = estimate.data();
-              context.estimate = &hook;
-            }
-            detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
-            ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
-            std::size_t differing = 0;
-            for (std::size_t i = 0; i < plainIds.size(); ++i) {
-              if (!(color[i] == expectedColor[i]) && ++differing <= 5)
-                ADD_FAILURE() << "pixel " << i << ", id " << plainIds[i];
-            }
-            std::size_t differingRows = 0;
-            for (std::size_t y = 0; estimating && y < estimate.size(); ++y) {
-              const detail::EstimateSums &found = estimate[y], &expected = expectedEstimate[y];
-              if ((found.squares != expected.squares || found.largest != expected.largest ||
-                   found.covered != expected.covered) &&
-                  ++differingRows <= 5) {
-                ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest
-                              << " " << found.covered << ", expected " << expected.squares << " "
-                              << expected.largest << " " << expected.covered;
+      std::vector<Rgba8> expectedColor(plainIds.size());
+      for (std::size_t i = 0; i < plainIds.size(); ++i)
+        expectedColor[i] = plainIds[i] < 0 ? background : colors[plainIds[i]];
+      const std::vector<detail::EstimateSums> expectedEstimate =
+          estimateOfImage(expectedColor, ids.data(), fixedBounds.data(), width, height);
+      for (const detail::SimdTarget& target : detail::simdTargets()) {
+        SCOPED_TRACE(target.name);
+        detail::useSimdTarget(target.bits);
+        for (const int threads : {1, 2}) {
+          for (const bool withTiles : {false, true}) {
+            for (const bool estimating : {false, true}) {
+              detail::ThreadPool pool(threads);
+              std::vector<Rgba8> color(plainIds.size(), Rgba8{1, 2, 3, 4});
+              detail::ResolveContext context{colors.data(), background, color.data(), ids.data(),
+                                             width};
+              if (withTiles) context.tiles = tiles.data();
+              detail::EstimateHook hook;
+              std::vector<detail::EstimateSums> estimate(static_cast<std::size_t>(height));
+              if (estimating) {
+                hook.fixedBounds = fixedBounds.data();
+                hook.height = height;
+                hook.rows = estimate.data();
+                context.estimate = &hook;
               }
+              detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
+              ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
+              std::size_t differing = 0;
+              for (std::size_t i = 0; i < plainIds.size(); ++i) {
+                if (!(color[i] == expectedColor[i]) && ++differing <= 5)
+                  ADD_FAILURE() << "pixel " << i << ", id " << plainIds[i];
+              }
+              std::size_t differingRows = 0;
+              for (std::size_t y = 0; estimating && y < estimate.size(); ++y) {
+                const detail::EstimateSums &found = estimate[y], &expected = expectedEstimate[y];
+                if ((found.squares != expected.squares || found.largest != expected.largest ||
+                     found.covered != expected.covered) &&
+                    ++differingRows <= 5) {
+                  ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest
+                                << " " << found.covered << ", expected " << expected.squares << " "
+                                << expected.largest << " " << expected.covered;
+                }
+              }
+              EXPECT_EQ(differing + differingRows, 0u)
+                  << width << " x " << height << ", " << threads << " threads, tiles " << withTiles
+                  << ", estimate " << estimating << ", guard before " << guardBefore;
             }
-            EXPECT_EQ(differing + differingRows, 0u)
-                << width << " x " << height << ", " << threads << " threads, tiles " << withTiles
-                << ", estimate " << estimating << ", guard before " << guardBefore;
           }
         }
       }
-    }
     }
   }
 }
