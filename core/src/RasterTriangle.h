@@ -358,7 +358,7 @@ inline float toDepthKey(double key) {
 // row's four stepped keys made when its first sample comes (the same additions in the same
 // order as stepping to each sample). Row by row, the loop per row and the stepping loop per
 // sample were branches whose counts the mask decides: their mispredictions were about half of
-// the closed 500k frame's paintTile (bench/core-frame-issue11.md, section 53). paintTriangle's
+// the closed 500k frame's paintTile (bench/core-frame-issue11.md, section 56). paintTriangle's
 // small-box path keeps the row loop: its triangles are few at 500k, and its 20k frame (boxes
 // with refine) ran ~1 % slower by bits.
 template <DepthMode kMode, bool kByBits = false, class RowKey, class Refine>
