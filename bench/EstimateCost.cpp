@@ -5,7 +5,7 @@
 // the moment weighs on both alike; CPU time of the process (CLOCK_PROCESS_CPUTIME_ID).
 //
 //   facet_estimate_cost [segments...] [--frames N] [--rounds R] [--phases] [--only off|on]
-//                       [--per-pixel] [--headlight]
+//                       [--per-pixel] [--headlight] [--threads T] [--size W H]
 //
 // Per sphere (segments around; ~2·segments² triangles: 500 → 500k, 1000 → 2M) and round:
 // the median CPU of a frame off and on and the ratio, the estimate's own wall time outside the
@@ -24,6 +24,8 @@
 // summary-only one (QualityRenderer.cpp, estimateSummary): its cost and figures to compare.
 // --headlight: the light is the filter's default, vtkRenderer's headlight (not positional: a
 // DirectionalLight from the eye to the focal point), in place of the point light at the eye.
+// --threads T: the renderers' thread count (2 by default; 1 for per-phase on-CPU profiles).
+// --size W H: the image's size (1920 × 1080 by default; 3840 2160: the filter's 4K frames).
 
 #include <algorithm>
 #include <chrono>
@@ -54,6 +56,9 @@ double median(std::vector<double> values) {
 }
 
 enum class Side { Both, Off, On };
+
+int threadCount = 2;                        // --threads
+int imageWidth = 1920, imageHeight = 1080;  // --size
 
 // Per frame, the wall seconds of the render's phases and of the QualityRenderer around it.
 struct PhaseSeconds {
@@ -107,10 +112,10 @@ void measure(int segments, int frames, int round, Side side, bool phases, bool p
   scene.lights.ambient.intensity = 0.0;
 
   Renderer plainRenderer, estimatingRenderer;
-  plainRenderer.setThreadCount(2);
-  estimatingRenderer.setThreadCount(2);
+  plainRenderer.setThreadCount(threadCount);
+  estimatingRenderer.setThreadCount(threadCount);
   QualityRenderer plain(plainRenderer), estimating(estimatingRenderer);
-  Framebuffer plainImage(1920, 1080), estimatingImage(1920, 1080);
+  Framebuffer plainImage(imageWidth, imageHeight), estimatingImage(imageWidth, imageHeight);
   QualitySettings off, on;
   on.estimateError = true;
   on.errorEstimateImage = perPixel;  // off: the filter's default, the summary in field data
@@ -174,6 +179,11 @@ int main(int argc, char** argv) {
       badSide = which != "off" && which != "on";
     } else if (arg == "--frames" && i + 1 < argc) {
       frames = std::atoi(argv[++i]);
+    } else if (arg == "--threads" && i + 1 < argc) {
+      threadCount = std::atoi(argv[++i]);
+    } else if (arg == "--size" && i + 2 < argc) {
+      imageWidth = std::atoi(argv[++i]);
+      imageHeight = std::atoi(argv[++i]);
     } else if (arg == "--rounds" && i + 1 < argc) {
       rounds = std::atoi(argv[++i]);
     } else {
@@ -181,12 +191,13 @@ int main(int argc, char** argv) {
     }
   }
   if (sizes.empty()) sizes = {500, 1000};
-  if (frames < 1 || rounds < 1 || badSide ||
+  if (frames < 1 || rounds < 1 || threadCount < 1 || imageWidth < 1 || imageHeight < 1 || badSide ||
       std::any_of(sizes.begin(), sizes.end(), [](int s) { return s < 3; })) {
     std::fprintf(
         stderr,
         "usage: facet_estimate_cost [segments >= 3 ...] [--frames N] [--rounds R]\n"
-        "                           [--phases] [--only off|on] [--per-pixel] [--headlight]\n");
+        "                           [--phases] [--only off|on] [--per-pixel] [--headlight]\n"
+        "                           [--threads T] [--size W H]\n");
     return 2;
   }
   std::printf(

@@ -185,6 +185,16 @@ class TriangleDepth {
     }
     return keyAt(sampleX, sampleY, snapped);
   }
+  // refine()'s test in the walker's terms: the least biased value (Edge::value, `biased` as
+  // Edge's) of edge k's function at which a sample is surely inside it (kNever: always).
+  std::int64_t sureInsideBiased(int k, bool biased) const {
+    return sureInside_[k] == kNever ? kNever : sureInside_[k] - (biased ? 1 : 0);
+  }
+  // refine()'s key for a sample surely inside every edge.
+  template <bool kClamp>
+  double keyInside(double key) const {
+    return kClamp ? std::min(key, nearest_) : key;
+  }
 
  private:
   static constexpr double kFinePerGrid2 = double{kResidueScale} * kResidueScale;
@@ -207,6 +217,20 @@ class TriangleDepth {
   double x0_ = 0.0, y0_ = 0.0, perX_ = 0.0, perY_ = 0.0;
   std::int64_t sureInside_[3] = {kNever, kNever, kNever};  // diagonals: always
 };
+
+// TriangleDepth::refine()'s key for a sample near a boundary edge (one refine() does not give
+// the stepped key), given its snapped edge values (unbiased): keyAt of the triangle's depth,
+// set up again. Out of line and from the vertices, so that the walker's loop over the samples
+// far from the edges keeps its registers and its TriangleDepth stays out of memory (a member
+// function called there costs every triangle the object's stores, the closed path's too).
+[[gnu::noinline]] double keyNearEdge(const WindowVertex& a, const WindowVertex& b,
+                                     const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                     std::int64_t sampleX, std::int64_t sampleY,
+                                     std::int64_t snapped0, std::int64_t snapped1,
+                                     std::int64_t snapped2) {
+  const std::int64_t snapped[3] = {snapped0, snapped1, snapped2};
+  return TriangleDepth(a, b, c, area, boundary).keyAt(sampleX, sampleY, snapped);
+}
 
 // Most triangles of a dense mesh have a single sample in their bounding box: test it
 // exactly, skipping the edge walker's set-up. Same coverage decision (the same biased edge
@@ -277,25 +301,40 @@ struct BoxRaster {
   // The depth key is affine in window x, y. It is stepped in double and rounded to float
   // once per fragment: stepping in float would add a rounding per pixel, enough to tie
   // surfaces 1e-6 apart.
+  // (a, b, c and area: the triangle's, as given to the constructor, for keyNearEdge.)
   template <DepthMode kMode>
-  [[gnu::always_inline]] void paint(std::int32_t polygonId, const Planes& planes,
+  [[gnu::always_inline]] void paint(const WindowVertex& a, const WindowVertex& b,
+                                    const WindowVertex& c, std::int64_t area,
+                                    std::int32_t polygonId, const Planes& planes,
                                     PaintCounts& counts, EdgeMask boundary) {
     // No polygon-boundary edge (every triangle of a mesh whose back faces are skipped): the
     // stepped key is every sample's (refine() would return it), so no refining per pixel.
     // A clamped triangle (kClampedEdges, a back face with the depth test) clamps each refined
     // key; the others pay nothing for it.
     if (boundary == 0) {
-      paintRows<kMode, false, false>(polygonId, planes, counts);
+      paintRows<kMode, false, false>(a, b, c, area, boundary, polygonId, planes, counts);
     } else if (boundary == kClampedEdges) {
-      paintRows<kMode, true, true>(polygonId, planes, counts);
+      paintRows<kMode, true, true>(a, b, c, area, boundary, polygonId, planes, counts);
     } else {
-      paintRows<kMode, true, false>(polygonId, planes, counts);
+      paintRows<kMode, true, false>(a, b, c, area, boundary, polygonId, planes, counts);
     }
   }
-  template <DepthMode kMode, bool kRefine, bool kClamp>
-  [[gnu::always_inline]] void paintRows(std::int32_t polygonId, const Planes& planes,
+  // kRefineEverySample: refine() asked for every covered sample, as before the unrolled test
+  // (paintTriangleRefiningEverySample, the tests' reference for it).
+  template <DepthMode kMode, bool kRefine, bool kClamp, bool kRefineEverySample = false>
+  [[gnu::always_inline]] void paintRows(const WindowVertex& a, const WindowVertex& b,
+                                        const WindowVertex& c, std::int64_t area, EdgeMask boundary,
+                                        std::int32_t polygonId, const Planes& planes,
                                         PaintCounts& counts) {
     const double keyPerPixel = depth.perPixelX();
+    // refine()'s test on the biased values themselves (refine() unrolled: the samples surely
+    // inside every edge, nearly all, take keyInside; the others keyNearEdge, out of line): the
+    // same keys as refine(). At 20k triangles, every face drawn, refine() inlined here cost the
+    // front faces ~26 instructions a covered sample (and every triangle the TriangleDepth's
+    // stores, the closed path's too, when keyNearEdge was a member function).
+    const std::int64_t sure0 = kRefine ? depth.sureInsideBiased(0, e0.biased) : 0;
+    const std::int64_t sure1 = kRefine ? depth.sureInsideBiased(1, e1.biased) : 0;
+    const std::int64_t sure2 = kRefine ? depth.sureInsideBiased(2, e2.biased) : 0;
     for (int y = box.y0; y <= box.y1; ++y) {
       std::int64_t w0 = e0.value, w1 = e1.value, w2 = e2.value;
       const std::int64_t rowY = sampleY + std::int64_t{y - box.y0} * kSubpixelScale;
@@ -304,10 +343,18 @@ struct BoxRaster {
       for (int x = box.x0; x <= box.x1; ++x) {
         if ((w0 | w1 | w2) >= 0) {
           double refined = key;
-          if constexpr (kRefine) {
+          if constexpr (kRefine && kRefineEverySample) {
             const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
             const std::int64_t snapped[3] = {e0.unbiased(w0), e1.unbiased(w1), e2.unbiased(w2)};
             refined = depth.refine<kClamp>(key, columnX, rowY, snapped);
+          } else if constexpr (kRefine) {
+            if (w0 >= sure0 && w1 >= sure1 && w2 >= sure2) [[likely]] {
+              refined = depth.keyInside<kClamp>(key);
+            } else {
+              const std::int64_t columnX = sampleX + std::int64_t{x - box.x0} * kSubpixelScale;
+              refined = keyNearEdge(a, b, c, area, boundary, columnX, rowY, e0.unbiased(w0),
+                                    e1.unbiased(w1), e2.unbiased(w2));
+            }
           }
           writeFragment<kMode>(row + x, toDepthKey(refined), polygonId, planes, counts);
         }
@@ -548,7 +595,7 @@ template <DepthMode kMode, bool kRejectHidden>
     return;
   }
   BoxRaster raster(a, b, c, area, boundary, box);
-  raster.paint<kMode>(polygonId, planes, counts, boundary);
+  raster.paint<kMode>(a, b, c, area, polygonId, planes, counts, boundary);
 }
 
 }  // namespace
@@ -678,6 +725,29 @@ void paintTriangleWalkingBox(const WindowVertex& a, const WindowVertex& b, const
   paintTriangleThrough<kMode, false, false>(a, b, c, boundary, polygonId, tile, planes, counts);
 }
 
+template <DepthMode kMode>
+void paintTriangleRefiningEverySample(const WindowVertex& a, const WindowVertex& b,
+                                      const WindowVertex& c, EdgeMask boundary,
+                                      std::int32_t polygonId, const PixelBounds& tile,
+                                      const Planes& planes, PaintCounts& counts) {
+  const std::int64_t area = doubleSignedArea(a, b, c);
+  FACET_ASSERT(area > 0);
+  const PixelBounds box = samplesInGridBox(gridBoxOf(a, b, c), tile);
+  if (box.empty()) return;
+  if (box.x0 == box.x1 && box.y0 == box.y1) {
+    paintSingleSample<kMode>(a, b, c, area, boundary, box.x0, box.y0, polygonId, planes, counts);
+    return;
+  }
+  BoxRaster raster(a, b, c, area, boundary, box);
+  if (boundary == 0) {
+    raster.paintRows<kMode, false, false, true>(a, b, c, area, boundary, polygonId, planes, counts);
+  } else if (boundary == kClampedEdges) {
+    raster.paintRows<kMode, true, true, true>(a, b, c, area, boundary, polygonId, planes, counts);
+  } else {
+    raster.paintRows<kMode, true, false, true>(a, b, c, area, boundary, polygonId, planes, counts);
+  }
+}
+
 void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,
                                     const WindowVertex& c, EdgeMask boundary,
                                     std::int32_t polygonId, const PixelBounds& tile,
@@ -688,7 +758,8 @@ void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b
     paintTriangle<DepthMode::Test>(a, b, c, boundary, polygonId, tile, planes, counts);
     return;
   }
-  BoxRaster raster(a, b, c, doubleSignedArea(a, b, c), boundary, box);
+  const std::int64_t area = doubleSignedArea(a, b, c);
+  BoxRaster raster(a, b, c, area, boundary, box);
   double lowest, highest;
   raster.depth.keyRange(a, b, c, std::max(box.x1 - box.x0, box.y1 - box.y0) + 1, lowest, highest);
   if (coarse.hides(box, floatAbove(highest))) {
@@ -697,7 +768,7 @@ void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b
   }
   coarse.raise(box, floatBelow(lowest),
                [&](const PixelBounds& pixels) { return raster.coverage(pixels); });
-  raster.paint<DepthMode::Test>(polygonId, planes, counts, boundary);
+  raster.paint<DepthMode::Test>(a, b, c, area, polygonId, planes, counts, boundary);
 }
 
 // Each block's least key, over the tile's pixels only (the planes beyond an image-edge tile's
@@ -796,6 +867,14 @@ template void paintTriangle<DepthMode::Test, false>(const WindowVertex&, const W
 template void paintTriangle<DepthMode::Test, true>(const WindowVertex&, const WindowVertex&,
                                                    const WindowVertex&, EdgeMask, std::int32_t,
                                                    const PixelBounds&, const Planes&, PaintCounts&);
+template void paintTriangleRefiningEverySample<DepthMode::Test>(const WindowVertex&,
+                                                                const WindowVertex&,
+                                                                const WindowVertex&, EdgeMask,
+                                                                std::int32_t, const PixelBounds&,
+                                                                const Planes&, PaintCounts&);
+template void paintTriangleRefiningEverySample<DepthMode::Overwrite>(
+    const WindowVertex&, const WindowVertex&, const WindowVertex&, EdgeMask, std::int32_t,
+    const PixelBounds&, const Planes&, PaintCounts&);
 template void paintTriangleWalkingBox<DepthMode::Test>(const WindowVertex&, const WindowVertex&,
                                                        const WindowVertex&, EdgeMask, std::int32_t,
                                                        const PixelBounds&, const Planes&,

@@ -450,6 +450,16 @@ void paintTriangleWalkingBox(const WindowVertex& a, const WindowVertex& b, const
                              EdgeMask boundary, std::int32_t polygonId, const PixelBounds& tile,
                              const Planes& planes, PaintCounts& counts);
 
+// The box walk (no small-box path) with TriangleDepth::refine() asked for every covered
+// sample of a triangle with polygon-boundary edges, as the walk did before it tested the
+// samples' edge values against refine()'s bounds itself (core-frame-issue11.md §51): the
+// tests' reference for that test. The same pixels, keys and counts as paintTriangle.
+template <DepthMode kMode>
+void paintTriangleRefiningEverySample(const WindowVertex& a, const WindowVertex& b,
+                                      const WindowVertex& c, EdgeMask boundary,
+                                      std::int32_t polygonId, const PixelBounds& tile,
+                                      const Planes& planes, PaintCounts& counts);
+
 // The same with the depth test and the tile's coarse depth (Rule::HiddenGeometry): a
 // triangle of a few samples is painted as above (its per-pixel test costs no more); a larger
 // one is skipped when the coarse depth hides it (counts.hidden), else painted and the coarse

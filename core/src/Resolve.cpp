@@ -52,14 +52,34 @@ struct DepthConstants {
   hn::Vec<D> offset, scale;
 };
 
+// What colorRow tells its caller of the groups it colors: nothing (NoSpan), or where the
+// groups not all background lie (CoveredGroups), from the test for the background that the
+// colors take anyway.
+struct NoSpan {
+  void seen(const std::int32_t*, const std::int32_t*) {}
+};
+// The ids [first, last) from the first to the last group (or single pixel) not all
+// background a row's colorRow calls saw, null when none; colorRowFindingSpan narrows them to
+// the covered pixels.
+struct CoveredGroups {
+  const std::int32_t* first = nullptr;
+  const std::int32_t* last = nullptr;
+  void seen(const std::int32_t* begin, const std::int32_t* end) {
+    if (!first) first = begin;
+    last = end;  // the groups come in the row's order
+  }
+};
+
 // The colors of pixels [x, x + lanes) of a row, lanes of DC.
+template <class Span>
 HWY_INLINE hn::Vec<DCU> colorGroup(const std::uint32_t* colors, hn::Vec<DCU> backgroundColor,
-                                   const std::int32_t* ids) {
+                                   const std::int32_t* ids, Span& span) {
   const DC di;
   const DCU du;
   const hn::Vec<DC> id = hn::LoadU(di, ids);
   const hn::Mask<DC> background = id < hn::Zero(di);
   if (hn::AllTrue(di, background)) return backgroundColor;
+  span.seen(ids, ids + hn::Lanes(di));
   const hn::Vec<DCU> shown = hn::GatherIndex(du, colors, hn::IfThenZeroElse(background, id));
   return hn::IfThenElse(hn::RebindMask(du, background), backgroundColor, shown);
 }
@@ -115,19 +135,28 @@ struct RowsBelow {
   }
 };
 
-// One row's colors, `count` pixels from `ids` to `color` (kStream: storeRow's).
-template <bool kStream>
+// One row's colors, `count` pixels from `ids` to `color` (kStream: storeRow's), the groups
+// not all background told to `span`.
+template <bool kStream, class Span = NoSpan>
 HWY_INLINE void colorRow(const std::uint32_t* colors, std::uint32_t background,
                          const std::int32_t* ids, std::uint32_t* color, std::size_t count,
-                         const RowsBelow& below) {
+                         const RowsBelow& below, Span&& span = NoSpan{}) {
   const DCU du;
   const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
   storeRow<kStream>(
-      du, color, count, [&](std::size_t x) { color[x] = ids[x] < 0 ? background : colors[ids[x]]; },
+      du, color, count,
+      [&](std::size_t x) {
+        if (ids[x] < 0) {
+          color[x] = background;
+        } else {
+          color[x] = colors[ids[x]];
+          span.seen(ids + x, ids + x + 1);
+        }
+      },
       [&](std::size_t x) {
         if (below.next) prefetchColors(colors, below.next + x);
         if (below.afterNext) hwy::Prefetch(below.afterNext + x);
-        return colorGroup(colors, backgroundColor, ids + x);
+        return colorGroup(colors, backgroundColor, ids + x, span);
       });
 }
 
@@ -149,12 +178,12 @@ HWY_INLINE bool backgroundTile(const PaintCounts* tileRow, std::size_t x) {
 // colorRow, pixels [x0, x0 + count) of a row (ids and color from x0) in runs of whole tiles of
 // `tileRow`: a run of tiles showing only the background is written by backgroundRow, its ids
 // not read (they stream through the caches for nothing, most of a frame around a small
-// object); every other run by colorRow.
-template <bool kStream>
+// object); every other run by colorRow, telling `span` its groups.
+template <bool kStream, class Span = NoSpan>
 HWY_INLINE void colorRowByTiles(const std::uint32_t* colors, std::uint32_t background,
                                 const std::int32_t* ids, std::uint32_t* color, std::size_t x0,
                                 std::size_t count, const PaintCounts* tileRow,
-                                const RowsBelow& below) {
+                                const RowsBelow& below, Span&& span = NoSpan{}) {
   constexpr auto kTile = static_cast<std::size_t>(TileGrid::kTileSize);
   const std::size_t end = x0 + count;
   for (std::size_t x = x0; x < end;) {
@@ -167,55 +196,43 @@ HWY_INLINE void colorRowByTiles(const std::uint32_t* colors, std::uint32_t backg
       backgroundRow<kStream>(background, color + (x - x0), runEnd - x);
     } else {
       colorRow<kStream>(colors, background, ids + (x - x0), color + (x - x0), runEnd - x,
-                        below.from(x - x0));
+                        below.from(x - x0), span);
     }
     x = runEnd;
   }
 }
 
-// colorRow<false>, also finding the span [first, last) of the row's covered pixels
-// (coveredSpan's, EstimateRows.h; {count, count} when none) from the test of each vector for
-// the background that the colors take anyway: the estimate's pass does not read the row's ids
-// again for it.
+// colorRow<false> (colorRowByTiles<false> given a tile row: the background's tiles' ids
+// unread, as without the estimate), also finding the span [first, last) of the row's covered
+// pixels (coveredSpan's, EstimateRows.h; {count, count} when none) from the groups colorRow
+// saw not all background (CoveredGroups): the estimate's pass does not read the row's ids
+// again for it. The same read-ahead as colorRow's (RowsBelow).
 HWY_INLINE std::array<int, 2> colorRowFindingSpan(const std::uint32_t* colors,
                                                   std::uint32_t background, const std::int32_t* ids,
-                                                  std::uint32_t* color, std::size_t count) {
-  const DC di;
-  const DCU du;
-  const std::size_t lanes = hn::Lanes(du);
-  const hn::Vec<DCU> backgroundColor = hn::Set(du, background);
-  std::size_t first = count, last = 0;  // within the first and the last vector not background
-  std::size_t x = 0;
-  for (; x + lanes <= count; x += lanes) {
-    const hn::Vec<DC> id = hn::LoadU(di, ids + x);
-    const hn::Mask<DC> none = id < hn::Zero(di);
-    if (hn::AllTrue(di, none)) {
-      hn::StoreU(backgroundColor, du, color + x);
-      continue;
-    }
-    if (first == count) first = x;
-    last = x + lanes;
-    const hn::Vec<DCU> shown = hn::GatherIndex(du, colors, hn::IfThenZeroElse(none, id));
-    hn::StoreU(hn::IfThenElse(hn::RebindMask(du, none), backgroundColor, shown), du, color + x);
+                                                  std::uint32_t* color, std::size_t x0,
+                                                  std::size_t count, const PaintCounts* tileRow,
+                                                  const RowsBelow& below) {
+  CoveredGroups groups;
+  if (tileRow) {
+    colorRowByTiles<false>(colors, background, ids, color, x0, count, tileRow, below, groups);
+  } else {
+    colorRow<false>(colors, background, ids, color, count, below, groups);
   }
-  for (; x < count; ++x) {
-    color[x] = ids[x] < 0 ? background : colors[ids[x]];
-    if (ids[x] < 0) continue;
-    if (first == count) first = x;
-    last = x + 1;
-  }
-  while (first < last && ids[first] < 0)
-    ++first;
-  while (last > first && ids[last - 1] < 0)
-    --last;
   const int end = static_cast<int>(count);
-  return first < last ? std::array<int, 2>{static_cast<int>(first), static_cast<int>(last)}
-                      : std::array<int, 2>{end, end};
+  if (!groups.first) return {end, end};
+  // Narrowed within the first and the last group to their first and last covered pixel.
+  const std::int32_t* first = groups.first;
+  const std::int32_t* last = groups.last;
+  while (*first < 0)
+    ++first;
+  while (last[-1] < 0)
+    --last;
+  return {static_cast<int>(first - ids), static_cast<int>(last - ids)};
 }
 
 // The colors of a band of rows within one row of tiles, `tileRow` its tiles' counts (null:
-// every id read); rows through `lastRowAhead` (the task's, in the same row of tiles) are read
-// ahead (RowsBelow).
+// every id read); rows through `lastRowAhead` (the task's, in the same row of tiles; with the
+// estimate also the row below the task, which it reads) are read ahead (RowsBelow).
 void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, bool stream,
                    std::array<int, 2>* spans, const PaintCounts* tileRow, int lastRowAhead) {
   const auto* colors = reinterpret_cast<const std::uint32_t*>(context.colors);
@@ -229,8 +246,9 @@ void ResolveColors(const ResolveContext& context, const PixelBounds& pixels, boo
     const std::size_t rowStep = static_cast<std::size_t>(context.width);
     const RowsBelow below{y < lastRowAhead ? ids + rowStep : nullptr,
                           y + 1 < lastRowAhead ? ids + 2 * rowStep : nullptr};
-    if (spans) {
-      spans[y - pixels.y0] = colorRowFindingSpan(colors, background, ids, color, width);
+    if (spans) {  // the estimate's rows: stored plainly, to be read back from the caches
+      spans[y - pixels.y0] =
+          colorRowFindingSpan(colors, background, ids, color, x0, width, tileRow, below);
     } else if (tileRow && stream) {
       colorRowByTiles<true>(colors, background, ids, color, x0, width, tileRow, below);
     } else if (tileRow) {
@@ -320,7 +338,10 @@ constexpr int kRowsPerColoringTask = 16;
 // estimated right after (ResolvedBandEstimate). A band also finds the fields of the row either
 // side of it, with the colors gathered again by polygon id (another task's rows): 2 rows a
 // band, 3.5 times a band row's cost each at 500k; a sixteenth of the rows at 32, a quarter at
-// 8. 64 was no faster (bench/estimate-cost.md).
+// 8. 64 was no faster (bench/estimate-cost.md). Its rows are read a row ahead as without the
+// estimate, and the row below it too (its colors prefetched while the band's last is
+// colored: NeighbourFieldsById ~-65 % on-CPU at 500k); the row above it prefetched while its
+// first is colored paid nothing (bench/core-frame-issue11.md section 54).
 constexpr int kRowsPerEstimatingTask = 32;
 // A band lies in one row of tiles (ResolveContext::tiles).
 static_assert(TileGrid::kTileSize % kRowsPerTask == 0 &&
@@ -375,6 +396,9 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
   return runner.run(Phase::Resolve, static_cast<std::size_t>(bands), [&](std::size_t b) {
     const int y0 = viewport.y0 + static_cast<int>(b) * rowsPerTask;
     const int y1 = std::min(viewport.y1, y0 + rowsPerTask - 1);
+    // The rows read ahead: the task's; with the estimate also the row below it, which the
+    // estimate reads next (by id: its colors gathered again, its ids from memory).
+    const int lastRowAhead = estimatesRows ? std::min(y1 + 1, context.estimate->height - 1) : y1;
     std::optional<ResolvedBandEstimate> estimate;
     if (estimatesRows) {
       estimate.emplace(*context.estimate, context.colors, context.color, context.polygonId,
@@ -390,7 +414,7 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
                                               static_cast<std::size_t>(grid.tilesX())
                         : nullptr;
       HWY_DYNAMIC_DISPATCH(ResolveColors)
-      (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans, tileRow, y1);
+      (context, {viewport.x0, s0, viewport.x1, s1}, stream, spans, tileRow, lastRowAhead);
       if (estimate) estimate->resolvedThrough(s1);
       if (context.resolvedRows) {
         const auto [shownX0, shownX1] = tileRow && wholeRows

@@ -36,7 +36,8 @@ struct ResolveContext {
   // The raster's counts of the frame's tiles (TileGrid order), or null. A tile with no pixel
   // covered (PaintCounts::covered, counted from its final ids) shows only the background: its
   // colors are written without its ids read (416 of the 510 tiles of the 500k closed sphere),
-  // but by a band the estimate reads (it finds each row's covered span from the ids).
+  // with the estimate too (each row's covered span, which it reads, is found within the
+  // covered tiles' columns as they are colored).
   const PaintCounts* tiles = nullptr;
 };
 

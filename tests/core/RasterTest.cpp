@@ -202,6 +202,85 @@ TEST(Raster, SmallMaskPaintsTheSteppedKeysOfEveryMaskByBits) {
 // The shown flags are the polygons of the final image: the far squares of a stack listed far
 // to near each win every pixel they cover and lose all of them to the next; only the nearest
 // is shown, and exactly the ids in the image are flagged, for any thread count.
+// The box walk's own test of the samples surely inside a triangle's polygon-boundary edges
+// (BoxRaster::paintRows: the samples' biased edge values against TriangleDepth::refine()'s
+// bounds, the samples near an edge keyed out of line) against refine() asked for every
+// covered sample (paintTriangleRefiningEverySample): a random stream of triangles up to 20
+// pixels across, most boxes walked (residues, steep and flat depth planes, slivers, each
+// polygon-boundary mask and the clamped back faces' kClampedEdges), in runs of 100. The same
+// keys, ids and counts, with and without the depth test, and with the reject of hidden
+// triangles too. Many covered samples lie within refine()'s bound of an edge (the vertices on
+// the 1/256-pixel grid, the samples on its half pixels): the out-of-line keys are compared.
+template <detail::DepthMode kMode>
+void compareWalkRefiningEverySample(unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 10 * 256),
+      residue(-127, 127), polygon(0, 99), kind(0, 9), mask(0, 8);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
+  const PixelBounds tile{8, 4, 27, 23};
+  Painted walked, reference, rejecting;
+  std::size_t painted = 0, slivers = 0, boundaries = 0, differing = 0;
+  for (int t = 0; t < 20000; ++t) {
+    WindowVertex v[3];
+    const bool sliver = kind(random) == 0;
+    const int cx = corner(random), cy = corner(random), size = spread(random);
+    const float base = key(random);
+    for (WindowVertex& c : v) {
+      c.x = cx + std::uniform_int_distribution<int>(-size, size)(random);
+      c.y = cy + std::uniform_int_distribution<int>(-size, size)(random);
+      c.residueX = static_cast<std::int8_t>(residue(random));
+      c.residueY = static_cast<std::int8_t>(residue(random));
+      c.depth = base + (t % 3 ? steep(random) : steep(random) * 1e-4f);
+    }
+    if (sliver) {  // one corner far away: a long thin triangle across the tile
+      v[0].x = cx + (t % 2 ? 60 : -60) * 256;
+      v[0].y = cy + (t % 4 < 2 ? 45 : -45) * 256;
+    }
+    const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
+    if (area == 0) continue;
+    if (area < 0) std::swap(v[1], v[2]);
+    const std::int32_t id = polygon(random);
+    const int m = mask(random);
+    const auto boundary = static_cast<detail::EdgeMask>(m == 8 ? detail::kClampedEdges : m);
+    detail::paintTriangle<kMode>(v[0], v[1], v[2], boundary, id, tile, walked.planes.planes(),
+                                 walked.counts);
+    detail::paintTriangleRefiningEverySample<kMode>(v[0], v[1], v[2], boundary, id, tile,
+                                                    reference.planes.planes(), reference.counts);
+    if constexpr (kMode == detail::DepthMode::Test) {
+      detail::paintTriangle<kMode, true>(v[0], v[1], v[2], boundary, id, tile,
+                                         rejecting.planes.planes(), rejecting.counts);
+    }
+    ++painted;
+    slivers += sliver;
+    boundaries += boundary != 0;
+    if (t % 100 == 99) {
+      differing += differingKeysOrIds(walked.planes, reference.planes);
+      if (kMode == detail::DepthMode::Test)
+        differing += differingKeysOrIds(rejecting.planes, reference.planes);
+      walked.planes = reference.planes = rejecting.planes = Planes32{};
+    }
+  }
+  EXPECT_GT(painted, 15000u);
+  EXPECT_GT(slivers, 1500u);
+  EXPECT_GT(boundaries, 12000u);
+  EXPECT_GT(reference.counts.written, 80000u);
+  EXPECT_EQ(walked.counts.written, reference.counts.written);
+  EXPECT_EQ(walked.counts.covered, reference.counts.covered);
+  if (kMode == detail::DepthMode::Test) {
+    EXPECT_EQ(rejecting.counts.written, reference.counts.written);
+    EXPECT_EQ(rejecting.counts.covered, reference.counts.covered);
+  }
+  EXPECT_EQ(differing, 0u);
+}
+
+TEST(Raster, BoxWalkKeysTheSamplesNearBoundaryEdgesAsRefineDoesWithTheDepthTest) {
+  compareWalkRefiningEverySample<detail::DepthMode::Test>(5);
+}
+
+TEST(Raster, BoxWalkKeysTheSamplesNearBoundaryEdgesAsRefineDoesInPaintersOrder) {
+  compareWalkRefiningEverySample<detail::DepthMode::Overwrite>(6);
+}
+
 TEST(Raster, ShownPolygonsAreThoseOfTheFinalImage) {
   const Mesh stack = makeStackedSquares(4, 6, false);
   const Scene scene = oneMeshScene(stack.view());

@@ -20,6 +20,8 @@
 #include <gtest/gtest.h>
 
 #include "../support/EveryTargetTest.h"
+#include "EstimateHook.h"
+#include "EstimateRows.h"
 #include "FrameTransform.h"
 #include "PhaseRunner.h"
 #include "RasterTriangle.h"
@@ -174,18 +176,19 @@ TEST_F(Resolve, BackgroundOnlyTilesTakeTheBackgroundAndNoOtherTileDoes) {
 }
 
 // An id plane whose last byte ends a page and the page after it unreadable: a read past its
-// last row faults.
+// last row faults. With `before`, its first byte begins a page and the page before it is
+// unreadable: a read before its first row faults.
 class GuardedIds {
  public:
-  explicit GuardedIds(const std::vector<std::int32_t>& ids) {
+  explicit GuardedIds(const std::vector<std::int32_t>& ids, bool before = false) {
     const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
     const std::size_t bytes = ids.size() * sizeof(std::int32_t);
     mapped_ = (bytes + page - 1) / page * page + page;
     base_ = mmap(nullptr, mapped_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (base_ == MAP_FAILED) throw std::bad_alloc();
-    char* guard = static_cast<char*>(base_) + mapped_ - page;
+    char* guard = static_cast<char*>(base_) + (before ? 0 : mapped_ - page);
     mprotect(guard, page, PROT_NONE);
-    ids_ = reinterpret_cast<std::int32_t*>(guard - bytes);
+    ids_ = reinterpret_cast<std::int32_t*>(before ? guard + page : guard - bytes);
     std::memcpy(ids_, ids.data(), bytes);
   }
   GuardedIds(const GuardedIds&) = delete;
@@ -199,56 +202,108 @@ class GuardedIds {
   std::int32_t* ids_ = nullptr;
 };
 
+// The estimate's sums per row (EstimateRows.h) as the pass over the finished image finds them
+// (QualityRenderer's at one sample per pixel): what the resolve's fused estimate must give.
+std::vector<detail::EstimateSums> estimateOfImage(const std::vector<Rgba8>& color,
+                                                  const std::int32_t* ids,
+                                                  const detail::EstimateBound* fixedBounds,
+                                                  int width, int height) {
+  detail::EstimateSpace space;
+  space.resize(width, 1);
+  const detail::EstimateGrid grid{ids, color.data(), fixedBounds, nullptr, width, height};
+  std::vector<detail::EstimateSums> rows(static_cast<std::size_t>(height));
+  for (int r = 0; r <= height; ++r) {
+    if (r < height) space.findMaxima(grid, r);
+    if (r >= 1) rows[static_cast<std::size_t>(r - 1)] = space.sampleSums(grid, r - 1);
+  }
+  return rows;
+}
+
 // While coloring a row the resolve reads the next row's ids (their colors fetched a row
-// ahead) and fetches the row after it, within its task: at the image's last rows it reads
-// nothing past the plane (a page no one may read follows it), for last tasks of 1, 3 and 10
-// rows (8 + 2: read ahead across its steps), an image of one row, widths no multiple of a
-// vector, with the tiles and without, colors stored plainly and streamed (1031 x 1025), on
-// every instruction set, 1 and 2 threads; and every pixel is its polygon's color or the
-// background's.
+// ahead) and fetches the row after it, within its task (with the estimate, also the row
+// below the task, which the estimate reads): at the image's last rows it reads nothing past
+// the plane (a page no one may read follows it), nor before its first row (a page no one may
+// read before it), for last tasks of 1, 3 and 10 rows (8 + 2: read ahead across its steps),
+// an image of one row, widths no multiple of a vector, with the tiles and without, colors
+// stored plainly and streamed (1031 x 1025), the estimate off and on (its bands of 32 rows,
+// each row's covered span found as it is colored), on every instruction set, 1 and 2
+// threads; and every pixel is its polygon's color or the background's, and every row's
+// estimate the pass over the finished image's.
 TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
   static_assert(1031 * 1025 * sizeof(Rgba8) >= detail::kStreamedColorBytes);
   std::vector<Rgba8> colors(500);
-  for (std::size_t i = 0; i < colors.size(); ++i)
+  std::vector<detail::EstimateBound> fixedBounds(colors.size());  // an even count
+  for (std::size_t i = 0; i < colors.size(); ++i) {
     colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
+    fixedBounds[i] = detail::fixedBoundOf(0.37f * static_cast<float>(i % 11));
+  }
   const Rgba8 background{9, 8, 7, 0};
   const detail::PhaseRunner::ProgressCallback noProgress;
   for (const auto& [width, height] : {std::pair{131, 65}, std::pair{200, 74}, std::pair{67, 3},
                                       std::pair{29, 1}, std::pair{1031, 1025}}) {
     const detail::TileGrid grid(width, height);
     std::vector<std::int32_t> plainIds = randomPlanes(width, height, 500, 3).ids;
-    // The last row shows polygons everywhere: its tiles are covered, its ids all read.
+    // The first and last rows show polygons everywhere: their tiles are covered, their ids
+    // all read.
+    std::fill(plainIds.begin(), plainIds.begin() + width, 23);
     std::fill(plainIds.end() - width, plainIds.end(), 17);
-    const GuardedIds ids(plainIds);
-    std::vector<detail::PaintCounts> tiles(grid.count());
-    for (std::size_t t = 0; t < grid.count(); ++t) {
-      const detail::PixelBounds bounds = grid.bounds(t);
-      for (int y = bounds.y0; y <= bounds.y1; ++y) {
-        for (int x = bounds.x0; x <= bounds.x1; ++x)
-          tiles[t].covered += plainIds[static_cast<std::size_t>(y) * width + x] >= 0;
+    for (const bool guardBefore : {false, true}) {
+      const GuardedIds ids(plainIds, guardBefore);
+      std::vector<detail::PaintCounts> tiles(grid.count());
+      for (std::size_t t = 0; t < grid.count(); ++t) {
+        const detail::PixelBounds bounds = grid.bounds(t);
+        for (int y = bounds.y0; y <= bounds.y1; ++y) {
+          for (int x = bounds.x0; x <= bounds.x1; ++x)
+            tiles[t].covered += plainIds[static_cast<std::size_t>(y) * width + x] >= 0;
+        }
       }
-    }
-    for (const detail::SimdTarget& target : detail::simdTargets()) {
-      SCOPED_TRACE(target.name);
-      detail::useSimdTarget(target.bits);
-      for (const int threads : {1, 2}) {
-        for (const bool withTiles : {false, true}) {
-          detail::ThreadPool pool(threads);
-          std::vector<Rgba8> color(plainIds.size(), Rgba8{1, 2, 3, 4});
-          detail::ResolveContext context{colors.data(), background, color.data(), ids.data(),
-                                         width};
-          if (withTiles) context.tiles = tiles.data();
-          detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
-          ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
-          std::size_t differing = 0;
-          for (std::size_t i = 0; i < plainIds.size(); ++i) {
-            const std::int32_t id = plainIds[i];
-            const Rgba8 expected = id < 0 ? background : colors[id];
-            if (!(color[i] == expected) && ++differing <= 5)
-              ADD_FAILURE() << "pixel " << i << ", id " << id;
+      std::vector<Rgba8> expectedColor(plainIds.size());
+      for (std::size_t i = 0; i < plainIds.size(); ++i)
+        expectedColor[i] = plainIds[i] < 0 ? background : colors[plainIds[i]];
+      const std::vector<detail::EstimateSums> expectedEstimate =
+          estimateOfImage(expectedColor, ids.data(), fixedBounds.data(), width, height);
+      for (const detail::SimdTarget& target : detail::simdTargets()) {
+        SCOPED_TRACE(target.name);
+        detail::useSimdTarget(target.bits);
+        for (const int threads : {1, 2}) {
+          for (const bool withTiles : {false, true}) {
+            for (const bool estimating : {false, true}) {
+              detail::ThreadPool pool(threads);
+              std::vector<Rgba8> color(plainIds.size(), Rgba8{1, 2, 3, 4});
+              detail::ResolveContext context{colors.data(), background, color.data(), ids.data(),
+                                             width};
+              if (withTiles) context.tiles = tiles.data();
+              detail::EstimateHook hook;
+              std::vector<detail::EstimateSums> estimate(static_cast<std::size_t>(height));
+              if (estimating) {
+                hook.fixedBounds = fixedBounds.data();
+                hook.height = height;
+                hook.rows = estimate.data();
+                context.estimate = &hook;
+              }
+              detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
+              ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
+              std::size_t differing = 0;
+              for (std::size_t i = 0; i < plainIds.size(); ++i) {
+                if (!(color[i] == expectedColor[i]) && ++differing <= 5)
+                  ADD_FAILURE() << "pixel " << i << ", id " << plainIds[i];
+              }
+              std::size_t differingRows = 0;
+              for (std::size_t y = 0; estimating && y < estimate.size(); ++y) {
+                const detail::EstimateSums &found = estimate[y], &expected = expectedEstimate[y];
+                if ((found.squares != expected.squares || found.largest != expected.largest ||
+                     found.covered != expected.covered) &&
+                    ++differingRows <= 5) {
+                  ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest
+                                << " " << found.covered << ", expected " << expected.squares << " "
+                                << expected.largest << " " << expected.covered;
+                }
+              }
+              EXPECT_EQ(differing + differingRows, 0u)
+                  << width << " x " << height << ", " << threads << " threads, tiles " << withTiles
+                  << ", estimate " << estimating << ", guard before " << guardBefore;
+            }
           }
-          EXPECT_EQ(differing, 0u)
-              << width << " x " << height << ", " << threads << " threads, tiles " << withTiles;
         }
       }
     }
