@@ -199,9 +199,6 @@ TEST(Raster, SmallMaskPaintsTheSteppedKeysOfEveryMaskByBits) {
   compareSmallMaskWithStepping<true>();
 }
 
-// The shown flags are the polygons of the final image: the far squares of a stack listed far
-// to near each win every pixel they cover and lose all of them to the next; only the nearest
-// is shown, and exactly the ids in the image are flagged, for any thread count.
 // The box walk's own test of the samples surely inside a triangle's polygon-boundary edges
 // (BoxRaster::paintRows: the samples' biased edge values against TriangleDepth::refine()'s
 // bounds, the samples near an edge keyed out of line) against refine() asked for every
@@ -281,6 +278,9 @@ TEST(Raster, BoxWalkKeysTheSamplesNearBoundaryEdgesAsRefineDoesInPaintersOrder) 
   compareWalkRefiningEverySample<detail::DepthMode::Overwrite>(6);
 }
 
+// The shown flags are the polygons of the final image: the far squares of a stack listed far
+// to near each win every pixel they cover and lose all of them to the next; only the nearest
+// is shown, and exactly the ids in the image are flagged, for any thread count.
 TEST(Raster, ShownPolygonsAreThoseOfTheFinalImage) {
   const Mesh stack = makeStackedSquares(4, 6, false);
   const Scene scene = oneMeshScene(stack.view());
