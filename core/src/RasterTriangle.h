@@ -354,12 +354,39 @@ inline float toDepthKey(double key) {
 // Writes the samples of a small box's coverage `mask` whose first pixel is (x0, y0): row y's
 // key starts at rowKey(y) and steps by keyPerPixel sample by sample, as BoxRaster::paintRows
 // steps it; refine(key, x, y) gives a covered sample's (x, y from the box's first).
-template <DepthMode kMode, class RowKey, class Refine>
+// kByBits (the SmallTriangle records, paintSmallTriangle): one loop over the mask's bits, a
+// row's four stepped keys made when its first sample comes (the same additions in the same
+// order as stepping to each sample). Row by row, the loop per row and the stepping loop per
+// sample were branches whose counts the mask decides: their mispredictions were about half of
+// the closed 500k frame's paintTile (bench/core-frame-issue11.md, section 57). paintTriangle's
+// small-box path keeps the row loop: its triangles are few at 500k, and its 20k frame (boxes
+// with refine) ran ~1 % slower by bits.
+template <DepthMode kMode, bool kByBits = false, class RowKey, class Refine>
 [[gnu::always_inline]] inline void paintSmallMask(std::uint32_t mask, int x0, int y0,
                                                   double keyPerPixel, const RowKey& rowKey,
                                                   const Refine& refine, std::int32_t polygonId,
                                                   const Planes& planes, PaintCounts& counts) {
   constexpr std::uint32_t kRow = (1u << kSmallSide) - 1;
+  if constexpr (kByBits) {
+    static_assert(kSmallSide == 4);
+    double keys[kSmallSide];
+    int keysRow = -1;
+    std::size_t row = 0;
+    for (; mask != 0; mask &= mask - 1) {
+      const int bit = std::countr_zero(mask);
+      const int y = bit / kSmallSide, x = bit % kSmallSide;
+      if (y != keysRow) {
+        keysRow = y;
+        keys[0] = rowKey(y);
+        keys[1] = keys[0] + keyPerPixel;
+        keys[2] = keys[1] + keyPerPixel;
+        keys[3] = keys[2] + keyPerPixel;
+        row = static_cast<std::size_t>(y0 + y) * planes.width + x0;
+      }
+      writeFragment<kMode>(row + x, toDepthKey(refine(keys[x], x, y)), polygonId, planes, counts);
+    }
+    return;
+  }
   for (int y = 0; mask != 0; ++y, mask >>= kSmallSide) {
     if ((mask & kRow) == 0) continue;
     double key = rowKey(y);
@@ -387,8 +414,8 @@ template <DepthMode kMode>
     return t.firstKey + t.keyPerFine * static_cast<double>(t.firstRowFine + y * kFinePerRow);
   };
   const auto sameKey = [](double key, int, int) { return key; };
-  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon, planes,
-                        counts);
+  paintSmallMask<kMode, true>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, sameKey, t.polygon,
+                              planes, counts);
 }
 
 // The same with every key clamped to `nearestKey` (nearestWrittenKey: a back bin's record keeps
@@ -402,8 +429,8 @@ template <DepthMode kMode>
   const auto clampedKey = [nearest = static_cast<double>(nearestKey)](double key, int, int) {
     return std::min(key, nearest);
   };
-  paintSmallMask<kMode>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, clampedKey, t.polygon,
-                        planes, counts);
+  paintSmallMask<kMode, true>(t.coverage, t.x0, t.y0, t.keyPerPixel, rowKey, clampedKey, t.polygon,
+                              planes, counts);
 }
 
 // The SmallTriangle of a counter-clockwise triangle over its samples in `tile`, as the set-up's

@@ -142,9 +142,63 @@ TEST(Raster, SmallBoxPathPaintsWhatTheBoxWalkPaintsInPaintersOrder) {
   compareSmallBoxPath<detail::DepthMode::Overwrite>(5);
 }
 
-// The shown flags are the polygons of the final image: the far squares of a stack listed far
-// to near each win every pixel they cover and lose all of them to the next; only the nearest
-// is shown, and exactly the ids in the image are flagged, for any thread count.
+// paintSmallMask, row by row (paintTriangle's small-box path) and by bits (the small records:
+// one loop over the mask's bits, each row's four keys made at once), against stepping the key
+// sample by sample along each row, as BoxRaster::paintRows does: every coverage mask of a
+// 4 × 4 box, keys whose steps round (a key per pixel that is no power of two, rows far apart),
+// in both modes: the same key bits, ids and counts.
+template <bool kByBits>
+void compareSmallMaskWithStepping() {
+  using Planes8 = SquarePlanes<8>;
+  constexpr int kX0 = 3, kY0 = 2;
+  const double keyPerPixel = 0.1 + 1e-9, firstKey = 1234.567;
+  const auto rowKey = [&](int y) { return firstKey + 0.3 * static_cast<double>(y * 77 + 5); };
+  // The key's low 20 bits as the written key, exact in a float: a step rounded otherwise than
+  // stepping rounds it shows (the float key of the double would hide most).
+  const auto lowBits = [](double key, int, int) {
+    return static_cast<double>(std::bit_cast<std::uint64_t>(key) & 0xfffffu);
+  };
+  std::size_t differing = 0;
+  for (std::uint32_t mask = 0; mask < (1u << 16); ++mask) {
+    Planes8 painted, stepped;
+    detail::PaintCounts counts;
+    if (mask % 2 == 0) {
+      detail::paintSmallMask<detail::DepthMode::Overwrite, kByBits>(
+          mask, kX0, kY0, keyPerPixel, rowKey, lowBits, 7, painted.planes(), counts);
+    } else {
+      detail::paintSmallMask<detail::DepthMode::Test, kByBits>(
+          mask, kX0, kY0, keyPerPixel, rowKey, lowBits, 7, painted.planes(), counts);
+    }
+    std::size_t written = 0;
+    for (int y = 0; y < detail::kSmallSide; ++y) {
+      double key = rowKey(y);
+      for (int x = 0; x < detail::kSmallSide; ++x, key += keyPerPixel) {
+        if ((mask >> (y * detail::kSmallSide + x) & 1u) == 0) continue;
+        const std::size_t i = static_cast<std::size_t>(kY0 + y) * Planes8::kSide + kX0 + x;
+        stepped.depth[i] = detail::toDepthKey(lowBits(key, x, y));
+        stepped.ids[i] = 7;
+        ++written;
+      }
+    }
+    EXPECT_EQ(counts.written, written) << "mask " << mask;
+    for (std::size_t i = 0; i < stepped.depth.size(); ++i) {
+      if (painted.ids[i] != stepped.ids[i] || std::bit_cast<std::uint32_t>(painted.depth[i]) !=
+                                                  std::bit_cast<std::uint32_t>(stepped.depth[i])) {
+        if (++differing <= 5) ADD_FAILURE() << "mask " << mask << ", pixel " << i;
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0u);
+}
+
+TEST(Raster, SmallMaskPaintsTheSteppedKeysOfEveryMaskRowByRow) {
+  compareSmallMaskWithStepping<false>();
+}
+
+TEST(Raster, SmallMaskPaintsTheSteppedKeysOfEveryMaskByBits) {
+  compareSmallMaskWithStepping<true>();
+}
+
 // The box walk's own test of the samples surely inside a triangle's polygon-boundary edges
 // (BoxRaster::paintRows: the samples' biased edge values against TriangleDepth::refine()'s
 // bounds, the samples near an edge keyed out of line) against refine() asked for every
@@ -224,6 +278,9 @@ TEST(Raster, BoxWalkKeysTheSamplesNearBoundaryEdgesAsRefineDoesInPaintersOrder) 
   compareWalkRefiningEverySample<detail::DepthMode::Overwrite>(6);
 }
 
+// The shown flags are the polygons of the final image: the far squares of a stack listed far
+// to near each win every pixel they cover and lose all of them to the next; only the nearest
+// is shown, and exactly the ids in the image are flagged, for any thread count.
 TEST(Raster, ShownPolygonsAreThoseOfTheFinalImage) {
   const Mesh stack = makeStackedSquares(4, 6, false);
   const Scene scene = oneMeshScene(stack.view());
