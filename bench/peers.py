@@ -173,9 +173,10 @@ def paired_ratios(args, update_timer):
     """({(triangles, name): [ratio per frame]}, {(triangles, column): [seconds per frame]}):
     VTK 1x (at 500k and 2M), Update closed and Update every face rendered in turn, frame after
     frame, the filters turning once around. --paired-order rotate (the default) starts each
-    frame with the next of the three, so that each follows each other as often (a frame right
-    after VTK's finds none of its bytes in cache: bench/core-frame-issue11.md, section 51);
-    fixed keeps the order VTK, closed, every face of the runs before it."""
+    frame with the next of the three (V C E | C E V | E V C: closed follows VTK's frame in two
+    frames of three, every face in one, neither always; a frame right after VTK's finds none
+    of its bytes in cache, ~3 % slower: bench/core-frame-issue11.md, section 51); fixed keeps
+    the order VTK, closed, every face of the runs before it."""
     ratios, seconds = {}, {}
     turn = 360.0 / args.paired_frames
     for triangles in args.sizes:

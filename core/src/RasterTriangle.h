@@ -452,7 +452,7 @@ void paintTriangleWalkingBox(const WindowVertex& a, const WindowVertex& b, const
 
 // The box walk (no small-box path) with TriangleDepth::refine() asked for every covered
 // sample of a triangle with polygon-boundary edges, as the walk did before it tested the
-// samples' edge values against refine()'s bounds itself (core-frame-issue11.md §51): the
+// samples' edge values against refine()'s bounds itself (core-frame-issue11.md section 53): the
 // tests' reference for that test. The same pixels, keys and counts as paintTriangle.
 template <DepthMode kMode>
 void paintTriangleRefiningEverySample(const WindowVertex& a, const WindowVertex& b,

@@ -310,6 +310,107 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
   }
 }
 
+// The estimating resolve with the raster's tiles (the filter's default path): each row's
+// covered span is found from the groups colorRow colors, the background-only tiles' ids
+// unread (CoveredGroups), so a row's span must come out the same whatever tiles lie between
+// its covered pixels. Tiles of the background only in runs (two in three), rows of the
+// background only inside covered tiles (the span none, however many groups were skipped),
+// rows whose only covered pixel is the first or the last column of a covered tile (the span
+// narrowed within one group to one pixel), the image's last row a partial band's and tile's:
+// the colors and every row's estimate are the pass over the finished image's, on every
+// instruction set, 1 and 2 threads.
+TEST_F(Resolve, EstimatingBandsFindTheirSpansAcrossBackgroundTiles) {
+  std::vector<Rgba8> colors(500);
+  std::vector<detail::EstimateBound> fixedBounds(colors.size());  // an even count
+  for (std::size_t i = 0; i < colors.size(); ++i) {
+    colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
+    fixedBounds[i] = detail::fixedBoundOf(0.37f * static_cast<float>(i % 11));
+  }
+  const Rgba8 background{9, 8, 7, 0};
+  const detail::PhaseRunner::ProgressCallback noProgress;
+  constexpr int kTile = detail::TileGrid::kTileSize;
+  for (const auto& size : {std::pair{300, 130}, std::pair{131, 71}}) {
+    const int width = size.first, height = size.second;  // plain locals: the lambdas take them
+    const detail::TileGrid grid(width, height);
+    std::vector<std::int32_t> ids = randomPlanes(width, height, 500, 13).ids;
+    const auto at = [&](int x, int y) -> std::int32_t& {
+      return ids[static_cast<std::size_t>(y) * width + x];
+    };
+    const int tilesX = (width + kTile - 1) / kTile;
+    const auto shown = [&](int tx, int ty) { return (ty * tilesX + tx) % 3 == 1; };
+    std::size_t edgeRows = 0;
+    for (int y = 0; y < height; ++y) {
+      const int ty = y / kTile;
+      for (int x = 0; x < width; ++x) {
+        if (!shown(x / kTile, ty)) at(x, y) = -1;
+      }
+      if (y % 7 == 3 || y % 7 == 5 || y % 7 == 6) {
+        // The row's covered tiles: only the background (3), or a single pixel at a covered
+        // tile's first (5) or last (6) column.
+        for (int x = 0; x < width; ++x)
+          at(x, y) = -1;
+        for (int tx = 0; tx < tilesX && y % 7 != 3; ++tx) {
+          if (!shown(tx, ty)) continue;
+          at(y % 7 == 5 ? tx * kTile : std::min(width, (tx + 1) * kTile) - 1, y) = 42;
+          ++edgeRows;
+          break;
+        }
+      }
+    }
+    EXPECT_GT(edgeRows, 0u);
+    std::vector<detail::PaintCounts> tiles(grid.count());
+    std::size_t backgroundTiles = 0;
+    for (std::size_t t = 0; t < grid.count(); ++t) {
+      const detail::PixelBounds bounds = grid.bounds(t);
+      for (int y = bounds.y0; y <= bounds.y1; ++y) {
+        for (int x = bounds.x0; x <= bounds.x1; ++x)
+          tiles[t].covered += at(x, y) >= 0;
+      }
+      backgroundTiles += tiles[t].covered == 0;
+    }
+    EXPECT_GT(backgroundTiles, 1u);
+    std::vector<Rgba8> expectedColor(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      expectedColor[i] = ids[i] < 0 ? background : colors[ids[i]];
+    const std::vector<detail::EstimateSums> expectedEstimate =
+        estimateOfImage(expectedColor, ids.data(), fixedBounds.data(), width, height);
+    for (const detail::SimdTarget& target : detail::simdTargets()) {
+      SCOPED_TRACE(target.name);
+      detail::useSimdTarget(target.bits);
+      for (const int threads : {1, 2}) {
+        detail::ThreadPool pool(threads);
+        std::vector<Rgba8> color(ids.size(), Rgba8{1, 2, 3, 4});
+        detail::ResolveContext context{colors.data(), background, color.data(), ids.data(), width};
+        context.tiles = tiles.data();
+        detail::EstimateHook hook;
+        std::vector<detail::EstimateSums> estimate(static_cast<std::size_t>(height));
+        hook.fixedBounds = fixedBounds.data();
+        hook.height = height;
+        hook.rows = estimate.data();
+        context.estimate = &hook;
+        detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
+        ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+          if (!(color[i] == expectedColor[i]) && ++differing <= 5)
+            ADD_FAILURE() << "pixel " << i << ", id " << ids[i];
+        }
+        for (std::size_t y = 0; y < estimate.size(); ++y) {
+          const detail::EstimateSums &found = estimate[y], &expected = expectedEstimate[y];
+          if ((found.squares != expected.squares || found.largest != expected.largest ||
+               found.covered != expected.covered) &&
+              ++differing <= 10) {
+            ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest << " "
+                          << found.covered << ", expected " << expected.squares << " "
+                          << expected.largest << " " << expected.covered;
+          }
+        }
+        EXPECT_EQ(differing, 0u) << width << " x " << height << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
 // widenPolygonIds (facet/IdPlane.h) against its definition on every instruction set: stored
 // plainly and streamed, from every alignment of the 64-bit plane (the streamed path's scalar
 // head) and for counts that are no multiple of a vector (its tail), ids of every sign.
