@@ -397,8 +397,9 @@ bool resolveTiles(PhaseRunner& runner, const TileGrid& grid, const ResolveContex
     const int y0 = viewport.y0 + static_cast<int>(b) * rowsPerTask;
     const int y1 = std::min(viewport.y1, y0 + rowsPerTask - 1);
     // The rows read ahead: the task's; with the estimate also the row below it, which the
-    // estimate reads next (by id: its colors gathered again, its ids from memory).
-    const int lastRowAhead = estimatesRows ? std::min(y1 + 1, context.estimate->height - 1) : y1;
+    // estimate reads next (by id: its colors gathered again, its ids from memory), within the
+    // viewport.
+    const int lastRowAhead = estimatesRows ? std::min(y1 + 1, viewport.y1) : y1;
     std::optional<ResolvedBandEstimate> estimate;
     if (estimatesRows) {
       estimate.emplace(*context.estimate, context.colors, context.color, context.polygonId,
