@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -144,13 +143,13 @@ using HugePageAppendBuffer = AppendBuffer<T, HugePageAllocator<T>>;
 // inlined binning helpers (Binning.h) whatever the inliner's budget, read as a span.
 using Bin = AppendBuffer<std::uint32_t>;
 
-// A deferred back face's corners' mesh point ids (Chunk::deferredCorners). Trivial: a block
-// deferred whole writes only its first slot's marker.
+// A deferred back face's corners' mesh point ids (Chunk::deferredCorners). The constructor
+// leaves them unwritten: a block deferred whole writes only its first slot's marker.
 struct DeferredCorners {
   static constexpr std::uint32_t kDeferredWhole = 0xFFFFFFFFu;
   static constexpr std::uint32_t kNotStored = 0xFFFFFFFEu;
   std::uint32_t point[3];
-  DeferredCorners() = default;  // unwritten (Chunk::deferredCorners grows without writing)
+  DeferredCorners() {}  // NOLINT: unwritten on purpose (resize)
   DeferredCorners(std::uint32_t a, std::uint32_t b, std::uint32_t c) : point{a, b, c} {}
   bool stored() const { return point[0] < kNotStored; }
 };
@@ -190,11 +189,8 @@ struct Chunk {
   // pass had just read (so the back pass reads them in order instead of the polygons' offsets
   // and connectivity, written long before: bench section 59). kDeferredWhole in the first
   // id's slot of the ids of a block deferred whole (the rest of its slots unwritten),
-  // kNotStored in a polygon's that is not a triangle. Room for at least as many as deferredBack
-  // (deferredCornersCapacity; grown by Setup.cpp's deferredCornersFor, never shrunk), the
-  // entries past its size unused.
-  std::unique_ptr<DeferredCorners[]> deferredCorners;
-  std::size_t deferredCornersCapacity = 0;
+  // kNotStored in a polygon's that is not a triangle.
+  std::vector<DeferredCorners> deferredCorners;
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;

@@ -74,25 +74,6 @@ glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
   return sum;
 }
 
-// The chunk's deferredCorners, room for at least `size` of them, the first `live` kept
-// (Chunk::deferredCorners: it only outgrows deferredBack, so a batch's deferral rarely grows it;
-// grown by a quarter, not doubled, and its new entries unwritten: section 59's peak memory).
-[[gnu::noinline]] void growDeferredCorners(Chunk& chunk, std::size_t size, std::size_t live) {
-  const std::size_t grown =
-      std::max(size, chunk.deferredCornersCapacity + chunk.deferredCornersCapacity / 4 + 256);
-  std::unique_ptr<DeferredCorners[]> corners(new DeferredCorners[grown]);
-  if (live > 0)
-    std::memcpy(corners.get(), chunk.deferredCorners.get(), live * sizeof(DeferredCorners));
-  chunk.deferredCorners = std::move(corners);
-  chunk.deferredCornersCapacity = grown;
-}
-[[gnu::always_inline]] inline DeferredCorners* deferredCornersFor(Chunk& chunk, std::size_t size,
-                                                                  std::size_t live) {
-  if (chunk.deferredCornersCapacity < size) [[unlikely]]
-    growDeferredCorners(chunk, size, live);
-  return chunk.deferredCorners.get();
-}
-
 // Facing. A polygon is seen from one side as a whole: its normal (polygonNormal) against the
 // direction to the viewer, never the snapped window area of one of its triangles, which a
 // sliver can flip. It is lit from that side and, when back faces are skipped, dropped as a
@@ -379,10 +360,12 @@ class PolygonSetup {
     const std::uint32_t used = (1u << lanes) - 1;
     const std::uint32_t culled = verdicts.culled & used;
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
+    std::vector<DeferredCorners>& corners = chunk_.deferredCorners;
     std::size_t at = list.size();
     list.resize(at + static_cast<std::size_t>(std::popcount(culled)));
+    corners.resize(list.size());
     std::uint32_t* out = list.data();
-    DeferredCorners* outCorners = deferredCornersFor(chunk_, list.size(), at);
+    DeferredCorners* outCorners = corners.data();
     // A culled lane is a triangle the batch just loaded: its offsets and connectivity are in
     // cache, their point ids kept beside its id for the back pass.
     for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1) {
@@ -407,12 +390,11 @@ class PolygonSetup {
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
     const auto id = static_cast<std::uint32_t>(mesh_.firstPolygon + polygon);
     const auto at = std::upper_bound(list.begin(), list.end(), id);
-    const auto index = static_cast<std::size_t>(at - list.begin());
-    DeferredCorners* const corners = deferredCornersFor(chunk_, list.size() + 1, list.size());
-    std::copy_backward(corners + index, corners + list.size(), corners + list.size() + 1);
-    corners[index] = polygons_.size(polygon) == 3
-                         ? cornersOf(polygon)
-                         : DeferredCorners{DeferredCorners::kNotStored, 0, 0};
+    const DeferredCorners corners =
+        polygons_.size(polygon) == 3
+            ? cornersOf(polygon)
+            : DeferredCorners{DeferredCorners::kNotStored, 0, 0};
+    chunk_.deferredCorners.insert(chunk_.deferredCorners.begin() + (at - list.begin()), corners);
     list.insert(at, id);
   }
 
@@ -630,7 +612,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     ids.resize(at + count);
     std::iota(ids.begin() + static_cast<std::ptrdiff_t>(at), ids.end(), first);
     // No point ids stored (none were read): the block's first slot says so, the rest unwritten.
-    deferredCornersFor(chunk, ids.size(), at)[at].point[0] = DeferredCorners::kDeferredWhole;
+    chunk.deferredCorners.resize(ids.size());
+    chunk.deferredCorners[at].point[0] = DeferredCorners::kDeferredWhole;
     deferredWholeDebug(count);
     return true;
   };
@@ -753,11 +736,11 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   std::uint32_t shown[kPolygonsPerBackBlock];
   // The front pass's batches stored the point ids of the triangles they deferred beside their
   // ids (Chunk::deferredCorners), read here in order; a block deferred whole has none.
-  const DeferredCorners* const stored = chunk.deferredCorners.get();
-  FACET_ASSERT(ids.empty() || chunk.deferredCornersCapacity >= ids.size());
+  const std::vector<DeferredCorners>& stored = chunk.deferredCorners;
+  FACET_ASSERT(stored.size() == ids.size());
   const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
     const DeferredCorners* const corners =
-        stored[k].point[0] == DeferredCorners::kDeferredWhole ? nullptr : stored + k;
+        stored[k].point[0] == DeferredCorners::kDeferredWhole ? nullptr : stored.data() + k;
     const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
                                                           allTriangles, corners};
     RunTally tally;
@@ -852,6 +835,7 @@ void setUpChunk(const SetupContext& context, Chunk& chunk) {
   clearBins(chunk, context.grid);
   chunk.clippedVertices.clear();
   chunk.deferredBack.clear();
+  chunk.deferredCorners.clear();
   chunk.counts = {};
   std::size_t position = chunk.begin;
   while (position < chunk.end) {
