@@ -114,23 +114,6 @@ class HiddenRuns : public EveryTargetTest {
     std::mt19937 random(quads ? 7 : 11);
     const TestPolygons<Index> polygons(4 * kBlock, vertices_.size(), quads, random);
     const RunSource<Index> source{vertices_.data(), polygons.view(), kFirstId, !quads};
-    // The point ids the front pass stores beside a deferred triangle's id
-    // (Chunk::deferredCorners; kNotStored for a quad), read instead of the polygons: so the
-    // triangles' connectivity a second source reads is overwritten (point 0), the quads' kept.
-    TestPolygons<Index> overwritten = polygons;
-    std::vector<detail::DeferredCorners> stored(polygons.offsets.size() - 1);
-    for (std::size_t p = 0; p + 1 < polygons.offsets.size(); ++p) {
-      const auto begin = static_cast<std::size_t>(polygons.offsets[p]);
-      if (polygons.offsets[p + 1] - polygons.offsets[p] != 3) {
-        stored[p] = {detail::DeferredCorners::kNotStored, 0, 0};
-        continue;
-      }
-      stored[p] = {static_cast<std::uint32_t>(polygons.connectivity[begin]),
-                   static_cast<std::uint32_t>(polygons.connectivity[begin + 1]),
-                   static_cast<std::uint32_t>(polygons.connectivity[begin + 2])};
-      for (std::size_t j = 0; j < 3; ++j)
-        overwritten.connectivity[begin + j] = 0;
-    }
     const detail::HiddenRunTest test(grid_, front_);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (std::uint32_t block = 0; block < 4; ++block) {
@@ -155,18 +138,6 @@ class HiddenRuns : public EveryTargetTest {
         EXPECT_EQ(tally.hiddenRuns, expectedTally.hiddenRuns);
         EXPECT_EQ(tally.polygons, expectedTally.polygons);
         EXPECT_EQ(tally.hiddenPolygons, expectedTally.hiddenPolygons);
-        // The same ids with their stored point ids beside them, in order.
-        std::vector<detail::DeferredCorners> corners;
-        for (const std::uint32_t id : ids)
-          corners.push_back(stored[id - kFirstId]);
-        const RunSource<Index> fromStored{vertices_.data(), overwritten.view(), kFirstId, !quads,
-                                          corners.data()};
-        std::vector<std::uint32_t> shownStored(ids.size());
-        RunTally storedTally;
-        shownStored.resize(
-            detail::shownOfRuns(test, fromStored, ids, shownStored.data(), storedTally));
-        EXPECT_EQ(shownStored, expected) << "block " << block << ", stored point ids";
-        EXPECT_EQ(storedTally.hiddenPolygons, expectedTally.hiddenPolygons);
       }
       detail::useSimdTarget(0);
       total.runs += expectedTally.runs, total.hiddenRuns += expectedTally.hiddenRuns;
@@ -179,8 +150,7 @@ class HiddenRuns : public EveryTargetTest {
   std::vector<WindowVertex> vertices_;
 };
 
-// Checked to fail with the lanes' y bounds taken from the x lane. Also from the stored point
-// ids (Chunk::deferredCorners).
+// Checked to fail with the lanes' y bounds taken from the x lane.
 TEST_F(HiddenRuns, LanesDropTheRunsOfTheVertexBoundsOnEveryTarget) {
   for (const bool quads : {false, true}) {
     SCOPED_TRACE(quads ? "some quads" : "triangles");
