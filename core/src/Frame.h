@@ -143,17 +143,6 @@ using HugePageAppendBuffer = AppendBuffer<T, HugePageAllocator<T>>;
 // inlined binning helpers (Binning.h) whatever the inliner's budget, read as a span.
 using Bin = AppendBuffer<std::uint32_t>;
 
-// A deferred back face's corners' mesh point ids (Chunk::deferredCorners). The constructor
-// leaves them unwritten: a block deferred whole writes only its first slot's marker.
-struct DeferredCorners {
-  static constexpr std::uint32_t kDeferredWhole = 0xFFFFFFFFu;
-  static constexpr std::uint32_t kNotStored = 0xFFFFFFFEu;
-  std::uint32_t point[3];
-  DeferredCorners() {}  // NOLINT: unwritten on purpose (resize)
-  DeferredCorners(std::uint32_t a, std::uint32_t b, std::uint32_t c) : point{a, b, c} {}
-  bool stored() const { return point[0] < kNotStored; }
-};
-
 // A run of consecutive draw positions that one task sets up and bins. Its bins list, per
 // tile, indices into `triangles`; tiles read the chunks in order, so every tile sees its
 // triangles in draw order whatever the chunking (which depends on the thread count) was.
@@ -185,12 +174,6 @@ struct Chunk {
   // A two-pass frame's back-facing polygons (global ids, in draw order) that the front pass
   // put off to the back pass (SetupPass, Setup.h).
   std::vector<std::uint32_t> deferredBack;
-  // Beside each deferred id, at the same index: its triangle's mesh point ids, which the front
-  // pass had just read (so the back pass reads them in order instead of the polygons' offsets
-  // and connectivity, written long before: bench section 59). kDeferredWhole in the first
-  // id's slot of the ids of a block deferred whole (the rest of its slots unwritten),
-  // kNotStored in a polygon's that is not a triangle.
-  std::vector<DeferredCorners> deferredCorners;
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
   std::vector<glm::dvec3> corners;

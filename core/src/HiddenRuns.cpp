@@ -85,8 +85,7 @@ std::size_t shownOfRunsOf(const HiddenRunTest& test, const RunSource<Index>& sou
   const WindowVertex* const vertices = source.vertices;
   const Index* const offsets = source.polygons.offsets;
   const Index* const connectivity = source.polygons.connectivity;
-  const DeferredCorners* const corners = source.corners;
-  if (count != 0 && corners == nullptr) prefetchBlock(source, ids, count);
+  if (count != 0) prefetchBlock(source, ids, count);
   std::size_t out = 0;
   for (std::size_t k = 0; k < count;) {
     const std::uint32_t windowEnd =
@@ -95,12 +94,6 @@ std::size_t shownOfRunsOf(const HiddenRunTest& test, const RunSource<Index>& sou
     bool notTriangle = false;
     std::size_t i = k;
     do {
-      if (corners != nullptr && corners[i].stored()) {  // a triangle the front pass deferred
-        lanes.add(vertices[corners[i].point[0]]);
-        lanes.add(vertices[corners[i].point[1]]);
-        lanes.add(vertices[corners[i].point[2]]);
-        continue;
-      }
       const std::size_t polygon = ids[i] - source.firstId;
       const auto begin = static_cast<std::size_t>(offsets[polygon]);
       if (!source.allTriangles && offsets[polygon + 1] - offsets[polygon] != 3) {

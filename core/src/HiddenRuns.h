@@ -11,7 +11,6 @@
 #include <cstdint>
 #include <span>
 
-#include "Frame.h"
 #include "FrameTransform.h"
 #include "HiddenBlocks.h"
 #include "MeshAccess.h"
@@ -20,16 +19,13 @@ namespace facet::detail {
 
 // What a block's runs are taken from: the mesh's window vertices and polygons, its first
 // polygon id (the deferred ids are global), and whether every polygon of the block is a
-// triangle (MeshFacts::backSkippable: the sizes are not read); and, when not null, the ids'
-// point ids the front pass stored (Chunk::deferredCorners, one a given id, in order): a
-// polygon's stored ones are read instead of its offsets and connectivity.
+// triangle (MeshFacts::backSkippable: the sizes are not read).
 template <class Index>
 struct RunSource {
   const WindowVertex* vertices;
   Polygons<Index> polygons;
   std::uint32_t firstId;
   bool allTriangles;
-  const DeferredCorners* corners = nullptr;
 };
 
 // The runs a block's ids made and dropped, and their polygons (FACET_HIDDEN_BLOCKS_DEBUG).

@@ -104,16 +104,8 @@ class PolygonSetup {
   // Whether the back faces the batch keeps have their keys clamped (triangleEdges).
   bool clampsBackFaces() const { return clampBack_; }
 
-  // Puts polygon `polygon` in lane `lane` of a batch (the back pass's scattered polygons);
-  // `corners`, when not null and stored, are its point ids (Chunk::deferredCorners).
-  void loadOne(std::size_t polygon, TriangleBatch& batch, int lane,
-               const DeferredCorners* corners) const {
-    if (corners != nullptr && corners->stored()) {
-      batch.triangle[lane] = 1;
-      for (int j = 0; j < 3; ++j)
-        batch.v[j][lane] = meshVertices_[corners->point[j]];
-      return;
-    }
+  // Puts polygon `polygon` in lane `lane` of a batch (the back pass's scattered polygons).
+  void loadOne(std::size_t polygon, TriangleBatch& batch, int lane) const {
     const bool triangle = polygons_.size(polygon) == 3;
     batch.triangle[lane] = triangle;
     if (triangle) {
@@ -360,27 +352,12 @@ class PolygonSetup {
     const std::uint32_t used = (1u << lanes) - 1;
     const std::uint32_t culled = verdicts.culled & used;
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
-    std::vector<DeferredCorners>& corners = chunk_.deferredCorners;
     std::size_t at = list.size();
     list.resize(at + static_cast<std::size_t>(std::popcount(culled)));
-    corners.resize(list.size());
     std::uint32_t* out = list.data();
-    DeferredCorners* outCorners = corners.data();
-    // A culled lane is a triangle the batch just loaded: its offsets and connectivity are in
-    // cache, their point ids kept beside its id for the back pass.
-    for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1) {
-      const std::size_t polygon = lanePolygon[std::countr_zero(rest)];
-      outCorners[at] = cornersOf(polygon);
-      out[at++] = static_cast<std::uint32_t>(mesh_.firstPolygon + polygon);
-    }
-  }
-
-  // A triangle polygon's point ids, as DeferredCorners.
-  DeferredCorners cornersOf(std::size_t polygon) const {
-    const std::size_t begin = polygons_.begin(polygon);
-    return {static_cast<std::uint32_t>(polygons_.connectivity[begin]),
-            static_cast<std::uint32_t>(polygons_.connectivity[begin + 1]),
-            static_cast<std::uint32_t>(polygons_.connectivity[begin + 2])};
+    for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1)
+      out[at++] =
+          static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
   }
 
   // A polygon run() defers: in a batch's settle() after the culled lanes deferCulled appended,
@@ -389,13 +366,7 @@ class PolygonSetup {
   [[gnu::noinline]] void defer(std::size_t polygon) {
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
     const auto id = static_cast<std::uint32_t>(mesh_.firstPolygon + polygon);
-    const auto at = std::upper_bound(list.begin(), list.end(), id);
-    const DeferredCorners corners =
-        polygons_.size(polygon) == 3
-            ? cornersOf(polygon)
-            : DeferredCorners{DeferredCorners::kNotStored, 0, 0};
-    chunk_.deferredCorners.insert(chunk_.deferredCorners.begin() + (at - list.begin()), corners);
-    list.insert(at, id);
+    list.insert(std::upper_bound(list.begin(), list.end(), id), id);
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -611,9 +582,6 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     const std::size_t at = ids.size();
     ids.resize(at + count);
     std::iota(ids.begin() + static_cast<std::ptrdiff_t>(at), ids.end(), first);
-    // No point ids stored (none were read): the block's first slot says so, the rest unwritten.
-    chunk.deferredCorners.resize(ids.size());
-    chunk.deferredCorners[at].point[0] = DeferredCorners::kDeferredWhole;
     deferredWholeDebug(count);
     return true;
   };
@@ -734,32 +702,16 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
   // block is a triangle (MeshFacts::backSkippable).
   std::uint32_t shown[kPolygonsPerBackBlock];
-  // The front pass's batches stored the point ids of the triangles they deferred beside their
-  // ids (Chunk::deferredCorners), read here in order; a block deferred whole has none.
-  const std::vector<DeferredCorners>& stored = chunk.deferredCorners;
-  FACET_ASSERT(stored.size() == ids.size());
   const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
-    const DeferredCorners* const corners =
-        stored[k].point[0] == DeferredCorners::kDeferredWhole ? nullptr : stored.data() + k;
     const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
-                                                          allTriangles, corners};
+                                                          allTriangles};
     RunTally tally;
     const std::size_t count =
         shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, tally);
     chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
     hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
-    if (corners == nullptr) {
-      for (std::size_t i = 0; i < count; ++i)
-        each(shown[i] - firstId, nullptr);
-      return;
-    }
-    // The shown ids are a subsequence of ids[k, stop): their slots found walking along.
-    std::size_t at = k;
-    for (std::size_t i = 0; i < count; ++i) {
-      while (ids[at] != shown[i])
-        ++at;
-      each(shown[i] - firstId, &stored[at]);
-    }
+    for (std::size_t i = 0; i < count; ++i)
+      each(shown[i] - firstId);
   };
   // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
   const auto forEachShown = [&](const auto& each) {
@@ -785,11 +737,11 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         continue;
       }
       for (; k < blockEnd; ++k)
-        each(ids[k] - mesh.firstPolygon, nullptr);
+        each(ids[k] - mesh.firstPolygon);
     }
   };
   if (!setupBatchesEnabled()) {
-    forEachShown([&](std::size_t polygon, const DeferredCorners*) { setup.run(polygon); });
+    forEachShown([&](std::size_t polygon) { setup.run(polygon); });
     return end;
   }
   const BatchClassifier classify = batchClassifier();
@@ -803,9 +755,9 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
-  forEachShown([&](std::size_t polygon, const DeferredCorners* corners) {
+  forEachShown([&](std::size_t polygon) {
     lanePolygon[lanes] = polygon;
-    setup.loadOne(polygon, batch, lanes, corners);
+    setup.loadOne(polygon, batch, lanes);
     if (++lanes == kBatchSize) settleBatch();
   });
   if (lanes > 0) settleBatch();
@@ -835,7 +787,6 @@ void setUpChunk(const SetupContext& context, Chunk& chunk) {
   clearBins(chunk, context.grid);
   chunk.clippedVertices.clear();
   chunk.deferredBack.clear();
-  chunk.deferredCorners.clear();
   chunk.counts = {};
   std::size_t position = chunk.begin;
   while (position < chunk.end) {
