@@ -302,7 +302,9 @@ struct BoxRaster {
   // once per fragment: stepping in float would add a rounding per pixel, enough to tie
   // surfaces 1e-6 apart.
   // (a, b, c and area: the triangle's, as given to the constructor, for keyNearEdge.)
-  template <DepthMode kMode>
+  // kRefineEverySample: refine() asked for every covered sample, as before the unrolled test
+  // (paintTriangleRefiningEverySample, the tests' reference for it).
+  template <DepthMode kMode, bool kRefineEverySample = false>
   [[gnu::always_inline]] void paint(const WindowVertex& a, const WindowVertex& b,
                                     const WindowVertex& c, std::int64_t area,
                                     std::int32_t polygonId, const Planes& planes,
@@ -312,16 +314,17 @@ struct BoxRaster {
     // A clamped triangle (kClampedEdges, a back face with the depth test) clamps each refined
     // key; the others pay nothing for it.
     if (boundary == 0) {
-      paintRows<kMode, false, false>(a, b, c, area, boundary, polygonId, planes, counts);
+      paintRows<kMode, false, false, kRefineEverySample>(a, b, c, area, boundary, polygonId, planes,
+                                                         counts);
     } else if (boundary == kClampedEdges) {
-      paintRows<kMode, true, true>(a, b, c, area, boundary, polygonId, planes, counts);
+      paintRows<kMode, true, true, kRefineEverySample>(a, b, c, area, boundary, polygonId, planes,
+                                                       counts);
     } else {
-      paintRows<kMode, true, false>(a, b, c, area, boundary, polygonId, planes, counts);
+      paintRows<kMode, true, false, kRefineEverySample>(a, b, c, area, boundary, polygonId, planes,
+                                                        counts);
     }
   }
-  // kRefineEverySample: refine() asked for every covered sample, as before the unrolled test
-  // (paintTriangleRefiningEverySample, the tests' reference for it).
-  template <DepthMode kMode, bool kRefine, bool kClamp, bool kRefineEverySample = false>
+  template <DepthMode kMode, bool kRefine, bool kClamp, bool kRefineEverySample>
   [[gnu::always_inline]] void paintRows(const WindowVertex& a, const WindowVertex& b,
                                         const WindowVertex& c, std::int64_t area, EdgeMask boundary,
                                         std::int32_t polygonId, const Planes& planes,
@@ -739,13 +742,7 @@ void paintTriangleRefiningEverySample(const WindowVertex& a, const WindowVertex&
     return;
   }
   BoxRaster raster(a, b, c, area, boundary, box);
-  if (boundary == 0) {
-    raster.paintRows<kMode, false, false, true>(a, b, c, area, boundary, polygonId, planes, counts);
-  } else if (boundary == kClampedEdges) {
-    raster.paintRows<kMode, true, true, true>(a, b, c, area, boundary, polygonId, planes, counts);
-  } else {
-    raster.paintRows<kMode, true, false, true>(a, b, c, area, boundary, polygonId, planes, counts);
-  }
+  raster.paint<kMode, true>(a, b, c, area, polygonId, planes, counts, boundary);
 }
 
 void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b,

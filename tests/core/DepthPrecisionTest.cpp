@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "../support/RandomCorners.h"
 #include "../support/Sanitizers.h"
 #include "../support/SquarePlanes.h"
 #include "../support/TestMeshes.h"
@@ -578,8 +579,8 @@ TEST(DepthPrecision, RejectMarginKeepsAKeyNearerThanEveryVertex) {
 TEST(DepthPrecision, RejectingHiddenTrianglesPaintsTheSamePixels) {
   std::mt19937 random(11);
   std::uniform_int_distribution<int> corner(0, TilePlanes::kSide * 256), spread(1, 6 * 256),
-      residue(-127, 127), mask(0, 7), polygon(0, 63);
-  std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
+      mask(0, 7), polygon(0, 63);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f);
   const PixelBounds tile{0, 0, TilePlanes::kSide - 1, TilePlanes::kSide - 1};
   TilePlanes with, without;
   detail::PaintCounts withCounts, withoutCounts;
@@ -588,13 +589,7 @@ TEST(DepthPrecision, RejectingHiddenTrianglesPaintsTheSamePixels) {
     WindowVertex v[3];
     const int cx = corner(random), cy = corner(random), size = spread(random);
     const float base = key(random);
-    for (WindowVertex& c : v) {
-      c.x = cx + std::uniform_int_distribution<int>(-size, size)(random);
-      c.y = cy + std::uniform_int_distribution<int>(-size, size)(random);
-      c.residueX = static_cast<std::int8_t>(residue(random));
-      c.residueY = static_cast<std::int8_t>(residue(random));
-      c.depth = base + (t % 3 ? steep(random) : steep(random) * 1e-4f);
-    }
+    randomCornersAround(random, cx, cy, size, base, t % 3 == 0, v);
     const std::int64_t area = detail::doubleSignedArea(v[0], v[1], v[2]);
     if (area == 0) continue;
     if (area < 0) std::swap(v[1], v[2]);

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "../support/RandomCorners.h"
 #include "../support/SquarePlanes.h"
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
@@ -65,9 +66,9 @@ std::size_t differingKeysOrIds(const Planes32& small, const Planes32& walked) {
 template <detail::DepthMode kMode>
 void compareSmallBoxPath(unsigned seed) {
   std::mt19937 random(seed);
-  std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 5 * 256),
-      residue(-127, 127), polygon(0, 99), kind(0, 9), mask(0, 13);
-  std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
+  std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 5 * 256), polygon(0, 99),
+      kind(0, 9), mask(0, 13);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f);
   const PixelBounds tile{8, 4, 27, 23};
   Painted small, walked, rejecting, recorded;
   std::size_t painted = 0, slivers = 0, records = 0, differing = 0;
@@ -76,13 +77,7 @@ void compareSmallBoxPath(unsigned seed) {
     const bool sliver = kind(random) == 0;
     const int cx = corner(random), cy = corner(random), size = spread(random);
     const float base = key(random);
-    for (WindowVertex& c : v) {
-      c.x = cx + std::uniform_int_distribution<int>(-size, size)(random);
-      c.y = cy + std::uniform_int_distribution<int>(-size, size)(random);
-      c.residueX = static_cast<std::int8_t>(residue(random));
-      c.residueY = static_cast<std::int8_t>(residue(random));
-      c.depth = base + (t % 3 ? steep(random) : steep(random) * 1e-4f);
-    }
+    randomCornersAround(random, cx, cy, size, base, t % 3 == 0, v);
     if (sliver) {  // one corner 100 pixels away, down and to the left of the tile
       v[0].x = tile.x0 * 256 - 100 * 256 + cx % 256;
       v[0].y = tile.y0 * 256 - 100 * 256 + cy % 256;
@@ -211,9 +206,9 @@ TEST(Raster, SmallMaskPaintsTheSteppedKeysOfEveryMaskByBits) {
 template <detail::DepthMode kMode>
 void compareWalkRefiningEverySample(unsigned seed) {
   std::mt19937 random(seed);
-  std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 10 * 256),
-      residue(-127, 127), polygon(0, 99), kind(0, 9), mask(0, 8);
-  std::uniform_real_distribution<float> key(0.1f, 0.9f), steep(-0.05f, 0.05f);
+  std::uniform_int_distribution<int> corner(4 * 256, 28 * 256), spread(1, 10 * 256), polygon(0, 99),
+      kind(0, 9), mask(0, 8);
+  std::uniform_real_distribution<float> key(0.1f, 0.9f);
   const PixelBounds tile{8, 4, 27, 23};
   Painted walked, reference, rejecting;
   std::size_t painted = 0, slivers = 0, boundaries = 0, differing = 0;
@@ -222,13 +217,7 @@ void compareWalkRefiningEverySample(unsigned seed) {
     const bool sliver = kind(random) == 0;
     const int cx = corner(random), cy = corner(random), size = spread(random);
     const float base = key(random);
-    for (WindowVertex& c : v) {
-      c.x = cx + std::uniform_int_distribution<int>(-size, size)(random);
-      c.y = cy + std::uniform_int_distribution<int>(-size, size)(random);
-      c.residueX = static_cast<std::int8_t>(residue(random));
-      c.residueY = static_cast<std::int8_t>(residue(random));
-      c.depth = base + (t % 3 ? steep(random) : steep(random) * 1e-4f);
-    }
+    randomCornersAround(random, cx, cy, size, base, t % 3 == 0, v);
     if (sliver) {  // one corner far away: a long thin triangle across the tile
       v[0].x = cx + (t % 2 ? 60 : -60) * 256;
       v[0].y = cy + (t % 4 < 2 ? 45 : -45) * 256;

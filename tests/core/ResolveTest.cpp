@@ -219,6 +219,69 @@ std::vector<detail::EstimateSums> estimateOfImage(const std::vector<Rgba8>& colo
   return rows;
 }
 
+// The estimate tests' palette: 500 polygons' colors and fixed bounds (an even count).
+struct Palette {
+  std::vector<Rgba8> colors = std::vector<Rgba8>(500);
+  std::vector<detail::EstimateBound> fixedBounds = std::vector<detail::EstimateBound>(500);
+  Palette() {
+    for (std::size_t i = 0; i < colors.size(); ++i) {
+      colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
+      fixedBounds[i] = detail::fixedBoundOf(0.37f * static_cast<float>(i % 11));
+    }
+  }
+};
+
+// Each tile's covered count, as the raster leaves it, from the ids plane.
+std::vector<detail::PaintCounts> tileCounts(const detail::TileGrid& grid,
+                                            const std::vector<std::int32_t>& ids, int width) {
+  std::vector<detail::PaintCounts> tiles(grid.count());
+  for (std::size_t t = 0; t < grid.count(); ++t) {
+    const detail::PixelBounds bounds = grid.bounds(t);
+    for (int y = bounds.y0; y <= bounds.y1; ++y) {
+      for (int x = bounds.x0; x <= bounds.x1; ++x)
+        tiles[t].covered += ids[static_cast<std::size_t>(y) * width + x] >= 0;
+    }
+  }
+  return tiles;
+}
+
+// Each pixel's color as the resolve must give it: its polygon's, or the background's.
+std::vector<Rgba8> colorsOfIds(const std::vector<std::int32_t>& ids,
+                               const std::vector<Rgba8>& colors, Rgba8 background) {
+  std::vector<Rgba8> expected(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    expected[i] = ids[i] < 0 ? background : colors[static_cast<std::size_t>(ids[i])];
+  return expected;
+}
+
+// The pixels whose color is not the expected one, the first five reported.
+std::size_t differingColors(const std::vector<Rgba8>& color, const std::vector<Rgba8>& expected,
+                            const std::vector<std::int32_t>& ids) {
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (!(color[i] == expected[i]) && ++differing <= 5)
+      ADD_FAILURE() << "pixel " << i << ", id " << ids[i];
+  }
+  return differing;
+}
+
+// The rows whose estimate sums are not the expected ones, the first five reported.
+std::size_t differingEstimateRows(const std::vector<detail::EstimateSums>& estimate,
+                                  const std::vector<detail::EstimateSums>& expectedRows) {
+  std::size_t differing = 0;
+  for (std::size_t y = 0; y < estimate.size(); ++y) {
+    const detail::EstimateSums &found = estimate[y], &expected = expectedRows[y];
+    if ((found.squares != expected.squares || found.largest != expected.largest ||
+         found.covered != expected.covered) &&
+        ++differing <= 5) {
+      ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest << " "
+                    << found.covered << ", expected " << expected.squares << " " << expected.largest
+                    << " " << expected.covered;
+    }
+  }
+  return differing;
+}
+
 // While coloring a row the resolve reads the next row's ids (their colors fetched a row
 // ahead) and fetches the row after it, within its task (with the estimate, also the row
 // below the task, which the estimate reads): at the image's last rows it reads nothing past
@@ -231,12 +294,9 @@ std::vector<detail::EstimateSums> estimateOfImage(const std::vector<Rgba8>& colo
 // estimate the pass over the finished image's.
 TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
   static_assert(1031 * 1025 * sizeof(Rgba8) >= detail::kStreamedColorBytes);
-  std::vector<Rgba8> colors(500);
-  std::vector<detail::EstimateBound> fixedBounds(colors.size());  // an even count
-  for (std::size_t i = 0; i < colors.size(); ++i) {
-    colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
-    fixedBounds[i] = detail::fixedBoundOf(0.37f * static_cast<float>(i % 11));
-  }
+  Palette palette;  // the estimate hook takes its bounds unconst
+  const std::vector<Rgba8>& colors = palette.colors;
+  std::vector<detail::EstimateBound>& fixedBounds = palette.fixedBounds;
   const Rgba8 background{9, 8, 7, 0};
   const detail::PhaseRunner::ProgressCallback noProgress;
   for (const auto& [width, height] : {std::pair{131, 65}, std::pair{200, 74}, std::pair{67, 3},
@@ -249,17 +309,8 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
     std::fill(plainIds.end() - width, plainIds.end(), 17);
     for (const bool guardBefore : {false, true}) {
       const GuardedIds ids(plainIds, guardBefore);
-      std::vector<detail::PaintCounts> tiles(grid.count());
-      for (std::size_t t = 0; t < grid.count(); ++t) {
-        const detail::PixelBounds bounds = grid.bounds(t);
-        for (int y = bounds.y0; y <= bounds.y1; ++y) {
-          for (int x = bounds.x0; x <= bounds.x1; ++x)
-            tiles[t].covered += plainIds[static_cast<std::size_t>(y) * width + x] >= 0;
-        }
-      }
-      std::vector<Rgba8> expectedColor(plainIds.size());
-      for (std::size_t i = 0; i < plainIds.size(); ++i)
-        expectedColor[i] = plainIds[i] < 0 ? background : colors[plainIds[i]];
+      const std::vector<detail::PaintCounts> tiles = tileCounts(grid, plainIds, width);
+      const std::vector<Rgba8> expectedColor = colorsOfIds(plainIds, colors, background);
       const std::vector<detail::EstimateSums> expectedEstimate =
           estimateOfImage(expectedColor, ids.data(), fixedBounds.data(), width, height);
       for (const detail::SimdTarget& target : detail::simdTargets()) {
@@ -283,22 +334,9 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
               }
               detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
               ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
-              std::size_t differing = 0;
-              for (std::size_t i = 0; i < plainIds.size(); ++i) {
-                if (!(color[i] == expectedColor[i]) && ++differing <= 5)
-                  ADD_FAILURE() << "pixel " << i << ", id " << plainIds[i];
-              }
-              std::size_t differingRows = 0;
-              for (std::size_t y = 0; estimating && y < estimate.size(); ++y) {
-                const detail::EstimateSums &found = estimate[y], &expected = expectedEstimate[y];
-                if ((found.squares != expected.squares || found.largest != expected.largest ||
-                     found.covered != expected.covered) &&
-                    ++differingRows <= 5) {
-                  ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest
-                                << " " << found.covered << ", expected " << expected.squares << " "
-                                << expected.largest << " " << expected.covered;
-                }
-              }
+              const std::size_t differing = differingColors(color, expectedColor, plainIds);
+              const std::size_t differingRows =
+                  estimating ? differingEstimateRows(estimate, expectedEstimate) : 0;
               EXPECT_EQ(differing + differingRows, 0u)
                   << width << " x " << height << ", " << threads << " threads, tiles " << withTiles
                   << ", estimate " << estimating << ", guard before " << guardBefore;
@@ -320,12 +358,9 @@ TEST_F(Resolve, ReadsNoIdPastTheLastRowOfThePlane) {
 // the colors and every row's estimate are the pass over the finished image's, on every
 // instruction set, 1 and 2 threads.
 TEST_F(Resolve, EstimatingBandsFindTheirSpansAcrossBackgroundTiles) {
-  std::vector<Rgba8> colors(500);
-  std::vector<detail::EstimateBound> fixedBounds(colors.size());  // an even count
-  for (std::size_t i = 0; i < colors.size(); ++i) {
-    colors[i] = Rgba8{std::uint8_t(i), std::uint8_t(i * 7), std::uint8_t(i * 13), 255};
-    fixedBounds[i] = detail::fixedBoundOf(0.37f * static_cast<float>(i % 11));
-  }
+  Palette palette;  // the estimate hook takes its bounds unconst
+  const std::vector<Rgba8>& colors = palette.colors;
+  std::vector<detail::EstimateBound>& fixedBounds = palette.fixedBounds;
   const Rgba8 background{9, 8, 7, 0};
   const detail::PhaseRunner::ProgressCallback noProgress;
   constexpr int kTile = detail::TileGrid::kTileSize;
@@ -358,20 +393,11 @@ TEST_F(Resolve, EstimatingBandsFindTheirSpansAcrossBackgroundTiles) {
       }
     }
     EXPECT_GT(edgeRows, 0u);
-    std::vector<detail::PaintCounts> tiles(grid.count());
-    std::size_t backgroundTiles = 0;
-    for (std::size_t t = 0; t < grid.count(); ++t) {
-      const detail::PixelBounds bounds = grid.bounds(t);
-      for (int y = bounds.y0; y <= bounds.y1; ++y) {
-        for (int x = bounds.x0; x <= bounds.x1; ++x)
-          tiles[t].covered += at(x, y) >= 0;
-      }
-      backgroundTiles += tiles[t].covered == 0;
-    }
-    EXPECT_GT(backgroundTiles, 1u);
-    std::vector<Rgba8> expectedColor(ids.size());
-    for (std::size_t i = 0; i < ids.size(); ++i)
-      expectedColor[i] = ids[i] < 0 ? background : colors[ids[i]];
+    const std::vector<detail::PaintCounts> tiles = tileCounts(grid, ids, width);
+    const auto backgroundTiles = std::count_if(tiles.begin(), tiles.end(),
+                                               [](const auto& tile) { return tile.covered == 0; });
+    EXPECT_GT(backgroundTiles, 1);
+    const std::vector<Rgba8> expectedColor = colorsOfIds(ids, colors, background);
     const std::vector<detail::EstimateSums> expectedEstimate =
         estimateOfImage(expectedColor, ids.data(), fixedBounds.data(), width, height);
     for (const detail::SimdTarget& target : detail::simdTargets()) {
@@ -390,21 +416,8 @@ TEST_F(Resolve, EstimatingBandsFindTheirSpansAcrossBackgroundTiles) {
         context.estimate = &hook;
         detail::PhaseRunner runner(pool, noProgress, {detail::Phase::Resolve});
         ASSERT_TRUE(detail::resolveTiles(runner, grid, context));
-        std::size_t differing = 0;
-        for (std::size_t i = 0; i < ids.size(); ++i) {
-          if (!(color[i] == expectedColor[i]) && ++differing <= 5)
-            ADD_FAILURE() << "pixel " << i << ", id " << ids[i];
-        }
-        for (std::size_t y = 0; y < estimate.size(); ++y) {
-          const detail::EstimateSums &found = estimate[y], &expected = expectedEstimate[y];
-          if ((found.squares != expected.squares || found.largest != expected.largest ||
-               found.covered != expected.covered) &&
-              ++differing <= 10) {
-            ADD_FAILURE() << "row " << y << ": " << found.squares << " " << found.largest << " "
-                          << found.covered << ", expected " << expected.squares << " "
-                          << expected.largest << " " << expected.covered;
-          }
-        }
+        const std::size_t differing = differingColors(color, expectedColor, ids) +
+                                      differingEstimateRows(estimate, expectedEstimate);
         EXPECT_EQ(differing, 0u) << width << " x " << height << ", " << threads << " threads";
       }
     }
