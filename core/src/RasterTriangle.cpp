@@ -179,12 +179,20 @@ class TriangleDepth {
   template <bool kClamp>
   double refine(double key, std::int64_t sampleX, std::int64_t sampleY,
                 const std::int64_t (&snapped)[3]) const {
-    if (snapped[0] >= sureInside_[0] && snapped[1] >= sureInside_[1] &&
-        snapped[2] >= sureInside_[2]) {
+    if (takesSteppedKey(snapped)) {
       return kClamp ? std::min(key, nearest_) : key;
     }
     return keyAt(sampleX, sampleY, snapped);
   }
+  // refine()'s test: the sample (its unbiased snapped edge values) is surely inside every
+  // boundary edge, and takes the stepped key (clamped, kClamp).
+  bool takesSteppedKey(const std::int64_t (&snapped)[3]) const {
+    return snapped[0] >= sureInside_[0] && snapped[1] >= sureInside_[1] &&
+           snapped[2] >= sureInside_[2];
+  }
+  // Whether the keys come from the unsnapped plane (not turned over by snapping): refine()
+  // bounds the samples near the boundary edges then, and only then.
+  bool unsnapped() const { return unsnapped_; }
   // refine()'s test in the walker's terms: the least biased value (Edge::value, `biased` as
   // Edge's) of edge k's function at which a sample is surely inside it (kNever: always).
   std::int64_t sureInsideBiased(int k, bool biased) const {
@@ -603,6 +611,25 @@ template <DepthMode kMode, bool kRejectHidden>
 
 }  // namespace
 
+std::uint32_t samplesNearBoundary(const WindowVertex& a, const WindowVertex& b,
+                                  const WindowVertex& c, EdgeMask boundary, const PixelBounds& box,
+                                  std::uint32_t coverage) {
+  const SmallBox edges(a, b, c, box);
+  const InsideBounds bounds = surelyInsideBounds(a, b, c, boundary, 0);
+  std::uint32_t near = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (!((boundary >> k) & 1u)) continue;
+    const std::int64_t bound = bounds.edge[k];
+    for (std::uint32_t rest = coverage; rest != 0; rest &= rest - 1) {
+      const int x = std::countr_zero(rest) % kSmallSide, y = std::countr_zero(rest) / kSmallSide;
+      const std::int64_t snapped =
+          std::int64_t{edges.value[k]} + x * edges.stepX[k] + y * edges.stepY[k] + edges.bias[k];
+      if (snapped < bound) near |= rest & -rest;
+    }
+  }
+  return near;
+}
+
 std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const WindowVertex& b,
                                              const WindowVertex& c, EdgeMask boundary,
                                              const PixelBounds& tile, std::int32_t polygonId) {
@@ -615,17 +642,8 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   }
   const SmallBox edges(a, b, c, box);
   const std::uint32_t coverage = edges.coverage();
-  const InsideBounds bounds = surelyInsideBounds(a, b, c, boundary, 0);
-  for (int k = 0; k < 3; ++k) {  // every covered sample surely inside the boundary edges
-    if (!((boundary >> k) & 1u)) continue;
-    const std::int64_t bound = bounds.edge[k];
-    for (std::uint32_t rest = coverage; rest != 0; rest &= rest - 1) {
-      const int x = std::countr_zero(rest) % kSmallSide, y = std::countr_zero(rest) / kSmallSide;
-      const std::int64_t snapped =
-          std::int64_t{edges.value[k]} + x * edges.stepX[k] + y * edges.stepY[k] + edges.bias[k];
-      if (snapped < bound) return std::nullopt;
-    }
-  }
+  // Every covered sample surely inside the boundary edges.
+  if (samplesNearBoundary(a, b, c, boundary, box, coverage) != 0) return std::nullopt;
   SmallTriangle small;
   TriangleDepth depth(a, b, c, area, 0);  // the plane without refine(): the same
   depth.prepareRows(a, b, c);
@@ -635,6 +653,26 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
   small.y0 = static_cast<std::uint16_t>(box.y0);
   small.coverage = static_cast<std::uint16_t>(coverage);
   return small;
+}
+
+std::uint32_t keysNearBoundary(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                               EdgeMask boundary, int x0, int y0, std::uint32_t mask,
+                               float (&keys)[kSmallSide * kSmallSide]) {
+  const std::int64_t area = doubleSignedArea(a, b, c);
+  FACET_ASSERT(area > 0);
+  const TriangleDepth depth(a, b, c, area, boundary);
+  // Turned over by snapping: refine() has no bounds there, every sample takes the stepped key.
+  if (!depth.unsnapped()) return 0;
+  for (std::uint32_t rest = mask; rest != 0; rest &= rest - 1) {
+    const int bit = std::countr_zero(rest);
+    const std::int64_t sampleX = std::int64_t{x0 + bit % kSmallSide} * kSubpixelScale + kHalfPixel;
+    const std::int64_t sampleY = std::int64_t{y0 + bit / kSmallSide} * kSubpixelScale + kHalfPixel;
+    const Edge e0(b, c, sampleX, sampleY), e1(c, a, sampleX, sampleY), e2(a, b, sampleX, sampleY);
+    const std::int64_t snapped[3] = {e0.unbiased(e0.value), e1.unbiased(e1.value),
+                                     e2.unbiased(e2.value)};
+    keys[bit] = toDepthKey(depth.keyAt(sampleX, sampleY, snapped));
+  }
+  return mask;
 }
 
 bool losesEverywhere(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,

@@ -442,6 +442,27 @@ std::optional<SmallTriangle> smallTriangleOf(const WindowVertex& a, const Window
                                              const WindowVertex& c, EdgeMask boundary,
                                              const PixelBounds& tile, std::int32_t polygonId);
 
+// The samples of `coverage` (bit y·kSmallSide + x for pixel (box.x0 + x, box.y0 + y), of a box
+// of at most kSmallSide × kSmallSide samples of a counter-clockwise triangle that fits the small
+// path) not surely inside a polygon-boundary edge (`boundary`) by refine()'s bound: where
+// paintTriangle's key may not be the stepped one (smallTriangleOf makes no record then). The
+// reference for the set-up's lanes (BatchVerdicts::smallPlane.unsure).
+std::uint32_t samplesNearBoundary(const WindowVertex& a, const WindowVertex& b,
+                                  const WindowVertex& c, EdgeMask boundary, const PixelBounds& box,
+                                  std::uint32_t coverage);
+
+// A counter-clockwise triangle with polygon-boundary edges over a small box whose covered
+// samples `mask` (bit y·kSmallSide + x for pixel (x0 + x, y0 + y)) are those not surely
+// inside a boundary edge by refine()'s test (the set-up's lanes test it, BatchVerdicts::
+// nearEdge): the samples of `mask` at which paintTriangle writes refine()'s key rather than
+// the stepped one — all of them, or none when snapping turned the triangle over (refine() has
+// no bounds then) — and their keys (keyAt's, toDepthKey) in keys[bit]. The set-up bins such a
+// triangle as a SmallTriangle record of its other samples and fragments of these:
+// paintTriangle's pixels and keys, without the tile's set-up of the triangle.
+std::uint32_t keysNearBoundary(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
+                               EdgeMask boundary, int x0, int y0, std::uint32_t mask,
+                               float (&keys)[kSmallSide * kSmallSide]);
+
 // paintTriangle without its small-box path (RasterTriangle.cpp): every box of two or more
 // samples walked row by row in 64-bit edge functions. The reference the small-box path is
 // tested against: the same pixels, keys and counts.

@@ -158,7 +158,8 @@ V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
 // line: most batches of a dense mesh have none, and inlined it cost their lanes 4 % more
 // instructions (8M triangles).
 HWY_NOINLINE M smallLanes(D d, M small, const EdgeLanes (&boxEdges)[3], V ux, V uy, V vx, V vy,
-                          V width, V height, V extent, bool boundaryEdges, std::int32_t* coverage) {
+                          V width, V height, V extent, bool boundaryEdges, std::int32_t* coverage,
+                          std::int32_t* unsure) {
   const V zero = hn::Zero(d);
   if (boundaryEdges) {
     const V sure[3] = {sureFrom(d, vx - ux, vy - uy, extent, boxEdges[0]),
@@ -166,6 +167,7 @@ HWY_NOINLINE M smallLanes(D d, M small, const EdgeLanes (&boxEdges)[3], V ux, V 
                        sureFrom(d, ux, uy, extent, boxEdges[2])};
     const BoxCoverage<true> box(d, small, boxEdges, width, height, sure);
     hn::Store(box.covered, d, coverage);
+    hn::Store(box.unsure, d, unsure);
     return hn::And(small, box.unsure == zero);
   }
   hn::Store(BoxCoverage<false>(d, small, boxEdges, width, height, {zero, zero, zero}).covered, d,
@@ -310,13 +312,15 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
   const bool anySmall = !hn::AllFalse(d, small);
   if (fragments == 0 && !anySmall) return;
 
+  std::uint32_t smalls = 0;
   if (anySmall) {
-    small =
-        smallLanes(d, small, edges, ux, uy, vx, vy, width, height, (maxX - minX) + (maxY - minY),
-                   boundaryEdges, verdicts.smallPlane.coverage + lane);
+    const M sure = smallLanes(
+        d, small, edges, ux, uy, vx, vy, width, height, (maxX - minX) + (maxY - minY),
+        boundaryEdges, verdicts.smallPlane.coverage + lane, verdicts.smallPlane.unsure + lane);
+    verdicts.small |= laneBits(d, sure) << lane;
+    verdicts.nearEdge |= laneBits(d, hn::AndNot(sure, small)) << lane;
+    smalls = laneBits(d, small) << lane;  // both: their records' planes
   }
-  const std::uint32_t smalls = laneBits(d, small) << lane;
-  verdicts.small |= smalls;
   if ((fragments | smalls) == 0) return;
 
   // The keys' and planes' inputs, b and c (and their residues and keys) swapped as above.
@@ -446,7 +450,7 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   const D d;
   verdicts.culled = verdicts.zeroArea = verdicts.coversNoSample = 0;
   verdicts.fragment = verdicts.triangle = verdicts.clockwise = verdicts.oneTile = 0;
-  verdicts.small = 0;
+  verdicts.small = verdicts.nearEdge = 0;
   verdicts.keptSamples = 0;
   KeyInputs keys;
   // The back faces' keys clamped (nearestWrittenKey), one pass or two (Setup.cpp).
@@ -461,7 +465,8 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
     if ((verdicts.fragment >> lane) & laneMask)
       keyLanes(dd, keys, lane, boundaryEdges, clamp, verdicts.key);
-    if ((verdicts.small >> lane) & laneMask) planeLanes(dd, keys, lane, clamp, verdicts);
+    if (((verdicts.small | verdicts.nearEdge) >> lane) & laneMask)
+      planeLanes(dd, keys, lane, clamp, verdicts);
   }
 }
 

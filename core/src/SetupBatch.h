@@ -60,6 +60,11 @@ struct BatchVerdicts {
   // 2 to kSmallSide² − 1 centers in a box at most kSmallSide on each side, and with
   // polygon-boundary edges every covered center surely inside them (smallTriangleOf).
   std::uint32_t small = 0;
+  // Triangle lanes that would be small but for some covered centers not surely inside a
+  // polygon-boundary edge (smallPlane.unsure): binned as a record of their other centers and
+  // fragments of these (keysNearBoundary, RasterTriangle.h: those of them at which
+  // paintTriangle's key is not the stepped one; the others stay in the record).
+  std::uint32_t nearEdge = 0;
   int culledCount = 0, zeroAreaCount = 0, coversNoSampleCount = 0;
   // The pixel centers in the boxes of the lanes kept (fragment or triangle): the
   // chunk's PolygonCounts::boxSamples, summed in lanes (below 2^16 a lane: a tested box is
@@ -71,10 +76,12 @@ struct BatchVerdicts {
   } samples;
   alignas(64) std::int32_t tile[kBatchSize];  // per kept lane: the tile of its first center
   alignas(64) float key[kBatchSize];          // per fragment lane
-  // Per small lane: its SmallTriangle's depth plane and coverage.
+  // Per small or nearEdge lane: its SmallTriangle's depth plane and coverage (and the
+  // covered centers not surely inside a boundary edge: a nearEdge lane's, some).
   struct {
     alignas(64) double firstKey[kBatchSize], keyPerFine[kBatchSize], keyPerPixel[kBatchSize];
     alignas(64) std::int32_t firstRowFine[kBatchSize], coverage[kBatchSize];
+    alignas(64) std::int32_t unsure[kBatchSize];
     // nearestWrittenKey, with clampBackFaces (the back faces' clamp,
     // Chunk::smallNearestKeys): a clockwise lane's nearest vertex key, else +∞.
     alignas(64) float nearestKey[kBatchSize];

@@ -455,6 +455,96 @@ Mesh mixedStrip(int polygons, unsigned seed) {
   return mesh;
 }
 
+// A nearEdge lane (BatchVerdicts), binned as Setup.cpp bins it: its record without the samples
+// keysNearBoundary takes, and those as fragments; painted, the same keys and ids to the bit as
+// paintTriangle paints from its corners (with the back faces' clamp too), on every target. The
+// lanes' unsure samples must be exactly those refine() does not step: one it would step,
+// taken as a fragment, would get keyAt's key, not the stepped one.
+TEST_F(SetupBatches, NearEdgeLanesPaintAsTheirTrianglesOnEveryTarget) {
+  const detail::TileGrid grid(100, 70);  // 2 × 2 tiles, the last ones partial
+  std::vector<WindowVertex> corners = randomTriangles(40000, 23);
+  const std::size_t triangles = corners.size() / 3;
+  const int width = 100, height = 70;
+  std::vector<float> depth(width * height), expectedDepth(width * height);
+  std::vector<std::int32_t> ids(width * height), expectedIds(width * height);
+  const detail::Planes planes{depth.data(), ids.data(), width};
+  const detail::Planes expected{expectedDepth.data(), expectedIds.data(), width};
+  const auto clear = [&] {
+    for (auto* plane : {&depth, &expectedDepth})
+      std::fill(plane->begin(), plane->end(), detail::kBackgroundDepthKey);
+    for (auto* plane : {&ids, &expectedIds})
+      std::fill(plane->begin(), plane->end(), -1);
+  };
+  for (const SimdTarget& target : targets()) {
+    SCOPED_TRACE(target.name);
+    use(target);
+    for (bool clampBackFaces : {false, true}) {
+      std::size_t nearEdge = 0, fragments = 0, mismatches = 0;
+      for (std::size_t first = 0; first + kBatchSize <= triangles; first += kBatchSize) {
+        const TriangleBatch batch = batchAt(corners, first);
+        detail::BatchVerdicts verdicts;
+        detail::classifyBatch(batch, grid, false, true, verdicts, clampBackFaces);
+        EXPECT_EQ(verdicts.nearEdge & verdicts.small, 0u);
+        EXPECT_EQ(verdicts.nearEdge & ~verdicts.triangle, 0u);
+        for (std::uint32_t rest = verdicts.nearEdge; rest != 0; rest &= rest - 1) {
+          const int lane = std::countr_zero(rest);
+          ++nearEdge;
+          const bool clockwise = (verdicts.clockwise >> lane) & 1u;
+          const WindowVertex& a = batch.v[0][lane];
+          const WindowVertex& b = batch.v[clockwise ? 2 : 1][lane];
+          const WindowVertex& c = batch.v[clockwise ? 1 : 2][lane];
+          const detail::EdgeMask boundary =
+              clockwise && clampBackFaces ? detail::kClampedEdges : detail::kAllEdges;
+          const int x0 = verdicts.samples.x0[lane], y0 = verdicts.samples.y0[lane];
+          const auto unsure = static_cast<std::uint32_t>(verdicts.smallPlane.unsure[lane]);
+          EXPECT_NE(unsure, 0u);
+          // refine()'s own test, sample by sample.
+          const PixelBounds box{x0, y0, verdicts.samples.x1[lane], verdicts.samples.y1[lane]};
+          EXPECT_EQ(unsure, detail::samplesNearBoundary(
+                                a, b, c, boundary, box,
+                                static_cast<std::uint32_t>(verdicts.smallPlane.coverage[lane])));
+          float keys[detail::kSmallSide * detail::kSmallSide];
+          const std::uint32_t near =
+              detail::keysNearBoundary(a, b, c, boundary, x0, y0, unsure, keys);
+          fragments += static_cast<std::size_t>(std::popcount(near));
+          clear();
+          detail::PaintCounts counts, expectedCounts;
+          detail::SmallTriangle record = detail::smallTriangleOfLane(verdicts, lane, 5);
+          record.coverage = static_cast<std::uint16_t>(record.coverage & ~near);
+          if (boundary == detail::kClampedEdges) {
+            detail::paintSmallTriangle<detail::DepthMode::Test>(
+                record, verdicts.smallPlane.nearestKey[lane], planes, counts);
+          } else {
+            detail::paintSmallTriangle<detail::DepthMode::Test>(record, planes, counts);
+          }
+          for (std::uint32_t bits = near; bits != 0; bits &= bits - 1) {
+            const int bit = std::countr_zero(bits);
+            const int x = x0 + bit % detail::kSmallSide, y = y0 + bit / detail::kSmallSide;
+            detail::writeFragment<detail::DepthMode::Test>(static_cast<std::size_t>(y) * width + x,
+                                                           keys[bit], 5, planes, counts);
+          }
+          detail::paintTriangle<detail::DepthMode::Test>(
+              a, b, c, boundary, 5, grid.bounds(static_cast<std::size_t>(verdicts.tile[lane])),
+              expected, expectedCounts);
+          const bool same =
+              counts.written == expectedCounts.written && ids == expectedIds &&
+              std::equal(depth.begin(), depth.end(), expectedDepth.begin(), [](float p, float q) {
+                return std::bit_cast<std::uint32_t>(p) == std::bit_cast<std::uint32_t>(q);
+              });
+          if (!same && ++mismatches <= 5) {
+            ADD_FAILURE() << "triangle (" << a.x << "," << a.y << ") (" << b.x << "," << b.y
+                          << ") (" << c.x << "," << c.y << "), unsure " << unsure << " near "
+                          << near << ", clamped " << (boundary == detail::kClampedEdges);
+          }
+        }
+      }
+      EXPECT_EQ(mismatches, 0u);
+      EXPECT_GT(nearEdge, triangles / 1000) << "near-edge lanes met too seldom";
+      EXPECT_GT(fragments, nearEdge / 2);
+    }
+  }
+}
+
 TEST_F(SetupBatches, SmallScenesRenderTheSameBytesOnEveryTarget) {
   const Mesh bunny = readObj(sharedMeshPath("stanford-bunny.obj"));
   Camera bunnyCamera = fitCamera(bunny, {0.2, -0.3, -1.0});
