@@ -317,9 +317,13 @@ void classifyLanes(D d, const TriangleBatch& batch, std::size_t lane, const Tile
     const M sure = smallLanes(
         d, small, edges, ux, uy, vx, vy, width, height, (maxX - minX) + (maxY - minY),
         boundaryEdges, verdicts.smallPlane.coverage + lane, verdicts.smallPlane.unsure + lane);
-    verdicts.small |= laneBits(d, sure) << lane;
-    verdicts.nearEdge |= laneBits(d, hn::AndNot(sure, small)) << lane;
-    smalls = laneBits(d, small) << lane;  // both: their records' planes
+    smalls = laneBits(d, sure) << lane;
+    verdicts.small |= smalls;
+    if (boundaryEdges) {  // the others near a boundary edge; both kinds' planes made
+      const std::uint32_t near = (laneBits(d, small) << lane) & ~smalls;
+      verdicts.nearEdge |= near;
+      smalls |= near;
+    }
   }
   if ((fragments | smalls) == 0) return;
 
@@ -462,11 +466,11 @@ void ClassifyBatch(const TriangleBatch& batch, const TileGrid& grid, bool skipBa
   verdicts.coversNoSampleCount = static_cast<int>(hwy::PopCount(verdicts.coversNoSample));
   const DD dd;
   const std::uint32_t laneMask = (1u << hn::Lanes(dd)) - 1;
+  const std::uint32_t fragments = verdicts.fragment, planes = verdicts.small | verdicts.nearEdge;
   for (std::size_t lane = 0; lane < kBatchSize; lane += hn::Lanes(dd)) {
-    if ((verdicts.fragment >> lane) & laneMask)
+    if ((fragments >> lane) & laneMask)
       keyLanes(dd, keys, lane, boundaryEdges, clamp, verdicts.key);
-    if (((verdicts.small | verdicts.nearEdge) >> lane) & laneMask)
-      planeLanes(dd, keys, lane, clamp, verdicts);
+    if ((planes >> lane) & laneMask) planeLanes(dd, keys, lane, clamp, verdicts);
   }
 }
 
