@@ -153,8 +153,9 @@ V sureFrom(D d, V dx, V dy, V extent, const EdgeLanes& edge) {
 // The coverage of the small lanes (SetupBatch.h; `boxEdges` at their first center, as the
 // pixel-center test computed them; b and c relative to a, the box in centers less one,
 // `extent` the bounding box's width plus height), stored to `coverage`; with boundary edges
-// (a triangle polygon's three), a lane some covered center of which is not surely inside them
-// is left to the tile (without, every center is sure): the lanes that stay small. Out of
+// (a triangle polygon's three) the covered centers not surely inside them stored to `unsure`
+// (without, every center is sure): returns the lanes with none, which stay small (the others
+// are nearEdge lanes, BatchVerdicts). Out of
 // line: most batches of a dense mesh have none, and inlined it cost their lanes 4 % more
 // instructions (8M triangles).
 HWY_NOINLINE M smallLanes(D d, M small, const EdgeLanes (&boxEdges)[3], V ux, V uy, V vx, V vy,
