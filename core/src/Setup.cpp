@@ -357,15 +357,14 @@ class PolygonSetup {
   // The front pass's back lanes (the batch culled them), put off to the back pass.
   [[gnu::noinline]] void deferCulled(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
                                      int lanes) {
+    // Appended one by one: a resize() for the batch's count zeroes the new ids first (a call
+    // to memset) and std::popcount is a call into libgcc on the baseline build; most calls
+    // append a few ids.
     const std::uint32_t used = (1u << lanes) - 1;
-    const std::uint32_t culled = verdicts.culled & used;
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
-    std::size_t at = list.size();
-    list.resize(at + static_cast<std::size_t>(std::popcount(culled)));
-    std::uint32_t* out = list.data();
-    for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1)
-      out[at++] =
-          static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
+    const auto first = static_cast<std::uint32_t>(mesh_.firstPolygon);
+    for (std::uint32_t rest = verdicts.culled & used; rest != 0; rest &= rest - 1)
+      list.push_back(first + static_cast<std::uint32_t>(lanePolygon[std::countr_zero(rest)]));
   }
 
   // A polygon run() defers: in a batch's settle() after the culled lanes deferCulled appended,
