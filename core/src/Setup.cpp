@@ -592,18 +592,30 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     deferredWholeDebug(count);
     return true;
   };
+  // Whether the block of `polygon` is left out whole, none of its polygons loaded: outside the
+  // view, culled whole, or (the front pass) deferred whole by the transform phase's verdict
+  // (without it, the first frames', the prefetch below sees no gap there).
+  const auto leftOutWhole = [&](std::size_t polygon) __attribute__((always_inline)) {
+    if constexpr (kDeferBackFaces) {
+      if (certainBack && mesh.deferredBackBlocks &&
+          mesh.deferredBackBlocks[polygon >> kBackBlockBits])
+        return true;
+    }
+    return !inView(polygon) || culledWhole(polygon);
+  };
   // `count` polygons from `polygon` on, in one back-face block.
-  // A frame that skips back faces leaves out whole blocks, in runs (a meridian's far side):
-  // the offsets and connectivity of the next block it sets up after such a gap are asked for
-  // while this one is set up. The hardware prefetchers follow the arrays only within a run of
-  // blocks, and after another program's frame (VTK's in bench/peers.py's paired frames) the
-  // mesh is not in cache (core-frame-issue11.md, section 51). Only a hint: a block prefetched
-  // may still be deferred.
+  // A frame that skips back faces leaves out whole blocks, in runs (a meridian's far side),
+  // and so does a two-pass frame's front pass (the blocks it defers whole): the offsets and
+  // connectivity of the next block it sets up after such a gap are asked for while this one is
+  // set up. The hardware prefetchers follow the arrays only within a run of blocks, and after
+  // another program's frame (VTK's in bench/peers.py's paired frames) the mesh is not in cache
+  // (core-frame-issue11.md, sections 51 and 63); at 2M polygons it is not in cache after the
+  // previous frame either.
   // Inlined by force: a function of prefetches alone is "pure" to GCC, and its calls dropped.
   const auto prefetchAfterGap = [&](std::size_t from, std::size_t end)
       __attribute__((always_inline)) {
     std::size_t next = from;
-    while (next < end && (!inView(next) || culledWhole(next)))
+    while (next < end && leftOutWhole(next))
       next = std::min(end, (next | (kPolygonsPerBackBlock - 1)) + 1);
     if (next == from || next >= end) return;  // no gap: the streams go on; or none left
     const std::size_t count = std::min(end - next, kPolygonsPerBackBlock);
@@ -634,8 +646,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     std::size_t polygon = position - mesh.firstPolygon;
     while (polygon < end) {
       const std::size_t blockEnd = std::min(end, (polygon | (kPolygonsPerBackBlock - 1)) + 1);
-      if constexpr (kSkipBackFaces) {
-        if (inView(polygon) && !culledWhole(polygon)) prefetchAfterGap(blockEnd, end);
+      if constexpr (kSkipBackFaces || kDeferBackFaces) {
+        if (!leftOutWhole(polygon)) prefetchAfterGap(blockEnd, end);
       }
       setUpBlock(polygon, blockEnd - polygon);
       polygon = blockEnd;
