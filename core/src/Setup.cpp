@@ -513,7 +513,7 @@ template <bool kSkipBackFaces, bool kDeferBackFaces, class PointsT, class Polygo
 std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
                      PointsT points, PolygonsT polygons, std::size_t position) {
   PolygonSetup<PointsT, PolygonsT, kSkipBackFaces, kDeferBackFaces> setup(context, chunk, mesh,
-                                                                         points, polygons);
+                                                                          points, polygons);
   // A record's nearest key is read at chunk.smallNearestKeys[record - firstKeyedSmall] (the
   // tiles' back bins): right only while every record of the chunk from there on pushed one,
   // i.e. the chunk holds this mesh's polygons alone (planChunks splits per mesh in z-buffer
@@ -528,8 +528,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   std::size_t lanePolygon[kBatchSize];
   int lanes = 0;
   const auto settleBatch = [&] {
-    classify(batch, context.grid, kSkipBackFaces || kDeferBackFaces, !kSkipBackFaces,
-             verdicts, setup.clampsBackFaces());
+    classify(batch, context.grid, kSkipBackFaces || kDeferBackFaces, !kSkipBackFaces, verdicts,
+             setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
