@@ -82,9 +82,17 @@ glm::dvec3 centerOf(std::span<const glm::dvec3> corners) {
 // The triangles of a kept polygon are painted whatever their own winding.
 //
 // kSkipBackFaces is the mesh's back-face handling this frame (FrameMesh::skipBackFaces),
-// chosen once per mesh rather than tested per polygon.
-template <class PointsT, class PolygonsT, bool kSkipBackFaces>
+// chosen once per mesh rather than tested per polygon. kDeferBackFaces: a mesh that draws its
+// back faces, set up by a two-pass frame's front pass (SetupPass::Front), which defers them
+// (the back pass sets them up): it keeps front faces alone, so its code never asks whether a
+// kept polygon is seen from the back, as a mesh that skips them. The batch drops the back faces
+// as it would cull them, and settle() defers them.
+template <class PointsT, class PolygonsT, bool kSkipBackFaces, bool kDeferBackFaces = false>
 class PolygonSetup {
+  static_assert(!(kSkipBackFaces && kDeferBackFaces));
+  // Whether a polygon the set-up keeps may be seen from the back.
+  static constexpr bool kKeepsBackFaces = !kSkipBackFaces && !kDeferBackFaces;
+
  public:
   PolygonSetup(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh, PointsT points,
                PolygonsT polygons)
@@ -94,12 +102,9 @@ class PolygonSetup {
         points_(points),
         polygons_(polygons),
         meshVertices_(context.vertices + mesh.firstVertex),
-        deferBack_(!kSkipBackFaces && context.pass == SetupPass::Front),
-        clampBack_(!kSkipBackFaces && context.backFacesLast && !deferBack_) {}
-
-  // Back faces are put off to the back pass (SetupPass::Front, every face drawn): the batch
-  // drops them as it would cull them, and settle() defers them.
-  bool defersBackFaces() const { return deferBack_; }
+        clampBack_(kKeepsBackFaces && context.backFacesLast) {
+    FACET_ASSERT(kDeferBackFaces == (!kSkipBackFaces && context.pass == SetupPass::Front));
+  }
 
   // Whether the back faces the batch keeps have their keys clamped (triangleEdges).
   bool clampsBackFaces() const { return clampBack_; }
@@ -152,8 +157,8 @@ class PolygonSetup {
   // Counts the polygons the batch dropped as run() would, bins the ones it kept, and runs the
   // others of the first `lanes` lanes (the lanes beyond were not tested), in lane order.
   void settle(const BatchVerdicts& verdicts, const std::size_t* lanePolygon, int lanes) {
-    if (!kSkipBackFaces && deferBack_) {
-      deferCulled(verdicts, lanePolygon, lanes);
+    if constexpr (kDeferBackFaces) {
+      if (verdicts.culled != 0) deferCulled(verdicts, lanePolygon, lanes);
     } else {
       chunk_.counts.culled += static_cast<std::size_t>(verdicts.culledCount);
     }
@@ -174,17 +179,20 @@ class PolygonSetup {
     }
     // The kept polygons' facing, after every append: a byte store may alias anything, and
     // between appends it made the compiler reload the chunk's vectors (and, in this loop, the
-    // base pointer: taken once). A mesh that skips back faces keeps no clockwise lane.
+    // base pointer: taken once). A mesh that skips or defers back faces keeps no clockwise
+    // lane.
     std::uint8_t* const facing = context_.backFacing + mesh_.firstPolygon;
-    if (kSkipBackFaces && kept != 0 && wholeRun(lanePolygon, lanes)) {
+    if (!kKeepsBackFaces && kept != 0 && wholeRun(lanePolygon, lanes)) {
       // Every lane's byte at once: 0 is also right for the lanes not kept, which are dropped
-      // (never shown, so never read) or were drawn front-facing by run() (back faces culled).
+      // (never shown, so never read), were drawn front-facing by run() (back faces culled or
+      // deferred), or are deferred: the back pass, a later phase, writes the byte of each one
+      // it draws (never shown otherwise).
       static constexpr std::uint8_t kFront[kBatchSize] = {};
       std::memcpy(facing + lanePolygon[0], kFront, kBatchSize);
     } else {
       for (std::uint32_t rest = kept; rest != 0; rest &= rest - 1) {
         const int lane = std::countr_zero(rest);
-        facing[lanePolygon[lane]] = kSkipBackFaces ? 0 : (verdicts.clockwise >> lane) & 1u;
+        facing[lanePolygon[lane]] = kKeepsBackFaces ? (verdicts.clockwise >> lane) & 1u : 0;
       }
     }
     chunk_.counts.trianglesBinned += binned;
@@ -250,7 +258,7 @@ class PolygonSetup {
       ++chunk_.counts.culled;
       return;
     }
-    if (!kSkipBackFaces && deferBack_ && area < 0) {
+    if (kDeferBackFaces && area < 0) {
       defer(polygon_);
       return;
     }
@@ -290,7 +298,7 @@ class PolygonSetup {
       ++chunk_.counts.culled;
       return std::nullopt;
     }
-    if (!kSkipBackFaces && deferBack_ && back) {
+    if (kDeferBackFaces && back) {
       defer(polygon_);
       return std::nullopt;
     }
@@ -321,8 +329,8 @@ class PolygonSetup {
   // counts it drawn.
   [[gnu::always_inline]] void bin(const BatchVerdicts& verdicts, int lane, std::size_t polygon) {
     const auto polygonId = static_cast<std::int32_t>(mesh_.firstPolygon + polygon);
-    // A mesh that skips back faces keeps no clockwise lane (the batch culled them).
-    const bool back = !kSkipBackFaces && ((verdicts.clockwise >> lane) & 1u);
+    // A mesh that skips or defers back faces keeps no clockwise lane (the batch culled them).
+    const bool back = kKeepsBackFaces && ((verdicts.clockwise >> lane) & 1u);
     const bool last = back && context_.backFacesLast;
     const auto& samples = verdicts.samples;
     const std::size_t tile = static_cast<std::size_t>(verdicts.tile[lane]);
@@ -330,7 +338,7 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
-      if (!kSkipBackFaces && clampBack_)
+      if (kKeepsBackFaces && clampBack_)
         chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
       binSmall(chunk_, tile, smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else if ((verdicts.nearEdge >> lane) & 1u) {
@@ -380,15 +388,14 @@ class PolygonSetup {
   // The front pass's back lanes (the batch culled them), put off to the back pass.
   [[gnu::noinline]] void deferCulled(const BatchVerdicts& verdicts, const std::size_t* lanePolygon,
                                      int lanes) {
+    // Appended one by one: a resize() for the batch's count zeroes the new ids first (a call
+    // to memset) and std::popcount is a call into libgcc on the baseline build; most calls
+    // append a few ids.
     const std::uint32_t used = (1u << lanes) - 1;
-    const std::uint32_t culled = verdicts.culled & used;
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
-    std::size_t at = list.size();
-    list.resize(at + static_cast<std::size_t>(std::popcount(culled)));
-    std::uint32_t* out = list.data();
-    for (std::uint32_t rest = culled; rest != 0; rest &= rest - 1)
-      out[at++] =
-          static_cast<std::uint32_t>(mesh_.firstPolygon + lanePolygon[std::countr_zero(rest)]);
+    const auto first = static_cast<std::uint32_t>(mesh_.firstPolygon);
+    for (std::uint32_t rest = verdicts.culled & used; rest != 0; rest &= rest - 1)
+      list.push_back(first + static_cast<std::uint32_t>(lanePolygon[std::countr_zero(rest)]));
   }
 
   // A polygon run() defers: in a batch's settle() after the culled lanes deferCulled appended,
@@ -408,7 +415,7 @@ class PolygonSetup {
   // or two alike (HiddenBlocks.h, step 1); none when back faces are skipped.
   EdgeMask triangleEdges(bool back) const {
     if (kSkipBackFaces) return EdgeMask{0};
-    return back && clampBack_ ? kClampedEdges : kAllEdges;
+    return kKeepsBackFaces && back && clampBack_ ? kClampedEdges : kAllEdges;
   }
 
   // In the polygon's plane, by Triangulate.h's rules.
@@ -511,7 +518,6 @@ class PolygonSetup {
   PointsT points_;
   PolygonsT polygons_;
   const WindowVertex* meshVertices_;
-  bool deferBack_;
   // The back faces are painted after the front faces (the depth test, context.backFacesLast)
   // and clamped (triangleEdges); the records carry their keys (Chunk::smallNearestKeys). Not
   // in a two-pass frame's front pass, which keeps no back face.
@@ -534,10 +540,11 @@ std::size_t meshOfPolygon(std::span<const FrameMesh> meshes, std::size_t polygon
 // Sets up draw positions from `position` on while they belong to `mesh`, in batches
 // (SetupBatch.h) unless they are off; returns where it stopped. The batch only drops
 // polygons: the others are set up in draw order, as without batches.
-template <bool kSkipBackFaces, class PointsT, class PolygonsT>
+template <bool kSkipBackFaces, bool kDeferBackFaces, class PointsT, class PolygonsT>
 std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
                      PointsT points, PolygonsT polygons, std::size_t position) {
-  PolygonSetup<PointsT, PolygonsT, kSkipBackFaces> setup(context, chunk, mesh, points, polygons);
+  PolygonSetup<PointsT, PolygonsT, kSkipBackFaces, kDeferBackFaces> setup(context, chunk, mesh,
+                                                                          points, polygons);
   // A record's nearest key is read at chunk.smallNearestKeys[record - firstKeyedSmall] (the
   // tiles' back bins): right only while every record of the chunk from there on pushed one,
   // i.e. the chunk holds this mesh's polygons alone (planChunks splits per mesh in z-buffer
@@ -552,8 +559,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   std::size_t lanePolygon[kBatchSize];
   int lanes = 0;
   const auto settleBatch = [&] {
-    classify(batch, context.grid, kSkipBackFaces || setup.defersBackFaces(), !kSkipBackFaces,
-             verdicts, setup.clampsBackFaces());
+    classify(batch, context.grid, kSkipBackFaces || kDeferBackFaces, !kSkipBackFaces, verdicts,
+             setup.clampsBackFaces());
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
@@ -590,7 +597,7 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   // same, in the same order. Their points are transformed as the mesh's others: only meshes
   // that skip back faces leave blocks' points out (ViewCulling.h).
   std::optional<BackFaceTest> certainBack;
-  if (context.deferCertainBackBlocks && setup.defersBackFaces() && context.order.ids.empty() &&
+  if (context.deferCertainBackBlocks && kDeferBackFaces && context.order.ids.empty() &&
       mesh.backBlockFacts != nullptr)
     certainBack.emplace(context.transform);
   // Defers the block's polygons when it is certain to be all back faces; flushes the batch
@@ -616,18 +623,30 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     deferredWholeDebug(count);
     return true;
   };
+  // Whether the block of `polygon` is left out whole, none of its polygons loaded: outside the
+  // view, culled whole, or (the front pass) deferred whole by the transform phase's verdict
+  // (without it, the first frames', the prefetch below sees no gap there).
+  const auto leftOutWhole = [&](std::size_t polygon) __attribute__((always_inline)) {
+    if constexpr (kDeferBackFaces) {
+      if (certainBack && mesh.deferredBackBlocks &&
+          mesh.deferredBackBlocks[polygon >> kBackBlockBits])
+        return true;
+    }
+    return !inView(polygon) || culledWhole(polygon);
+  };
   // `count` polygons from `polygon` on, in one back-face block.
-  // A frame that skips back faces leaves out whole blocks, in runs (a meridian's far side):
-  // the offsets and connectivity of the next block it sets up after such a gap are asked for
-  // while this one is set up. The hardware prefetchers follow the arrays only within a run of
-  // blocks, and after another program's frame (VTK's in bench/peers.py's paired frames) the
-  // mesh is not in cache (core-frame-issue11.md, section 51). Only a hint: a block prefetched
-  // may still be deferred.
+  // A frame that skips back faces leaves out whole blocks, in runs (a meridian's far side),
+  // and so does a two-pass frame's front pass (the blocks it defers whole): the offsets and
+  // connectivity of the next block it sets up after such a gap are asked for while this one is
+  // set up. The hardware prefetchers follow the arrays only within a run of blocks, and after
+  // another program's frame (VTK's in bench/peers.py's paired frames) the mesh is not in cache
+  // (core-frame-issue11.md, sections 51 and 63); at 2M polygons it is not in cache after the
+  // previous frame either.
   // Inlined by force: a function of prefetches alone is "pure" to GCC, and its calls dropped.
   const auto prefetchAfterGap = [&](std::size_t from, std::size_t end)
       __attribute__((always_inline)) {
     std::size_t next = from;
-    while (next < end && (!inView(next) || culledWhole(next)))
+    while (next < end && leftOutWhole(next))
       next = std::min(end, (next | (kPolygonsPerBackBlock - 1)) + 1);
     if (next == from || next >= end) return;  // no gap: the streams go on; or none left
     const std::size_t count = std::min(end - next, kPolygonsPerBackBlock);
@@ -658,8 +677,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
     std::size_t polygon = position - mesh.firstPolygon;
     while (polygon < end) {
       const std::size_t blockEnd = std::min(end, (polygon | (kPolygonsPerBackBlock - 1)) + 1);
-      if constexpr (kSkipBackFaces) {
-        if (inView(polygon) && !culledWhole(polygon)) prefetchAfterGap(blockEnd, end);
+      if constexpr (kSkipBackFaces || kDeferBackFaces) {
+        if (!leftOutWhole(polygon)) prefetchAfterGap(blockEnd, end);
       }
       setUpBlock(polygon, blockEnd - polygon);
       polygon = blockEnd;
@@ -824,9 +843,12 @@ void setUpChunk(const SetupContext& context, Chunk& chunk) {
     const FrameMesh& mesh =
         context.meshes[meshOfPolygon(context.meshes, context.order.polygonAt(position))];
     withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
-      position = mesh.skipBackFaces
-                     ? setUpRun<true>(context, chunk, mesh, points, polygons, position)
-                     : setUpRun<false>(context, chunk, mesh, points, polygons, position);
+      if (mesh.skipBackFaces)
+        position = setUpRun<true, false>(context, chunk, mesh, points, polygons, position);
+      else if (context.pass == SetupPass::Front)
+        position = setUpRun<false, true>(context, chunk, mesh, points, polygons, position);
+      else
+        position = setUpRun<false, false>(context, chunk, mesh, points, polygons, position);
     });
   }
 }

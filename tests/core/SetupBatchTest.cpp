@@ -9,6 +9,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -686,6 +687,84 @@ TEST_F(SetupBatches, TwoPassFramesRenderAsOnePassOnEveryTarget) {
       expectSameRender(before, after);
       EXPECT_EQ(before.stats.pixelsCovered, after.stats.pixelsCovered);
       EXPECT_EQ(before.stats.plan.depthComplexity, after.stats.plan.depthComplexity);
+    }
+  }
+}
+
+// A two-pass frame's front pass (Setup.cpp: PolygonSetup's kDeferBackFaces) keeps no back face:
+// a batch of consecutive polygons writes all its facing bytes as front-facing, its deferred
+// lanes' too, and the back pass rewrites the byte of each back face it draws. One renderer
+// turning about the banded sphere, lit from the eye (a polygon changes sides between frames, and
+// the silhouette's batches mix front and back faces): each frame the same bytes and counts as
+// the set-up without batches (which defers polygon by polygon and writes the facing of the
+// polygons it draws alone) and as a fresh renderer's one pass; the hidden blocks and polygons,
+// which the back pass finds from the deferred ids, the same too. Every target; 1, 2 and 8
+// threads.
+TEST_F(SetupBatches, TwoPassFrontPassLeavesEveryDrawnBackFacesFacingToTheBackPass) {
+  const Mesh banded = sphereWithBand(120);
+  MeshView view = banded.view();
+  view.version = 1;  // measured: the back pass's hidden blocks
+  const auto frameCamera = [&](int frame) {
+    const double angle = 0.9 * frame;  // radians: the far side comes round
+    return fitCamera(banded, {std::sin(angle) + 0.3, -0.2, -std::cos(angle)});
+  };
+  const auto sceneSeenFrom = [&](const Camera& camera) {
+    LightSet lights;
+    lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0, NoAttenuation{}});
+    return oneMeshScene(view, {}, lights);
+  };
+  constexpr int kFrames = 4;
+  const auto renderFrames = [&](int threads) {
+    Renderer renderer;
+    renderer.setThreadCount(threads);
+    renderer.setVisibility(Visibility::ZBuffer);
+    renderer.setTwoSidedLighting(true);
+    std::vector<Rendered> frames;
+    for (int frame = 0; frame < kFrames; ++frame) {
+      const Camera camera = frameCamera(frame);
+      Rendered rendered{Framebuffer(320, 240), {}};
+      rendered.stats = renderer.render(sceneSeenFrom(camera), camera, rendered.framebuffer);
+      EXPECT_TRUE(rendered.stats.plan.twoPassFrame);
+      frames.push_back(std::move(rendered));
+    }
+    return frames;
+  };
+  for (int threads : threadCountsToRun({1, 2, 8})) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    detail::enableTwoPassFrames(false);
+    std::vector<Rendered> onePass;
+    for (int frame = 0; frame < kFrames; ++frame) {
+      const Camera camera = frameCamera(frame);
+      onePass.push_back(renderScene(sceneSeenFrom(camera), camera, 320, 240,
+                                    optionsWith(Visibility::ZBuffer, threads)));
+    }
+    detail::enableTwoPassFrames(true);
+    detail::enableSetupBatches(false);
+    const std::vector<Rendered> unbatched = renderFrames(threads);
+    detail::enableSetupBatches(true);
+    std::size_t hidden = 0;
+    for (const Rendered& frame : unbatched)
+      hidden += frame.stats.polygonsHidden;
+    EXPECT_GT(hidden, 0u);
+    for (const SimdTarget& target : targets()) {
+      SCOPED_TRACE(target.name);
+      use(target);
+      const std::vector<Rendered> batched = renderFrames(threads);
+      for (int frame = 0; frame < kFrames; ++frame) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        const Rendered &one = onePass[static_cast<std::size_t>(frame)],
+                       &before = unbatched[static_cast<std::size_t>(frame)],
+                       &after = batched[static_cast<std::size_t>(frame)];
+        EXPECT_GT(one.stats.pixelsCovered, 10000u);
+        expectSameRender(before, after);
+        EXPECT_EQ(before.stats.plan.blocksHiddenBehindFront,
+                  after.stats.plan.blocksHiddenBehindFront);
+        EXPECT_EQ(before.stats.plan.polygonsHiddenBehindFront,
+                  after.stats.plan.polygonsHiddenBehindFront);
+        EXPECT_EQ(differingPixels(one.framebuffer, after.framebuffer), 0u);
+        EXPECT_EQ(one.stats.fragmentsWritten, after.stats.fragmentsWritten);
+        EXPECT_EQ(one.stats.pixelsCovered, after.stats.pixelsCovered);
+      }
     }
   }
 }
