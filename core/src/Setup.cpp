@@ -673,6 +673,21 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     blocks.emplace(context.transform, context.grid, *context.front);
     if (hiddenBlocksConeOnly() || countingHiddenBlocks()) cone.emplace(context.transform);
   }
+  // The block scan's reads a few blocks ahead of ids[k] asked for (section 62): the ids
+  // (firstIdFrom reads a block's last one, from memory: the front pass wrote them long
+  // before) and the compact records. Hints at addresses that may lie past the arrays' ends
+  // (as integers: a prefetch does not fault).
+  const auto prefetchBlockScan = [&](std::size_t k) {
+    constexpr std::size_t kIdsAhead = 4 * kPolygonsPerBackBlock, kBlocksAhead = 4;
+    const auto at = reinterpret_cast<std::uintptr_t>(ids.data() + k);
+    __builtin_prefetch(reinterpret_cast<const void*>(at + kIdsAhead * sizeof(std::uint32_t)));
+    __builtin_prefetch(reinterpret_cast<const void*>(
+        at + (kIdsAhead + kPolygonsPerBackBlock - 1) * sizeof(std::uint32_t)));
+    const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+    const auto test = reinterpret_cast<std::uintptr_t>(mesh.backBlockFacts->backTests.data());
+    __builtin_prefetch(
+        reinterpret_cast<const void*>(test + (block + kBlocksAhead) * sizeof(BackBlockTest)));
+  };
   // The end of the ids of the block of ids[k], and whether it is hidden.
   const auto blockOf = [&](std::size_t k, bool& hidden) {
     const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
@@ -698,26 +713,42 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   if (blocks) runs.emplace(context.grid, *context.front);
   const WindowVertex* const vertices = context.vertices + mesh.firstVertex;
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
-  // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
-  // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
-  // block is a triangle (MeshFacts::backSkippable).
+  // Calls each(polygon, corners) for the deferred polygons of ids [k, stop) (one block's) not
+  // in a hidden run (HiddenRuns.h: the runs' bounds in lanes), `corners` its triangle's three
+  // window vertices as the runs read them when every polygon of the block is a triangle
+  // (allTriangles: MeshFacts::backSkippable), else null.
+  using Source = RunSource<typename PolygonsT::IndexType>;
+  const auto sourceOf = [&](std::size_t k) {
+    return Source{vertices, polygons, firstId,
+                  mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits),
+                  mesh.allTriangles};
+  };
   std::uint32_t shown[kPolygonsPerBackBlock];
-  const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
-    const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
-                                                          allTriangles};
+  alignas(64) WindowVertex corners[3 * kPolygonsPerBackBlock];
+  const auto runsOf = [&](std::size_t k, std::size_t stop, const Source& source, const auto& each) {
+    FACET_ASSERT(stop - k <= kPolygonsPerBackBlock);
+    prefetchRunConnectivity(source, ids.data() + k, stop - k);
     RunTally tally;
     const std::size_t count =
-        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, tally);
+        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, corners, tally);
     chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
     hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
     for (std::size_t i = 0; i < count; ++i)
-      each(shown[i] - firstId);
+      each(ids[k + shown[i]] - firstId,
+           source.allTriangles || source.offsetsThrice ? corners + 3 * shown[i] : nullptr);
   };
-  // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
+  // Calls each(polygon, corners) for every deferred polygon of [first, end) not in a hidden
+  // block (corners: runsOf's, or null).
   const auto forEachShown = [&](const auto& each) {
+    if (!runs) {  // no reject: every deferred polygon
+      for (std::size_t k = first; k < end; ++k)
+        each(ids[k] - mesh.firstPolygon, nullptr);
+      return;
+    }
     for (std::size_t k = first; k < end;) {
+      prefetchBlockScan(k);
       bool hidden = false;
-      const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
+      const std::size_t blockEnd = blockOf(k, hidden);
       if (cone && countingHiddenBlocks()) {
         const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
         const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
@@ -727,21 +758,14 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
       if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
         ++chunk.counts.hiddenBlocks;
         chunk.counts.hiddenBlockPolygons += blockEnd - k;
-        k = blockEnd;
-        continue;
+      } else {
+        runsOf(k, blockEnd, sourceOf(k), each);
       }
-      if (runs) {
-        runsOf(k, blockEnd,
-               mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits), each);
-        k = blockEnd;
-        continue;
-      }
-      for (; k < blockEnd; ++k)
-        each(ids[k] - mesh.firstPolygon);
+      k = blockEnd;
     }
   };
   if (!setupBatchesEnabled()) {
-    forEachShown([&](std::size_t polygon) { setup.run(polygon); });
+    forEachShown([&](std::size_t polygon, const WindowVertex*) { setup.run(polygon); });
     return end;
   }
   const BatchClassifier classify = batchClassifier();
@@ -755,9 +779,15 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
-  forEachShown([&](std::size_t polygon) {
+  forEachShown([&](std::size_t polygon, const WindowVertex* loaded) {
     lanePolygon[lanes] = polygon;
-    setup.loadOne(polygon, batch, lanes);
+    if (loaded != nullptr) {  // a triangle, its corners as loadOne reads them
+      batch.triangle[lanes] = 1;
+      for (int j = 0; j < 3; ++j)
+        batch.v[j][lanes] = loaded[j];
+    } else {
+      setup.loadOne(polygon, batch, lanes);
+    }
     if (++lanes == kBatchSize) settleBatch();
   });
   if (lanes > 0) settleBatch();
