@@ -677,8 +677,8 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // (firstIdFrom reads a block's last one, from memory: the front pass wrote them long
   // before) and the compact records. Hints at addresses that may lie past the arrays' ends
   // (as integers: a prefetch does not fault).
-  const auto prefetchBlockScan = [&](std::size_t k) {
-    constexpr std::size_t kIdsAhead = 4 * kPolygonsPerBackBlock, kBlocksAhead = 4;
+  const auto prefetchBlockScan = [&](std::size_t k) __attribute__((always_inline)) {
+    constexpr std::size_t kIdsAhead = 16 * kPolygonsPerBackBlock, kBlocksAhead = 8;
     const auto at = reinterpret_cast<std::uintptr_t>(ids.data() + k);
     __builtin_prefetch(reinterpret_cast<const void*>(at + kIdsAhead * sizeof(std::uint32_t)));
     __builtin_prefetch(reinterpret_cast<const void*>(
@@ -727,7 +727,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   alignas(64) WindowVertex corners[3 * kPolygonsPerBackBlock];
   const auto runsOf = [&](std::size_t k, std::size_t stop, const Source& source, const auto& each) {
     FACET_ASSERT(stop - k <= kPolygonsPerBackBlock);
-    prefetchRunConnectivity(source, ids.data() + k, stop - k);
+    prefetchRunsNow(source, ids.data() + k, stop - k);
     RunTally tally;
     const std::size_t count =
         shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, corners, tally);
@@ -737,6 +737,42 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
       each(ids[k + shown[i]] - firstId,
            source.allTriangles || source.offsetsThrice ? corners + 3 * shown[i] : nullptr);
   };
+  // The blocks not dropped whole, taken up to kAhead ahead of the one whose runs are tested,
+  // each one's connectivity asked for as it is taken (HiddenRuns.h; section 62): a kept block
+  // mostly follows hidden ones, which leave it no lead time else.
+  struct Kept {
+    std::size_t k, stop;
+    Source source;
+  };
+  constexpr std::size_t kAhead = 3;
+  Kept ahead[kAhead];
+  std::size_t queued = 0, scan = first;
+  // Queues the next block not dropped whole from ids[scan] on, counting the hidden ones before
+  // it; false when none is left.
+  const auto takeBlock = [&] {
+    while (scan < end) {
+      prefetchBlockScan(scan);
+      bool hidden = false;
+      const std::size_t k = scan;
+      scan = blockOf(k, hidden);
+      if (cone && countingHiddenBlocks()) {
+        const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
+                                                       mesh.backBlockFacts->backFrameOf(block));
+        hiddenBlockDebug(hidden, coneCertain, scan - k);
+      }
+      if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
+        ++chunk.counts.hiddenBlocks;
+        chunk.counts.hiddenBlockPolygons += scan - k;
+        continue;
+      }
+      ahead[queued] = {k, scan, sourceOf(k)};
+      prefetchRunsAhead(ahead[queued].source, ids.data() + k, scan - k);
+      ++queued;
+      return true;
+    }
+    return false;
+  };
   // Calls each(polygon, corners) for every deferred polygon of [first, end) not in a hidden
   // block (corners: runsOf's, or null).
   const auto forEachShown = [&](const auto& each) {
@@ -745,23 +781,13 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
         each(ids[k] - mesh.firstPolygon, nullptr);
       return;
     }
-    for (std::size_t k = first; k < end;) {
-      prefetchBlockScan(k);
-      bool hidden = false;
-      const std::size_t blockEnd = blockOf(k, hidden);
-      if (cone && countingHiddenBlocks()) {
-        const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
-        const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
-                                                       mesh.backBlockFacts->backFrameOf(block));
-        hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
-      }
-      if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
-        ++chunk.counts.hiddenBlocks;
-        chunk.counts.hiddenBlockPolygons += blockEnd - k;
-      } else {
-        runsOf(k, blockEnd, sourceOf(k), each);
-      }
-      k = blockEnd;
+    while (queued < kAhead && takeBlock()) {
+    }
+    while (queued > 0) {
+      runsOf(ahead[0].k, ahead[0].stop, ahead[0].source, each);
+      std::copy(ahead + 1, ahead + queued, ahead);
+      --queued;
+      takeBlock();
     }
   };
   if (!setupBatchesEnabled()) {
