@@ -715,8 +715,9 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
   // Calls each(polygon, corners) for the deferred polygons of ids [k, stop) (one block's) not
   // in a hidden run (HiddenRuns.h: the runs' bounds in lanes), `corners` its triangle's three
-  // window vertices as the runs read them when every polygon of the block is a triangle
-  // (allTriangles: MeshFacts::backSkippable), else null.
+  // window vertices as the runs read them (loadOne's bytes) when every polygon of the block
+  // (RunSource::allTriangles: MeshFacts::backSkippable) or of the mesh (offsetsThrice) is a
+  // triangle, else null (loadOne reads it again).
   using Source = RunSource<typename PolygonsT::IndexType>;
   const auto sourceOf = [&](std::size_t k) {
     return Source{vertices, polygons, firstId,
