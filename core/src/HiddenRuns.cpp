@@ -3,7 +3,6 @@
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "HiddenRuns.cpp"
-#include <hwy/cache_control.h>
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
@@ -57,56 +56,59 @@ struct RunLanes {
 static_assert(sizeof(WindowVertex) == 16);
 #endif
 
-// A kept block's polygons' offsets and (a triangle block's) connectivity, written long before
-// and read after hidden blocks the hardware prefetcher's stream skipped, asked for at once, all
-// their cache lines, before the runs load them one polygon after another (bench section 49).
+// What a polygon that is not a triangle gets for corners: an outcode never kInside, so its
+// run is not dropped (step R1, as RunBounds::kNotTriangle).
+constexpr WindowVertex kNotTriangleCorner{0, 0, 0.0f, kNonFinite, 0, 0};
+
+// Copies the corners of the ids' polygons to `corners` (3 a polygon), every polygon's loads
+// independent of the others' so that their misses overlap: the runs then take their bounds
+// from there, in order.
 template <class Index>
-HWY_INLINE void prefetchBlock(const RunSource<Index>& source, const std::uint32_t* ids,
-                              std::size_t count) {
-  constexpr std::size_t kLine = 64;
-  const std::size_t first = ids[0] - source.firstId, last = ids[count - 1] - source.firstId;
-  const auto* offsets = reinterpret_cast<const char*>(source.polygons.offsets);
-  for (std::size_t at = first * sizeof(Index); at < (last + 2) * sizeof(Index); at += kLine)
-    hwy::Prefetch(offsets + at);
-  if (!source.allTriangles) return;
-  // Every polygon from first to last is a triangle: their references are the 3 (last - first
-  // + 1) from offsets[first] on.
-  const auto* connectivity = reinterpret_cast<const char*>(
-      source.polygons.connectivity + static_cast<std::size_t>(source.polygons.offsets[first]));
-  const std::size_t bytes = 3 * (last - first + 1) * sizeof(Index);
-  for (std::size_t at = 0; at < bytes; at += kLine)
-    hwy::Prefetch(connectivity + at);
+HWY_INLINE void gatherCorners(const RunSource<Index>& source, const std::uint32_t* ids,
+                              std::size_t count, WindowVertex* HWY_RESTRICT corners) {
+  const WindowVertex* const vertices = source.vertices;
+  const Index* const offsets = source.polygons.offsets;
+  const Index* const connectivity = source.polygons.connectivity;
+  if (source.offsetsThrice) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const Index* c = connectivity + 3 * static_cast<std::size_t>(ids[i] - source.firstId);
+      corners[3 * i] = vertices[c[0]];
+      corners[3 * i + 1] = vertices[c[1]];
+      corners[3 * i + 2] = vertices[c[2]];
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t polygon = ids[i] - source.firstId;
+    const Index* c = connectivity + static_cast<std::size_t>(offsets[polygon]);
+    if (!source.allTriangles && offsets[polygon + 1] - offsets[polygon] != 3) {
+      corners[3 * i] = corners[3 * i + 1] = corners[3 * i + 2] = kNotTriangleCorner;
+      continue;
+    }
+    corners[3 * i] = vertices[c[0]];
+    corners[3 * i + 1] = vertices[c[1]];
+    corners[3 * i + 2] = vertices[c[2]];
+  }
 }
 
 template <class Index>
 std::size_t shownOfRunsOf(const HiddenRunTest& test, const RunSource<Index>& source,
                           const std::uint32_t* ids, std::size_t count, std::uint32_t* shown,
-                          RunTally& tally) {
-  const WindowVertex* const vertices = source.vertices;
-  const Index* const offsets = source.polygons.offsets;
-  const Index* const connectivity = source.polygons.connectivity;
-  if (count != 0) prefetchBlock(source, ids, count);
+                          WindowVertex* corners, RunTally& tally) {
+  if (count == 0) return 0;
+  gatherCorners(source, ids, count, corners);
   std::size_t out = 0;
   for (std::size_t k = 0; k < count;) {
     const std::uint32_t windowEnd =
         ((ids[k] - source.firstId) | (kHiddenRunIds - 1)) + 1 + source.firstId;
     RunLanes lanes;
-    bool notTriangle = false;
     std::size_t i = k;
     do {
-      const std::size_t polygon = ids[i] - source.firstId;
-      const auto begin = static_cast<std::size_t>(offsets[polygon]);
-      if (!source.allTriangles && offsets[polygon + 1] - offsets[polygon] != 3) {
-        notTriangle = true;
-        continue;
-      }
-      lanes.add(vertices[connectivity[begin]]);
-      lanes.add(vertices[connectivity[begin + 1]]);
-      lanes.add(vertices[connectivity[begin + 2]]);
+      lanes.add(corners[3 * i]);
+      lanes.add(corners[3 * i + 1]);
+      lanes.add(corners[3 * i + 2]);
     } while (++i < count && ids[i] < windowEnd);
-    RunBounds bounds = lanes.finish();
-    if (notTriangle) bounds.outcodes |= RunBounds::kNotTriangle;
-    const bool hidden = test.hidden(bounds);
+    const bool hidden = test.hidden(lanes.finish());
     ++tally.runs;
     tally.polygons += i - k;
     if (hidden) {
@@ -116,21 +118,21 @@ std::size_t shownOfRunsOf(const HiddenRunTest& test, const RunSource<Index>& sou
       continue;
     }
     for (; k < i; ++k)
-      shown[out++] = ids[k];
+      shown[out++] = static_cast<std::uint32_t>(k);
   }
   return out;
 }
 
 std::size_t ShownOfRuns32(const HiddenRunTest& test, const RunSource<std::int32_t>& source,
                           const std::uint32_t* ids, std::size_t count, std::uint32_t* shown,
-                          RunTally& tally) {
-  return shownOfRunsOf(test, source, ids, count, shown, tally);
+                          WindowVertex* corners, RunTally& tally) {
+  return shownOfRunsOf(test, source, ids, count, shown, corners, tally);
 }
 
 std::size_t ShownOfRuns64(const HiddenRunTest& test, const RunSource<std::int64_t>& source,
                           const std::uint32_t* ids, std::size_t count, std::uint32_t* shown,
-                          RunTally& tally) {
-  return shownOfRunsOf(test, source, ids, count, shown, tally);
+                          WindowVertex* corners, RunTally& tally) {
+  return shownOfRunsOf(test, source, ids, count, shown, corners, tally);
 }
 
 }  // namespace facet::detail::HWY_NAMESPACE
@@ -143,13 +145,17 @@ HWY_EXPORT(ShownOfRuns32);
 HWY_EXPORT(ShownOfRuns64);
 
 std::size_t shownOfRuns(const HiddenRunTest& test, const RunSource<std::int32_t>& source,
-                        std::span<const std::uint32_t> ids, std::uint32_t* shown, RunTally& tally) {
-  return HWY_DYNAMIC_DISPATCH(ShownOfRuns32)(test, source, ids.data(), ids.size(), shown, tally);
+                        std::span<const std::uint32_t> ids, std::uint32_t* shown,
+                        WindowVertex* corners, RunTally& tally) {
+  return HWY_DYNAMIC_DISPATCH(ShownOfRuns32)(test, source, ids.data(), ids.size(), shown, corners,
+                                             tally);
 }
 
 std::size_t shownOfRuns(const HiddenRunTest& test, const RunSource<std::int64_t>& source,
-                        std::span<const std::uint32_t> ids, std::uint32_t* shown, RunTally& tally) {
-  return HWY_DYNAMIC_DISPATCH(ShownOfRuns64)(test, source, ids.data(), ids.size(), shown, tally);
+                        std::span<const std::uint32_t> ids, std::uint32_t* shown,
+                        WindowVertex* corners, RunTally& tally) {
+  return HWY_DYNAMIC_DISPATCH(ShownOfRuns64)(test, source, ids.data(), ids.size(), shown, corners,
+                                             tally);
 }
 
 }  // namespace facet::detail

@@ -723,6 +723,21 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     blocks.emplace(context.transform, context.grid, *context.front);
     if (hiddenBlocksConeOnly() || countingHiddenBlocks()) cone.emplace(context.transform);
   }
+  // The block scan's reads a few blocks ahead of ids[k] asked for (section 64): the ids
+  // (firstIdFrom reads a block's last one, from memory: the front pass wrote them long
+  // before) and the compact records. Hints at addresses that may lie past the arrays' ends
+  // (as integers: a prefetch does not fault).
+  const auto prefetchBlockScan = [&](std::size_t k) __attribute__((always_inline)) {
+    constexpr std::size_t kIdsAhead = 16 * kPolygonsPerBackBlock, kBlocksAhead = 8;
+    const auto at = reinterpret_cast<std::uintptr_t>(ids.data() + k);
+    __builtin_prefetch(reinterpret_cast<const void*>(at + kIdsAhead * sizeof(std::uint32_t)));
+    __builtin_prefetch(reinterpret_cast<const void*>(
+        at + (kIdsAhead + kPolygonsPerBackBlock - 1) * sizeof(std::uint32_t)));
+    const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+    const auto test = reinterpret_cast<std::uintptr_t>(mesh.backBlockFacts->backTests.data());
+    __builtin_prefetch(
+        reinterpret_cast<const void*>(test + (block + kBlocksAhead) * sizeof(BackBlockTest)));
+  };
   // The end of the ids of the block of ids[k], and whether it is hidden.
   const auto blockOf = [&](std::size_t k, bool& hidden) {
     const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
@@ -748,50 +763,86 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   if (blocks) runs.emplace(context.grid, *context.front);
   const WindowVertex* const vertices = context.vertices + mesh.firstVertex;
   const auto firstId = static_cast<std::uint32_t>(mesh.firstPolygon);
-  // Calls each(polygon) for the deferred polygons of ids [k, stop) (one block's) not in a
-  // hidden run (HiddenRuns.h: the runs' bounds in lanes); allTriangles: every polygon of the
-  // block is a triangle (MeshFacts::backSkippable).
+  // Calls each(polygon, corners) for the deferred polygons of ids [k, stop) (one block's) not
+  // in a hidden run (HiddenRuns.h: the runs' bounds in lanes), `corners` its triangle's three
+  // window vertices as the runs read them (loadOne's bytes) when every polygon of the block
+  // (RunSource::allTriangles: MeshFacts::backSkippable) or of the mesh (offsetsThrice) is a
+  // triangle, else null (loadOne reads it again).
+  using Source = RunSource<typename PolygonsT::IndexType>;
+  const auto sourceOf = [&](std::size_t k) {
+    return Source{vertices, polygons, firstId,
+                  mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits),
+                  mesh.allTriangles};
+  };
   std::uint32_t shown[kPolygonsPerBackBlock];
-  const auto runsOf = [&](std::size_t k, std::size_t stop, bool allTriangles, const auto& each) {
-    const RunSource<typename PolygonsT::IndexType> source{vertices, polygons, firstId,
-                                                          allTriangles};
+  alignas(64) WindowVertex corners[3 * kPolygonsPerBackBlock];
+  const auto runsOf = [&](std::size_t k, std::size_t stop, const Source& source, const auto& each) {
+    FACET_ASSERT(stop - k <= kPolygonsPerBackBlock);
+    prefetchRunsNow(source, ids.data() + k, stop - k);
     RunTally tally;
     const std::size_t count =
-        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, tally);
+        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, corners, tally);
     chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
     hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
     for (std::size_t i = 0; i < count; ++i)
-      each(shown[i] - firstId);
+      each(ids[k + shown[i]] - firstId,
+           source.allTriangles || source.offsetsThrice ? corners + 3 * shown[i] : nullptr);
   };
-  // Calls each(polygon) for every deferred polygon of [first, end) not in a hidden block.
-  const auto forEachShown = [&](const auto& each) {
-    for (std::size_t k = first; k < end;) {
+  // The blocks not dropped whole, taken up to kAhead ahead of the one whose runs are tested,
+  // each one's connectivity asked for as it is taken (HiddenRuns.h; section 64): a kept block
+  // mostly follows hidden ones, which leave it no lead time else.
+  struct Kept {
+    std::size_t k, stop;
+    Source source;
+  };
+  constexpr std::size_t kAhead = 3;
+  Kept ahead[kAhead];
+  std::size_t queued = 0, scan = first;
+  // Queues the next block not dropped whole from ids[scan] on, counting the hidden ones before
+  // it; false when none is left.
+  const auto takeBlock = [&] {
+    while (scan < end) {
+      prefetchBlockScan(scan);
       bool hidden = false;
-      const std::size_t blockEnd = blocks ? blockOf(k, hidden) : end;
+      const std::size_t k = scan;
+      scan = blockOf(k, hidden);
       if (cone && countingHiddenBlocks()) {
         const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
         const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
                                                        mesh.backBlockFacts->backFrameOf(block));
-        hiddenBlockDebug(hidden, coneCertain, blockEnd - k);
+        hiddenBlockDebug(hidden, coneCertain, scan - k);
       }
       if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
         ++chunk.counts.hiddenBlocks;
-        chunk.counts.hiddenBlockPolygons += blockEnd - k;
-        k = blockEnd;
+        chunk.counts.hiddenBlockPolygons += scan - k;
         continue;
       }
-      if (runs) {
-        runsOf(k, blockEnd,
-               mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits), each);
-        k = blockEnd;
-        continue;
-      }
-      for (; k < blockEnd; ++k)
-        each(ids[k] - mesh.firstPolygon);
+      ahead[queued] = {k, scan, sourceOf(k)};
+      prefetchRunsAhead(ahead[queued].source, ids.data() + k, scan - k);
+      ++queued;
+      return true;
+    }
+    return false;
+  };
+  // Calls each(polygon, corners) for every deferred polygon of [first, end) not in a hidden
+  // block (corners: runsOf's, or null).
+  const auto forEachShown = [&](const auto& each) {
+    if (!runs) {  // no reject: every deferred polygon
+      for (std::size_t k = first; k < end; ++k)
+        each(ids[k] - mesh.firstPolygon, nullptr);
+      return;
+    }
+    while (queued < kAhead && takeBlock()) {
+    }
+    while (queued > 0) {
+      runsOf(ahead[0].k, ahead[0].stop, ahead[0].source, each);
+      std::copy(ahead + 1, ahead + queued, ahead);
+      --queued;
+      takeBlock();
     }
   };
   if (!setupBatchesEnabled()) {
-    forEachShown([&](std::size_t polygon) { setup.run(polygon); });
+    forEachShown([&](std::size_t polygon, const WindowVertex*) { setup.run(polygon); });
     return end;
   }
   const BatchClassifier classify = batchClassifier();
@@ -805,9 +856,15 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     setup.settle(verdicts, lanePolygon, lanes);
     lanes = 0;
   };
-  forEachShown([&](std::size_t polygon) {
+  forEachShown([&](std::size_t polygon, const WindowVertex* loaded) {
     lanePolygon[lanes] = polygon;
-    setup.loadOne(polygon, batch, lanes);
+    if (loaded != nullptr) {  // a triangle, its corners as loadOne reads them
+      batch.triangle[lanes] = 1;
+      for (int j = 0; j < 3; ++j)
+        batch.v[j][lanes] = loaded[j];
+    } else {
+      setup.loadOne(polygon, batch, lanes);
+    }
     if (++lanes == kBatchSize) settleBatch();
   });
   if (lanes > 0) settleBatch();

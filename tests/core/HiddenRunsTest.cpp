@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -68,6 +69,30 @@ std::vector<std::uint32_t> shownByVertex(const detail::HiddenRunTest& test,
   return shown;
 }
 
+// The lanes' shown ids (shownOfRuns writes their positions in `ids`), and each triangle's
+// corners as they were read, checked against the mesh's.
+template <class Index>
+std::vector<std::uint32_t> shownByLanes(const detail::HiddenRunTest& test,
+                                        const RunSource<Index>& source,
+                                        const std::vector<std::uint32_t>& ids, RunTally& tally) {
+  std::vector<std::uint32_t> at(ids.size() + 1);
+  std::vector<WindowVertex> corners(3 * ids.size() + 1);
+  at.resize(detail::shownOfRuns(test, source, ids, at.data(), corners.data(), tally));
+  std::vector<std::uint32_t> shown;
+  for (const std::uint32_t i : at)
+    shown.push_back(ids.at(i));
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const std::size_t polygon = ids[i] - source.firstId;
+    if (source.polygons.size(polygon) != 3) continue;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const WindowVertex& v = source.vertices[source.polygons.pointId(polygon, j)];
+      EXPECT_EQ(std::memcmp(&corners[3 * i + j], &v, sizeof v), 0)
+          << "polygon " << ids[i] << " corner " << j;
+    }
+  }
+  return shown;
+}
+
 class HiddenRuns : public EveryTargetTest {
  protected:
   HiddenRuns() : grid_(100, 70) {  // 2 × 2 tiles, the last ones partial
@@ -108,12 +133,14 @@ class HiddenRuns : public EveryTargetTest {
   // Of each block of 256 polygon ids from `firstId`, a random subset deferred: some windows
   // whole, some in part, some empty; then the lanes' answer against the vertex-by-vertex one
   // on every target.
+  // `thrice`: the source takes offsets[p] = 3p without reading them (RunSource::offsetsThrice:
+  // only without quads, where it holds).
   template <class Index>
-  void expectTheRunsOfTheBounds(bool quads, RunTally& total) {
+  void expectTheRunsOfTheBounds(bool quads, bool thrice, RunTally& total) {
     constexpr std::uint32_t kFirstId = 768, kBlock = 256;
     std::mt19937 random(quads ? 7 : 11);
     const TestPolygons<Index> polygons(4 * kBlock, vertices_.size(), quads, random);
-    const RunSource<Index> source{vertices_.data(), polygons.view(), kFirstId, !quads};
+    const RunSource<Index> source{vertices_.data(), polygons.view(), kFirstId, !quads, thrice};
     const detail::HiddenRunTest test(grid_, front_);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (std::uint32_t block = 0; block < 4; ++block) {
@@ -130,9 +157,8 @@ class HiddenRuns : public EveryTargetTest {
       for (const detail::SimdTarget& target : detail::simdTargets()) {
         SCOPED_TRACE(target.name);
         detail::useSimdTarget(target.bits);
-        std::vector<std::uint32_t> shown(ids.size());
         RunTally tally;
-        shown.resize(detail::shownOfRuns(test, source, ids, shown.data(), tally));
+        const std::vector<std::uint32_t> shown = shownByLanes(test, source, ids, tally);
         EXPECT_EQ(shown, expected) << "block " << block;
         EXPECT_EQ(tally.runs, expectedTally.runs);
         EXPECT_EQ(tally.hiddenRuns, expectedTally.hiddenRuns);
@@ -152,11 +178,12 @@ class HiddenRuns : public EveryTargetTest {
 
 // Checked to fail with the lanes' y bounds taken from the x lane.
 TEST_F(HiddenRuns, LanesDropTheRunsOfTheVertexBoundsOnEveryTarget) {
-  for (const bool quads : {false, true}) {
-    SCOPED_TRACE(quads ? "some quads" : "triangles");
+  for (const int kind : {0, 1, 2}) {
+    const bool quads = kind == 1, thrice = kind == 2;
+    SCOPED_TRACE(quads ? "some quads" : thrice ? "triangles, offsets not read" : "triangles");
     RunTally int32, int64;
-    expectTheRunsOfTheBounds<std::int32_t>(quads, int32);
-    expectTheRunsOfTheBounds<std::int64_t>(quads, int64);
+    expectTheRunsOfTheBounds<std::int32_t>(quads, thrice, int32);
+    expectTheRunsOfTheBounds<std::int64_t>(quads, thrice, int64);
     for (const RunTally& tally : {int32, int64}) {
       // Both answers occur often enough to tell lanes from vertices apart.
       EXPECT_GT(tally.hiddenRuns, tally.runs / 10) << tally.hiddenRuns << " of " << tally.runs;
@@ -166,16 +193,20 @@ TEST_F(HiddenRuns, LanesDropTheRunsOfTheVertexBoundsOnEveryTarget) {
   }
 }
 
-// The block's prefetch (shownOfRunsOf asks for all its ids' offsets and, triangles, their
-// connectivity first) at the edges: no ids, the last polygon alone, every id of the last block
-// (its reach ends at the offsets' last entry and the connectivity's end); the same answer.
+// The block's prefetches (the back pass asks for its ids' offsets or connectivity, then a
+// triangle block's connectivity: prefetchRunsAhead, prefetchRunsNow) and the gathered corners at
+// the edges: no ids, the last polygon alone, every id of the last block (the reach ends at the
+// offsets' last entry and the connectivity's end; the sanitized build checks what they read);
+// the same answer.
 TEST_F(HiddenRuns, TheBlocksEdgesGiveTheVertexAnswerOnEveryTarget) {
   constexpr std::uint32_t kFirstId = 64, kCount = 128;
-  for (const bool quads : {false, true}) {
-    SCOPED_TRACE(quads ? "some quads" : "triangles");
+  for (const int kind : {0, 1, 2}) {
+    const bool quads = kind == 1, thrice = kind == 2;
+    SCOPED_TRACE(quads ? "some quads" : thrice ? "triangles, offsets not read" : "triangles");
     std::mt19937 random(quads ? 3 : 5);
     const TestPolygons<std::int64_t> polygons(kCount, vertices_.size(), quads, random);
-    const RunSource<std::int64_t> source{vertices_.data(), polygons.view(), kFirstId, !quads};
+    const RunSource<std::int64_t> source{vertices_.data(), polygons.view(), kFirstId, !quads,
+                                         thrice};
     const detail::HiddenRunTest test(grid_, front_);
     std::vector<std::uint32_t> lastBlock;
     for (std::uint32_t id = kFirstId + kCount - 64; id < kFirstId + kCount; ++id)
@@ -183,14 +214,17 @@ TEST_F(HiddenRuns, TheBlocksEdgesGiveTheVertexAnswerOnEveryTarget) {
     const std::vector<std::vector<std::uint32_t>> blocks = {
         {}, {kFirstId + kCount - 1}, {kFirstId}, lastBlock};
     for (const std::vector<std::uint32_t>& ids : blocks) {
+      if (!ids.empty()) {
+        detail::prefetchRunsAhead(source, ids.data(), ids.size());
+        detail::prefetchRunsNow(source, ids.data(), ids.size());
+      }
       RunTally expectedTally;
       const std::vector<std::uint32_t> expected = shownByVertex(test, source, ids, expectedTally);
       for (const detail::SimdTarget& target : detail::simdTargets()) {
         SCOPED_TRACE(target.name);
         detail::useSimdTarget(target.bits);
-        std::vector<std::uint32_t> shown(ids.size() + 1);
         RunTally tally;
-        shown.resize(detail::shownOfRuns(test, source, ids, shown.data(), tally));
+        const std::vector<std::uint32_t> shown = shownByLanes(test, source, ids, tally);
         EXPECT_EQ(shown, expected) << ids.size() << " ids";
         EXPECT_EQ(tally.runs, expectedTally.runs);
         EXPECT_EQ(tally.hiddenPolygons, expectedTally.hiddenPolygons);
