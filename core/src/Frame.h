@@ -172,7 +172,9 @@ struct Chunk {
   std::vector<Bin> backBins;
   std::vector<Bin>& binsFor(bool last) { return last ? backBins : bins; }
   // A two-pass frame's back-facing polygons (global ids, in draw order) that the front pass
-  // put off to the back pass (SetupPass, Setup.h).
+  // put off to the back pass (SetupPass, Setup.h): an id, or with kWholeBackBlockBit set the
+  // first id of a back-face block's polygons deferred whole (Setup.cpp: wholeBlockEnd), one entry
+  // in place of their ids. Strictly ascending in the ids (deferredIdOf).
   std::vector<std::uint32_t> deferredBack;
   PolygonCounts counts;
   // Scratch, reused polygon to polygon.
@@ -181,6 +183,15 @@ struct Chunk {
   TriangulationScratch triangulation;
 };
 
+// A Chunk::deferredBack entry for the polygons of one back-face block the front pass deferred
+// whole, unclassified (Setup.cpp's deferredWhole): global ids below 2^31 (validateCounts)
+// leave the bit free. The back pass takes the block's verdict once and drops a hidden one
+// with no per-id work (section 66 of bench/core-frame-issue11.md: its 64 ids were written,
+// ~4.5 MB a frame at 2M triangles, and read back).
+inline constexpr std::uint32_t kWholeBackBlockBit = 0x80000000u;
+inline constexpr std::uint32_t deferredIdOf(std::uint32_t entry) {
+  return entry & ~kWholeBackBlockBit;
+}
 inline const WindowVertex& vertexOf(const WindowVertex* vertices, const Chunk& chunk,
                                     std::uint32_t reference) {
   return (reference & kClippedVertexBit) ? chunk.clippedVertices[reference & ~kClippedVertexBit]

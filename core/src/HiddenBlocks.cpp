@@ -92,6 +92,7 @@ struct DebugCounts {
   std::atomic<std::size_t> deferredWhole{0}, deferredWholePolygons{0};
   std::atomic<std::size_t> runs{0}, hiddenRuns{0}, runPolygons{0}, hiddenRunPolygons{0};
   std::atomic<std::size_t> waitingBlocks{0}, waitingBlocksKept{0};
+  std::atomic<std::size_t> wholeTested{0}, wholeKept{0};
   std::atomic<bool> on{std::getenv("FACET_HIDDEN_BLOCKS_DEBUG") != nullptr};
   bool print = on;
   ~DebugCounts() {
@@ -132,6 +133,7 @@ void countHiddenBlocks(bool on) {
   debugCounts.runs = debugCounts.hiddenRuns = debugCounts.runPolygons = 0;
   debugCounts.hiddenRunPolygons = 0;
   debugCounts.waitingBlocks = debugCounts.waitingBlocksKept = 0;
+  debugCounts.wholeTested = debugCounts.wholeKept = 0;
   debugCounts.on = on;
 }
 
@@ -154,7 +156,9 @@ HiddenBlockCounts hiddenBlockCounts() {
           debugCounts.runPolygons,
           debugCounts.hiddenRunPolygons,
           debugCounts.waitingBlocks,
-          debugCounts.waitingBlocksKept};
+          debugCounts.waitingBlocksKept,
+          debugCounts.wholeTested,
+          debugCounts.wholeKept};
 }
 
 void hiddenRunDebug(std::size_t runs, std::size_t hiddenRuns, std::size_t polygons,
@@ -178,9 +182,13 @@ void deferredWholeDebug(std::size_t polygons) {
   debugCounts.deferredWholePolygons += polygons;
 }
 
-void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons) {
+void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons, bool whole) {
   if (!debugCounts.on) return;
   ++debugCounts.blocks;
+  if (whole) {
+    ++debugCounts.wholeTested;
+    if (!hidden) ++debugCounts.wholeKept;
+  }
   debugCounts.polygons += polygons;
   if (hidden) {
     ++debugCounts.hidden;

@@ -136,7 +136,9 @@ class HiddenBlockTest {
 // end of a block's, `value` the next block's first id): found directly when the ids from k on
 // leave no gap below `value` (a block deferred whole: its ids are consecutive), else by a
 // binary search over at most value − ids[k] ids, not over the rest of the chunk. Distinct
-// ids: at most value − ids[k] of them lie in [ids[k], value). Whatever the ids, only
+// ids: at most value − ids[k] of them lie in [ids[k], value). An entry of a later block
+// deferred whole (kWholeBackBlockBit, Frame.h) reads as at least `value` (its id is, and the
+// bit only adds), so it ends the block as an id would. Whatever the ids, only
 // ids[k, stop) are read. A repeated id (never: the back pass asserts strictly ascending ids;
 // the front pass appends each polygon once, in id order) may end it early, at an id still
 // below `value`, never past it: the back pass then takes the rest of the block as another
@@ -220,11 +222,14 @@ struct HiddenBlockCounts {
   std::size_t runs = 0, hiddenRuns = 0, runPolygons = 0, hiddenRunPolygons = 0;
   // The blocks whose points waited for the reject (DeferredBackPoints.h), and those kept.
   std::size_t waitingBlocks = 0, waitingBlocksKept = 0;
+  // Of the blocks tested, those the back pass took as one entry (deferred whole,
+  // kWholeBackBlockBit), and those of them kept (their ids made for the runs).
+  std::size_t wholeTested = 0, wholeKept = 0;
 };
 void countHiddenBlocks(bool on);
 bool countingHiddenBlocks();
 HiddenBlockCounts hiddenBlockCounts();
-void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons);
+void hiddenBlockDebug(bool hidden, bool coneCertain, std::size_t polygons, bool whole);
 void deferredWholeDebug(std::size_t polygons);
 void hiddenRunDebug(std::size_t runs, std::size_t hiddenRuns, std::size_t polygons,
                     std::size_t hiddenPolygons);

@@ -45,13 +45,13 @@ struct RunSource {
 // a few kept blocks before its runs: a mesh of triangles in order (offsetsThrice) has its
 // connectivity at 3p, read from no offset; another mesh, its offsets. Then, right before the
 // runs, the second: such a mesh's triangle block's connectivity, from the offsets asked for
-// then (section 49). Hints only: nothing read changes. `ids`: the block's deferred ids (at
-// least one), ascending. Always inlined: GCC takes a function that only prefetches for one
-// without effects and drops the call (measured: none was left in setUpBackRun).
+// then (section 49). Hints only: nothing read changes. `firstId`, `lastId`: the block's
+// first and last deferred ids (global). Always inlined: GCC takes a function that only prefetches
+// for one without effects and drops the call (measured: none was left in setUpBackRun).
 template <class Index>
 [[gnu::always_inline]] inline void prefetchRunsAhead(const RunSource<Index>& source,
-                                                     const std::uint32_t* ids, std::size_t count) {
-  const std::size_t first = ids[0] - source.firstId, last = ids[count - 1] - source.firstId;
+                                                     std::uint32_t firstId, std::uint32_t lastId) {
+  const std::size_t first = firstId - source.firstId, last = lastId - source.firstId;
   if (source.offsetsThrice)
     prefetchBytes(source.polygons.connectivity + 3 * first, 3 * (last - first + 1) * sizeof(Index));
   else
@@ -59,9 +59,9 @@ template <class Index>
 }
 template <class Index>
 [[gnu::always_inline]] inline void prefetchRunsNow(const RunSource<Index>& source,
-                                                   const std::uint32_t* ids, std::size_t count) {
+                                                   std::uint32_t firstId, std::uint32_t lastId) {
   if (source.offsetsThrice || !source.allTriangles) return;
-  const std::size_t first = ids[0] - source.firstId, last = ids[count - 1] - source.firstId;
+  const std::size_t first = firstId - source.firstId, last = lastId - source.firstId;
   prefetchBytes(
       source.polygons.connectivity + static_cast<std::size_t>(source.polygons.offsets[first]),
       3 * (last - first + 1) * sizeof(Index));

@@ -404,7 +404,11 @@ class PolygonSetup {
   [[gnu::noinline]] void defer(std::size_t polygon) {
     std::vector<std::uint32_t>& list = chunk_.deferredBack;
     const auto id = static_cast<std::uint32_t>(mesh_.firstPolygon + polygon);
-    list.insert(std::upper_bound(list.begin(), list.end(), id), id);
+    list.insert(std::upper_bound(list.begin(), list.end(), id,
+                                 [](std::uint32_t a, std::uint32_t b) {
+                                   return deferredIdOf(a) < deferredIdOf(b);
+                                 }),
+                id);
   }
 
   std::size_t pointId(std::size_t corner) const { return polygons_.pointId(polygon_, corner); }
@@ -537,6 +541,15 @@ std::size_t meshOfPolygon(std::span<const FrameMesh> meshes, std::size_t polygon
   return static_cast<std::size_t>(after - meshes.begin()) - 1;
 }
 
+// The end (a global id) of the polygons of a Chunk::deferredBack entry with kWholeBackBlockBit
+// whose first is `first`: its back-face block's end, or the mesh's or the chunk's when nearer
+// (the front pass's block loop stops there: z-buffer order, draw positions are ids).
+std::size_t wholeBlockEnd(std::uint32_t first, const FrameMesh& mesh, const Chunk& chunk) {
+  const std::size_t blockEnd =
+      mesh.firstPolygon + (((first - mesh.firstPolygon) | (kPolygonsPerBackBlock - 1)) + 1);
+  return std::min({blockEnd, mesh.endPolygon(), chunk.end});
+}
+
 // Sets up draw positions from `position` on while they belong to `mesh`, in batches
 // (SetupBatch.h) unless they are off; returns where it stopped. The batch only drops
 // polygons: the others are set up in draw order, as without batches.
@@ -600,7 +613,8 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
   if (context.deferCertainBackBlocks && kDeferBackFaces && context.order.ids.empty() &&
       mesh.backBlockFacts != nullptr)
     certainBack.emplace(context.transform);
-  // Defers the block's polygons when it is certain to be all back faces; flushes the batch
+  // Defers the block's polygons when it is certain to be all back faces, as one entry
+  // (kWholeBackBlockBit: the back pass finds their end, wholeBlockEnd); flushes the batch
   // first, whose lanes' deferred ids come earlier (the back pass's ids ascend).
   const auto deferredWhole = [&](std::size_t polygon, std::size_t count) {
     if (!certainBack) return false;
@@ -615,11 +629,9 @@ std::size_t setUpRun(const SetupContext& context, Chunk& chunk, const FrameMesh&
       std::fill(batch.triangle + lanes, batch.triangle + kBatchSize, 0);
       settleBatch();
     }
-    std::vector<std::uint32_t>& ids = chunk.deferredBack;
     const auto first = static_cast<std::uint32_t>(mesh.firstPolygon + polygon);
-    const std::size_t at = ids.size();
-    ids.resize(at + count);
-    std::iota(ids.begin() + static_cast<std::ptrdiff_t>(at), ids.end(), first);
+    FACET_ASSERT(wholeBlockEnd(first, mesh, chunk) == first + count);
+    chunk.deferredBack.push_back(kWholeBackBlockBit | first);
     deferredWholeDebug(count);
     return true;
   };
@@ -707,16 +719,20 @@ template <class PointsT, class PolygonsT>
 std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameMesh& mesh,
                          PointsT points, PolygonsT polygons, std::size_t first) {
   PolygonSetup<PointsT, PolygonsT, false> setup(context, chunk, mesh, points, polygons);
+  // The entries: ids, and blocks deferred whole (kWholeBackBlockBit).
   const std::vector<std::uint32_t>& ids = chunk.deferredBack;
   const auto endId = static_cast<std::uint32_t>(mesh.endPolygon());
   const std::size_t end = static_cast<std::size_t>(
-      std::lower_bound(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId) -
+      std::lower_bound(
+          ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end(), endId,
+          [](std::uint32_t entry, std::uint32_t id) { return deferredIdOf(entry) < id; }) -
       ids.begin());
   // The deferred back faces of a block of triangle polygons (MeshFacts::backSkippable) whose box
   // is hidden behind the front blocks (HiddenBlocks.h: none would write a pixel), dropped
   // before any per-polygon work (counted hidden, not drawn: one pass would have counted some
   // of them outside or degenerate). The ids ascend (z-buffer order): a block's end is found by
-  // firstIdFrom.
+  // firstIdFrom, or it is one entry (a block the front pass deferred whole: no id of it is
+  // read, a hidden one costs its verdict alone).
   std::optional<HiddenBlockTest> blocks;
   std::optional<BackFaceTest> cone;
   if (context.front != nullptr && mesh.backBlockFacts != nullptr && hiddenBlocksEnabled()) {
@@ -733,14 +749,15 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     __builtin_prefetch(reinterpret_cast<const void*>(at + kIdsAhead * sizeof(std::uint32_t)));
     __builtin_prefetch(reinterpret_cast<const void*>(
         at + (kIdsAhead + kPolygonsPerBackBlock - 1) * sizeof(std::uint32_t)));
-    const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+    const std::size_t block = (deferredIdOf(ids[k]) - mesh.firstPolygon) >> kBackBlockBits;
     const auto test = reinterpret_cast<std::uintptr_t>(mesh.backBlockFacts->backTests.data());
     __builtin_prefetch(
         reinterpret_cast<const void*>(test + (block + kBlocksAhead) * sizeof(BackBlockTest)));
   };
-  // The end of the ids of the block of ids[k], and whether it is hidden.
-  const auto blockOf = [&](std::size_t k, bool& hidden) {
-    const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+  // The end of the entries of the block of ids[k], whether it is hidden, and its polygons.
+  const auto blockOf = [&](std::size_t k, bool& hidden, std::size_t& count) {
+    const std::uint32_t entry = ids[k], id = deferredIdOf(entry);
+    const std::size_t block = (id - mesh.firstPolygon) >> kBackBlockBits;
     const auto next =
         static_cast<std::uint32_t>(mesh.firstPolygon + ((block + 1) << kBackBlockBits));
     const MeshFacts& facts = *mesh.backBlockFacts;
@@ -752,7 +769,13 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
                           : facts.backSkippable(block) &&
                                 (!hiddenBlocksConeOnly() || cone->certainlyCulled(test, frame)) &&
                                 blocks->hidden(boxOf(test, frame));
-    return firstIdFrom(ids, k, end, next);
+    if (entry & kWholeBackBlockBit) {
+      count = wholeBlockEnd(id, mesh, chunk) - id;
+      return k + 1;
+    }
+    const std::size_t stop = firstIdFrom(ids, k, end, next);
+    count = stop - k;
+    return stop;
   };
   // The deferred back faces of a block not dropped whole, dropped run by run (HiddenBlocks.h,
   // steps R1-R3) before they are loaded: a run is the deferred ids of one aligned window of
@@ -769,31 +792,39 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // (RunSource::allTriangles: MeshFacts::backSkippable) or of the mesh (offsetsThrice) is a
   // triangle, else null (loadOne reads it again).
   using Source = RunSource<typename PolygonsT::IndexType>;
-  const auto sourceOf = [&](std::size_t k) {
+  const auto sourceOf = [&](std::uint32_t id) {
     return Source{vertices, polygons, firstId,
-                  mesh.backBlockFacts->backSkippable((ids[k] - firstId) >> kBackBlockBits),
+                  mesh.backBlockFacts->backSkippable((id - firstId) >> kBackBlockBits),
                   mesh.allTriangles};
-  };
-  std::uint32_t shown[kPolygonsPerBackBlock];
-  alignas(64) WindowVertex corners[3 * kPolygonsPerBackBlock];
-  const auto runsOf = [&](std::size_t k, std::size_t stop, const Source& source, const auto& each) {
-    FACET_ASSERT(stop - k <= kPolygonsPerBackBlock);
-    prefetchRunsNow(source, ids.data() + k, stop - k);
-    RunTally tally;
-    const std::size_t count =
-        shownOfRuns(*runs, source, std::span(ids).subspan(k, stop - k), shown, corners, tally);
-    chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
-    hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
-    for (std::size_t i = 0; i < count; ++i)
-      each(ids[k + shown[i]] - firstId,
-           source.allTriangles || source.offsetsThrice ? corners + 3 * shown[i] : nullptr);
   };
   // The blocks not dropped whole, taken up to kAhead ahead of the one whose runs are tested,
   // each one's connectivity asked for as it is taken (HiddenRuns.h; section 64): a kept block
-  // mostly follows hidden ones, which leave it no lead time else.
+  // mostly follows hidden ones, which leave it no lead time else. `ids`: its deferred ids, or
+  // null for a block deferred whole (its ids first, first + 1, ...).
   struct Kept {
-    std::size_t k, stop;
+    const std::uint32_t* ids;
+    std::uint32_t first, count;
     Source source;
+  };
+  std::uint32_t shown[kPolygonsPerBackBlock], wholeIds[kPolygonsPerBackBlock];
+  alignas(64) WindowVertex corners[3 * kPolygonsPerBackBlock];
+  const auto runsOf = [&](const Kept& kept, const auto& each) {
+    FACET_ASSERT(kept.count <= kPolygonsPerBackBlock);
+    const std::uint32_t* blockIds = kept.ids;
+    if (blockIds == nullptr) {  // a kept block deferred whole: its ids, for the runs
+      std::iota(wholeIds, wholeIds + kept.count, kept.first);
+      blockIds = wholeIds;
+    }
+    const Source& source = kept.source;
+    prefetchRunsNow(source, kept.first, blockIds[kept.count - 1]);
+    RunTally tally;
+    const std::size_t count =
+        shownOfRuns(*runs, source, std::span(blockIds, kept.count), shown, corners, tally);
+    chunk.counts.hiddenBlockPolygons += tally.hiddenPolygons;  // counted hidden alone, as a block's
+    hiddenRunDebug(tally.runs, tally.hiddenRuns, tally.polygons, tally.hiddenPolygons);
+    for (std::size_t i = 0; i < count; ++i)
+      each(blockIds[shown[i]] - firstId,
+           source.allTriangles || source.offsetsThrice ? corners + 3 * shown[i] : nullptr);
   };
   constexpr std::size_t kAhead = 3;
   Kept ahead[kAhead];
@@ -804,21 +835,26 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     while (scan < end) {
       prefetchBlockScan(scan);
       bool hidden = false;
+      std::size_t count = 0;
       const std::size_t k = scan;
-      scan = blockOf(k, hidden);
+      scan = blockOf(k, hidden, count);
+      const std::uint32_t id = deferredIdOf(ids[k]);
       if (cone && countingHiddenBlocks()) {
-        const std::size_t block = (ids[k] - mesh.firstPolygon) >> kBackBlockBits;
+        const std::size_t block = (id - mesh.firstPolygon) >> kBackBlockBits;
         const bool coneCertain = cone->certainlyCulled(mesh.backBlockFacts->backTests[block],
                                                        mesh.backBlockFacts->backFrameOf(block));
-        hiddenBlockDebug(hidden, coneCertain, scan - k);
+        hiddenBlockDebug(hidden, coneCertain, count, (ids[k] & kWholeBackBlockBit) != 0);
       }
       if (hidden) {  // counted hidden alone (RenderStats::polygonsHidden)
         ++chunk.counts.hiddenBlocks;
-        chunk.counts.hiddenBlockPolygons += scan - k;
+        chunk.counts.hiddenBlockPolygons += count;
         continue;
       }
-      ahead[queued] = {k, scan, sourceOf(k)};
-      prefetchRunsAhead(ahead[queued].source, ids.data() + k, scan - k);
+      const bool whole = (ids[k] & kWholeBackBlockBit) != 0;
+      ahead[queued] = {whole ? nullptr : ids.data() + k, id, static_cast<std::uint32_t>(count),
+                       sourceOf(id)};
+      prefetchRunsAhead(ahead[queued].source, id,
+                        whole ? id + static_cast<std::uint32_t>(count) - 1 : ids[scan - 1]);
       ++queued;
       return true;
     }
@@ -828,14 +864,19 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // block (corners: runsOf's, or null).
   const auto forEachShown = [&](const auto& each) {
     if (!runs) {  // no reject: every deferred polygon
-      for (std::size_t k = first; k < end; ++k)
-        each(ids[k] - mesh.firstPolygon, nullptr);
+      for (std::size_t k = first; k < end; ++k) {
+        const std::uint32_t id = deferredIdOf(ids[k]);
+        const std::size_t stop =
+            (ids[k] & kWholeBackBlockBit) ? wholeBlockEnd(id, mesh, chunk) : std::size_t{id} + 1;
+        for (std::size_t polygon = id; polygon < stop; ++polygon)
+          each(polygon - mesh.firstPolygon, nullptr);
+      }
       return;
     }
     while (queued < kAhead && takeBlock()) {
     }
     while (queued > 0) {
-      runsOf(ahead[0].k, ahead[0].stop, ahead[0].source, each);
+      runsOf(ahead[0], each);
       std::copy(ahead + 1, ahead + queued, ahead);
       --queued;
       takeBlock();
@@ -877,10 +918,13 @@ void setUpChunkBack(const SetupContext& context, Chunk& chunk) {
   // setUpBackRun finds a mesh's ids by binary search and a block's by firstIdFrom (which
   // counts on distinct ids: strictly ascending).
   FACET_ASSERT(std::adjacent_find(chunk.deferredBack.begin(), chunk.deferredBack.end(),
-                                  std::greater_equal<>()) == chunk.deferredBack.end());
+                                  [](std::uint32_t a, std::uint32_t b) {
+                                    return deferredIdOf(a) >= deferredIdOf(b);
+                                  }) == chunk.deferredBack.end());
   std::size_t next = 0;
   while (next < chunk.deferredBack.size()) {
-    const FrameMesh& mesh = context.meshes[meshOfPolygon(context.meshes, chunk.deferredBack[next])];
+    const FrameMesh& mesh =
+        context.meshes[meshOfPolygon(context.meshes, deferredIdOf(chunk.deferredBack[next]))];
     withTypedMesh(mesh.mesh(), [&](auto points, auto polygons) {
       next = setUpBackRun(context, chunk, mesh, points, polygons, next);
     });

@@ -123,6 +123,69 @@ TEST_F(HiddenBlocks, BlocksDeferredWholeCountAndPaintAsClassifiedOnes) {
   detail::enableFrontPassConeSkip(true);
 }
 
+// The front pass hands a block it defers whole to the back pass as one entry (kWholeBackBlockBit,
+// Frame.h), between the ids of the blocks it classified: two versioned meshes, the first's
+// polygon count no multiple of a back-face block (its last block is partial, and the second
+// mesh's blocks are not aligned to 64 global ids), the second partly behind the first. The reject
+// takes a hidden whole block from its entry and makes a kept one's ids for its runs; without the
+// reject every whole block's ids are set up. The frame must paint and count what the frame with
+// every polygon classified does, on every target and thread count.
+TEST_F(HiddenBlocks, WholeBlockEntriesAmongDeferredIdsPaintAndCountAsIds) {
+  const Mesh big = sphereWithHole(300, 0.7);
+  Mesh small = sphereWithHole(120, 0.4);
+  for (glm::dvec3& p : small.points)
+    p = 0.6 * p + glm::dvec3(0.7, 0.3, -0.9);
+  ASSERT_NE((big.offsets.size() - 1) % 64, 0u);
+  MeshView bigView = big.view(), smallView = small.view();
+  bigView.version = 1;
+  smallView.version = 1;
+  Scene scene;
+  scene.meshes.push_back({bigView, {}});
+  scene.meshes.push_back({smallView, {}});
+  Mesh both;  // for the camera: both meshes' points
+  both.points = big.points;
+  both.points.insert(both.points.end(), small.points.begin(), small.points.end());
+  const Camera camera = fitCamera(both, glm::dvec3(-0.5, -0.3, -1.0));
+  detail::enableTwoPassFrames(true);
+  for (bool reject : {true, false}) {
+    detail::enableHiddenBlocks(reject);
+    for (int threads : threadCountsToRun({1, 2, 8})) {
+      SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
+                   " threads");
+      const RenderOptions options = optionsWith(threads);
+      detail::enableFrontPassConeSkip(false);
+      detail::countHiddenBlocks(true);
+      const Rendered before = renderScene(scene, camera, 640, 480, options);
+      ASSERT_TRUE(before.stats.plan.twoPassFrame);
+      const detail::HiddenBlockCounts classified = detail::hiddenBlockCounts();
+      ASSERT_EQ(classified.deferredWhole, 0u);
+      EXPECT_EQ(classified.wholeTested, 0u);
+      detail::enableFrontPassConeSkip(true);
+      renderOnEveryTarget(scene, camera, 640, 480, options,
+                          [&](const Rendered& after, const detail::HiddenBlockCounts& counts) {
+                            ASSERT_TRUE(after.stats.plan.twoPassFrame);
+                            EXPECT_GT(counts.deferredWhole, 10u);
+                            expectSameRender(before, after);
+                            EXPECT_EQ(before.stats.plan.polygonsHiddenBehindFront,
+                                      after.stats.plan.polygonsHiddenBehindFront);
+                            EXPECT_EQ(before.stats.plan.blocksHiddenBehindFront,
+                                      after.stats.plan.blocksHiddenBehindFront);
+                            if (!reject) return;
+                            // Whole entries and ids both tested; whole ones dropped and kept.
+                            EXPECT_EQ(counts.wholeTested, counts.deferredWhole);
+                            EXPECT_GT(counts.blocks, counts.wholeTested);
+                            EXPECT_GT(counts.wholeKept, 0u);
+                            EXPECT_LT(counts.wholeKept, counts.wholeTested);
+                            EXPECT_EQ(counts.blocks, classified.blocks);
+                            EXPECT_EQ(counts.hidden, classified.hidden);
+                            EXPECT_EQ(counts.polygons, classified.polygons);
+                            EXPECT_EQ(counts.hiddenRuns, classified.hiddenRuns);
+                          });
+    }
+  }
+  detail::enableFrontPassConeSkip(true);
+}
+
 // The sphere's points turned by `degrees` about the y axis, in place (a versioned mesh edited
 // between renders).
 void turnPoints(Mesh& mesh, double degrees) {

@@ -215,8 +215,8 @@ TEST_F(HiddenRuns, TheBlocksEdgesGiveTheVertexAnswerOnEveryTarget) {
         {}, {kFirstId + kCount - 1}, {kFirstId}, lastBlock};
     for (const std::vector<std::uint32_t>& ids : blocks) {
       if (!ids.empty()) {
-        detail::prefetchRunsAhead(source, ids.data(), ids.size());
-        detail::prefetchRunsNow(source, ids.data(), ids.size());
+        detail::prefetchRunsAhead(source, ids.front(), ids.back());
+        detail::prefetchRunsNow(source, ids.front(), ids.back());
       }
       RunTally expectedTally;
       const std::vector<std::uint32_t> expected = shownByVertex(test, source, ids, expectedTally);
