@@ -108,6 +108,10 @@ struct DebugCounts {
                    "kept %zu\n",
                    hiddenRuns.load(), runs.load(), hiddenRunPolygons.load(), runPolygons.load(),
                    waitingBlocks.load(), waitingBlocksKept.load());
+    if (print)
+      std::fprintf(
+          stderr, "blocks deferred whole %zu (polygons %zu); tested as one entry %zu, kept %zu\n",
+          deferredWhole.load(), deferredWholePolygons.load(), wholeTested.load(), wholeKept.load());
   }
 } debugCounts;
 }  // namespace

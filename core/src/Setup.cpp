@@ -739,9 +739,11 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
     blocks.emplace(context.transform, context.grid, *context.front);
     if (hiddenBlocksConeOnly() || countingHiddenBlocks()) cone.emplace(context.transform);
   }
-  // The block scan's reads a few blocks ahead of ids[k] asked for (section 64): the ids
-  // (firstIdFrom reads a block's last one, from memory: the front pass wrote them long
-  // before) and the compact records. Hints at addresses that may lie past the arrays' ends
+  // The block scan's reads a few blocks ahead of ids[k] asked for (section 64): the entries
+  // (firstIdFrom reads a block's last id, from memory: the front pass wrote them long
+  // before; since a block deferred whole is one entry, section 66, kIdsAhead entries reach
+  // further than 16 blocks, and dropping these two hints measured the same) and the compact
+  // records. Hints at addresses that may lie past the arrays' ends
   // (as integers: a prefetch does not fault).
   const auto prefetchBlockScan = [&](std::size_t k) __attribute__((always_inline)) {
     constexpr std::size_t kIdsAhead = 16 * kPolygonsPerBackBlock, kBlocksAhead = 8;
