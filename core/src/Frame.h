@@ -186,7 +186,7 @@ struct Chunk {
 // A Chunk::deferredBack entry for the polygons of one back-face block the front pass deferred
 // whole, unclassified (Setup.cpp's deferredWhole): global ids below 2^31 (validateCounts)
 // leave the bit free. The back pass takes the block's verdict once and drops a hidden one
-// with no per-id work (section 66 of bench/core-frame-issue11.md: its 64 ids were written,
+// with no per-id work (section 65 of bench/core-frame-issue11.md: its 64 ids were written,
 // ~4.5 MB a frame at 2M triangles, and read back).
 inline constexpr std::uint32_t kWholeBackBlockBit = 0x80000000u;
 inline constexpr std::uint32_t deferredIdOf(std::uint32_t entry) {

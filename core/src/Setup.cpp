@@ -741,7 +741,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   }
   // The block scan's reads a few blocks ahead of ids[k] asked for (section 64): the entries
   // (firstIdFrom reads a block's last id, from memory: the front pass wrote them long
-  // before; since a block deferred whole is one entry, section 66, kIdsAhead entries reach
+  // before; since a block deferred whole is one entry, section 65, kIdsAhead entries reach
   // further than 16 blocks, and dropping these two hints measured the same) and the compact
   // records. Hints at addresses that may lie past the arrays' ends
   // (as integers: a prefetch does not fault).
