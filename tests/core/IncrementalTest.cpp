@@ -266,6 +266,55 @@ TEST(Incremental, AStoppedRenderIsNotReused) {
   EXPECT_EQ(differingPixels(framebuffer, expected), 0u);
 }
 
+// A two-pass frame (every face drawn: its front pass writes a deferred back face's facing byte
+// as front-facing, and the back pass, a later phase, rewrites it: Setup.cpp, kDeferBackFaces)
+// stopped at each of its progress reports, then rendered again after a change a completed frame
+// would re-shade: in full, the bytes of a fresh renderer (the stopped frame's facing bytes are
+// not re-shaded). Completed, it is re-shaded: the back faces seen through the band, lit two-sided
+// from the back pass's bytes, as a fresh renderer lights them. 1 and 2 threads.
+TEST(Incremental, AStoppedTwoPassFrameIsNotReshaded) {
+  const Mesh banded = sphereWithBand(120);
+  Scene scene;
+  scene.meshes.push_back({banded.view(), Material{}});
+  scene.meshes[0].mesh.version = 1;
+  const Camera camera = fitCamera(banded, {0.3, -0.2, -1.0});
+  scene.lights.lights.push_back(PointLight{camera.position, Color(1.0f), 1.0});
+  Scene changed = scene;
+  std::get<PointLight>(changed.lights.lights[0]).intensity = 0.6;
+  for (int threads : {1, 2}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    Settings settings;
+    settings.threads = threads;
+    Renderer fresh, renderer;
+    apply(fresh, settings);
+    apply(renderer, settings);
+    Framebuffer expected(320, 240), framebuffer(320, 240);
+    fresh.render(changed, camera, expected);
+    int reports = 0;
+    renderer.setProgressCallback([&](double) { return ++reports > 0; });
+    const RenderStats first = renderer.render(scene, camera, framebuffer);
+    ASSERT_TRUE(first.plan.twoPassFrame);
+    ASSERT_GT(reports, 2);
+    renderer.setProgressCallback(nullptr);
+    EXPECT_EQ(renderer.render(changed, camera, framebuffer).plan.path, RenderPath::Reshade);
+    EXPECT_EQ(differingPixels(framebuffer, expected), 0u);
+    int aborted = 0;
+    for (int stopAt = 1; stopAt <= reports; ++stopAt) {
+      SCOPED_TRACE("stopped at report " + std::to_string(stopAt));
+      renderer.forgetPreviousFrame();
+      int calls = 0;
+      renderer.setProgressCallback([&](double) { return ++calls < stopAt; });
+      const RenderStats stopped = renderer.render(scene, camera, framebuffer);
+      aborted += stopped.aborted ? 1 : 0;
+      renderer.setProgressCallback(nullptr);
+      const RenderStats next = renderer.render(changed, camera, framebuffer);
+      EXPECT_EQ(next.plan.path, stopped.aborted ? RenderPath::Full : RenderPath::Reshade);
+      EXPECT_EQ(differingPixels(framebuffer, expected), 0u);
+    }
+    EXPECT_GT(aborted, reports / 4) << "of " << reports << " reports";  // 2 threads: counts vary
+  }
+}
+
 TEST(Incremental, ASequenceOfChangesKeepsMatchingFullRenders) {
   World world;
   for (int threads : {1, 2}) {

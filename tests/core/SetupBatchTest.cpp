@@ -635,25 +635,6 @@ TEST_F(SetupBatches, CulledFramesWriteTheFacingOfEveryPolygonTheyDraw) {
   }
 }
 
-// A sphere with a band of polygons left out and its far half first in polygon order: the
-// back faces show through the band, and most others hide behind the front faces.
-Mesh sphereWithBand(int theta) {
-  const Mesh sphere = makeUvSphere(theta, theta + 2);
-  Mesh banded;
-  banded.points = sphere.points;
-  const std::size_t polygons = sphere.offsets.size() - 1;
-  for (std::size_t p = 0; p < polygons; ++p) {
-    const auto begin = static_cast<std::size_t>(sphere.offsets[p]);
-    const auto end = static_cast<std::size_t>(sphere.offsets[p + 1]);
-    const glm::dvec3 corner = sphere.points[static_cast<std::size_t>(sphere.connectivity[begin])];
-    if (std::abs(corner.y - 0.2) < 0.15) continue;  // the band
-    banded.connectivity.insert(banded.connectivity.end(), sphere.connectivity.begin() + begin,
-                               sphere.connectivity.begin() + end);
-    banded.offsets.push_back(static_cast<std::int64_t>(banded.connectivity.size()));
-  }
-  return banded;
-}
-
 // A two-pass frame (Raster.h: every face drawn, back faces set up after the front faces are
 // painted, the hidden ones dropped) against the same frame in one pass: the same bytes and
 // counts, on every target and thread count, with the clipper and polygons of many corners.

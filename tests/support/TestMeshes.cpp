@@ -135,6 +135,23 @@ Mesh makeFloorGrid(int cells, double extent) {
   return floor;
 }
 
+Mesh sphereWithBand(int theta) {
+  const Mesh sphere = makeUvSphere(theta, theta + 2);
+  Mesh banded;
+  banded.points = sphere.points;
+  const std::size_t polygons = sphere.offsets.size() - 1;
+  for (std::size_t p = 0; p < polygons; ++p) {
+    const auto begin = static_cast<std::size_t>(sphere.offsets[p]);
+    const auto end = static_cast<std::size_t>(sphere.offsets[p + 1]);
+    const glm::dvec3 corner = sphere.points[static_cast<std::size_t>(sphere.connectivity[begin])];
+    if (std::abs(corner.y - 0.2) < 0.15) continue;  // the band
+    banded.connectivity.insert(banded.connectivity.end(), sphere.connectivity.begin() + begin,
+                               sphere.connectivity.begin() + end);
+    banded.offsets.push_back(static_cast<std::int64_t>(banded.connectivity.size()));
+  }
+  return banded;
+}
+
 Camera nearClippedFloorCamera() {
   Camera camera;
   camera.position = {0.3, 0.1, 1.0};

@@ -37,6 +37,11 @@ Mesh makeUvSphere(int thetaResolution, int phiResolution, double radius = 1.0,
                   const glm::dvec3& center = glm::dvec3(0.0),
                   UvSphereOrder order = UvSphereOrder::ringByRing);
 
+// makeUvSphere(theta, theta + 2) without the polygons whose first corner lies in the band
+// |y − 0.2| < 0.15: the back faces show through the band, and most others hide behind the
+// front faces (a two-pass frame's hidden blocks).
+Mesh sphereWithBand(int theta);
+
 // An axis-aligned box as 6 outward quads.
 Mesh makeBox(const glm::dvec3& low, const glm::dvec3& high);
 
