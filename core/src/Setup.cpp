@@ -143,9 +143,10 @@ class PolygonSetup {
   // `at`, asked for now: the loader reads the offsets and connectivity in order, from memory
   // after a frame that evicted them (section 52). A fixed count of lines, unrolled: a load of
   // fewer polygons asks for lines the next one would (harmless). Addresses as integers: they
-  // may lie past the array's end, where a prefetch does not fault.
+  // may lie past the array's end, where a prefetch does not fault. Inlined by force: a
+  // function of prefetches alone is "pure" to GCC, whose calls it drops (section 66).
   template <int kPerPolygon, class Index>
-  static void prefetchAhead(const Index* at) {
+  [[gnu::always_inline]] static void prefetchAhead(const Index* at) {
     constexpr std::size_t kPrefetchPolygons = 64;
     constexpr std::size_t kBytes = kBatchSize * kPerPolygon * sizeof(Index);
     const std::uintptr_t from =
