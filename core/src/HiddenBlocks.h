@@ -3,7 +3,7 @@
 // A two-pass frame's (Raster.h) back pass drops every deferred back face of a back-face block
 // (MeshCache.h, kPolygonsPerBackBlock polygons) whose 3D box (the compact record's, which
 // holds every point its polygons use: BackBlockTest) projects behind the front faces'
-// 8 × 8 pixel blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted
+// 4 × 4 pixel blocks (FrontDepthBlocks), before any per-polygon work: its polygons are counted
 // hidden (RenderStats::polygonsHidden), nothing is loaded, classified or painted. On by default
 // in two-pass frames (the plan decides those, Plan.h); FACET_HIDDEN_BLOCKS=0 turns it off
 // (measurements).
@@ -49,7 +49,7 @@
 //    its corners' images, a vertex is snapped by at most half a grid step and the
 //    corners' and vertices' images round by far less than one, and a covered sample lies
 //    inside the snapped triangle, hence in its vertices' bounding box. Its pixel is in the
-//    pixel box tested, whose 8 × 8 blocks' least front keys (FrontDepthBlocks::over) are
+//    pixel box tested, whose 4 × 4 blocks' least front keys (FrontDepthBlocks::over) are
 //    at most every front key there.
 // 5. So when the blocks' least key F_min ≥ the bound: W ≤ nearest vertex float key ≤ F_min ≤
 //    F: an exact tie keeps the front face, no fragment is written.
@@ -66,7 +66,7 @@
 // HiddenBlocks.ApexThroughTheFrontFaceIsNeverDropped (steps 3–5).
 //
 // Runs (silhouette25). A block that straddles the silhouette reaches the background (its
-// 8 × 8 blocks' least front key is the background's), so the block test cannot hold there,
+// 4 × 4 blocks' least front key is the background's), so the block test cannot hold there,
 // though most of its back faces lie behind front faces. The back pass then splits the
 // block's deferred ids into runs, the deferred ids of one aligned window of kHiddenRunIds
 // polygon ids, and drops a run whole before any of its polygons is loaded or classified when

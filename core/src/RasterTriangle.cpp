@@ -807,7 +807,8 @@ void paintTriangleBehindCoarseDepth(const WindowVertex& a, const WindowVertex& b
 }
 
 // Each block's least key, over the tile's pixels only (the planes beyond an image-edge tile's
-// pixels are not cleared); eight rows at a time, four pixels a lane where SSE2 is.
+// pixels are not cleared); a whole block's four rows a lane each where SSE2 is (the least of
+// the same keys: they are never NaN, and the tests only compare it).
 void FarthestBlocks::measure() {
   measured_ = true;
   const int columns = tile_.x1 - tile_.x0 + 1, rows = tile_.y1 - tile_.y0 + 1;
@@ -817,22 +818,26 @@ void FarthestBlocks::measure() {
     for (int bx = 0; bx * kBlockSize < columns; ++bx) {
       const int x0 = tile_.x0 + bx * kBlockSize;
       const int x1 = std::min(tile_.x1, x0 + kBlockSize - 1);
+      // The block's first pixel in row y (planes are indexed y·width + x − origin).
+      const auto rowOf = [&](int y) {
+        return planes_.depth + (static_cast<std::size_t>(y) * planes_.width + x0 - planes_.origin);
+      };
       float farthest = std::numeric_limits<float>::infinity();
-      for (int y = y0; y <= y1; ++y) {
-        // The block's first pixel in this row (planes are indexed y·width + x − origin).
-        const float* row =
-            planes_.depth + (static_cast<std::size_t>(y) * planes_.width + x0 - planes_.origin);
-        int x = x0;
 #if defined(__SSE2__)
-        if (x1 - x0 + 1 == kBlockSize) {
-          __m128 lanes = _mm_min_ps(_mm_loadu_ps(row), _mm_loadu_ps(row + 4));
-          lanes = _mm_min_ps(lanes, _mm_movehl_ps(lanes, lanes));
-          lanes = _mm_min_ss(lanes, _mm_shuffle_ps(lanes, lanes, 1));
-          farthest = std::min(farthest, _mm_cvtss_f32(lanes));
-          x = x1 + 1;
-        }
+      static_assert(kBlockSize == 4);
+      if (x1 - x0 + 1 == kBlockSize && y1 - y0 + 1 == kBlockSize) {
+        const __m128 top = _mm_min_ps(_mm_loadu_ps(rowOf(y0)), _mm_loadu_ps(rowOf(y0 + 1)));
+        const __m128 bottom = _mm_min_ps(_mm_loadu_ps(rowOf(y0 + 2)), _mm_loadu_ps(rowOf(y0 + 3)));
+        __m128 lanes = _mm_min_ps(top, bottom);
+        lanes = _mm_min_ps(lanes, _mm_movehl_ps(lanes, lanes));
+        lanes = _mm_min_ss(lanes, _mm_shuffle_ps(lanes, lanes, 1));
+        farthest_[by * kBlocksPerSide + bx] = _mm_cvtss_f32(lanes);
+        continue;
+      }
 #endif
-        for (; x <= x1; ++x)
+      for (int y = y0; y <= y1; ++y) {
+        const float* row = rowOf(y);
+        for (int x = x0; x <= x1; ++x)
           farthest = std::min(farthest, row[x - x0]);
       }
       farthest_[by * kBlocksPerSide + bx] = farthest;

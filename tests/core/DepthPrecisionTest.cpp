@@ -326,7 +326,7 @@ TEST(DepthPrecision, TrianglesWithDiagonalsRejectedBeforeSetUpLoseEveryPixel) {
 }
 
 // A back face after its tile's front faces (paintBackTriangle) tries the tile's farthest key
-// per 8 × 8 block before its box's keys: random triangles of 17–256 samples over keys just
+// per 4 × 4 block before its box's keys: random triangles of 17–256 samples over keys just
 // nearer than their own (with, every other time, one covered pixel a float farther, where the
 // triangle wins), blocks read before any paint: the same planes and counts as
 // paintTriangle<Test, true>, and some rejected by the blocks alone (nothing written where
@@ -488,7 +488,7 @@ TEST(DepthPrecision, FarthestBlocksBoundTheirPixelsKeys) {
 // tile's origin as the raster's (Raster.cpp, TilePlanes) with near junk past the tile's
 // pixels: an off-by-one that stays conservative fails here.
 TEST(DepthPrecision, FarthestBlocksAreExactForTilesAnywhereAndOfEverySize) {
-  constexpr int kSide = 64, kBlock = 8;
+  constexpr int kSide = 64, kBlock = detail::FarthestBlocks::kBlockSize;
   std::mt19937 random(5);
   std::uniform_real_distribution<float> key(-1.0f, 1.0f);
   std::vector<float> depth(kSide * kSide);
