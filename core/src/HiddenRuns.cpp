@@ -69,25 +69,24 @@ HWY_INLINE void gatherCorners(const RunSource<Index>& source, const std::uint32_
   const WindowVertex* const vertices = source.vertices;
   const Index* const offsets = source.polygons.offsets;
   const Index* const connectivity = source.polygons.connectivity;
+  // Polygon i's corners, from its three point references `c`.
+  const auto copy = [&](std::size_t i, const Index* c) {
+    corners[3 * i] = vertices[c[0]];
+    corners[3 * i + 1] = vertices[c[1]];
+    corners[3 * i + 2] = vertices[c[2]];
+  };
   if (source.offsetsThrice) {
-    for (std::size_t i = 0; i < count; ++i) {
-      const Index* c = connectivity + 3 * static_cast<std::size_t>(ids[i] - source.firstId);
-      corners[3 * i] = vertices[c[0]];
-      corners[3 * i + 1] = vertices[c[1]];
-      corners[3 * i + 2] = vertices[c[2]];
-    }
+    for (std::size_t i = 0; i < count; ++i)
+      copy(i, connectivity + 3 * static_cast<std::size_t>(ids[i] - source.firstId));
     return;
   }
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t polygon = ids[i] - source.firstId;
-    const Index* c = connectivity + static_cast<std::size_t>(offsets[polygon]);
     if (!source.allTriangles && offsets[polygon + 1] - offsets[polygon] != 3) {
       corners[3 * i] = corners[3 * i + 1] = corners[3 * i + 2] = kNotTriangleCorner;
       continue;
     }
-    corners[3 * i] = vertices[c[0]];
-    corners[3 * i + 1] = vertices[c[1]];
-    corners[3 * i + 2] = vertices[c[2]];
+    copy(i, connectivity + static_cast<std::size_t>(offsets[polygon]));
   }
 }
 

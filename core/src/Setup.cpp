@@ -110,7 +110,16 @@ class PolygonSetup {
   bool clampsBackFaces() const { return clampBack_; }
 
   // Puts polygon `polygon` in lane `lane` of a batch (the back pass's scattered polygons).
-  void loadOne(std::size_t polygon, TriangleBatch& batch, int lane) const {
+  // `gathered`: the polygon is a triangle whose corners the back pass's run test read already
+  // (HiddenRuns.h), loadOne's bytes; null: read here.
+  void loadOne(std::size_t polygon, TriangleBatch& batch, int lane,
+               const WindowVertex* gathered) const {
+    if (gathered != nullptr) {
+      batch.triangle[lane] = true;
+      for (int j = 0; j < 3; ++j)
+        batch.v[j][lane] = gathered[j];
+      return;
+    }
     const bool triangle = polygons_.size(polygon) == 3;
     batch.triangle[lane] = triangle;
     if (triangle) {
@@ -339,9 +348,7 @@ class PolygonSetup {
       binFragment(chunk_, tile, samples.x0[lane], samples.y0[lane], verdicts.key[lane], polygonId,
                   last);
     } else if ((verdicts.small >> lane) & 1u) {
-      if (kKeepsBackFaces && clampBack_)
-        chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
-      binSmall(chunk_, tile, smallTriangleOfLane(verdicts, lane, polygonId), last);
+      binSmallOfLane(verdicts, lane, tile, smallTriangleOfLane(verdicts, lane, polygonId), last);
     } else if ((verdicts.nearEdge >> lane) & 1u) {
       binNearEdge(verdicts, lane, polygon, polygonId, back, last);
     } else {
@@ -355,6 +362,16 @@ class PolygonSetup {
                   triangleEdges(back), polygonId, last,
                   (verdicts.oneTile >> lane) & 1u ? static_cast<std::int64_t>(tile) : -1);
     }
+  }
+
+  // A small or nearEdge lane's record, with its nearest key when the back faces are clamped
+  // (Chunk::smallNearestKeys: one a record from firstKeyedSmall on).
+  [[gnu::always_inline]] void binSmallOfLane(const BatchVerdicts& verdicts, int lane,
+                                             std::size_t tile, const SmallTriangle& record,
+                                             bool last) {
+    if (kKeepsBackFaces && clampBack_)
+      chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
+    binSmall(chunk_, tile, record, last);
   }
 
   // A nearEdge lane (BatchVerdicts): its record without the centers near a boundary edge at
@@ -374,11 +391,7 @@ class PolygonSetup {
                          static_cast<std::uint32_t>(verdicts.smallPlane.unsure[lane]), keys);
     SmallTriangle record = smallTriangleOfLane(verdicts, lane, polygonId);
     record.coverage = static_cast<std::uint16_t>(record.coverage & ~near);
-    if (record.coverage != 0) {
-      if (!kSkipBackFaces && clampBack_)
-        chunk_.smallNearestKeys.push_back(verdicts.smallPlane.nearestKey[lane]);
-      binSmall(chunk_, tile, record, last);
-    }
+    if (record.coverage != 0) binSmallOfLane(verdicts, lane, tile, record, last);
     for (std::uint32_t rest = near; rest != 0; rest &= rest - 1) {
       const int bit = std::countr_zero(rest);
       binFragment(chunk_, tile, x0 + bit % kSmallSide, y0 + bit / kSmallSide, keys[bit], polygonId,
@@ -744,14 +757,14 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   // (firstIdFrom reads a block's last id, from memory: the front pass wrote them long
   // before; since a block deferred whole is one entry, section 65, kIdsAhead entries reach
   // further than 16 blocks, and dropping these two hints measured the same) and the compact
-  // records. Hints at addresses that may lie past the arrays' ends
-  // (as integers: a prefetch does not fault).
+  // records. Hints at addresses that may lie past the arrays' ends (as integers: a prefetch
+  // does not fault).
   const auto prefetchBlockScan = [&](std::size_t k) __attribute__((always_inline)) {
     constexpr std::size_t kIdsAhead = 16 * kPolygonsPerBackBlock, kBlocksAhead = 8;
     const auto at = reinterpret_cast<std::uintptr_t>(ids.data() + k);
     __builtin_prefetch(reinterpret_cast<const void*>(at + kIdsAhead * sizeof(std::uint32_t)));
-    __builtin_prefetch(reinterpret_cast<const void*>(
-        at + (kIdsAhead + kPolygonsPerBackBlock - 1) * sizeof(std::uint32_t)));
+    __builtin_prefetch(reinterpret_cast<const void*>(at + (kIdsAhead + kPolygonsPerBackBlock - 1) *
+                                                              sizeof(std::uint32_t)));
     const std::size_t block = (deferredIdOf(ids[k]) - mesh.firstPolygon) >> kBackBlockBits;
     const auto test = reinterpret_cast<std::uintptr_t>(mesh.backBlockFacts->backTests.data());
     __builtin_prefetch(
@@ -902,13 +915,7 @@ std::size_t setUpBackRun(const SetupContext& context, Chunk& chunk, const FrameM
   };
   forEachShown([&](std::size_t polygon, const WindowVertex* loaded) {
     lanePolygon[lanes] = polygon;
-    if (loaded != nullptr) {  // a triangle, its corners as loadOne reads them
-      batch.triangle[lanes] = 1;
-      for (int j = 0; j < 3; ++j)
-        batch.v[j][lanes] = loaded[j];
-    } else {
-      setup.loadOne(polygon, batch, lanes);
-    }
+    setup.loadOne(polygon, batch, lanes, loaded);
     if (++lanes == kBatchSize) settleBatch();
   });
   if (lanes > 0) settleBatch();

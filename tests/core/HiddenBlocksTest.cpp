@@ -29,7 +29,43 @@
 namespace facet::testing {
 namespace {
 
-class HiddenBlocks : public TwoPassTest {};
+class HiddenBlocks : public TwoPassTest {
+ protected:
+  // Renders `scene` with every polygon classified (the front pass's cone skip off), then with
+  // the blocks the normal cones prove all back faces deferred whole, on every target, the reject
+  // on and off, at 1, 2 and 8 threads: the second must paint what the first does and hide as
+  // many polygons; check(reject, before, classified, after, counts) asks the rest (classified,
+  // counts: the two renders' hidden-block counts).
+  template <class Check>
+  static void expectDeferredWholeAsClassified(const Scene& scene, const Camera& camera,
+                                              const Check& check) {
+    detail::enableTwoPassFrames(true);
+    for (bool reject : {true, false}) {
+      detail::enableHiddenBlocks(reject);
+      for (int threads : threadCountsToRun({1, 2, 8})) {
+        SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
+                     " threads");
+        const RenderOptions options = optionsWith(threads);
+        detail::enableFrontPassConeSkip(false);
+        detail::countHiddenBlocks(true);
+        const Rendered before = renderScene(scene, camera, 640, 480, options);
+        const detail::HiddenBlockCounts classified = detail::hiddenBlockCounts();
+        ASSERT_EQ(classified.deferredWhole, 0u);
+        detail::enableFrontPassConeSkip(true);
+        renderOnEveryTarget(scene, camera, 640, 480, options,
+                            [&](const Rendered& after, const detail::HiddenBlockCounts& counts) {
+                              ASSERT_TRUE(after.stats.plan.twoPassFrame);
+                              EXPECT_GT(counts.deferredWhole, 10u);  // the skip acted
+                              expectSameRender(before, after);
+                              EXPECT_EQ(before.stats.plan.polygonsHiddenBehindFront,
+                                        after.stats.plan.polygonsHiddenBehindFront);
+                              check(reject, before, classified, after, counts);
+                            });
+      }
+    }
+    detail::enableFrontPassConeSkip(true);
+  }
+};
 
 // A sphere with a cap cut out where the camera sees it at an angle (x above `cut`): back faces show
 // through the hole, the others hide behind the front faces.
@@ -96,31 +132,12 @@ TEST_F(HiddenBlocks, BlocksDeferredWholeCountAndPaintAsClassifiedOnes) {
   MeshView view = sphere.view();
   view.version = 1;  // measured: its blocks' boxes and cones
   const Camera camera = fitCamera(sphere, glm::dvec3(-0.6, -0.2, -1.0));
-  detail::enableTwoPassFrames(true);
-  for (bool reject : {true, false}) {
-    detail::enableHiddenBlocks(reject);
-    for (int threads : threadCountsToRun({1, 2, 8})) {
-      SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
-                   " threads");
-      const RenderOptions options = optionsWith(threads);
-      detail::enableFrontPassConeSkip(false);
-      detail::countHiddenBlocks(true);
-      const Rendered before = renderScene(oneMeshScene(view), camera, 640, 480, options);
-      ASSERT_EQ(detail::hiddenBlockCounts().deferredWhole, 0u);
-      detail::enableFrontPassConeSkip(true);
-      renderOnEveryTarget(oneMeshScene(view), camera, 640, 480, options,
-                          [&](const Rendered& after, const detail::HiddenBlockCounts& counts) {
-                            ASSERT_TRUE(after.stats.plan.twoPassFrame);
-                            EXPECT_GT(counts.deferredWhole, 10u);  // the skip acted
-                            expectSameRender(before, after);
-                            EXPECT_EQ(before.stats.plan.polygonsHiddenBehindFront,
-                                      after.stats.plan.polygonsHiddenBehindFront);
-                            EXPECT_EQ(before.stats.plan.depthComplexity,
-                                      after.stats.plan.depthComplexity);
-                          });
-    }
-  }
-  detail::enableFrontPassConeSkip(true);
+  expectDeferredWholeAsClassified(oneMeshScene(view), camera,
+                                  [](bool, const Rendered& before, const detail::HiddenBlockCounts&,
+                                     const Rendered& after, const detail::HiddenBlockCounts&) {
+                                    EXPECT_EQ(before.stats.plan.depthComplexity,
+                                              after.stats.plan.depthComplexity);
+                                  });
 }
 
 // The front pass hands a block it defers whole to the back pass as one entry (kWholeBackBlockBit,
@@ -146,44 +163,25 @@ TEST_F(HiddenBlocks, WholeBlockEntriesAmongDeferredIdsPaintAndCountAsIds) {
   both.points = big.points;
   both.points.insert(both.points.end(), small.points.begin(), small.points.end());
   const Camera camera = fitCamera(both, glm::dvec3(-0.5, -0.3, -1.0));
-  detail::enableTwoPassFrames(true);
-  for (bool reject : {true, false}) {
-    detail::enableHiddenBlocks(reject);
-    for (int threads : threadCountsToRun({1, 2, 8})) {
-      SCOPED_TRACE(std::string(reject ? "reject, " : "no reject, ") + std::to_string(threads) +
-                   " threads");
-      const RenderOptions options = optionsWith(threads);
-      detail::enableFrontPassConeSkip(false);
-      detail::countHiddenBlocks(true);
-      const Rendered before = renderScene(scene, camera, 640, 480, options);
-      ASSERT_TRUE(before.stats.plan.twoPassFrame);
-      const detail::HiddenBlockCounts classified = detail::hiddenBlockCounts();
-      ASSERT_EQ(classified.deferredWhole, 0u);
-      EXPECT_EQ(classified.wholeTested, 0u);
-      detail::enableFrontPassConeSkip(true);
-      renderOnEveryTarget(scene, camera, 640, 480, options,
-                          [&](const Rendered& after, const detail::HiddenBlockCounts& counts) {
-                            ASSERT_TRUE(after.stats.plan.twoPassFrame);
-                            EXPECT_GT(counts.deferredWhole, 10u);
-                            expectSameRender(before, after);
-                            EXPECT_EQ(before.stats.plan.polygonsHiddenBehindFront,
-                                      after.stats.plan.polygonsHiddenBehindFront);
-                            EXPECT_EQ(before.stats.plan.blocksHiddenBehindFront,
-                                      after.stats.plan.blocksHiddenBehindFront);
-                            if (!reject) return;
-                            // Whole entries and ids both tested; whole ones dropped and kept.
-                            EXPECT_EQ(counts.wholeTested, counts.deferredWhole);
-                            EXPECT_GT(counts.blocks, counts.wholeTested);
-                            EXPECT_GT(counts.wholeKept, 0u);
-                            EXPECT_LT(counts.wholeKept, counts.wholeTested);
-                            EXPECT_EQ(counts.blocks, classified.blocks);
-                            EXPECT_EQ(counts.hidden, classified.hidden);
-                            EXPECT_EQ(counts.polygons, classified.polygons);
-                            EXPECT_EQ(counts.hiddenRuns, classified.hiddenRuns);
-                          });
-    }
-  }
-  detail::enableFrontPassConeSkip(true);
+  expectDeferredWholeAsClassified(
+      scene, camera,
+      [](bool reject, const Rendered& before, const detail::HiddenBlockCounts& classified,
+         const Rendered& after, const detail::HiddenBlockCounts& counts) {
+        ASSERT_TRUE(before.stats.plan.twoPassFrame);
+        EXPECT_EQ(classified.wholeTested, 0u);
+        EXPECT_EQ(before.stats.plan.blocksHiddenBehindFront,
+                  after.stats.plan.blocksHiddenBehindFront);
+        if (!reject) return;
+        // Whole entries and ids both tested; whole ones dropped and kept.
+        EXPECT_EQ(counts.wholeTested, counts.deferredWhole);
+        EXPECT_GT(counts.blocks, counts.wholeTested);
+        EXPECT_GT(counts.wholeKept, 0u);
+        EXPECT_LT(counts.wholeKept, counts.wholeTested);
+        EXPECT_EQ(counts.blocks, classified.blocks);
+        EXPECT_EQ(counts.hidden, classified.hidden);
+        EXPECT_EQ(counts.polygons, classified.polygons);
+        EXPECT_EQ(counts.hiddenRuns, classified.hiddenRuns);
+      });
 }
 
 // The sphere's points turned by `degrees` about the y axis, in place (a versioned mesh edited
