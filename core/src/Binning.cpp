@@ -78,4 +78,21 @@ void clearBins(Chunk& chunk, const TileGrid& grid) {
   }
 }
 
+void settleRecords(std::span<Chunk> chunks) {
+  for (Chunk& chunk : chunks) {
+    chunk.triangles.settle();
+    chunk.boundaryEdges.settle();
+    chunk.fragments.settle();
+    chunk.smallTriangles.settle();
+    chunk.smallNearestKeys.settle();
+    chunk.firstKeyedSmall = 0;
+    for (auto* bins : {&chunk.bins, &chunk.backBins}) {
+      for (auto& bin : *bins)
+        bin.settle();
+    }
+    settleVector(chunk.clippedVertices);
+    settleVector(chunk.deferredBack);
+  }
+}
+
 }  // namespace facet::detail

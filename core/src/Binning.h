@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "Frame.h"
 #include "TileGrid.h"
@@ -86,5 +87,9 @@ void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t 
 
 // Empties a chunk's triangles and bins for a new frame, with one bin per tile.
 void clearBins(Chunk& chunk, const TileGrid& grid);
+
+// Once a frame's records are painted: every chunk's records, bins and lists emptied, their
+// storage sized for the next frame from what they held (AppendBuffer::settle).
+void settleRecords(std::span<Chunk> chunks);
 
 }  // namespace facet::detail

@@ -23,6 +23,7 @@
 
 #include "Assert.h"
 #include "BackFacingBlocks.h"
+#include "Binning.h"
 #include "DeferredBackPoints.h"
 #include "Raster.h"
 #include "RendererInputs.h"
@@ -73,6 +74,9 @@ bool Renderer::Workspace::renderFull(const detail::FrameInputs& in, const detail
   stats.validateSeconds = runner.lap();
   planShading(in, path, threads);
   completed = completed && renderGeometry(in, planes, runner, stats);
+  // The records painted, their storage sized for the next frame: a frame like this one then
+  // takes none (an aborted frame's partial records size nothing).
+  if (completed) detail::settleRecords(setup.chunks);
   completed = completed && shadeAndResolve(in, planes, runner, stats);
   countGeometry(stats);
   return completed;

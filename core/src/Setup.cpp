@@ -1082,6 +1082,18 @@ const char* setupRoutineName(bool skipBackFaces) {
   return skipBackFaces ? "back faces skipped" : "back faces drawn";
 }
 
+namespace {
+std::atomic<SetupWatch> setupWatch{nullptr};
+
+void callSetupWatch(std::span<const Chunk> chunks) {
+  if (const SetupWatch watch = setupWatch.load(std::memory_order_relaxed)) watch(chunks);
+}
+}  // namespace
+
+void watchSetup(SetupWatch watch) {
+  setupWatch = watch;
+}
+
 bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads,
                    SetupBuffers& buffers) {
   planChunks(context, threads, buffers);
@@ -1090,6 +1102,7 @@ bool setUpPolygons(PhaseRunner& runner, const SetupContext& context, int threads
   // Here, on the caller's thread, before any tile reads a wrapped index.
   for (const Chunk& chunk : buffers.chunks)
     requireChunkIndexable(chunk);
+  callSetupWatch(buffers.chunks);
   return completed;
 }
 
@@ -1098,6 +1111,7 @@ bool setUpBackFaces(PhaseRunner& runner, const SetupContext& context, SetupBuffe
                        [&](std::size_t i) { setUpChunkBack(context, buffers.chunks[i]); });
   for (const Chunk& chunk : buffers.chunks)
     requireChunkIndexable(chunk);
+  callSetupWatch(buffers.chunks);
   return true;
 }
 

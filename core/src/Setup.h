@@ -72,4 +72,10 @@ void reportHiddenBlocks(std::span<const Chunk> chunks, RenderPlan& plan);
 // Adds what the set-up counted (polygons drawn, culled, ...; triangles) to `stats`.
 void addSetupCounts(std::span<const Chunk> chunks, RenderStats& stats);
 
+// Tests and measurements: `watch`, when not null, is called on the rendering thread with the
+// chunks after each set-up pass (a two-pass frame's front pass, then its back pass), to read
+// what their records hold and the storage they keep (Chunk; AppendBuffer::restart).
+using SetupWatch = void (*)(std::span<const Chunk> chunks);
+void watchSetup(SetupWatch watch);
+
 }  // namespace facet::detail

@@ -11,6 +11,7 @@
 #include "../support/TestRender.h"
 #include "../support/TwoPassScenes.h"
 #include "HiddenBlocks.h"
+#include "MeshCache.h"
 #include "Raster.h"
 #include "SetupBatch.h"
 
@@ -177,7 +178,7 @@ TEST_F(HiddenBlocksReview, ApexThroughTheFrontFaceIsNeverDroppedAnywhere) {
       apexPixels += id >= 256 && id < 512;
     ASSERT_GT(apexPixels, 4u);  // the apex wins pixels around it
     detail::enableTwoPassFrames(true);
-    for (const SimdTarget& target : detail::simdTargets()) {
+    for (const detail::SimdTarget& target : detail::simdTargets()) {
       SCOPED_TRACE(target.name);
       detail::useSimdTarget(target.bits);
       detail::countHiddenBlocks(true);
