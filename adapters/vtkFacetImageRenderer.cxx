@@ -30,7 +30,8 @@
 
 namespace {
 // Memory for an image plane that the renderer writes directly: 2 MiB-aligned and advised
-// to use transparent huge pages when large. Released with free(), which VTK calls.
+// to use transparent huge pages when large, as HugePageAllocator lays its buffers out. Released
+// with free(), which VTK calls.
 void* AllocatePlane(std::size_t bytes)
 {
   constexpr std::size_t hugePage = facet::HugePageAllocator<char>::kHugePage;
@@ -38,12 +39,12 @@ void* AllocatePlane(std::size_t bytes)
   {
     return std::malloc(std::max<std::size_t>(bytes, 1));
   }
-  const std::size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
-  void* plane = std::aligned_alloc(hugePage, rounded);
+  const auto layout = facet::HugePageAllocator<char>::layoutOf(bytes);
+  void* plane = std::aligned_alloc(hugePage, layout.allocated);
 #if defined(__linux__)
   if (plane)
   {
-    madvise(plane, rounded, MADV_HUGEPAGE);
+    madvise(plane, layout.advised, MADV_HUGEPAGE);
   }
 #endif
   return plane;

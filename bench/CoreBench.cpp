@@ -141,6 +141,17 @@ BENCHMARK(BM_Sphere)
     ->UseRealTime()
     ->MinTime(1.0);
 
+// BM_Sphere's frame over one whole turn of the camera, a degree a frame, whatever the time it
+// takes: the heap peak of every view (what the renderer keeps grows with the largest frame so
+// far), the same on any machine. Its peakMiB is the README's peak memory.
+BENCHMARK(BM_Sphere)
+    ->Name("BM_SphereWholeTurn")
+    ->ArgNames({"triangles", "threads", "closed"})
+    ->ArgsProduct({{20000, 500000, 2000000}, {2}, {0, 1}})
+    ->Iterations(360)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // The closed-surface check (isClosedSurface), which the VTK filter runs once per input on
 // its first Update(): the spheres as VTK hands them over (bench/closed_surface.md).
 //

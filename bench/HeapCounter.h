@@ -1,7 +1,8 @@
 #pragma once
 
 // Heap accounting for the benchmarks: the global operator new/delete of the benchmark binary
-// keep the bytes in use and their peak (usable sizes, as glibc's malloc reports them).
+// keep the bytes in use and their peak (glibc's usable sizes; an aligned buffer counts the
+// bytes asked for: HeapCounter.cpp says why).
 
 #include <cstddef>
 

@@ -4,6 +4,7 @@
 
 #include "AppendBuffer.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -174,6 +175,27 @@ TEST(AppendBuffer, SettleVectorSizesLikeTheBuffers) {
   EXPECT_EQ(list.data(), storage);  // kept: 1040 + 1040 / 16 <= 1133
   settleVector(list);
   EXPECT_EQ(list.capacity(), 0u);
+}
+
+// A large buffer is given its whole huge pages and its tail rounded up to one more only when the
+// tail fills half of it: never more than half a huge page unused, and huge pages for all of a
+// buffer but a tail of less than half of one.
+TEST(HugePageAllocator, RoundsUpOnlyATailOfHalfAHugePage) {
+  using Allocator = HugePageAllocator<char>;
+  constexpr std::size_t huge = Allocator::kHugePage;
+  for (std::size_t bytes : {huge, huge + 1, huge + huge / 2 - 1, huge + huge / 2, 2 * huge - 1,
+                            std::size_t{8294400}, 5 * huge + 4096}) {
+    const Allocator::Layout layout = Allocator::layoutOf(bytes);
+    EXPECT_GE(layout.allocated, bytes) << bytes;
+    EXPECT_LE(layout.allocated - bytes, huge / 2) << bytes;
+    EXPECT_EQ(layout.advised % huge, 0u) << bytes;
+    EXPECT_LE(layout.advised, layout.allocated) << bytes;
+    EXPECT_LT(bytes - std::min(bytes, layout.advised), huge / 2) << bytes;
+  }
+  EXPECT_EQ(Allocator::layoutOf(huge + 1).allocated, huge + 1);  // not 4 MiB
+  EXPECT_EQ(Allocator::layoutOf(8294400).allocated, 4 * huge);   // a 1080p plane: whole pages
+  std::vector<char, Allocator> buffer(huge + huge / 4, 'x');     // usable to its last byte
+  EXPECT_EQ(buffer.back(), 'x');
 }
 
 TEST(AppendBuffer, MovesHandOverTheStorage) {

@@ -8,8 +8,12 @@
 /// by index, so a 1080p frame touches thousands of 4 KiB pages in scattered order. Under
 /// virtualization every TLB miss costs a two-level page walk; with 2 MiB pages the whole
 /// frame fits in a few TLB entries (measured: 1080p, 500k triangles, 2 threads, 39 → 30 ms).
-/// Buffers of 2 MiB and more are aligned to 2 MiB and madvise(MADV_HUGEPAGE)'d before first
-/// touch; smaller ones are ordinary allocations. Elsewhere than Linux it is std::allocator.
+/// Buffers of 2 MiB and more are aligned to 2 MiB and their whole huge pages
+/// madvise(MADV_HUGEPAGE)'d before first touch; smaller ones are ordinary allocations. A buffer's
+/// tail past its last whole huge page is rounded up to one more when it fills at least half of it
+/// (at most 1 MiB unused; e.g. a 1080p plane, 3.96 huge pages), and otherwise left to ordinary
+/// pages: rounding every tail up cost a 2.1 MiB buffer 4 MiB (bench/core-frame-issue11.md, the
+/// peak-memory section). Elsewhere than Linux it is std::allocator.
 
 #include <cstddef>
 #include <new>
@@ -34,16 +38,28 @@ struct HugePageAllocator {
   template <class U>
   HugePageAllocator(const HugePageAllocator<U>&) {}  // NOLINT: rebinding, as std::allocator
 
+  // The bytes a buffer of `bytes` (at least kHugePage) is given, and the leading part of them
+  // that huge pages back: its whole huge pages, and its tail rounded up to one more when the
+  // tail fills at least half of it.
+  struct Layout {
+    std::size_t allocated, advised;
+  };
+  static constexpr Layout layoutOf(std::size_t bytes) {
+    const std::size_t whole = bytes / kHugePage * kHugePage;
+    if (bytes - whole >= kHugePage / 2) return {whole + kHugePage, whole + kHugePage};
+    return {bytes, whole};
+  }
+
   T* allocate(std::size_t count) {
     const std::size_t bytes = count * sizeof(T);
     if (bytes < kHugePage) {
       if constexpr (kOverAligned) return static_cast<T*>(::operator new(bytes, kAlignment));
       return static_cast<T*>(::operator new(bytes));
     }
-    const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    void* p = ::operator new (rounded, std::align_val_t{kHugePage});
+    const Layout layout = layoutOf(bytes);
+    void* p = ::operator new (layout.allocated, std::align_val_t{kHugePage});
 #if defined(__linux__)
-    madvise(p, rounded, MADV_HUGEPAGE);  // advice only: failure changes nothing but speed
+    madvise(p, layout.advised, MADV_HUGEPAGE);  // advice only: failure changes nothing but speed
 #endif
     return static_cast<T*>(p);
   }
