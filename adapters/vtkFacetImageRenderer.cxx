@@ -40,7 +40,10 @@ void* AllocatePlane(std::size_t bytes)
     return std::malloc(std::max<std::size_t>(bytes, 1));
   }
   const auto layout = facet::HugePageAllocator<char>::layoutOf(bytes);
-  void* plane = std::aligned_alloc(hugePage, layout.allocated);
+  // aligned_alloc takes a multiple of the alignment (ASan enforces it): the part past
+  // layout.allocated is address space the plane never touches, so never resident.
+  const std::size_t multiple = (layout.allocated + hugePage - 1) / hugePage * hugePage;
+  void* plane = std::aligned_alloc(hugePage, multiple);
 #if defined(__linux__)
   if (plane)
   {
