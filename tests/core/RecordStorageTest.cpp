@@ -5,13 +5,13 @@
 // previous one takes no storage. The renders themselves are the tests' concern elsewhere
 // (DeterminismTest: byte-identical for any thread count and target).
 
-#include <cmath>
 #include <cstddef>
 #include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "../../bench/TurningView.h"  // the benches' turning view: the same turn
 #include "../support/TestMeshes.h"
 #include "../support/TestRender.h"
 #include "AppendBuffer.h"
@@ -48,13 +48,6 @@ void watch(std::span<const detail::Chunk> chunks) {
   }
 }
 
-Camera turned(Camera camera, double degrees) {
-  const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
-  const glm::dvec3 r = camera.position - camera.focalPoint;
-  camera.position = camera.focalPoint + glm::dvec3(c * r.x + s * r.z, r.y, -s * r.x + c * r.z);
-  return camera;
-}
-
 constexpr std::size_t kLarge = 16384;
 
 void turnAndCheck(bool closed, int threads) {
@@ -77,7 +70,7 @@ void turnAndCheck(bool closed, int threads) {
   std::vector<int> recordRenewals(watched.size() * 5);  // frames 2 and 3, per record buffer
   for (int frame = 1; frame <= 6; ++frame) {
     SCOPED_TRACE(frame);
-    camera = turned(camera, 1.0);
+    camera = bench::turned(camera, 1.0);
     const std::size_t before = reallocations();
     renderer.render(scene, camera, framebuffer);
     const std::size_t renewed = reallocations() - before;
