@@ -64,32 +64,34 @@ void requireIndexable(std::size_t triangles, std::size_t fragments, std::size_t 
   check(clippedVertices, "clipped vertices");
 }
 
-void clearBins(Chunk& chunk, const TileGrid& grid) {
-  chunk.triangles.clear();
-  chunk.boundaryEdges.clear();
-  chunk.fragments.clear();
-  chunk.smallTriangles.clear();
-  chunk.smallNearestKeys.clear();
-  chunk.firstKeyedSmall = 0;
+namespace {
+// Calls `visit` on each of a chunk's record buffers and each of its bins: the one list that
+// clearBins and settleRecords both walk.
+template <class Visit>
+void forEachAppendBuffer(Chunk& chunk, const Visit& visit) {
+  visit(chunk.triangles);
+  visit(chunk.boundaryEdges);
+  visit(chunk.fragments);
+  visit(chunk.smallTriangles);
+  visit(chunk.smallNearestKeys);
   for (auto* bins : {&chunk.bins, &chunk.backBins}) {
-    bins->resize(grid.count());
     for (auto& bin : *bins)
-      bin.clear();
+      visit(bin);
   }
+}
+}  // namespace
+
+void clearBins(Chunk& chunk, const TileGrid& grid) {
+  chunk.bins.resize(grid.count());
+  chunk.backBins.resize(grid.count());
+  forEachAppendBuffer(chunk, [](auto& buffer) { buffer.clear(); });
+  chunk.firstKeyedSmall = 0;
 }
 
 void settleRecords(std::span<Chunk> chunks) {
   for (Chunk& chunk : chunks) {
-    chunk.triangles.settle();
-    chunk.boundaryEdges.settle();
-    chunk.fragments.settle();
-    chunk.smallTriangles.settle();
-    chunk.smallNearestKeys.settle();
+    forEachAppendBuffer(chunk, [](auto& buffer) { buffer.settle(); });
     chunk.firstKeyedSmall = 0;
-    for (auto* bins : {&chunk.bins, &chunk.backBins}) {
-      for (auto& bin : *bins)
-        bin.settle();
-    }
     settleVector(chunk.clippedVertices);
     settleVector(chunk.deferredBack);
   }
